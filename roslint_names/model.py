@@ -1,0 +1,184 @@
+"""Language-neutral facts that extractors produce and rules consume.
+
+Everything here is a frozen dataclass or an enum: facts are values, computed once per file,
+cacheable and comparable. Nothing in this module parses, reads files or prints.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+
+
+class Kind(str, Enum):
+    """The kind of graph resource a name denotes; the grammar differs per kind."""
+
+    NODE = "node"
+    NAMESPACE = "namespace"
+    TOPIC = "topic"
+    SERVICE = "service"
+    ACTION = "action"
+    PARAMETER = "parameter"
+    FRAME = "frame"
+
+
+class Generation(int, Enum):
+    """The ROS generation whose grammar and runtime judge a name."""
+
+    ROS1 = 1
+    ROS2 = 2
+
+
+class Language(str, Enum):
+    CPP = "cpp"
+    PYTHON = "python"
+    LAUNCH_XML = "launch-xml"  # ROS 1 .launch/.test and ROS 2 .launch.xml
+    LAUNCH_YAML = "launch-yaml"
+    URDF = "urdf"  # URDF and XACRO
+    PACKAGE_XML = "package-xml"
+
+
+class Role(str, Enum):
+    """What the code or launch file does with a name.
+
+    Endpoint roles are the ones RN202 cares about; the workspace model (graph rules) uses
+    all of them to wire publishers to subscribers and remaps to the names they rename.
+    """
+
+    NODE_NAME = "node-name"
+    NAMESPACE = "namespace"
+    PUBLISH = "publish"
+    SUBSCRIBE = "subscribe"
+    SERVE = "serve"
+    CALL = "call"
+    ACTION_SERVE = "action-serve"
+    ACTION_CALL = "action-call"
+    PARAMETER = "parameter"
+    PARAMETER_DEFAULT = "parameter-default"
+    REMAP_FROM = "remap-from"
+    REMAP_TO = "remap-to"
+    FRAME = "frame"
+    OTHER = "other"
+
+
+ENDPOINT_ROLES = frozenset(
+    {Role.PUBLISH, Role.SUBSCRIBE, Role.SERVE, Role.CALL, Role.ACTION_SERVE, Role.ACTION_CALL}
+)
+
+
+class Severity(str, Enum):
+    ERROR = "error"
+    WARNING = "warning"
+
+
+@dataclass(frozen=True, order=True)
+class Span:
+    """Where a name literal sits: 1-based lines, 1-based columns in Unicode code points.
+
+    The span starts at the literal's first character (the opening quote in code, the first
+    character of an attribute value or element text in XML) and ends just after it
+    (``end_column`` is exclusive).
+    """
+
+    line: int
+    column: int
+    end_line: int
+    end_column: int
+
+
+@dataclass(frozen=True)
+class NameUse:
+    """One occurrence of a ROS name in a file.
+
+    ``value`` is the name exactly as the runtime will see it after static folding (constant
+    propagation in code, ``$(arg x)`` defaults in launch files). When the value cannot be
+    known statically, ``dynamic`` is true, ``value`` holds the raw text for display only,
+    and rules skip the use: a dynamic name is never guessed.
+    """
+
+    kind: Kind
+    value: str
+    span: Span
+    role: Role
+    api: str  # where it came from, for messages: "<node name>", "ros::NodeHandle::advertise"
+    dynamic: bool = False
+    type_name: str | None = None  # message, service or action type when known
+    namespace: str | None = None  # enclosing namespace known in the file (launch group ns)
+
+
+@dataclass(frozen=True)
+class Remap:
+    source: str
+    target: str
+    span: Span
+
+
+@dataclass(frozen=True)
+class LaunchNode:
+    """A node started by a launch file, with the scope the file gives it.
+
+    The workspace model (resolution across files) is built from these; file rules look at
+    the ``NameUse`` facts the extractor emits for the same attributes.
+    """
+
+    package: str | None
+    executable: str | None
+    name: str | None
+    namespace: str  # the fully pushed namespace, "/" for the root; "" when dynamic
+    span: Span
+    remaps: tuple[Remap, ...] = ()
+    parameters: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class ParseError:
+    """A file, or part of one, that could not be decoded or parsed (becomes RN001)."""
+
+    message: str
+    span: Span
+
+
+@dataclass(frozen=True)
+class FileFacts:
+    """Everything one extraction learned about one file."""
+
+    path: str  # as given on the command line or found by discovery
+    language: Language
+    generation: Generation
+    names: tuple[NameUse, ...] = ()
+    launch_nodes: tuple[LaunchNode, ...] = ()
+    parse_errors: tuple[ParseError, ...] = ()
+
+
+@dataclass(frozen=True)
+class Finding:
+    """What a rule reports: no code or severity, the engine attaches those from the rule."""
+
+    span: Span
+    message: str
+    related: tuple[RelatedLocation, ...] = ()
+
+
+@dataclass(frozen=True)
+class RelatedLocation:
+    path: str
+    span: Span
+    message: str
+
+
+@dataclass(frozen=True)
+class Diagnostic:
+    """A finding bound to its rule, file and effective severity; what reporters format."""
+
+    path: str
+    span: Span
+    code: str
+    rule_name: str
+    severity: Severity
+    message: str
+    related: tuple[RelatedLocation, ...] = ()
+    suppressed: bool = False
+    source_line: str | None = field(default=None, compare=False)
+
+    def sort_key(self) -> tuple[str, int, int, str, str]:
+        return (self.path, self.span.line, self.span.column, self.code, self.message)

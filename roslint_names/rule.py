@@ -1,0 +1,53 @@
+"""The contract between the engine and a rule.
+
+A rule is a module in ``roslint_names/rules/`` (or a plugin) that exposes one ``Rule`` value
+through the ``roslint_names.rules`` entry-point group. Its ``check`` is pure: facts of one
+file and the settings that concern it in, findings out.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
+
+from .model import FileFacts, Finding, Generation, Kind, Severity
+
+OptionValue = bool | int | str | tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class NamingPolicy:
+    """A project's pattern for the names of one kind (RN206)."""
+
+    kind: Kind
+    pattern: str  # the configured regular expression, full-match semantics
+    description: str  # what the user wrote it as, for messages
+
+
+@dataclass(frozen=True)
+class RuleContext:
+    """What a rule may know besides the facts: settings, never the file system."""
+
+    max_depth: int = 4
+    options: Mapping[str, OptionValue] = field(default_factory=dict)
+    policies: tuple[NamingPolicy, ...] = ()
+
+
+Check = Callable[[FileFacts, RuleContext], Iterable[Finding]]
+
+
+@dataclass(frozen=True)
+class Rule:
+    code: str  # RNxxx, stable forever
+    name: str  # kebab-case slug
+    summary: str  # one line
+    severity: Severity  # default severity (on ROS 2 when the two differ)
+    check: Check | None  # None: reported by the engine itself (suppression bookkeeping)
+    ros1_severity: Severity | None = None  # when ROS 1 tolerates what ROS 2 rejects
+    enabled_by_default: bool = True
+    options: Mapping[str, OptionValue] = field(default_factory=dict)  # name -> default
+
+    def severity_for(self, generation: Generation) -> Severity:
+        if generation is Generation.ROS1 and self.ros1_severity is not None:
+            return self.ros1_severity
+        return self.severity
