@@ -1,0 +1,281 @@
+"""Command line: arguments in, exit code out.
+
+Exit 0 clean, 1 findings, 2 usage, configuration or internal error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+from typing import NoReturn, TextIO
+
+from . import __version__
+from .catalog import CatalogError, load_doc, rule_meta
+from .config import ConfigError, Overrides, apply_overrides, enabled_codes, load_settings
+from .discover import DiscoveryError, discover
+from .engine import lint
+from .model import Generation, Kind
+from .names import Problem, check_name
+from .registry import Registry, RegistryError, load_registry
+from .report import FORMATS, ReportContext, render, statistics, summary
+
+EXIT_CLEAN = 0
+EXIT_FINDINGS = 1
+EXIT_ERROR = 2
+COMMANDS = ("check", "validate", "rule", "rules")
+
+
+class UsageError(Exception):
+    pass
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    arguments = list(sys.argv[1:] if argv is None else argv)
+    if not arguments or arguments[0] not in (*COMMANDS, "-h", "--help", "--version"):
+        arguments.insert(0, "check")  # `roslint-names PATH...` is `roslint-names check PATH...`
+    parser = _parser()
+    options = parser.parse_args(arguments)
+    try:
+        return int(options.run(options))
+    except (ConfigError, DiscoveryError, UsageError, RegistryError, CatalogError) as error:
+        _fail(str(error))
+    except KeyboardInterrupt:
+        _fail("interrupted")
+    except BrokenPipeError:
+        # The reader went away (`roslint-names ... | head`); that is not our error.
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return EXIT_ERROR
+    except Exception as error:  # never a traceback for the user, but always a way to report it
+        if os.environ.get("ROSLINT_NAMES_DEBUG"):
+            raise
+        _fail(
+            f"internal error: {type(error).__name__}: {error}\n"
+            "Please report it with the file that caused it; "
+            "set ROSLINT_NAMES_DEBUG=1 for the traceback."
+        )
+
+
+def _fail(message: str) -> NoReturn:
+    print(f"roslint-names: error: {message}", file=sys.stderr)
+    raise SystemExit(EXIT_ERROR)
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="roslint-names",
+        description="Static linter for ROS graph-resource names.",
+        epilog="`roslint-names PATH...` is short for `roslint-names check PATH...`.",
+    )
+    parser.add_argument("--version", action="version", version=f"roslint-names {__version__}")
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    _add_check(commands.add_parser("check", help="lint files and directories (the default)"))
+    _add_validate(commands.add_parser("validate", help="judge names by the ROS grammar alone"))
+    rule = commands.add_parser("rule", help="print one rule's catalog page")
+    rule.add_argument("rule", metavar="CODE|SLUG")
+    rule.set_defaults(run=_run_rule)
+    rules = commands.add_parser("rules", help="list every rule")
+    rules.set_defaults(run=_run_rules)
+    return parser
+
+
+def _add_check(check: argparse.ArgumentParser) -> None:
+    check.add_argument("paths", nargs="*", type=Path, default=[Path(".")], metavar="PATH")
+    check.add_argument("--format", choices=FORMATS, default="text")
+    check.add_argument("--output", "-o", type=Path, help="write the report to FILE")
+    check.add_argument("--config", type=Path, help="use this config file, not the nearest one")
+    check.add_argument("--select", type=_codes, help="check only these codes, prefixes or slugs")
+    check.add_argument("--extend-select", type=_codes, default=(), help="check these as well")
+    check.add_argument("--ignore", type=_codes, default=(), help="do not check these")
+    check.add_argument("--ros", choices=("1", "2", "auto"), help="generation when undecided")
+    check.add_argument("--max-depth", type=int, help="deepest allowed name (RN201)")
+    check.add_argument("--exit-zero", action="store_true", help="exit 0 even with findings")
+    check.add_argument("--statistics", action="store_true", help="print counts per rule")
+    check.add_argument("--show-source", action="store_true", help="show the source line")
+    check.add_argument(
+        "--include-suppressed",
+        action="store_true",
+        help="SARIF: include suppressed results, marked with `suppressions`",
+    )
+    check.add_argument(
+        "--no-cache", action="store_true", help="do not read or write the facts cache"
+    )
+    check.add_argument(
+        "--jobs", "-j", type=_jobs, default=0, help="worker processes (0: all cores)"
+    )
+    check.set_defaults(run=_run_check)
+
+
+def _add_validate(validate: argparse.ArgumentParser) -> None:
+    validate.add_argument("names", nargs="+", metavar="NAME", help="names, or - for stdin")
+    validate.add_argument("--ros", choices=("1", "2"), default="2")
+    validate.add_argument("--kind", choices=[kind.value for kind in Kind], default="topic")
+    validate.add_argument("--format", choices=("text", "json"), default="text")
+    validate.set_defaults(run=_run_validate)
+
+
+def _codes(text: str) -> tuple[str, ...]:
+    return tuple(code.strip() for code in text.split(",") if code.strip())
+
+
+def _jobs(text: str) -> int:
+    try:
+        jobs = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if jobs < 0:
+        raise argparse.ArgumentTypeError("must be 0 (all cores) or more")
+    return jobs
+
+
+def _run_check(options: argparse.Namespace) -> int:
+    registry = load_registry()
+    cwd = Path.cwd()
+    overrides = Overrides(
+        ros=None if options.ros in (None, "auto") else Generation(int(options.ros)),
+        select=options.select,
+        extend_select=options.extend_select,
+        ignore=options.ignore,
+        max_depth=options.max_depth,
+    )
+    start = config_search_start(options.paths, cwd)
+    settings = apply_overrides(load_settings(options.config, start, registry), overrides, registry)
+    sources = discover(options.paths, settings.exclude, settings.root, cwd)
+    result = lint(sources, settings, registry)
+    metas = [rule_meta(rule) for rule in registry.rules]
+    enabled = enabled_codes(settings, registry)
+    output_is_terminal = options.output is None and sys.stdout.isatty()
+    context = ReportContext(
+        tool_version=__version__,
+        root=cwd,
+        show_source=options.show_source,
+        color=output_is_terminal and "NO_COLOR" not in os.environ,
+        include_suppressed=options.include_suppressed,
+    )
+    if options.statistics:
+        report = statistics(result.diagnostics, metas)
+    else:
+        report = render(
+            options.format,
+            result.diagnostics,
+            [meta for meta in metas if meta.code in enabled],
+            context,
+        )
+    _write(report, options.output)
+    print(summary(result.diagnostics, result.files_checked), file=sys.stderr)
+    has_findings = any(not diagnostic.suppressed for diagnostic in result.diagnostics)
+    return EXIT_FINDINGS if has_findings and not options.exit_zero else EXIT_CLEAN
+
+
+def config_search_start(paths: Sequence[Path], cwd: Path) -> Path:
+    """Where the search for a config file begins: the deepest directory holding every path.
+
+    `roslint-names examples/` then uses `examples/roslint-names.toml`, and a pre-commit run
+    over files of one package finds that package's config, as ruff and flake8 users expect.
+    """
+    directories = [
+        absolute if absolute.is_dir() else absolute.parent
+        for absolute in ((cwd / path).absolute() for path in paths)
+    ]
+    try:
+        return Path(os.path.commonpath(directories))
+    except ValueError:
+        return cwd
+
+
+def _write(report: str, output: Path | None) -> None:
+    if output is None:
+        _print(report, end="")
+        return
+    try:
+        output.write_text(report, encoding="utf-8")
+    except OSError as error:
+        raise UsageError(f"{output}: cannot write the report: {error.strerror}") from error
+
+
+def _print(text: str, end: str = "\n") -> None:
+    """Reports are UTF-8 whatever the locale says, as their formats promise."""
+    sys.stdout.flush()
+    sys.stdout.buffer.write((text + end).encode("utf-8"))
+    sys.stdout.buffer.flush()
+
+
+def _run_validate(options: argparse.Namespace) -> int:
+    names = _read_names(options.names, sys.stdin)
+    kind = Kind(options.kind)
+    generation = Generation(int(options.ros))
+    all_valid = True
+    for name in names:
+        problem = check_name(name, kind, generation)
+        valid = problem is None or not problem.fatal
+        all_valid = all_valid and valid
+        if options.format == "json":
+            record = {
+                "name": name,
+                "kind": kind.value,
+                "ros": generation.value,
+                "valid": valid,
+                "code": problem.code if problem else None,
+                "reason": problem.reason if problem else None,
+                "index": problem.index if problem else None,
+            }
+            _print(json.dumps(record, ensure_ascii=False))
+        else:
+            _print(_validation_line(name, kind, generation, problem))
+    return EXIT_CLEAN if all_valid else EXIT_FINDINGS
+
+
+def _validation_line(name: str, kind: Kind, generation: Generation, problem: Problem | None) -> str:
+    where = f"ROS {generation.value} {kind.value}"
+    if problem is None:
+        return f"{name!r}: valid {where} name"
+    verdict = "invalid" if problem.fatal else "accepted, but"
+    fix = f"; use {problem.suggestion!r}" if problem.suggestion else ""
+    return f"{name!r}: {verdict} {where} name: {problem.reason}{fix} [{problem.code}]"
+
+
+def _read_names(arguments: Sequence[str], stdin: TextIO) -> list[str]:
+    if list(arguments) != ["-"]:
+        if "-" in arguments:
+            raise UsageError("validate: '-' (read names from stdin) must be the only argument")
+        return list(arguments)
+    data = stdin.buffer.read().decode("utf-8", errors="replace")
+    lines = data.split("\n")
+    if lines and lines[-1] == "":
+        lines.pop()  # the final line break ends the last name; it does not start a new one
+    # Only the line break is removed: "\r\n" ends a line, spaces are part of the name.
+    return [line[:-1] if line.endswith("\r") else line for line in lines]
+
+
+def _run_rule(options: argparse.Namespace) -> int:
+    registry = load_registry()
+    rule = registry.by_code_or_name(options.rule)
+    if rule is None:
+        raise UsageError(f"no rule {options.rule!r}; `roslint-names rules` lists them")
+    _print(load_doc(rule.code, rule.name).markdown, end="")
+    return EXIT_CLEAN
+
+
+def _run_rules(options: argparse.Namespace) -> int:
+    _print(rules_table(load_registry()))
+    return EXIT_CLEAN
+
+
+def rules_table(registry: Registry) -> str:
+    """Code, slug, default severity and summary of every rule, as a Markdown table."""
+    lines = ["| Code | Name | Default severity | Summary |", "|---|---|---|---|"]
+    for rule in registry.rules:
+        severity = rule.severity.value
+        if rule.ros1_severity is not None and rule.ros1_severity != rule.severity:
+            severity += f" (ROS 1: {rule.ros1_severity.value})"
+        if not rule.enabled_by_default:
+            severity += ", off by default"
+        lines.append(f"| {rule.code} | {rule.name} | {severity} | {rule.summary} |")
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,361 @@
+"""Configuration: find it, read it, validate every key, and merge command-line overrides.
+
+Sources, the first found walking up from the start directory (a directory's own files win
+over its parents'; within one directory in this order):
+
+- ``roslint-names.toml`` and ``.roslint-names.toml``: settings at the top level;
+- ``pyproject.toml``: settings under ``[tool.roslint-names]`` (a pyproject without that
+  table is passed over, so a Python package inside a ROS workspace does not hide the
+  workspace's own file).
+
+Every problem names the file and the key and ends the run with exit 2.
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+from .model import Generation, Kind, Severity
+from .registry import Registry
+from .rule import NamingPolicy, OptionValue
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - exercised on Python 3.10 only
+    import tomli as tomllib
+
+CONFIG_FILENAMES = ("roslint-names.toml", ".roslint-names.toml", "pyproject.toml")
+DEFAULT_MAX_DEPTH = 4
+_TEMPLATE_FIELD = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
+
+
+class ConfigError(Exception):
+    """A configuration problem; the message names the file and the key."""
+
+
+@dataclass(frozen=True)
+class Settings:
+    root: Path  # paths in exclude and per-file-ignores are relative to it
+    source: Path | None = None  # the file the settings came from
+    ros: Generation | None = None  # None: auto (package.xml, then file evidence, then ROS 2)
+    select: tuple[str, ...] | None = None  # None: the rules enabled by default
+    extend_select: tuple[str, ...] = ()
+    ignore: tuple[str, ...] = ()
+    per_file_ignores: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    exclude: tuple[str, ...] = ()
+    max_depth: int = DEFAULT_MAX_DEPTH
+    severity: Mapping[str, Severity] = field(default_factory=dict)  # code -> severity
+    rule_options: Mapping[str, Mapping[str, OptionValue]] = field(default_factory=dict)
+    policies: tuple[NamingPolicy, ...] = ()
+
+
+def find_config(start: Path) -> Path | None:
+    for directory in (start, *start.parents):
+        for filename in CONFIG_FILENAMES:
+            candidate = directory / filename
+            if candidate.is_file() and (filename != "pyproject.toml" or _has_tool_table(candidate)):
+                return candidate
+    return None
+
+
+def load_settings(config_file: Path | None, start: Path, registry: Registry) -> Settings:
+    """Settings from ``config_file``, or from the nearest config above ``start``."""
+    if config_file is None:
+        config_file = find_config(start.resolve())
+        if config_file is None:
+            return Settings(root=start.resolve())
+    elif not config_file.is_file():
+        raise ConfigError(f"{config_file}: config file not found")
+    table = _read_table(config_file)
+    return parse_settings(table, config_file.resolve(), registry)
+
+
+def parse_settings(table: Mapping[str, Any], source: Path, registry: Registry) -> Settings:
+    reader = _Reader(source, registry)
+    known = {
+        "ros",
+        "select",
+        "extend-select",
+        "ignore",
+        "per-file-ignores",
+        "exclude",
+        "max-depth",
+        "severity",
+        "rules",
+        "naming",
+    }
+    for key in table:
+        if key not in known:
+            raise reader.error(key, f"unknown key; known keys: {', '.join(sorted(known))}")
+    select = table.get("select")
+    return Settings(
+        root=source.parent,
+        source=source,
+        ros=reader.generation("ros", table.get("ros", "auto")),
+        select=None if select is None else reader.selectors("select", select),
+        extend_select=reader.selectors("extend-select", table.get("extend-select", [])),
+        ignore=reader.selectors("ignore", table.get("ignore", [])),
+        per_file_ignores=reader.per_file_ignores(table.get("per-file-ignores", {})),
+        exclude=reader.strings("exclude", table.get("exclude", [])),
+        max_depth=reader.max_depth("max-depth", table.get("max-depth", DEFAULT_MAX_DEPTH)),
+        severity=reader.severities(table.get("severity", {})),
+        rule_options=reader.rule_options(table.get("rules", {})),
+        policies=reader.policies(table.get("naming", {})),
+    )
+
+
+@dataclass(frozen=True)
+class Overrides:
+    """Command-line options that take precedence over the file."""
+
+    ros: Generation | None = None
+    select: tuple[str, ...] | None = None
+    extend_select: tuple[str, ...] = ()
+    ignore: tuple[str, ...] = ()
+    max_depth: int | None = None
+
+
+def apply_overrides(settings: Settings, overrides: Overrides, registry: Registry) -> Settings:
+    for option, selectors in (
+        ("--select", overrides.select or ()),
+        ("--extend-select", overrides.extend_select),
+        ("--ignore", overrides.ignore),
+    ):
+        for selector in selectors:
+            if not registry.matching(selector):
+                raise ConfigError(f"{option}: {selector!r} matches no rule code, prefix or name")
+    if overrides.max_depth is not None and overrides.max_depth < 1:
+        raise ConfigError(f"--max-depth: must be at least 1, got {overrides.max_depth}")
+    return replace(
+        settings,
+        ros=overrides.ros if overrides.ros is not None else settings.ros,
+        select=overrides.select if overrides.select is not None else settings.select,
+        extend_select=settings.extend_select + overrides.extend_select,
+        ignore=settings.ignore + overrides.ignore,
+        max_depth=overrides.max_depth if overrides.max_depth is not None else settings.max_depth,
+    )
+
+
+def enabled_codes(settings: Settings, registry: Registry) -> frozenset[str]:
+    """The rules the run checks.
+
+    As in ruff, the most specific selector wins: ``select = ["RN"]`` with
+    ``ignore = ["RN2"]`` and ``extend-select = ["RN203"]`` keeps RN203. A slug is as
+    specific as a full code. On a tie, ignore wins.
+    """
+    enabled: set[str] = set()
+    for rule in registry.rules:
+        if settings.select is None:
+            # The default selection is the least specific one: any ignore beats it.
+            base = 1 if rule.enabled_by_default else 0
+        else:
+            base = _specificity(rule.code, rule.name, settings.select)
+        on = max(base, _specificity(rule.code, rule.name, settings.extend_select))
+        off = _specificity(rule.code, rule.name, settings.ignore)
+        if on > off:
+            enabled.add(rule.code)
+    return frozenset(enabled)
+
+
+def ignored_for_path(settings: Settings, relative_path: str, registry: Registry) -> frozenset[str]:
+    """Codes that ``per-file-ignores`` turns off for one path (relative to ``settings.root``)."""
+    import pathspec  # only runs that configure per-file-ignores pay for it
+
+    codes: set[str] = set()
+    for pattern, selectors in settings.per_file_ignores:
+        spec = pathspec.GitIgnoreSpec.from_lines([pattern])
+        if spec.match_file(relative_path):
+            for selector in selectors:
+                codes.update(rule.code for rule in registry.matching(selector))
+    return frozenset(codes)
+
+
+def _specificity(code: str, name: str, selectors: Sequence[str]) -> int:
+    best = 0
+    for selector in selectors:
+        upper = selector.upper()
+        if upper == "ALL":
+            best = max(best, 1)
+        elif selector.lower() == name:
+            best = max(best, len(code) + 1)
+        elif code.startswith(upper):
+            best = max(best, len(upper) + 1)
+    return best
+
+
+def _has_tool_table(pyproject: Path) -> bool:
+    try:
+        return "roslint-names" in _load_toml(pyproject).get("tool", {})
+    except ConfigError:
+        return True  # a broken pyproject is reported when it is read, not skipped silently
+
+
+def _read_table(path: Path) -> Mapping[str, Any]:
+    data = _load_toml(path)
+    if path.name == "pyproject.toml":
+        tool = data.get("tool", {})
+        table = tool.get("roslint-names", {}) if isinstance(tool, dict) else {}
+        if not isinstance(table, dict):
+            raise ConfigError(f"{path}: [tool.roslint-names] must be a table")
+        return table
+    return data
+
+
+def _load_toml(path: Path) -> dict[str, Any]:
+    try:
+        with path.open("rb") as stream:
+            data: dict[str, Any] = tomllib.load(stream)
+            return data
+    except OSError as error:
+        raise ConfigError(f"{path}: cannot read config file: {error.strerror}") from error
+    except tomllib.TOMLDecodeError as error:
+        raise ConfigError(f"{path}: invalid TOML: {error}") from error
+    except UnicodeDecodeError as error:
+        raise ConfigError(f"{path}: config file is not UTF-8: {error}") from error
+
+
+@dataclass(frozen=True)
+class _Reader:
+    """Type-checks one config table, naming the file and key in every error."""
+
+    source: Path
+    registry: Registry
+
+    def error(self, key: str, message: str) -> ConfigError:
+        return ConfigError(f"{self.source}: {key}: {message}")
+
+    def generation(self, key: str, value: object) -> Generation | None:
+        if value in ("auto",):
+            return None
+        if value in (1, "1"):
+            return Generation.ROS1
+        if value in (2, "2"):
+            return Generation.ROS2
+        raise self.error(key, f'must be 1, 2 or "auto", got {value!r}')
+
+    def strings(self, key: str, value: object) -> tuple[str, ...]:
+        if not isinstance(value, list) or not all(isinstance(item, str) for item in value):
+            raise self.error(key, f"must be a list of strings, got {value!r}")
+        return tuple(value)
+
+    def selectors(self, key: str, value: object) -> tuple[str, ...]:
+        selectors = self.strings(key, value)
+        for selector in selectors:
+            if not self.registry.matching(selector):
+                raise self.error(key, f"{selector!r} matches no rule code, prefix or name")
+        return selectors
+
+    def max_depth(self, key: str, value: object) -> int:
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            raise self.error(key, f"must be a whole number of at least 1, got {value!r}")
+        return value
+
+    def per_file_ignores(self, value: object) -> tuple[tuple[str, tuple[str, ...]], ...]:
+        if not isinstance(value, dict):
+            raise self.error("per-file-ignores", "must be a table of glob = [codes]")
+        return tuple(
+            (pattern, self.selectors(f"per-file-ignores.{pattern!r}", selectors))
+            for pattern, selectors in value.items()
+        )
+
+    def _rule_key(self, key: str, table_key: str) -> str:
+        rule = self.registry.by_code_or_name(key)
+        if rule is None:
+            raise self.error(f"{table_key}.{key}", "not a rule code or name")
+        return rule.code
+
+    def severities(self, value: object) -> dict[str, Severity]:
+        if not isinstance(value, dict):
+            raise self.error("severity", 'must be a table of code = "error" | "warning"')
+        severities: dict[str, Severity] = {}
+        for key, level in value.items():
+            code = self._rule_key(key, "severity")
+            if level not in ("error", "warning"):
+                raise self.error(f"severity.{key}", f'must be "error" or "warning", got {level!r}')
+            severities[code] = Severity(level)
+        return severities
+
+    def rule_options(self, value: object) -> dict[str, dict[str, OptionValue]]:
+        if not isinstance(value, dict):
+            raise self.error("rules", "must be a table of rule tables")
+        options: dict[str, dict[str, OptionValue]] = {}
+        for key, table in value.items():
+            code = self._rule_key(key, "rules")
+            rule = self.registry.by_code_or_name(code)
+            assert rule is not None
+            if not isinstance(table, dict):
+                raise self.error(f"rules.{key}", "must be a table of options")
+            checked: dict[str, OptionValue] = {}
+            for option, setting in table.items():
+                if option not in rule.options:
+                    known = ", ".join(sorted(rule.options)) or "none"
+                    raise self.error(
+                        f"rules.{key}.{option}", f"unknown option of {code}; known: {known}"
+                    )
+                checked[option] = self._option(
+                    f"rules.{key}.{option}", rule.options[option], setting
+                )
+            options[code] = checked
+        return options
+
+    def _option(self, key: str, default: OptionValue, value: object) -> OptionValue:
+        if isinstance(default, bool):
+            if not isinstance(value, bool):
+                raise self.error(key, f"must be true or false, got {value!r}")
+            return value
+        if isinstance(default, int):
+            if isinstance(value, bool) or not isinstance(value, int):
+                raise self.error(key, f"must be a whole number, got {value!r}")
+            return value
+        if isinstance(default, str):
+            if not isinstance(value, str):
+                raise self.error(key, f"must be a string, got {value!r}")
+            return value
+        return self.strings(key, value)
+
+    def policies(self, value: object) -> tuple[NamingPolicy, ...]:
+        if not isinstance(value, dict):
+            raise self.error("naming", "must be a table of kind = pattern")
+        kinds = {kind.value: kind for kind in Kind}
+        policies = []
+        for kind_name, spec in value.items():
+            key = f"naming.{kind_name}"
+            if kind_name not in kinds:
+                raise self.error(key, f"unknown kind; kinds: {', '.join(sorted(kinds))}")
+            pattern, description = self._policy_pattern(key, spec)
+            policies.append(NamingPolicy(kinds[kind_name], pattern, description))
+        return tuple(policies)
+
+    def _policy_pattern(self, key: str, spec: object) -> tuple[str, str]:
+        if isinstance(spec, str):
+            spec = {"regex": spec}
+        if not isinstance(spec, dict) or len(spec) != 1 or not {"regex", "template"} >= set(spec):
+            raise self.error(
+                key, 'must be a regex string, { regex = "..." } or { template = "..." }'
+            )
+        ((form, text),) = spec.items()
+        if not isinstance(text, str):
+            raise self.error(f"{key}.{form}", f"must be a string, got {text!r}")
+        pattern = template_to_regex(text) if form == "template" else text
+        try:
+            re.compile(pattern)
+        except re.error as error:
+            raise self.error(f"{key}.{form}", f"invalid regular expression: {error}") from error
+        return pattern, text
+
+
+def template_to_regex(template: str) -> str:
+    """``/{zone}/{robot}/{function}``: each ``{field}`` is one snake_case name token."""
+    parts: list[str] = []
+    position = 0
+    for match in _TEMPLATE_FIELD.finditer(template):
+        parts.append(re.escape(template[position : match.start()]))
+        parts.append(r"[a-z0-9]+(?:_[a-z0-9]+)*")
+        position = match.end()
+    parts.append(re.escape(template[position:]))
+    return "".join(parts)

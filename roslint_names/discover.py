@@ -1,0 +1,191 @@
+"""Find the files to lint and tell which language each one is.
+
+Directories are walked without following symbolic links (no loops), honouring
+``.gitignore`` files, the configured ``exclude`` patterns, and ROS's own markers: a
+directory holding ``COLCON_IGNORE``, ``CATKIN_IGNORE`` or ``AMENT_IGNORE`` is skipped, which
+also keeps colcon's ``build/``, ``install/`` and ``log/`` copies of launch files out.
+Files named on the command line are linted even when ``.gitignore`` matches them, but not
+when ``exclude`` does (pre-commit passes every staged file; ``exclude`` must still hold).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from .model import Language
+
+IGNORE_MARKERS = ("COLCON_IGNORE", "CATKIN_IGNORE", "AMENT_IGNORE")
+SKIPPED_DIRECTORIES = frozenset({".git", ".hg", ".svn", "__pycache__", ".mypy_cache", ".tox"})
+SNIFF_BYTES = 64 * 1024
+
+_CPP_SUFFIXES = frozenset({".cpp", ".cc", ".cxx", ".c++", ".hpp", ".hh", ".hxx", ".h", ".ipp"})
+_YAML_LAUNCH_KEY = re.compile(rb"^launch\s*:", re.MULTILINE)
+
+
+class DiscoveryError(Exception):
+    """A path named by the user that cannot be linted."""
+
+
+@dataclass(frozen=True)
+class SourceFile:
+    path: Path  # absolute
+    display: str  # what reports show: relative to the current directory when below it
+    language: Language
+
+
+def classify(path: Path) -> Language | None:
+    """The language of a file, sniffing the content only for ambiguous suffixes."""
+    name = path.name.lower()
+    suffix = path.suffix.lower()
+    if suffix in (".launch", ".test") or name.endswith(("_launch.xml", ".launch.xml")):
+        return Language.LAUNCH_XML
+    if name.endswith((".launch.yaml", "_launch.yaml", ".launch.yml", "_launch.yml")):
+        return Language.LAUNCH_YAML
+    if suffix in (".urdf", ".xacro"):
+        return Language.URDF
+    if suffix in _CPP_SUFFIXES:
+        return Language.CPP
+    if suffix == ".py":
+        return Language.PYTHON
+    if name == "package.xml":
+        return Language.PACKAGE_XML
+    if suffix == ".xml":
+        return _sniff_xml(path)
+    if suffix in (".yaml", ".yml"):
+        return Language.LAUNCH_YAML if _YAML_LAUNCH_KEY.search(_head(path)) else None
+    return None
+
+
+def _sniff_xml(path: Path) -> Language | None:
+    from .extract.xmlsafe import root_tag  # lxml is imported only when an .xml file is seen
+
+    tag = root_tag(_head(path))
+    if tag == "launch":
+        return Language.LAUNCH_XML
+    if tag == "robot":
+        return Language.URDF
+    return None
+
+
+def _head(path: Path) -> bytes:
+    try:
+        with path.open("rb") as stream:
+            return stream.read(SNIFF_BYTES)
+    except OSError:
+        return b""  # unreadable: classified by name only, and reported when read for real
+
+
+def display_path(path: Path, cwd: Path) -> str:
+    try:
+        return path.relative_to(cwd).as_posix()
+    except ValueError:
+        return path.as_posix()
+
+
+class _IgnoreRules:
+    """``.gitignore`` files and ``exclude`` patterns, each relative to its own directory."""
+
+    def __init__(self, exclude: Sequence[str], exclude_root: Path) -> None:
+        self._specs: list[tuple[Path, Any]] = []
+        if exclude:
+            self._specs.append((exclude_root, _spec(exclude)))
+        self._exclude_count = len(self._specs)
+
+    def excluded_by_config(self, path: Path, is_dir: bool) -> bool:
+        return any(
+            _matches(spec, base, path, is_dir) for base, spec in self._specs[: self._exclude_count]
+        )
+
+    def ignored(self, path: Path, is_dir: bool) -> bool:
+        return any(_matches(spec, base, path, is_dir) for base, spec in self._specs)
+
+    def enter(self, directory: Path) -> int:
+        """Read ``directory/.gitignore``; returns how many rules to pop on leaving it."""
+        gitignore = directory / ".gitignore"
+        try:
+            lines = gitignore.read_text(encoding="utf-8", errors="replace").splitlines()
+        except OSError:
+            return 0
+        self._specs.append((directory, _spec(lines)))
+        return 1
+
+    def leave(self, count: int) -> None:
+        del self._specs[len(self._specs) - count :]
+
+
+def _spec(lines: Sequence[str]) -> Any:
+    import pathspec
+
+    return pathspec.GitIgnoreSpec.from_lines(lines)
+
+
+def _matches(spec: Any, base: Path, path: Path, is_dir: bool) -> bool:
+    try:
+        relative = path.relative_to(base).as_posix()
+    except ValueError:
+        return False
+    return bool(spec.match_file(relative + "/" if is_dir else relative))
+
+
+def discover(
+    paths: Sequence[Path], exclude: Sequence[str], exclude_root: Path, cwd: Path
+) -> list[SourceFile]:
+    """Every lintable file under ``paths``, sorted by display path, each once."""
+    rules = _IgnoreRules(exclude, exclude_root)
+    found: dict[Path, SourceFile] = {}
+    for given in paths:
+        absolute = (cwd / given).absolute()
+        if not os.path.lexists(absolute):
+            raise DiscoveryError(f"{given}: no such file or directory")
+        if absolute.is_dir():
+            pushed = sum(rules.enter(ancestor) for ancestor in _repository_ancestors(absolute))
+            for path in _walk(absolute, rules):
+                _add(found, path, cwd)
+            rules.leave(pushed)
+        elif not rules.excluded_by_config(absolute, is_dir=False):
+            _add(found, absolute, cwd)
+    return sorted(found.values(), key=lambda source: source.display)
+
+
+def _repository_ancestors(directory: Path) -> list[Path]:
+    """The directories above ``directory`` up to its git root, outermost first.
+
+    Their ``.gitignore`` files apply to ``directory`` as they do for git. Outside a git
+    repository no parent's ``.gitignore`` is read.
+    """
+    ancestors: list[Path] = []
+    for parent in directory.parents:
+        ancestors.append(parent)
+        if (parent / ".git").exists():
+            return ancestors[::-1]
+    return []
+
+
+def _add(found: dict[Path, SourceFile], path: Path, cwd: Path) -> None:
+    language = classify(path)
+    if language is not None and language is not Language.PACKAGE_XML:
+        found[path] = SourceFile(path, display_path(path, cwd), language)
+
+
+def _walk(top: Path, rules: _IgnoreRules) -> Iterator[Path]:
+    if any((top / marker).exists() for marker in IGNORE_MARKERS):
+        return
+    pushed = rules.enter(top)
+    try:
+        entries = sorted(os.scandir(top), key=lambda entry: entry.name)
+    except OSError:
+        entries = []  # an unreadable directory holds nothing we can lint
+    for entry in entries:
+        path = Path(entry.path)
+        if entry.is_dir(follow_symlinks=False):
+            if entry.name in SKIPPED_DIRECTORIES or rules.ignored(path, is_dir=True):
+                continue
+            yield from _walk(path, rules)
+        elif entry.is_file() and not rules.ignored(path, is_dir=False):
+            yield path
+    rules.leave(pushed)

@@ -1,0 +1,206 @@
+"""Run the pipeline over discovered files: extract facts, apply rules, then suppressions.
+
+Extractor modules are imported on first use, so a run over launch files never imports
+libcst or tree-sitter, and a run over one C++ file never imports lxml.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+from .config import Settings, enabled_codes, ignored_for_path
+from .discover import SourceFile
+from .generation import PackageGenerations
+from .model import (
+    Diagnostic,
+    FileFacts,
+    Finding,
+    Generation,
+    Language,
+    ParseError,
+    RelatedLocation,
+    Span,
+)
+from .registry import Registry
+from .rule import Rule, RuleContext
+from .suppress import Suppression, find_suppressions, is_our_code
+
+Extract = Callable[[str, bytes, "Generation | None", Generation], FileFacts]
+
+# Languages whose extractor has landed; the others are discovered but not linted yet.
+EXTRACTOR_MODULES: dict[Language, str] = {
+    Language.LAUNCH_XML: "launch_xml",
+    Language.LAUNCH_YAML: "launch_yaml",
+    Language.URDF: "urdf",
+}
+DEFAULT_GENERATION = Generation.ROS2
+UNUSED_SUPPRESSION = "RN002"
+INVALID_SUPPRESSION = "RN003"
+
+
+@dataclass(frozen=True)
+class LintResult:
+    diagnostics: tuple[Diagnostic, ...]  # sorted; suppressed ones flagged, not dropped
+    files_checked: int
+
+
+def lintable(sources: Iterable[SourceFile]) -> list[SourceFile]:
+    return [source for source in sources if source.language in EXTRACTOR_MODULES]
+
+
+def extractor_for(language: Language) -> Extract:
+    module = importlib.import_module(f"roslint_names.extract.{EXTRACTOR_MODULES[language]}")
+    extract: Extract = module.extract
+    return extract
+
+
+def lint(sources: Sequence[SourceFile], settings: Settings, registry: Registry) -> LintResult:
+    enabled = enabled_codes(settings, registry)
+    packages = PackageGenerations()
+    checked = lintable(sources)
+    diagnostics: list[Diagnostic] = []
+    for source in checked:
+        data, read_error = _read(source.path)
+        facts = (
+            _unreadable(source, read_error)
+            if data is None
+            else extractor_for(source.language)(
+                source.display,
+                data,
+                packages.for_file(source.path),
+                settings.ros or DEFAULT_GENERATION,
+            )
+        )
+        text = decode_for_display(data or b"")
+        diagnostics.extend(check_file(facts, text, settings, registry, enabled))
+    diagnostics.sort(key=Diagnostic.sort_key)
+    return LintResult(tuple(diagnostics), len(checked))
+
+
+def check_file(
+    facts: FileFacts,
+    text: str,
+    settings: Settings,
+    registry: Registry,
+    enabled: frozenset[str],
+) -> list[Diagnostic]:
+    """Every diagnostic of one file: rule findings, then suppression bookkeeping."""
+    ignored = ignored_for_path(settings, _relative_to_root(facts.path, settings), registry)
+    active = enabled - ignored
+    to_diagnostic = _DiagnosticFactory(facts, settings, text.splitlines())
+    diagnostics = [
+        to_diagnostic(rule, finding.span, finding.message, finding.related)
+        for rule in registry.rules
+        if rule.code in active and rule.check is not None
+        for finding in _run(rule, facts, settings)
+    ]
+    suppressions = find_suppressions(text, facts.language)
+    diagnostics, used = _apply_suppressions(diagnostics, suppressions, registry)
+    unused_rule = registry.by_code_or_name(UNUSED_SUPPRESSION)
+    invalid_rule = registry.by_code_or_name(INVALID_SUPPRESSION)
+    for suppression in suppressions:
+        for key in suppression.keys:
+            rule = registry.by_code_or_name(key)
+            if rule is None and is_our_code(key) and invalid_rule and invalid_rule.code in active:
+                message = f"suppression names unknown rule '{key}'; see `roslint-names rules`"
+                diagnostics.append(to_diagnostic(invalid_rule, suppression.span, message))
+            elif (
+                rule is not None
+                and rule.code in enabled
+                and (suppression, rule.code) not in used
+                and unused_rule
+                and unused_rule.code in active
+            ):
+                message = f"suppression of {rule.code} ({rule.name}) silences nothing here"
+                diagnostics.append(to_diagnostic(unused_rule, suppression.span, message))
+    return diagnostics
+
+
+def _run(rule: Rule, facts: FileFacts, settings: Settings) -> Iterable[Finding]:
+    assert rule.check is not None
+    options = {**rule.options, **settings.rule_options.get(rule.code, {})}
+    context = RuleContext(max_depth=settings.max_depth, options=options, policies=settings.policies)
+    return rule.check(facts, context)
+
+
+def _apply_suppressions(
+    diagnostics: list[Diagnostic], suppressions: Sequence[Suppression], registry: Registry
+) -> tuple[list[Diagnostic], set[tuple[Suppression, str]]]:
+    used: set[tuple[Suppression, str]] = set()
+    result: list[Diagnostic] = []
+    for diagnostic in diagnostics:
+        silenced = False
+        for suppression in suppressions:
+            if diagnostic.span.line not in suppression.lines:
+                continue
+            for key in suppression.keys:
+                rule = registry.by_code_or_name(key)
+                if rule is not None and rule.code == diagnostic.code:
+                    used.add((suppression, rule.code))
+                    silenced = True
+        result.append(replace(diagnostic, suppressed=True) if silenced else diagnostic)
+    return result, used
+
+
+@dataclass(frozen=True)
+class _DiagnosticFactory:
+    """Binds findings of one file to its path, severities and source lines."""
+
+    facts: FileFacts
+    settings: Settings
+    lines: Sequence[str]
+
+    def __call__(
+        self, rule: Rule, span: Span, message: str, related: tuple[RelatedLocation, ...] = ()
+    ) -> Diagnostic:
+        severity = self.settings.severity.get(rule.code) or rule.severity_for(self.facts.generation)
+        in_file = 0 < span.line <= len(self.lines)
+        return Diagnostic(
+            path=self.facts.path,
+            span=span,
+            code=rule.code,
+            rule_name=rule.name,
+            severity=severity,
+            message=message,
+            related=related,
+            source_line=self.lines[span.line - 1] if in_file else None,
+        )
+
+
+def _read(path: Path) -> tuple[bytes | None, str]:
+    try:
+        return path.read_bytes(), ""
+    except OSError as error:
+        return None, error.strerror or str(error)
+
+
+def _unreadable(source: SourceFile, reason: str) -> FileFacts:
+    return FileFacts(
+        path=source.display,
+        language=source.language,
+        generation=DEFAULT_GENERATION,
+        parse_errors=(ParseError(f"cannot read file: {reason}", Span(1, 1, 1, 1)),),
+    )
+
+
+def decode_for_display(data: bytes) -> str:
+    """Text for suppression scanning and source excerpts; never fails."""
+    for bom, encoding in (
+        (b"\xef\xbb\xbf", "utf-8-sig"),
+        (b"\xff\xfe", "utf-16"),
+        (b"\xfe\xff", "utf-16"),
+    ):
+        if data.startswith(bom):
+            return data.decode(encoding, errors="replace")
+    return data.decode("utf-8", errors="replace")
+
+
+def _relative_to_root(display: str, settings: Settings) -> str:
+    path = Path(display).absolute()
+    try:
+        return path.relative_to(settings.root).as_posix()
+    except ValueError:
+        return path.as_posix()

@@ -1,0 +1,43 @@
+"""RN203 not-snake-case: a name token that is not lower snake_case.
+
+Frame ids are left out: URDF link names follow the robot's own conventions (``FL_hip``),
+and tf2 does not care.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from ..model import FileFacts, Finding, Kind, Severity
+from ..names import check_name, is_snake_case, snake_case, tokens
+from ..rule import Rule, RuleContext
+from .common import chosen_here, label, static_uses
+
+
+def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
+    for use in static_uses(facts):
+        if use.kind is Kind.FRAME or not chosen_here(use, facts):
+            continue
+        problem = check_name(use.value, use.kind, facts.generation)
+        if problem is not None and problem.fatal:
+            continue  # RN101 / RN102 report it; one problem, one finding
+        bad = [token for token in tokens(use.value, use.kind) if not is_snake_case(token)]
+        if not bad:
+            continue
+        quoted = ", ".join(f"'{token}'" for token in bad)
+        fixed = use.value
+        for token in bad:
+            fixed = fixed.replace(token, snake_case(token), 1)
+        yield Finding(
+            use.span,
+            f"{label(use)} '{use.value}' is not lower snake_case ({quoted}); use '{fixed}'",
+        )
+
+
+RULE = Rule(
+    code="RN203",
+    name="not-snake-case",
+    summary="A name token that is not lower snake_case",
+    severity=Severity.WARNING,
+    check=check,
+)

@@ -1,0 +1,75 @@
+"""Inline suppressions, each in its language's own comment form.
+
+- C++: ``// NOLINT(RN202)`` on the line, ``// NOLINTNEXTLINE(RN202)`` on the line before.
+- Python: ``# noqa: RN202`` on the line.
+- XML (launch, URDF, XACRO): ``<!-- roslint-names: ignore RN202 -->`` after the markup
+  on the line, or alone on the line before; YAML launch files:
+  ``# roslint-names: ignore RN202`` likewise.
+
+Codes and slugs both work (``NOLINT(hard-coded-absolute-name)``). A bare ``NOLINT`` or
+``# noqa`` belongs to cpplint, clang-tidy or flake8 and silences nothing here, and the
+other tools' codes in the same comment (``NOLINT(build/include, RN202)``) are left to them:
+only an ``RN`` code we do not know is reported (RN003).
+
+Comments are found by scanning lines, as flake8 does for ``noqa``: a suppression-shaped
+text inside a string literal also counts, a price worth not parsing twice.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from .model import Language, Span
+
+# Keys separated by a comma or blanks; the separator is never empty, so no backtracking blow-up.
+_KEYS = r"([A-Za-z0-9_\-]+(?:(?:[ \t]*,[ \t]*|[ \t]+)[A-Za-z0-9_\-]+)*)"
+_NOLINT = re.compile(r"//\s*NOLINT(NEXTLINE)?\(([^)]*)\)")
+_NOQA = re.compile(r"#\s*noqa\s*:\s*" + _KEYS, re.IGNORECASE)
+_XML_IGNORE = re.compile(r"<!--\s*roslint-names\s*:\s*ignore\s+" + _KEYS + r".*?-->")
+_YAML_IGNORE = re.compile(r"#\s*roslint-names\s*:\s*ignore\s+" + _KEYS)
+_LOOKS_LIKE_OUR_CODE = re.compile(r"^RN[0-9]+$", re.IGNORECASE)
+
+
+@dataclass(frozen=True)
+class Suppression:
+    keys: tuple[str, ...]  # codes or slugs as written
+    lines: frozenset[int]  # the lines whose findings it silences
+    span: Span  # the comment, for RN002 and RN003
+
+
+def find_suppressions(text: str, language: Language) -> list[Suppression]:
+    found: list[Suppression] = []
+    for index, line in enumerate(text.splitlines()):
+        number = index + 1
+        found.extend(_in_line(line, number, language))
+    return found
+
+
+def _in_line(line: str, number: int, language: Language) -> Iterable[Suppression]:
+    if language is Language.CPP:
+        for match in _NOLINT.finditer(line):
+            target = number + 1 if match.group(1) else number
+            yield _make(match.group(2), frozenset({target}), number, match)
+    elif language is Language.PYTHON:
+        for match in _NOQA.finditer(line):
+            yield _make(match.group(1), frozenset({number}), number, match)
+    else:
+        pattern = _YAML_IGNORE if language is Language.LAUNCH_YAML else _XML_IGNORE
+        for match in pattern.finditer(line):
+            # Alone on its line, the comment is about the next line; after markup, its own.
+            alone = not line[: match.start()].strip()
+            lines = frozenset({number, number + 1}) if alone else frozenset({number})
+            yield _make(match.group(1), lines, number, match)
+
+
+def _make(keys_text: str, lines: frozenset[int], number: int, match: re.Match[str]) -> Suppression:
+    keys = tuple(key for key in re.split(r"[\s,]+", keys_text.strip()) if key)
+    span = Span(number, match.start() + 1, number, match.end() + 1)
+    return Suppression(keys, lines, span)
+
+
+def is_our_code(key: str) -> bool:
+    """A key that claims to be one of our codes (so an unknown one is worth RN003)."""
+    return bool(_LOOKS_LIKE_OUR_CODE.match(key))

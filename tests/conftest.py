@@ -1,0 +1,103 @@
+"""Shared test helpers: run the real CLI in-process and read what it printed."""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from roslint_names.cli import main
+
+CATKIN_PACKAGE = """<?xml version="1.0"?>
+<package format="2">
+  <name>{name}</name>
+  <version>0.1.0</version>
+  <description>Test package</description>
+  <maintainer email="dev@example.com">Dev</maintainer>
+  <license>BSD</license>
+  <buildtool_depend>catkin</buildtool_depend>
+</package>
+"""
+
+AMENT_PACKAGE = """<?xml version="1.0"?>
+<package format="3">
+  <name>{name}</name>
+  <version>0.1.0</version>
+  <description>Test package</description>
+  <maintainer email="dev@example.com">Dev</maintainer>
+  <license>Apache-2.0</license>
+  <buildtool_depend>ament_cmake</buildtool_depend>
+  <export><build_type>ament_cmake</build_type></export>
+</package>
+"""
+
+
+@dataclass(frozen=True)
+class Run:
+    exit_code: int
+    stdout: str
+    stderr: str
+
+    def findings(self) -> list[dict[str, Any]]:
+        findings: list[dict[str, Any]] = json.loads(self.stdout)["findings"]
+        return findings
+
+    def codes(self) -> list[str]:
+        return [finding["code"] for finding in self.findings()]
+
+
+@contextmanager
+def chdir(path: Path) -> Iterator[None]:
+    previous = Path.cwd()
+    os.chdir(path)
+    try:
+        yield
+    finally:
+        os.chdir(previous)
+
+
+@pytest.fixture
+def run_cli(capsys: pytest.CaptureFixture[str]) -> Any:
+    def run(arguments: Sequence[str], cwd: Path) -> Run:
+        with chdir(cwd):
+            try:
+                exit_code = main(list(arguments))
+            except SystemExit as stop:
+                exit_code = int(stop.code or 0)
+        captured = capsys.readouterr()
+        return Run(exit_code, captured.out, captured.err)
+
+    return run
+
+
+def write(root: Path, relative: str, text: str) -> Path:
+    path = root / relative
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def write_package(root: Path, ros: int, name: str = "robot_bringup") -> Path:
+    template = CATKIN_PACKAGE if ros == 1 else AMENT_PACKAGE
+    return write(root, "package.xml", template.format(name=name))
+
+
+@pytest.fixture
+def lint_text(run_cli: Any, tmp_path: Path) -> Any:
+    """`lint_text(source, file="robot.launch", ros=1)` -> codes found, like pyflakes' harness."""
+
+    def lint(source: str, file: str, ros: int | None = None, *options: str) -> list[str]:
+        if ros is not None:
+            write_package(tmp_path, ros)
+        write(tmp_path, file, source)
+        result: Run = run_cli(["check", "--format", "json", *options, file], tmp_path)
+        assert result.exit_code in (0, 1), result.stderr
+        return result.codes()
+
+    return lint

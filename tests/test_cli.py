@@ -1,0 +1,175 @@
+"""The command line: subcommands, exit codes, shorthand, output files, validate."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+import pytest
+from conftest import write, write_package
+
+from roslint_names import __version__, cli
+from roslint_names.cli import rules_table
+from roslint_names.registry import load_registry
+
+BAD_LAUNCH = """<launch>
+  <arg name="robot" default="robot1"/>
+  <group ns="$(arg robot)">
+    <node name="base-driver" pkg="robot_base" type="driver_node">
+      <remap from="cmd_vel" to="cmd_vel/"/>
+    </node>
+  </group>
+</launch>
+"""
+
+
+def test_text_output_is_gcc_style_and_summary_goes_to_stderr(run_cli: Any, tmp_path: Path) -> None:
+    write_package(tmp_path, 1)
+    write(tmp_path, "launch/robot.launch", BAD_LAUNCH)
+    result = run_cli(["launch"], tmp_path)  # shorthand for `check launch`
+    assert result.exit_code == 1
+    assert result.stdout.splitlines() == [
+        "launch/robot.launch:4:17: error: node name 'base-driver' contains '-' at index 4"
+        " (ROS 1); use 'base_driver' [RN101 illegal-name]",
+        "launch/robot.launch:5:33: warning: remap target 'cmd_vel/' ends with '/'"
+        " (ROS 1 strips it); use 'cmd_vel' [RN102 trailing-slash]",
+    ]
+    assert "2 problems" in result.stderr
+    assert "1 file" in result.stderr
+
+
+def test_exit_zero_and_clean_exit(run_cli: Any, tmp_path: Path) -> None:
+    write(tmp_path, "robot.launch", BAD_LAUNCH)
+    assert run_cli(["check", "--exit-zero", "robot.launch"], tmp_path).exit_code == 0
+    write(tmp_path, "robot.launch", BAD_LAUNCH.replace("-", "_").replace("cmd_vel/", "cmd_vel"))
+    clean = run_cli(["check", "robot.launch"], tmp_path)
+    assert (clean.exit_code, clean.stdout) == (0, "")
+
+
+def test_output_file_and_statistics(run_cli: Any, tmp_path: Path) -> None:
+    write(tmp_path, "robot.launch", BAD_LAUNCH)
+    result = run_cli(["check", "--format", "json", "-o", "report.json", "."], tmp_path)
+    assert result.exit_code == 1 and result.stdout == ""
+    report = json.loads((tmp_path / "report.json").read_text(encoding="utf-8"))
+    assert [finding["code"] for finding in report["findings"]] == ["RN101", "RN102"]
+    stats = run_cli(["check", "--statistics", "."], tmp_path)
+    assert "RN101" in stats.stdout and "illegal-name" in stats.stdout
+
+
+def test_select_ignore_and_unknown_selector(run_cli: Any, tmp_path: Path) -> None:
+    write(tmp_path, "robot.launch", BAD_LAUNCH)
+    only = run_cli(["check", "--format", "json", "--select", "trailing-slash", "."], tmp_path)
+    assert only.codes() == ["RN102"]
+    ignored = run_cli(["check", "--format", "json", "--ignore", "RN1", "."], tmp_path)
+    assert (ignored.exit_code, ignored.codes()) == (0, [])
+    unknown = run_cli(["check", "--select", "RN9", "."], tmp_path)
+    assert unknown.exit_code == 2 and "'RN9' matches no rule" in unknown.stderr
+
+
+def test_ros_option_decides_undetermined_files(run_cli: Any, tmp_path: Path) -> None:
+    write(tmp_path, "nodes.launch.yaml", "launch:\n- node: {pkg: a, exec: b, namespace: r1/}\n")
+    ros2 = run_cli(["check", "--format", "json", "."], tmp_path)
+    assert [f["severity"] for f in ros2.findings()] == ["error"]
+
+
+def test_missing_path_exits_2(run_cli: Any, tmp_path: Path) -> None:
+    result = run_cli(["check", "does/not/exist.launch"], tmp_path)
+    assert result.exit_code == 2
+    assert "does/not/exist.launch: no such file or directory" in result.stderr
+
+
+def test_malformed_file_is_one_rn001_and_the_run_goes_on(run_cli: Any, tmp_path: Path) -> None:
+    write(tmp_path, "a_broken.launch", "<launch><node name='x'></launch>")
+    write(tmp_path, "b_bad.launch", BAD_LAUNCH)
+    write(tmp_path, "c_bytes.launch", "")
+    (tmp_path / "c_bytes.launch").write_bytes(b"\xff\xfe\x00<\x00l\x00\xd8\x00")
+    result = run_cli(["check", "--format", "json", "."], tmp_path)
+    assert result.exit_code == 1
+    assert [(f["path"], f["code"]) for f in result.findings()] == [
+        ("a_broken.launch", "RN001"),
+        ("b_bad.launch", "RN101"),
+        ("b_bad.launch", "RN102"),
+        ("c_bytes.launch", "RN001"),
+    ]
+
+
+def test_two_runs_give_identical_bytes(run_cli: Any, tmp_path: Path) -> None:
+    write(tmp_path, "robot.launch", BAD_LAUNCH)
+    for output_format in ("text", "json", "sarif", "github"):
+        first = run_cli(["check", "--format", output_format, "."], tmp_path).stdout
+        second = run_cli(["check", "--format", output_format, "."], tmp_path).stdout
+        assert first == second and first
+
+
+def test_rule_and_rules_commands(run_cli: Any, tmp_path: Path) -> None:
+    page = run_cli(["rule", "trailing-slash"], tmp_path)
+    assert page.exit_code == 0 and page.stdout.startswith("# RN102 trailing-slash")
+    assert run_cli(["rule", "rn102"], tmp_path).stdout == page.stdout
+    missing = run_cli(["rule", "RN999"], tmp_path)
+    assert missing.exit_code == 2 and "RN999" in missing.stderr
+    listing = run_cli(["rules"], tmp_path)
+    assert "| RN102 | trailing-slash | error (ROS 1: warning) |" in listing.stdout
+    assert "| RN002 | unused-suppression | warning, off by default |" in listing.stdout
+
+
+def test_version(run_cli: Any, tmp_path: Path) -> None:
+    assert run_cli(["--version"], tmp_path).stdout.strip() == f"roslint-names {__version__}"
+
+
+def test_validate_json_keeps_input_order_and_reports_index(run_cli: Any, tmp_path: Path) -> None:
+    result = run_cli(
+        ["validate", "--ros", "2", "--kind", "topic", "--format", "json", "cmd_vel", "a-b", "~a"],
+        tmp_path,
+    )
+    records = [json.loads(line) for line in result.stdout.splitlines()]
+    assert result.exit_code == 1
+    assert [record["name"] for record in records] == ["cmd_vel", "a-b", "~a"]
+    assert records[0] == {
+        "name": "cmd_vel",
+        "kind": "topic",
+        "ros": 2,
+        "valid": True,
+        "code": None,
+        "reason": None,
+        "index": None,
+    }
+    assert (records[1]["valid"], records[1]["code"], records[1]["index"]) == (False, "RN101", 1)
+    assert records[2]["valid"] is False
+
+
+def test_validate_reads_stdin_exactly_as_written(tmp_path: Path) -> None:
+    process = subprocess.run(
+        [sys.executable, "-m", "roslint_names.cli", "validate", "--format", "json", "-"],
+        input=b" cmd_vel\ncmd_vel \r\nodom\n",
+        capture_output=True,
+        check=False,
+    )
+    records = [json.loads(line) for line in process.stdout.decode().splitlines()]
+    assert [record["name"] for record in records] == [" cmd_vel", "cmd_vel ", "odom"]
+    assert [record["valid"] for record in records] == [False, False, True]
+    assert records[0]["index"] == 0 and records[1]["index"] == 7
+    assert process.returncode == 1
+
+
+@pytest.mark.parametrize("ros", ["1", "2"])
+def test_validate_exit_zero_when_all_valid(run_cli: Any, tmp_path: Path, ros: str) -> None:
+    assert run_cli(["validate", "--ros", ros, "/robot1/cmd_vel"], tmp_path).exit_code == 0
+
+
+def test_readme_rule_table_is_current() -> None:
+    readme = (Path(__file__).parents[1] / "README.md").read_text(encoding="utf-8")
+    assert rules_table(load_registry()) in readme, "regenerate with `roslint-names rules`"
+
+
+def test_no_traceback_on_internal_error(run_cli: Any, tmp_path: Path, monkeypatch: Any) -> None:
+    def explode(*arguments: object) -> None:
+        raise RuntimeError("boom")
+
+    monkeypatch.setattr(cli, "lint", explode)
+    write(tmp_path, "robot.launch", BAD_LAUNCH)
+    result = run_cli(["check", "."], tmp_path)
+    assert result.exit_code == 2
+    assert "internal error: RuntimeError: boom" in result.stderr

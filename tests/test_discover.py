@@ -1,0 +1,108 @@
+"""File discovery: classification, .gitignore, exclude, ROS ignore markers, generations."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+from conftest import write
+
+from roslint_names.discover import DiscoveryError, classify, discover
+from roslint_names.generation import PackageGenerations, package_xml_generation
+from roslint_names.model import Generation, Language
+
+
+@pytest.mark.parametrize(
+    ("name", "text", "language"),
+    [
+        ("robot.launch", "", Language.LAUNCH_XML),
+        ("talker_listener.test", "", Language.LAUNCH_XML),
+        ("bringup.launch.xml", "", Language.LAUNCH_XML),
+        ("bringup_launch.xml", "", Language.LAUNCH_XML),
+        ("bringup.launch.yaml", "", Language.LAUNCH_YAML),
+        ("robot.urdf", "", Language.URDF),
+        ("robot.urdf.xacro", "", Language.URDF),
+        ("talker.cpp", "", Language.CPP),
+        ("talker.hpp", "", Language.CPP),
+        ("talker.py", "", Language.PYTHON),
+        ("package.xml", "<package/>", Language.PACKAGE_XML),
+        ("nodes.xml", '<?xml version="1.0"?>\n<!-- c -->\n<launch/>', Language.LAUNCH_XML),
+        ("model.xml", "<robot name='r'/>", Language.URDF),
+        ("plugins.xml", "<library path='x'/>", None),
+        ("bringup.yaml", "# launch\nlaunch:\n- node: {pkg: a, exec: b}\n", Language.LAUNCH_YAML),
+        ("params.yaml", "amcl:\n  ros__parameters:\n    use_sim_time: true\n", None),
+        ("CMakeLists.txt", "", None),
+    ],
+)
+def test_classify(tmp_path: Path, name: str, text: str, language: Language | None) -> None:
+    assert classify(write(tmp_path, name, text)) is language
+
+
+def test_walk_honours_gitignore_exclude_and_ros_markers(tmp_path: Path) -> None:
+    (tmp_path / ".git").mkdir()
+    write(tmp_path, ".gitignore", "generated/\n*.bak.launch\n")
+    write(tmp_path, "src/bringup/launch/robot.launch", "<launch/>")
+    write(tmp_path, "src/bringup/launch/old.bak.launch", "<launch/>")
+    write(tmp_path, "src/bringup/generated/robot.launch", "<launch/>")
+    write(tmp_path, "src/vendor/.gitignore", "!*.bak.launch\nskip.launch\n")
+    write(tmp_path, "src/vendor/skip.launch", "<launch/>")
+    write(tmp_path, "src/vendor/keep.launch", "<launch/>")
+    write(tmp_path, "src/third_party/x.launch", "<launch/>")
+    write(tmp_path, "src/disabled/COLCON_IGNORE", "")
+    write(tmp_path, "src/disabled/robot.launch", "<launch/>")
+    write(tmp_path, "install/COLCON_IGNORE", "")
+    write(tmp_path, "install/share/bringup/launch/robot.launch", "<launch/>")
+    found = discover([Path("src")], ["src/third_party/"], tmp_path, tmp_path)
+    assert [source.display for source in found] == [
+        "src/bringup/launch/robot.launch",
+        "src/vendor/keep.launch",
+    ]
+
+
+def test_explicit_files_skip_gitignore_but_not_exclude(tmp_path: Path) -> None:
+    write(tmp_path, ".gitignore", "*.launch\n")
+    write(tmp_path, "a.launch", "<launch/>")
+    write(tmp_path, "b.launch", "<launch/>")
+    found = discover([Path("a.launch"), Path("b.launch")], ["b.launch"], tmp_path, tmp_path)
+    assert [source.display for source in found] == ["a.launch"]
+
+
+def test_missing_path_is_an_error_naming_it(tmp_path: Path) -> None:
+    with pytest.raises(DiscoveryError, match="no_such_dir"):
+        discover([Path("no_such_dir")], [], tmp_path, tmp_path)
+
+
+def test_symlink_loops_are_not_followed(tmp_path: Path) -> None:
+    write(tmp_path, "pkg/robot.launch", "<launch/>")
+    os.symlink(tmp_path, tmp_path / "pkg" / "loop")
+    found = discover([tmp_path], [], tmp_path, tmp_path)
+    assert [source.display for source in found] == ["pkg/robot.launch"]
+
+
+@pytest.mark.parametrize(
+    ("manifest", "generation"),
+    [
+        ("<buildtool_depend>catkin</buildtool_depend>", Generation.ROS1),
+        ("<buildtool_depend>ament_cmake</buildtool_depend>", Generation.ROS2),
+        ("<export><build_type>ament_python</build_type></export>", Generation.ROS2),
+        ("<!-- <buildtool_depend>catkin</buildtool_depend> -->", None),
+        (
+            '<buildtool_depend condition="$ROS_VERSION == 1">catkin</buildtool_depend>\n'
+            '<buildtool_depend condition="$ROS_VERSION == 2">ament_cmake</buildtool_depend>',
+            None,
+        ),
+    ],
+)
+def test_package_xml_generation(manifest: str, generation: Generation | None) -> None:
+    text = f'<?xml version="1.0"?>\n<package format="3"><name>p</name>{manifest}</package>'
+    assert package_xml_generation(text) is generation
+
+
+def test_nearest_package_xml_decides(tmp_path: Path) -> None:
+    write(tmp_path, "src/ros1_pkg/package.xml", "<buildtool_depend>catkin</buildtool_depend>")
+    write(tmp_path, "src/ros2_pkg/package.xml", "<buildtool_depend>ament_cmake</buildtool_depend>")
+    generations = PackageGenerations()
+    assert generations.for_file(tmp_path / "src/ros1_pkg/launch/a.launch") is Generation.ROS1
+    assert generations.for_file(tmp_path / "src/ros2_pkg/launch/a.launch.xml") is Generation.ROS2
+    assert generations.for_file(tmp_path / "src/a.launch") is None
