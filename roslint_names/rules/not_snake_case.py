@@ -13,6 +13,10 @@ from ..names import check_name, is_snake_case, snake_case, tokens
 from ..rule import Rule, RuleContext
 from .common import chosen_here, label, static_uses
 
+# Last tokens that ROS packages spell themselves, so no author can choose another spelling:
+# image_transport names a subtopic after its transport plugin (`image_raw/compressedDepth`).
+TRANSPORT_SUFFIXES = frozenset({"compressedDepth"})
+
 
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
     for use in static_uses(facts):
@@ -21,7 +25,10 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
         problem = check_name(use.value, use.kind, facts.generation)
         if problem is not None and problem.fatal:
             continue  # RN101 / RN102 report it; one problem, one finding
-        bad = [token for token in tokens(use.value, use.kind) if not is_snake_case(token)]
+        name_tokens = tokens(use.value, use.kind)
+        if name_tokens and name_tokens[-1] in TRANSPORT_SUFFIXES:
+            name_tokens = name_tokens[:-1]
+        bad = [token for token in name_tokens if not is_snake_case(token)]
         if not bad:
             continue
         quoted = ", ".join(f"'{token}'" for token in bad)

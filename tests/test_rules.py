@@ -1,0 +1,99 @@
+"""Rules on realistic launch snippets, one behaviour per test, pyflakes style."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from conftest import write, write_package
+
+ROS1_CAMERA = """<launch>
+  <group ns="camera">
+    <node name="depth_republisher" pkg="image_transport" type="republish"
+          args="compressedDepth raw">
+      <remap from="in" to="depth/image_raw"/>
+      <remap from="out" to="depth/image_raw/compressedDepth"/>
+    </node>
+  </group>
+</launch>
+"""
+
+
+def test_image_transport_suffix_is_not_a_style_problem(lint_text: Any) -> None:
+    # image_transport names its subtopics after the transport plugin (`compressedDepth`);
+    # the launch author cannot choose another spelling.
+    assert lint_text(ROS1_CAMERA, "camera.launch", 1) == []
+
+
+def test_camel_case_elsewhere_is_still_reported(lint_text: Any) -> None:
+    source = ROS1_CAMERA.replace("depth/image_raw/compressedDepth", "depth/compressedDepth/raw")
+    assert lint_text(source, "camera.launch", 1) == ["RN203"]
+
+
+def test_launch_param_and_remap_source_names_are_not_judged_for_style(lint_text: Any) -> None:
+    source = """<launch>
+  <node name="slam_gmapping" pkg="gmapping" type="slam_gmapping">
+    <param name="maxUrange" value="6.0"/>
+    <remap from="scanTopic" to="base_scan"/>
+  </node>
+</launch>
+"""
+    assert lint_text(source, "gmapping.launch", 1) == []
+
+
+def test_dynamic_names_are_skipped_not_guessed(lint_text: Any) -> None:
+    source = """<launch>
+  <arg name="robot_name"/>
+  <group ns="$(arg robot_name)">
+    <node name="$(anon driver)" pkg="robot_base" type="driver_node">
+      <remap from="cmd_vel" to="$(env ROBOT_PREFIX)/cmd_vel"/>
+    </node>
+  </group>
+</launch>
+"""
+    assert lint_text(source, "robot.launch", 1) == []
+
+
+def test_arg_defaults_are_substituted(lint_text: Any) -> None:
+    source = """<launch>
+  <arg name="robot_name" default="Robot-1"/>
+  <group ns="$(arg robot_name)">
+    <node name="driver" pkg="robot_base" type="driver_node"/>
+  </group>
+</launch>
+"""
+    assert lint_text(source, "robot.launch", 1) == ["RN101"]
+
+
+def test_illegal_name_is_reported_once_under_its_most_specific_code(lint_text: Any) -> None:
+    source = (
+        '<launch>\n  <node pkg="a" exec="b" name="Base-Driver" namespace="Robot1/"/>\n</launch>\n'
+    )
+    assert lint_text(source, "robot.launch.xml", 2) == ["RN101", "RN102"]
+
+
+def test_max_depth_option(lint_text: Any) -> None:
+    source = '<launch>\n  <remap from="scan" to="a/b/c/d/e"/>\n</launch>\n'
+    assert lint_text(source, "deep.launch", 1) == ["RN201"]
+    assert lint_text(source, "deep.launch", 1, "--max-depth", "5") == []
+
+
+def test_ros1_frame_leading_slash_is_a_warning_ros2_an_error(run_cli: Any, tmp_path: Any) -> None:
+    launch = """<launch>
+  <node pkg="robot_localization" exec="ekf_node" name="ekf">
+    <param name="frame_id" value="/map"/>
+  </node>
+</launch>
+"""
+    write(tmp_path, "ros2/launch/a.launch.xml", launch)
+    write_package(tmp_path / "ros2", 2)
+    write(
+        tmp_path,
+        "ros1/launch/a.launch",
+        launch.replace('exec="ekf_node"', 'type="ekf_localization_node"'),
+    )
+    write_package(tmp_path / "ros1", 1)
+    result = run_cli(["check", "--format", "json", "."], tmp_path)
+    assert [(f["path"], f["code"], f["severity"]) for f in result.findings()] == [
+        ("ros1/launch/a.launch", "RN205", "warning"),
+        ("ros2/launch/a.launch.xml", "RN205", "error"),
+    ]
