@@ -1,0 +1,707 @@
+"""Launch XML: ROS 1 roslaunch files (``.launch``, ``.test``) and ROS 2 launch XML.
+
+Both generations share one shape, an action tree of entities with attributes, so the
+walkers below work on a small ``Entity`` protocol; ``launch_yaml`` feeds the ROS 2 walker
+the same entities read from YAML, exactly as launch's own frontends do.
+
+Which syntax a file uses (``<group ns>`` and ``$(arg)`` vs ``<push-ros-namespace>`` and
+``$(var)``) comes from its own markers first: a ROS 1 launch file inside an ament package
+is still read as ROS 1, while the generation its names are judged by comes from the
+package first (see ``evidence``).
+
+Namespaces on the facts: a node's ``ns``/``namespace`` attribute, a group's and a pushed
+namespace carry the namespace enclosing them; a node's name, remaps and command-line names
+carry the node's namespace; its parameters carry the node's full name (that is where
+they live). ``None`` when the namespace depends on something dynamic.
+"""
+
+from __future__ import annotations
+
+import re
+from abc import ABC, abstractmethod
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Protocol
+
+from lxml import etree
+
+from roslint_names.extract import evidence, xmlsafe
+from roslint_names.extract.substitution import (
+    ARG,
+    Assignment,
+    Bindings,
+    Condition,
+    Declaration,
+    Dialect,
+    Located,
+    Lookup,
+    Meaning,
+    Value,
+    mapping_lookup,
+    meaning,
+    ros1_assignments,
+    ros2_assignments,
+    skipped,
+    strip_node_prefix,
+    substitute,
+    truth,
+)
+from roslint_names.model import (
+    FileFacts,
+    Generation,
+    Kind,
+    Language,
+    LaunchNode,
+    NameUse,
+    ParseError,
+    Remap,
+    Role,
+    Span,
+)
+
+# ---------------------------------------------------------------------------------------
+# Entities: what the walkers see of XML elements and YAML mappings
+
+
+class Entity(Protocol):
+    """One launch action or description, as launch's frontends model it."""
+
+    @property
+    def kind(self) -> str:
+        """The tag (XML) or key (YAML): "node", "group", "remap"..."""
+        ...
+
+    def get(self, name: str) -> Located | None:
+        """A scalar attribute, or None when absent."""
+        ...
+
+    def children(self) -> list[Entity]:
+        """Child actions of a container (``<group>``, ``<launch>``)."""
+        ...
+
+    def nested(self, name: str) -> list[Entity]:
+        """Sub-entities of one kind: a node's ``remap``s, ``param``s, ``composable_node``s."""
+        ...
+
+    def span(self) -> Span:
+        """Where the entity starts, for facts that have no attribute to point at."""
+        ...
+
+    def api(self, attribute: str) -> str:
+        """How messages name the attribute: ``<node name>`` or ``node: name``."""
+        ...
+
+
+class XmlEntity:
+    """An lxml element seen as an ``Entity``."""
+
+    def __init__(self, document: xmlsafe.XmlDocument, element: etree._Element) -> None:
+        self._document = document
+        self._element = element
+        self._kind = etree.QName(element).localname
+
+    @property
+    def kind(self) -> str:
+        return self._kind
+
+    def get(self, name: str) -> Located | None:
+        return self._document.attribute(self._element, name)
+
+    def children(self) -> list[Entity]:
+        return [
+            XmlEntity(self._document, child)
+            for child in self._element
+            if isinstance(child.tag, str)
+        ]
+
+    def nested(self, name: str) -> list[Entity]:
+        return [child for child in self.children() if child.kind == name]
+
+    def span(self) -> Span:
+        return self._document.tag_span(self._element)
+
+    def api(self, attribute: str) -> str:
+        return f"<{self.kind} {attribute}>"
+
+
+# ---------------------------------------------------------------------------------------
+# Helpers shared by both generations
+
+
+def join_namespace(parent: str | None, child: Value) -> str | None:
+    """roslaunch's ``ns_join`` and launch_ros's ``prefix_namespace``: an absolute child
+    replaces the parent, a relative one is appended. "/" is the root; None is unknown."""
+    if child.dynamic or child.text.startswith("~"):
+        return None
+    if child.text.startswith("/"):
+        return child.text.rstrip("/") or "/"
+    if parent is None:
+        return None
+    if not child.text:
+        return parent
+    return f"{parent.rstrip('/')}/{child.text}".rstrip("/") or "/"
+
+
+def absolute_namespace(value: Value) -> str | None:
+    """``__ns:=x`` replaces the namespace outright; roscpp and rcl make it absolute."""
+    return join_namespace("/", value)
+
+
+def node_path(namespace: str | None, name: str | None) -> str | None:
+    if namespace is None or name is None:
+        return None
+    return f"{namespace.rstrip('/')}/{name}"
+
+
+_FRAME_TOKEN = re.compile(r"(?:^|_)frame(?:_id)?$")
+
+
+def is_frame_parameter(name: str) -> bool:
+    """``frame_id``, ``frame``, ``*_frame``, ``*_frame_id``: values that are tf2 frame ids."""
+    return bool(_FRAME_TOKEN.search(re.split(r"[/.~]", name)[-1]))
+
+
+@dataclass(frozen=True)
+class Fact:
+    """The kind of a name and what the launch file does with it."""
+
+    kind: Kind
+    role: Role
+
+
+NODE = Fact(Kind.NODE, Role.NODE_NAME)
+NAMESPACE = Fact(Kind.NAMESPACE, Role.NAMESPACE)
+REMAP_FROM = Fact(Kind.TOPIC, Role.REMAP_FROM)
+REMAP_TO = Fact(Kind.TOPIC, Role.REMAP_TO)
+PARAMETER = Fact(Kind.PARAMETER, Role.PARAMETER)
+FRAME = Fact(Kind.FRAME, Role.FRAME)
+
+
+@dataclass
+class Scope:
+    """What a launch action sees: its namespace, the remaps in force and the variables.
+
+    ROS 1 arguments are file-global (``lookup`` reads one ``Bindings``); ROS 2 ``<let>``
+    and ``<arg>`` are visible after their declaration and ``<group>`` scopes them, so each
+    ROS 2 scope has its own ``variables``.
+    """
+
+    namespace: str | None
+    remaps: list[Remap] = field(default_factory=list)
+    variables: dict[str, Value] = field(default_factory=dict)
+    global_lookup: Lookup | None = None
+
+    @property
+    def lookup(self) -> Lookup:
+        return self.global_lookup or mapping_lookup(self.variables)
+
+    def copy(self) -> Scope:
+        return Scope(self.namespace, list(self.remaps), dict(self.variables), self.global_lookup)
+
+
+@dataclass(frozen=True)
+class NodeSpec:
+    """The attributes one kind of node entity uses."""
+
+    namespace_attribute: str  # "ns" in ROS 1, "namespace" in ROS 2
+    executable_attribute: str  # "type", "exec" or "plugin"
+
+
+@dataclass(frozen=True)
+class CommandLineName:
+    """An assignment from a node's command line, substituted."""
+
+    meaning: Meaning
+    api: str
+    key_at: Located  # where the key is written
+    key: Value
+    value_at: Located
+    value: Value
+
+
+class LaunchWalker(ABC):
+    """State and helpers common to the ROS 1 and ROS 2 walkers; facts accumulate here."""
+
+    dialect: Dialect
+
+    def __init__(self) -> None:
+        self.names: list[NameUse] = []
+        self.nodes: list[LaunchNode] = []
+
+    # -- values and facts ---------------------------------------------------------------
+
+    def value(self, located: Located, scope: Scope) -> Value:
+        if located.opaque:
+            return Value(located.text, dynamic=True)
+        return substitute(located.text, self.dialect, scope.lookup)
+
+    def emit(
+        self,
+        fact: Fact,
+        api: str,
+        located: Located,
+        value: Value,
+        namespace: str | None,
+    ) -> None:
+        self.names.append(
+            NameUse(
+                kind=fact.kind,
+                value=value.text,
+                span=located.span,
+                role=fact.role,
+                api=api,
+                dynamic=value.dynamic,
+                namespace=namespace,
+            )
+        )
+
+    def attribute(
+        self,
+        entity: Entity,
+        name: str,
+        scope: Scope,
+        fact: Fact,
+        namespace: str | None,
+    ) -> Value | None:
+        """Emit the attribute as a name; its value, or None when absent."""
+        located = entity.get(name)
+        if located is None:
+            return None
+        value = self.value(located, scope)
+        self.emit(fact, entity.api(name), located, value, namespace)
+        return value
+
+    def static(self, entity: Entity, name: str, scope: Scope) -> str | None:
+        """A non-name attribute (pkg, exec) when statically known."""
+        located = entity.get(name)
+        value = None if located is None else self.value(located, scope)
+        return None if value is None or value.dynamic else value.text
+
+    def skipped(self, entity: Entity, scope: Scope) -> bool:
+        if_attr, unless_attr = entity.get("if"), entity.get("unless")
+        return skipped(
+            None if if_attr is None else self.value(if_attr, scope),
+            None if unless_attr is None else self.value(unless_attr, scope),
+        )
+
+    # -- remaps and parameters ----------------------------------------------------------
+
+    def remap(self, entity: Entity, scope: Scope, namespace: str | None) -> Remap | None:
+        """``<remap from to>``: both names, and the remap when both are static."""
+        source = entity.get("from")
+        source_value = self.attribute(entity, "from", scope, REMAP_FROM, namespace)
+        target_value = self.attribute(entity, "to", scope, REMAP_TO, namespace)
+        return _static_remap(source, source_value, target_value)
+
+    def frame_value(
+        self,
+        entity: Entity,
+        scope: Scope,
+        parameter: Value,
+        namespace: str | None,
+    ) -> None:
+        """A frame-like parameter's value is a tf2 frame id."""
+        if parameter.dynamic or not is_frame_parameter(parameter.text):
+            return
+        self.attribute(entity, "value", scope, FRAME, namespace)
+
+    # -- nodes --------------------------------------------------------------------------
+
+    @abstractmethod
+    def command_line(self, entity: Entity, scope: Scope) -> list[CommandLineName]:
+        """The node's ``a:=b`` arguments (per generation)."""
+
+    @abstractmethod
+    def node_contents(
+        self, entity: Entity, scope: Scope, namespace: str | None, path: str | None
+    ) -> tuple[list[Remap], list[str]]:
+        """Emit the node's own remaps and parameters; return the static ones."""
+
+    def node(self, entity: Entity, scope: Scope, spec: NodeSpec) -> None:
+        """A node: its names, then one ``LaunchNode`` with its scope."""
+        namespace = scope.namespace
+        namespace_value = self.attribute(
+            entity, spec.namespace_attribute, scope, NAMESPACE, namespace
+        )
+        if namespace_value is not None:
+            namespace = join_namespace(namespace, namespace_value)
+        arguments = self.command_line(entity, scope)
+        for argument in arguments:
+            if argument.meaning is Meaning.NAMESPACE:
+                namespace = absolute_namespace(argument.value)
+        name_attribute = entity.get("name")
+        name_value = self.attribute(entity, "name", scope, NODE, namespace)
+        name = _node_name(name_value, arguments)
+        path = node_path(namespace, name)
+        remaps, parameters = self.command_line_names(arguments, namespace, path)
+        own_remaps, own_parameters = self.node_contents(entity, scope, namespace, path)
+        self.nodes.append(
+            LaunchNode(
+                package=self.static(entity, "pkg", scope),
+                executable=self.static(entity, spec.executable_attribute, scope),
+                name=name,
+                namespace="" if namespace is None else namespace,
+                span=entity.span() if name_attribute is None else name_attribute.span,
+                remaps=tuple(scope.remaps + own_remaps + remaps),
+                parameters=tuple(own_parameters + parameters),
+            )
+        )
+
+    def command_line_names(
+        self, arguments: Sequence[CommandLineName], namespace: str | None, path: str | None
+    ) -> tuple[list[Remap], list[str]]:
+        """Emit the names a node's command line sets; the static remaps and parameters."""
+        remaps: list[Remap] = []
+        parameters: list[str] = []
+        for argument in arguments:
+            api, key, value = argument.api, argument.key, argument.value
+            if argument.meaning is Meaning.NODE:
+                self.emit(NODE, api, argument.value_at, value, namespace)
+            elif argument.meaning is Meaning.NAMESPACE:
+                self.emit(NAMESPACE, api, argument.value_at, value, "/")  # made absolute
+            elif argument.meaning is Meaning.REMAP:
+                self.emit(REMAP_FROM, api, argument.key_at, key, namespace)
+                self.emit(REMAP_TO, api, argument.value_at, value, namespace)
+                remap = _static_remap(argument.key_at, key, value)
+                remaps.extend([remap] if remap else [])
+            elif argument.meaning is Meaning.PARAMETER:
+                self.emit(PARAMETER, api, argument.key_at, key, path)
+                parameters.extend([] if key.dynamic else [key.text])
+                if not key.dynamic and is_frame_parameter(key.text):
+                    self.emit(FRAME, api, argument.value_at, value, path)
+            elif argument.meaning is Meaning.PRIVATE_PARAMETER and not key.dynamic:
+                parameters.append(key.text[1:])  # ROS 1 _rate:=10 sets ~rate
+        return remaps, parameters
+
+    def substitute_assignments(
+        self, assignments: Sequence[Assignment], api: str, scope: Scope
+    ) -> list[CommandLineName]:
+        """Substitute both sides of each ``key:=value`` and tell what it sets."""
+        found = []
+        for assignment in assignments:
+            key = assignment.key
+            if assignment.flag == "-r":
+                key = strip_node_prefix(key)
+            key_value = self.value(key, scope)
+            what = meaning(assignment.flag, key_value.text, self.dialect)
+            if what is not None:
+                value = self.value(assignment.value, scope)
+                found.append(CommandLineName(what, api, key, key_value, assignment.value, value))
+        return found
+
+
+def _node_name(attribute: Value | None, arguments: Sequence[CommandLineName]) -> str | None:
+    """The name attribute; else ``__name:=``/``__node:=`` from the command line."""
+    if attribute is not None:
+        return None if attribute.dynamic else attribute.text
+    for argument in arguments:
+        if argument.meaning is Meaning.NODE and not argument.value.dynamic:
+            return argument.value.text
+    return None
+
+
+def _static_remap(
+    source: Located | None, source_value: Value | None, target_value: Value | None
+) -> Remap | None:
+    """A remap for ``LaunchNode``; dynamic ones are left out rather than guessed."""
+    if source is None or source_value is None or target_value is None:
+        return None
+    if source_value.dynamic or target_value.dynamic:
+        return None
+    return Remap(source_value.text, target_value.text, source.span)
+
+
+# ---------------------------------------------------------------------------------------
+# ROS 1
+
+
+_ROS1_NODE = NodeSpec(namespace_attribute="ns", executable_attribute="type")
+_ROS1_IGNORED = frozenset({"arg", "machine", "env", "master"})
+
+
+class Ros1Launch(LaunchWalker):
+    """roslaunch's tags: node, test, group ns, remap, param, rosparam, include, arg."""
+
+    dialect = Dialect.ROS1
+
+    def __init__(self, root: Entity) -> None:
+        super().__init__()
+        self.bindings = Bindings(Dialect.ROS1)
+        _declare_arguments(root.children(), self.bindings, ())
+
+    def run(self, root: Entity) -> None:
+        self.walk(root.children(), Scope("/", global_lookup=self.bindings.lookup))
+
+    def walk(self, entities: Sequence[Entity], parent: Scope) -> None:
+        scope = parent.copy()  # remaps declared here stay in this group
+        for entity in entities:
+            if self.skipped(entity, scope):
+                continue
+            kind = entity.kind
+            if kind == "group":
+                self.group(entity, scope)
+            elif kind in ("node", "test"):
+                self.node(entity, scope, _ROS1_NODE)
+            elif kind == "remap":
+                remap = self.remap(entity, scope, scope.namespace)
+                scope.remaps.extend([remap] if remap else [])
+            elif kind == "param":
+                self.param(entity, scope, scope.namespace)
+            elif kind == "rosparam":
+                self.rosparam(entity, scope, scope.namespace)
+            elif kind == "include":
+                self.attribute(entity, "ns", scope, NAMESPACE, scope.namespace)
+            elif kind not in _ROS1_IGNORED:
+                self.walk(entity.children(), scope)
+
+    def group(self, entity: Entity, scope: Scope) -> None:
+        inner = scope.copy()
+        value = self.attribute(entity, "ns", scope, NAMESPACE, scope.namespace)
+        if value is not None:
+            inner.namespace = join_namespace(scope.namespace, value)
+        self.walk(entity.children(), inner)
+
+    def param(self, entity: Entity, scope: Scope, namespace: str | None) -> str | None:
+        """``<param name value>``: the name, and the value when the name is frame-like."""
+        name = self.attribute(entity, "name", scope, PARAMETER, namespace)
+        if name is None:
+            return None
+        self.frame_value(entity, scope, name, namespace)
+        return None if name.dynamic else name.text
+
+    def rosparam(self, entity: Entity, scope: Scope, namespace: str | None) -> str | None:
+        """``<rosparam ns param>``: the parameter lives in ``ns`` below the enclosing one."""
+        ns = self.attribute(entity, "ns", scope, NAMESPACE, namespace)
+        inner = namespace if ns is None else join_namespace(namespace, ns)
+        param = self.attribute(entity, "param", scope, PARAMETER, inner)
+        if param is None or param.dynamic or (ns is not None and ns.dynamic):
+            return None
+        return param.text if ns is None or not ns.text else f"{ns.text.rstrip('/')}/{param.text}"
+
+    def command_line(self, entity: Entity, scope: Scope) -> list[CommandLineName]:
+        args = entity.get("args")
+        if args is None or args.opaque:
+            return []
+        return self.substitute_assignments(ros1_assignments(args), entity.api("args"), scope)
+
+    def node_contents(
+        self, entity: Entity, scope: Scope, namespace: str | None, path: str | None
+    ) -> tuple[list[Remap], list[str]]:
+        remaps: list[Remap] = []
+        parameters: list[str] = []
+        for child in entity.children():
+            if self.skipped(child, scope):
+                continue
+            if child.kind == "remap":
+                remap = self.remap(child, scope, namespace)
+                remaps.extend([remap] if remap else [])
+            elif child.kind == "param":
+                parameter = self.param(child, scope, path)
+                parameters.extend([parameter] if parameter else [])
+            elif child.kind == "rosparam":
+                parameter = self.rosparam(child, scope, path)
+                parameters.extend([parameter] if parameter else [])
+        return remaps, parameters
+
+
+def _declare_arguments(
+    entities: Sequence[Entity], bindings: Bindings, conditions: tuple[Condition, ...]
+) -> None:
+    """Collect every ``<arg>`` of the file with the conditions guarding it.
+
+    roslaunch arguments are file-global; ``<arg>`` children of ``<include>`` are values
+    handed to another file, not declarations here.
+    """
+    for entity in entities:
+        if_attr, unless_attr = entity.get("if"), entity.get("unless")
+        guarded = conditions
+        if if_attr is not None or unless_attr is not None:
+            condition = Condition(
+                None if if_attr is None else if_attr.text,
+                None if unless_attr is None else unless_attr.text,
+            )
+            guarded = (*conditions, condition)
+        if entity.kind == "arg":
+            name = entity.get("name")
+            given = entity.get("value") or entity.get("default")
+            if name is not None:
+                raw = None if given is None else given.text
+                bindings.declare(ARG, name.text, Declaration(raw, guarded))
+        elif entity.kind not in ("include", "node", "test"):
+            _declare_arguments(entity.children(), bindings, guarded)
+
+
+# ---------------------------------------------------------------------------------------
+# ROS 2
+
+
+_ROS2_NODE = NodeSpec(namespace_attribute="namespace", executable_attribute="exec")
+_ROS2_COMPOSABLE = NodeSpec(namespace_attribute="namespace", executable_attribute="plugin")
+_ROS2_NODES = frozenset({"node", "node_container", "lifecycle_node"})
+_ROS2_PUSH = frozenset({"push-ros-namespace", "push_ros_namespace"})
+_ROS2_LEAVES = frozenset(
+    {"include", "executable", "set_env", "unset_env", "append_env", "log", "shutdown"}
+)
+
+
+class Ros2Launch(LaunchWalker):
+    """launch/launch_ros frontend actions, from XML or YAML entities."""
+
+    dialect = Dialect.ROS2
+
+    def run(self, root: Entity) -> None:
+        self.walk(root.children(), Scope("/"))
+
+    def walk(self, entities: Sequence[Entity], scope: Scope) -> None:
+        for entity in entities:
+            if self.skipped(entity, scope):
+                continue
+            kind = entity.kind
+            if kind in ("let", "arg"):
+                self.variable(entity, scope)
+            elif kind == "group":
+                self.group(entity, scope)
+            elif kind in _ROS2_PUSH:
+                self.push_namespace(entity, scope)
+            elif kind in ("set_remap", "remap"):
+                remap = self.remap(entity, scope, scope.namespace)
+                scope.remaps.extend([remap] if remap else [])
+            elif kind == "set_parameter":
+                self.parameters([entity], scope, "", scope.namespace)
+            elif kind in _ROS2_NODES:
+                self.node(entity, scope, _ROS2_NODE)
+                self.composable_nodes(entity, scope)
+            elif kind == "load_composable_node":
+                self.composable_nodes(entity, scope)
+            elif kind not in _ROS2_LEAVES:  # <include> args go to another file
+                self.walk(entity.children(), scope)
+
+    def variable(self, entity: Entity, scope: Scope) -> None:
+        """``<let name value>`` sets; ``<arg name default>`` sets unless already set."""
+        name = entity.get("name")
+        given = entity.get("value" if entity.kind == "let" else "default")
+        if name is None or given is None:
+            return
+        value = self.value(given, scope)
+        if entity.kind == "let":
+            scope.variables[name.text] = value
+        else:
+            scope.variables.setdefault(name.text, value)
+
+    def group(self, entity: Entity, scope: Scope) -> None:
+        """A group scopes variables, pushed namespaces and remaps unless scoped="false"."""
+        scoped = entity.get("scoped")
+        leaks = scoped is not None and truth(self.value(scoped, scope)) is False
+        self.walk(entity.children(), scope if leaks else scope.copy())
+
+    def push_namespace(self, entity: Entity, scope: Scope) -> None:
+        value = self.attribute(entity, "namespace", scope, NAMESPACE, scope.namespace)
+        if value is not None:
+            scope.namespace = join_namespace(scope.namespace, value)
+
+    def composable_nodes(self, entity: Entity, scope: Scope) -> None:
+        """Composable nodes get the pushed namespace, not their container's."""
+        for description in entity.nested("composable_node"):
+            if not self.skipped(description, scope):
+                self.node(description, scope, _ROS2_COMPOSABLE)
+
+    def parameters(
+        self,
+        entities: Sequence[Entity],
+        scope: Scope,
+        prefix: str | None,
+        owner: str | None,
+    ) -> list[str]:
+        """Emit ``<param>`` names, nested ones joined with '.'; ``from=`` files skipped.
+
+        ``prefix`` is the enclosing parameter's name ("" at the top, None when dynamic).
+        """
+        found: list[str] = []
+        for entity in entities:
+            located = entity.get("name")
+            if located is None or entity.get("from") is not None:
+                continue
+            value = self.value(located, scope)
+            if prefix is None or value.dynamic:
+                full = Value(located.text, dynamic=True)
+            else:
+                full = Value(f"{prefix}.{value.text}" if prefix else value.text)
+            nested = entity.nested("param")
+            if nested:
+                found += self.parameters(nested, scope, None if full.dynamic else full.text, owner)
+                continue
+            self.emit(PARAMETER, entity.api("name"), located, full, owner)
+            self.frame_value(entity, scope, full, owner)
+            found.extend([] if full.dynamic else [full.text])
+        return found
+
+    def command_line(self, entity: Entity, scope: Scope) -> list[CommandLineName]:
+        found: list[CommandLineName] = []
+        for attribute, all_ros_args in (("args", False), ("ros_args", True)):
+            located = entity.get(attribute)
+            if located is not None and not located.opaque:
+                assignments = ros2_assignments(located, all_ros_args=all_ros_args, bare=False)
+                found += self.substitute_assignments(assignments, entity.api(attribute), scope)
+        return found
+
+    def node_contents(
+        self, entity: Entity, scope: Scope, namespace: str | None, path: str | None
+    ) -> tuple[list[Remap], list[str]]:
+        remaps: list[Remap] = []
+        for child in entity.nested("remap"):
+            remap = self.remap(child, scope, namespace)
+            remaps.extend([remap] if remap else [])
+        return remaps, self.parameters(entity.nested("param"), scope, "", path)
+
+
+# ---------------------------------------------------------------------------------------
+# Entry point
+
+
+def facts_from(
+    path: str,
+    language: Language,
+    generation: Generation,
+    walker: LaunchWalker,
+) -> FileFacts:
+    return FileFacts(
+        path=path,
+        language=language,
+        generation=generation,
+        names=tuple(sorted(walker.names, key=lambda use: (use.span.line, use.span.column))),
+        launch_nodes=tuple(walker.nodes),
+    )
+
+
+def too_deep(path: str, language: Language, generation: Generation) -> FileFacts:
+    """Nesting deep enough to exhaust Python's stack is reported, not raised."""
+    error = ParseError("launch file nested too deeply to analyse", Span(1, 1, 1, 2))
+    return FileFacts(path, language, generation, parse_errors=(error,))
+
+
+def extract(
+    path: str,
+    data: bytes,
+    package_generation: Generation | None,
+    fallback_generation: Generation,
+) -> FileFacts:
+    """Names, namespaces and launch nodes of a ROS 1 or ROS 2 launch XML file."""
+    default = evidence.extension_generation(path)
+    document = xmlsafe.parse(data)
+    if isinstance(document, ParseError):
+        generation = evidence.decide(package_generation, None, default, fallback_generation)
+        return FileFacts(path, Language.LAUNCH_XML, generation, parse_errors=(document,))
+    found = evidence.launch_xml_evidence(document.root)
+    generation = evidence.decide(package_generation, found, default, fallback_generation)
+    root = XmlEntity(document, document.root)
+    if root.kind != "launch":
+        return FileFacts(path, Language.LAUNCH_XML, generation)
+    # The file's own markers pick the syntax; the package picks the grammar (docstring).
+    flavour = evidence.decide(found, package_generation, default, fallback_generation)
+    walker: Ros1Launch | Ros2Launch
+    try:
+        walker = Ros1Launch(root) if flavour is Generation.ROS1 else Ros2Launch()
+        walker.run(root)
+    except RecursionError:
+        return too_deep(path, Language.LAUNCH_XML, generation)
+    return facts_from(path, Language.LAUNCH_XML, generation, walker)
