@@ -462,7 +462,10 @@ def _tilde_problem(name: str, *, strict: bool) -> Problem | None:
             f"not a private name; write '~/{name[1]}'"
         )
         return _illegal(reason, 1, suggestion="~/" + name[1])
-    reason = "has a '~' not followed by '/' (index 1); '~' must be followed by '/': '~/name'"
+    reason = (
+        f"has '~' not followed by '/' ({name[1:2]!r} at index 1); "
+        "private names are written '~/name'"
+    )
     return _illegal(reason, 1, suggestion="~/" + name[1:])
 
 

@@ -33,6 +33,7 @@ BAD_LAUNCH = """<launch>
 """
 GOOD_LAUNCH = BAD_LAUNCH.replace("base-driver", "base_driver")
 
+
 def git(cwd: Path, *arguments: str) -> None:
     subprocess.run(["git", *arguments], cwd=cwd, check=True, capture_output=True)
 
