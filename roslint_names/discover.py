@@ -81,10 +81,16 @@ def _head(path: Path) -> bytes:
 
 
 def display_path(path: Path, cwd: Path) -> str:
+    """The path reports show: relative to ``cwd`` when below it, always valid Unicode.
+
+    A file name that is not UTF-8 (``caf\\xe9.launch`` from a Latin-1 system) shows its
+    undecodable bytes as ``\\xe9`` escapes: every report format must stay valid UTF-8.
+    """
     try:
-        return path.relative_to(cwd).as_posix()
+        text = path.relative_to(cwd).as_posix()
     except ValueError:
-        return path.as_posix()
+        text = path.as_posix()
+    return os.fsencode(text).decode("utf-8", errors="backslashreplace")
 
 
 class _IgnoreRules:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -173,3 +174,17 @@ def test_no_traceback_on_internal_error(run_cli: Any, tmp_path: Path, monkeypatc
     result = run_cli(["check", "."], tmp_path)
     assert result.exit_code == 2
     assert "internal error: RuntimeError: boom" in result.stderr
+
+
+def test_non_utf8_file_name_is_reported_readably(run_cli: Any, tmp_path: Path) -> None:
+    # Found by hand: a Latin-1 file name crashed every reporter with UnicodeEncodeError.
+    (tmp_path / os.fsdecode(b"caf\xe9.launch")).write_text(BAD_LAUNCH, encoding="utf-8")
+    text = run_cli(["check", "."], tmp_path)
+    assert text.stdout.startswith("caf\\xe9.launch:4:17: error: node name 'base-driver'")
+    github = run_cli(["check", "--format", "github", "."], tmp_path)
+    assert "file=caf\\xe9.launch," in github.stdout
+    findings = run_cli(["check", "--format", "json", "."], tmp_path).findings()
+    assert {finding["path"] for finding in findings} == {"caf\\xe9.launch"}
+    sarif = json.loads(run_cli(["check", "--format", "sarif", "."], tmp_path).stdout)
+    location = sarif["runs"][0]["results"][0]["locations"][0]["physicalLocation"]
+    assert location["artifactLocation"]["uri"] == "caf%5Cxe9.launch"

@@ -197,13 +197,16 @@ def _region(span: Span) -> dict[str, int]:
 
 def artifact_location(path: str, root: Path) -> dict[str, str]:
     """A relative, percent-encoded URI against ``%SRCROOT%``; an absolute ``file`` URI for
-    a path that is absolute or climbs out of the root."""
-    posix = path.replace("\\", "/")
-    if _WINDOWS_DRIVE.match(posix):
-        return {"uri": "file:///" + quote(posix, safe="/:")}
-    if PurePosixPath(posix).is_absolute():
-        return {"uri": "file://" + quote(posixpath.normpath(posix), safe="/")}
-    normal = posixpath.normpath(posix)
+    a path that is absolute or climbs out of the root.
+
+    ``path`` is already '/'-separated (the Diagnostic contract); a backslash in it is part
+    of a POSIX file name, not a separator, and is percent-encoded like any other byte.
+    """
+    if _WINDOWS_DRIVE.match(path):
+        return {"uri": "file:///" + quote(path, safe="/:")}
+    if PurePosixPath(path).is_absolute():
+        return {"uri": "file://" + quote(posixpath.normpath(path), safe="/")}
+    normal = posixpath.normpath(path)
     if normal == ".." or normal.startswith("../"):
         absolute = os.path.normpath(os.path.join(os.path.abspath(root), path))
         return {"uri": Path(absolute).as_uri()}
