@@ -164,6 +164,8 @@ def enabled_codes(settings: Settings, registry: Registry) -> frozenset[str]:
 
 def ignored_for_path(settings: Settings, relative_path: str, registry: Registry) -> frozenset[str]:
     """Codes that ``per-file-ignores`` turns off for one path (relative to ``settings.root``)."""
+    if not settings.per_file_ignores:
+        return frozenset()
     import pathspec  # only runs that configure per-file-ignores pay for it
 
     codes: set[str] = set()
