@@ -70,10 +70,42 @@ def test_select_ignore_and_unknown_selector(run_cli: Any, tmp_path: Path) -> Non
     assert unknown.exit_code == 2 and "'RN9' matches no rule" in unknown.stderr
 
 
-def test_ros_option_decides_undetermined_files(run_cli: Any, tmp_path: Path) -> None:
-    write(tmp_path, "nodes.launch.yaml", "launch:\n- node: {pkg: a, exec: b, namespace: r1/}\n")
-    ros2 = run_cli(["check", "--format", "json", "."], tmp_path)
-    assert [f["severity"] for f in ros2.findings()] == ["error"]
+def test_ros_option_decides_only_when_nothing_else_does(run_cli: Any, tmp_path: Path) -> None:
+    # No package.xml and no tag only one generation has: only --ros can tell.
+    write(tmp_path, "remaps.xml", '<launch>\n  <remap from="scan" to="base_scan/"/>\n</launch>\n')
+
+    def severities(*options: str) -> list[tuple[str, str]]:
+        result = run_cli(["check", "--format", "json", *options, "."], tmp_path)
+        return [(finding["code"], finding["severity"]) for finding in result.findings()]
+
+    assert severities("--ros", "2") == [("RN102", "error")]
+    assert severities("--ros", "1") == [("RN102", "warning")]
+    assert severities() == [("RN102", "error")]  # auto: ROS 2
+    write_package(tmp_path, 2)
+    assert severities("--ros", "1") == [("RN102", "error")]  # the package.xml decides
+
+
+def test_show_source_points_at_the_name(run_cli: Any, tmp_path: Path) -> None:
+    write(tmp_path, "robot.launch", BAD_LAUNCH)
+    lines = run_cli(["check", "--show-source", "--select", "RN101", "."], tmp_path).stdout
+    assert lines.splitlines()[1:3] == [
+        '        <node name="base-driver" pkg="robot_base" type="driver_node">',
+        "                    ^~~~~~~~~~~",
+    ]
+
+
+@pytest.mark.parametrize("options", [["--jobs", "2"], ["-j", "0"], ["--no-cache"]])
+def test_cache_and_jobs_options_leave_output_unchanged(
+    run_cli: Any, tmp_path: Path, options: list[str]
+) -> None:
+    write(tmp_path, "robot.launch", BAD_LAUNCH)
+    plain = run_cli(["check", "."], tmp_path)
+    assert run_cli(["check", *options, "."], tmp_path) == plain
+
+
+def test_negative_jobs_is_a_usage_error(run_cli: Any, tmp_path: Path) -> None:
+    result = run_cli(["check", "--jobs", "-1", "."], tmp_path)
+    assert result.exit_code == 2 and "--jobs" in result.stderr
 
 
 def test_missing_path_exits_2(run_cli: Any, tmp_path: Path) -> None:
