@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import importlib.util
 import os
 import re
 from dataclasses import replace
 from pathlib import Path
-from types import ModuleType
 
 import pytest
+import report_sample as sample
 
 from roslint_names.model import Diagnostic
 from roslint_names.report import render
@@ -19,19 +18,8 @@ FIXTURES = Path(__file__).parent / "fixtures" / "report"
 COMMAND = re.compile(r"^::(error|warning) ([^:]*)::(.*)$")
 
 
-def _load_sample() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("report_sample", FIXTURES / "sample.py")
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-S = _load_sample()
-
-
-def github(diagnostics: tuple[Diagnostic, ...] = S.DIAGNOSTICS) -> str:
-    return render("github", diagnostics, S.RULES, S.context())
+def github(diagnostics: tuple[Diagnostic, ...] = sample.DIAGNOSTICS) -> str:
+    return render("github", diagnostics, sample.RULES, sample.context())
 
 
 def unescape(value: str) -> str:
@@ -53,7 +41,7 @@ def parse(line: str) -> tuple[str, dict[str, str], str]:
 
 
 def test_an_error_annotation() -> None:
-    assert github((S.RN101,)) == (
+    assert github((sample.RN101,)) == (
         "::error file=src/robot_bringup/launch/robot.launch,line=12,col=15,endLine=12,"
         "endColumn=26,title=RN101 illegal-name::node name 'base-driver' contains '-' at index 4;"
         " use 'base_driver'\n"
@@ -61,11 +49,11 @@ def test_an_error_annotation() -> None:
 
 
 def test_warnings_use_the_warning_command() -> None:
-    assert github((S.RN202_UNICODE,)).startswith("::warning file=src/ünïcode pkg/src/")
+    assert github((sample.RN202_UNICODE,)).startswith("::warning file=src/ünïcode pkg/src/")
 
 
 def test_one_command_per_finding_that_parses_back() -> None:
-    shown = [d for d in S.DIAGNOSTICS if not d.suppressed]
+    shown = [d for d in sample.DIAGNOSTICS if not d.suppressed]
     lines = github().splitlines()
     assert len(lines) == len(shown)
     for line, diagnostic in zip(lines, shown, strict=True):
@@ -83,7 +71,7 @@ def test_one_command_per_finding_that_parses_back() -> None:
 
 
 def test_related_locations_are_extra_lines_of_the_message() -> None:
-    (line,) = github((S.RN401,)).splitlines()
+    (line,) = github((sample.RN401,)).splitlines()
     assert line.endswith(
         "::topic '/cmd_vel' differs only in case from '/Cmd_Vel'"
         "%0Asrc/teleop/scripts/joy teleop.py:9:23: note: '/Cmd_Vel' is used here"
@@ -110,7 +98,7 @@ def test_escaping_like_actions_core(raw: str, data: str, prop: str) -> None:
 
 def test_hostile_values_are_escaped_in_place() -> None:
     hostile = replace(
-        S.RN101,
+        sample.RN101,
         path="weird,dir/a:b%.launch",
         message="50% of names\nhave '::' in them, sadly",
     )
@@ -123,13 +111,13 @@ def test_hostile_values_are_escaped_in_place() -> None:
 
 
 def test_suppressed_findings_are_left_out() -> None:
-    assert github((S.RN101_SUPPRESSED,)) == ""
+    assert github((sample.RN101_SUPPRESSED,)) == ""
     assert "lidar.front" not in github()
 
 
 def test_order_and_determinism() -> None:
     assert github() == github()
-    backwards = github(tuple(reversed(S.DIAGNOSTICS))).splitlines()
+    backwards = github(tuple(reversed(sample.DIAGNOSTICS))).splitlines()
     assert backwards == list(reversed(github().splitlines()))
 
 

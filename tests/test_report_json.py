@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import os
 from dataclasses import replace
 from pathlib import Path
-from types import ModuleType
 from typing import Any
+
+import report_sample as sample
 
 from roslint_names.model import Diagnostic, Span
 from roslint_names.report import json as json_report
@@ -30,22 +30,11 @@ FINDING_KEYS = [
 RELATED_KEYS = ["path", "line", "column", "end_line", "end_column", "message"]
 
 
-def _load_sample() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("report_sample", FIXTURES / "sample.py")
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+def output(diagnostics: tuple[Diagnostic, ...] = sample.DIAGNOSTICS) -> str:
+    return render("json", diagnostics, sample.RULES, sample.context())
 
 
-S = _load_sample()
-
-
-def output(diagnostics: tuple[Diagnostic, ...] = S.DIAGNOSTICS) -> str:
-    return render("json", diagnostics, S.RULES, S.context())
-
-
-def document(diagnostics: tuple[Diagnostic, ...] = S.DIAGNOSTICS) -> dict[str, Any]:
+def document(diagnostics: tuple[Diagnostic, ...] = sample.DIAGNOSTICS) -> dict[str, Any]:
     loaded: dict[str, Any] = json.loads(output(diagnostics))
     return loaded
 
@@ -58,7 +47,7 @@ def test_versioned_envelope() -> None:
 
 
 def test_findings_round_trip() -> None:
-    shown = [d for d in S.DIAGNOSTICS if not d.suppressed]
+    shown = [d for d in sample.DIAGNOSTICS if not d.suppressed]
     findings = document()["findings"]
     assert len(findings) == len(shown)
     for finding, diagnostic in zip(findings, shown, strict=True):
@@ -72,7 +61,7 @@ def test_findings_round_trip() -> None:
 
 
 def test_related_locations() -> None:
-    (finding,) = document((S.RN401,))["findings"]
+    (finding,) = document((sample.RN401,))["findings"]
     (related,) = finding["related"]
     assert list(related) == RELATED_KEYS
     assert related == {
@@ -83,11 +72,11 @@ def test_related_locations() -> None:
         "end_column": 33,
         "message": "'/Cmd_Vel' is used here",
     }
-    assert document((S.RN101,))["findings"][0]["related"] == []
+    assert document((sample.RN101,))["findings"][0]["related"] == []
 
 
 def test_suppressed_findings_are_left_out() -> None:
-    assert document((S.RN101_SUPPRESSED,))["findings"] == []
+    assert document((sample.RN101_SUPPRESSED,))["findings"] == []
     assert "lidar.front" not in output()
 
 
@@ -104,7 +93,7 @@ def test_no_findings() -> None:
 
 
 def test_order_is_the_order_given() -> None:
-    backwards = tuple(reversed(S.DIAGNOSTICS))
+    backwards = tuple(reversed(sample.DIAGNOSTICS))
     lines = [finding["line"] for finding in document(backwards)["findings"]]
     assert lines == [7, 18, 21, 12]
 
@@ -114,7 +103,7 @@ def test_two_renders_are_identical() -> None:
 
 
 def test_escaping_survives_the_round_trip() -> None:
-    tricky = replace(S.RN101, message='name "a\\b"\tand\nnewline', path="dir/quote\"'.launch")
+    tricky = replace(sample.RN101, message='name "a\\b"\tand\nnewline', path="dir/quote\"'.launch")
     (finding,) = document((tricky,))["findings"]
     assert finding["message"] == tricky.message
     assert finding["path"] == tricky.path

@@ -2,16 +2,15 @@
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import os
 import re
 from dataclasses import replace
 from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 import pytest
+import report_sample as sample
 from jsonschema import Draft7Validator
 
 from roslint_names import PROJECT_URL
@@ -28,26 +27,15 @@ FINGERPRINT = re.compile(r"^[0-9a-f]{16}:[1-9][0-9]*$")
 LINK = re.compile(r"(?<!\\)\[(?:[^\\\[\]]|\\.)*\]\((\d+)\)")
 
 
-def _load_sample() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("report_sample", FIXTURES / "sample.py")
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+def sarif(diagnostics: tuple[Diagnostic, ...] = sample.DIAGNOSTICS, **changes: object) -> str:
+    return render("sarif", diagnostics, sample.RULES, sample.context(**changes))
 
 
-S = _load_sample()
-
-
-def sarif(diagnostics: tuple[Diagnostic, ...] = S.DIAGNOSTICS, **changes: object) -> str:
-    return render("sarif", diagnostics, S.RULES, S.context(**changes))
-
-
-def log(diagnostics: tuple[Diagnostic, ...] = S.DIAGNOSTICS, **changes: object) -> Any:
+def log(diagnostics: tuple[Diagnostic, ...] = sample.DIAGNOSTICS, **changes: object) -> Any:
     return json.loads(sarif(diagnostics, **changes))
 
 
-def results(diagnostics: tuple[Diagnostic, ...] = S.DIAGNOSTICS, **changes: object) -> Any:
+def results(diagnostics: tuple[Diagnostic, ...] = sample.DIAGNOSTICS, **changes: object) -> Any:
     return log(diagnostics, **changes)["runs"][0]["results"]
 
 
@@ -69,22 +57,22 @@ def validator() -> Draft7Validator:
 
 
 OUTSIDE = (
-    replace(S.RN101, path="../other_ws/src/x.launch"),
-    replace(S.RN101, path="/opt/ros/noetic/share/x/launch/x.launch"),
-    replace(S.RN101, path="src/odd:name,with%signs#and?query.launch"),
-    replace(S.RN101, span=Span(3, 9, 5, 2), message="multi-line span"),
-    replace(S.RN101, code="RN999", rule_name="from-a-plugin", message="no metadata given"),
+    replace(sample.RN101, path="../other_ws/src/x.launch"),
+    replace(sample.RN101, path="/opt/ros/noetic/share/x/launch/x.launch"),
+    replace(sample.RN101, path="src/odd:name,with%signs#and?query.launch"),
+    replace(sample.RN101, span=Span(3, 9, 5, 2), message="multi-line span"),
+    replace(sample.RN101, code="RN999", rule_name="from-a-plugin", message="no metadata given"),
 )
 
 
 @pytest.mark.parametrize(
     ("diagnostics", "changes"),
     [
-        (S.DIAGNOSTICS, {}),
-        (S.DIAGNOSTICS, {"include_suppressed": True}),
+        (sample.DIAGNOSTICS, {}),
+        (sample.DIAGNOSTICS, {"include_suppressed": True}),
         ((), {}),
         (OUTSIDE, {"root": Path("/home/dev/my ws")}),
-        (S.DIAGNOSTICS, {"tool_version": "1.2.0rc1.dev4+g0a1b2c3"}),
+        (sample.DIAGNOSTICS, {"tool_version": "1.2.0rc1.dev4+g0a1b2c3"}),
     ],
     ids=["default", "with-suppressed", "empty", "odd-paths", "dev-version"],
 )
@@ -116,7 +104,7 @@ def test_driver() -> None:
 def test_every_rule_given_is_described_sorted_by_code() -> None:
     rules = log(())["runs"][0]["tool"]["driver"]["rules"]
     assert [rule["id"] for rule in rules] == ["RN101", "RN202", "RN203", "RN401"]
-    by_code = {meta.code: meta for meta in S.RULES}
+    by_code = {meta.code: meta for meta in sample.RULES}
     for rule in rules:
         meta = by_code[rule["id"]]
         assert rule["name"] == meta.name
@@ -135,13 +123,13 @@ def test_naming_is_not_a_security_alert() -> None:
 
 
 def test_result_fields() -> None:
-    loaded = log((S.RN101,))
+    loaded = log((sample.RN101,))
     rules = loaded["runs"][0]["tool"]["driver"]["rules"]
     (result,) = loaded["runs"][0]["results"]
     assert result["ruleId"] == "RN101"
     assert rules[result["ruleIndex"]]["id"] == "RN101"
     assert result["level"] == "error"
-    assert result["message"] == {"text": S.RN101.message}
+    assert result["message"] == {"text": sample.RN101.message}
     (location,) = result["locations"]
     assert location["physicalLocation"] == {
         "artifactLocation": {
@@ -193,7 +181,7 @@ def test_artifact_locations_outside_the_root_are_absolute_file_uris() -> None:
 
 
 def test_related_locations_are_linked_from_the_message() -> None:
-    (result,) = results((S.RN401,))
+    (result,) = results((sample.RN401,))
     (related,) = result["relatedLocations"]
     assert related == {
         "id": 1,
@@ -214,7 +202,7 @@ def test_related_locations_are_linked_from_the_message() -> None:
 
 def test_every_embedded_link_resolves_to_exactly_one_related_location() -> None:
     second = RelatedLocation("launch/[x]/b.launch", Span(2, 3, 2, 9), "and here")
-    diagnostic = replace(S.RN401, related=(*S.RN401.related, second))
+    diagnostic = replace(sample.RN401, related=(*sample.RN401.related, second))
     (result,) = results((diagnostic,))
     text = result["message"]["text"]
     ids = [location["id"] for location in result["relatedLocations"]]
@@ -223,7 +211,7 @@ def test_every_embedded_link_resolves_to_exactly_one_related_location() -> None:
 
 
 def test_braces_in_messages_are_doubled() -> None:
-    (result,) = results((S.RN203_BRACES,))
+    (result,) = results((sample.RN203_BRACES,))
     assert result["message"]["text"] == (
         "topic token '{{robot}}Odom' of '{{robot}}Odom/raw' is not snake_case; use 'odom'"
     )
@@ -235,18 +223,18 @@ def test_fingerprints_are_set_and_stable() -> None:
     assert len(set(first)) == len(first)
     # moving the finding (lines added above, re-indented) keeps its fingerprint
     moved = replace(
-        S.RN101,
+        sample.RN101,
         span=Span(40, 9, 40, 20),
         source_line='<node  name="base-driver"  pkg="base_driver" type="driver_node"/>',
     )
-    again = results((moved, *S.DIAGNOSTICS[1:]))
+    again = results((moved, *sample.DIAGNOSTICS[1:]))
     assert again[0]["partialFingerprints"]["primaryLocationLineHash"] == first[0]
 
 
 def test_identical_lines_are_counted() -> None:
-    twin = replace(S.RN101, span=Span(30, 15, 30, 26))
+    twin = replace(sample.RN101, span=Span(30, 15, 30, 26))
     fingerprints = [
-        r["partialFingerprints"]["primaryLocationLineHash"] for r in results((S.RN101, twin))
+        r["partialFingerprints"]["primaryLocationLineHash"] for r in results((sample.RN101, twin))
     ]
     digest = fingerprints[0].split(":")[0]
     assert fingerprints == [f"{digest}:1", f"{digest}:2"]
@@ -254,7 +242,7 @@ def test_identical_lines_are_counted() -> None:
 
 def test_fingerprints_do_not_depend_on_showing_suppressed_results() -> None:
     def by_line(include_suppressed: bool) -> dict[int, str]:
-        found = results(S.DIAGNOSTICS, include_suppressed=include_suppressed)
+        found = results(sample.DIAGNOSTICS, include_suppressed=include_suppressed)
         return {
             r["locations"][0]["physicalLocation"]["region"]["startLine"]: r["partialFingerprints"][
                 "primaryLocationLineHash"
@@ -268,7 +256,7 @@ def test_fingerprints_do_not_depend_on_showing_suppressed_results() -> None:
 
 
 def test_suppressed_results_are_left_out_by_default() -> None:
-    assert results((S.RN101_SUPPRESSED,)) == []
+    assert results((sample.RN101_SUPPRESSED,)) == []
     assert "lidar.front" not in sarif()
 
 
@@ -296,7 +284,7 @@ def test_layout() -> None:
 def test_no_findings_still_describes_the_rules() -> None:
     run = log(())["runs"][0]
     assert run["results"] == []
-    assert len(run["tool"]["driver"]["rules"]) == len(S.RULES)
+    assert len(run["tool"]["driver"]["rules"]) == len(sample.RULES)
 
 
 @pytest.mark.parametrize(
@@ -329,7 +317,7 @@ def test_snapshot() -> None:
 def test_severity_maps_to_level() -> None:
     levels = {r["ruleId"]: r["level"] for r in results()}
     assert levels == {"RN101": "error", "RN203": "warning", "RN401": "warning", "RN202": "warning"}
-    warning = replace(S.RN101, severity=Severity.WARNING)  # configured down
+    warning = replace(sample.RN101, severity=Severity.WARNING)  # configured down
     assert results((warning,))[0]["level"] == "warning"
 
 
@@ -345,7 +333,7 @@ def test_every_uri_is_a_well_formed_rfc3986_reference() -> None:
             return [uri for item in value for uri in uris(item)]
         return []
 
-    found = uris(log(OUTSIDE + S.DIAGNOSTICS, root=Path("/home/dev/my ws")))
+    found = uris(log(OUTSIDE + sample.DIAGNOSTICS, root=Path("/home/dev/my ws")))
     assert len(found) > len(OUTSIDE)
     for uri in found:
         assert URI_REFERENCE.match(uri), uri
@@ -353,8 +341,8 @@ def test_every_uri_is_a_well_formed_rfc3986_reference() -> None:
 
 
 def test_a_rule_without_a_catalog_page_still_has_help(validator: Draft7Validator) -> None:
-    bare = replace(S.RULES[1], full_description="", help_markdown="", help_uri="")
-    loaded = json.loads(render("sarif", (S.RN101,), (bare,), S.context()))
+    bare = replace(sample.RULES[1], full_description="", help_markdown="", help_uri="")
+    loaded = json.loads(render("sarif", (sample.RN101,), (bare,), sample.context()))
     (rule,) = loaded["runs"][0]["tool"]["driver"]["rules"]
     assert rule["fullDescription"] == {"text": bare.summary}
     assert rule["help"] == {"text": bare.summary, "markdown": bare.summary}

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
-import importlib.util
 import os
 import re
 from dataclasses import replace
 from pathlib import Path
-from types import ModuleType
 
 import pytest
+import report_sample as sample
 
 from roslint_names.model import Diagnostic, Severity, Span
 from roslint_names.report import FORMATS, render, statistics, summary
@@ -21,19 +20,8 @@ GCC = re.compile(r"^(.*?):(\d+):(\d*):?\s+(?:fatal\s+)?(warning|error):\s+(.*)$"
 ANSI = re.compile(r"\x1b\[[0-9;]*m")
 
 
-def _load_sample() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("report_sample", FIXTURES / "sample.py")
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-S = _load_sample()
-
-
-def text(diagnostics: tuple[Diagnostic, ...] = S.DIAGNOSTICS, **changes: object) -> str:
-    return render("text", diagnostics, S.RULES, S.context(**changes))
+def text(diagnostics: tuple[Diagnostic, ...] = sample.DIAGNOSTICS, **changes: object) -> str:
+    return render("text", diagnostics, sample.RULES, sample.context(**changes))
 
 
 def check_snapshot(name: str, actual: str) -> None:
@@ -49,11 +37,11 @@ def test_formats_are_the_four_agreed() -> None:
 
 def test_unknown_format_is_a_value_error() -> None:
     with pytest.raises(ValueError, match="'xml'"):
-        render("xml", S.DIAGNOSTICS, S.RULES, S.context())
+        render("xml", sample.DIAGNOSTICS, sample.RULES, sample.context())
 
 
 def test_one_gcc_line_per_finding() -> None:
-    assert text((S.RN101,)) == (
+    assert text((sample.RN101,)) == (
         "src/robot_bringup/launch/robot.launch:12:15: error: node name 'base-driver' contains "
         "'-' at index 4; use 'base_driver' [RN101 illegal-name]\n"
     )
@@ -62,7 +50,7 @@ def test_one_gcc_line_per_finding() -> None:
 def test_the_gcc_problem_matcher_reads_every_finding() -> None:
     lines = text().splitlines()
     findings = [line for line in lines if ": note: " not in line]
-    shown = [d for d in S.DIAGNOSTICS if not d.suppressed]
+    shown = [d for d in sample.DIAGNOSTICS if not d.suppressed]
     assert len(findings) == len(shown)
     for line, diagnostic in zip(findings, shown, strict=True):
         match = GCC.match(line)
@@ -75,7 +63,7 @@ def test_the_gcc_problem_matcher_reads_every_finding() -> None:
 
 
 def test_paths_with_spaces_and_non_ascii_messages() -> None:
-    line = text((S.RN202_UNICODE,)).rstrip("\n")
+    line = text((sample.RN202_UNICODE,)).rstrip("\n")
     match = GCC.match(line)
     assert match is not None
     assert match.group(1) == "src/ünïcode pkg/src/bras_robot.py"
@@ -83,7 +71,7 @@ def test_paths_with_spaces_and_non_ascii_messages() -> None:
 
 
 def test_related_locations_are_gcc_notes_after_their_finding() -> None:
-    lines = text((S.RN401,)).splitlines()
+    lines = text((sample.RN401,)).splitlines()
     assert lines == [
         "src/teleop/src/teleop_node.cpp:18:29: warning: topic '/cmd_vel' differs only in case "
         "from '/Cmd_Vel' [RN401 case-collision]",
@@ -94,7 +82,7 @@ def test_related_locations_are_gcc_notes_after_their_finding() -> None:
 
 def test_suppressed_findings_are_left_out() -> None:
     assert "lidar.front" not in text()
-    assert text((S.RN101_SUPPRESSED,)) == ""
+    assert text((sample.RN101_SUPPRESSED,)) == ""
 
 
 def test_no_findings_no_output() -> None:
@@ -104,7 +92,7 @@ def test_no_findings_no_output() -> None:
 def test_order_is_the_order_given() -> None:
     lines = [line for line in text().splitlines() if ": note: " not in line]
     assert [line.split(":")[1] for line in lines] == ["12", "21", "18", "7"]
-    backwards = tuple(reversed(S.DIAGNOSTICS))
+    backwards = tuple(reversed(sample.DIAGNOSTICS))
     assert text(backwards).splitlines()[0].startswith("src/ünïcode pkg/")
 
 
@@ -113,7 +101,7 @@ def test_two_renders_are_identical() -> None:
 
 
 def test_a_message_with_a_line_break_stays_on_one_line() -> None:
-    diagnostic = replace(S.RN101, message="first line\nsecond line")
+    diagnostic = replace(sample.RN101, message="first line\nsecond line")
     assert text((diagnostic,)).count("\n") == 1
     assert "first line second line [RN101" in text((diagnostic,))
 
@@ -131,7 +119,7 @@ def test_colour_marks_path_and_severity() -> None:
 
 
 def test_show_source_prints_the_line_and_carets_under_the_span() -> None:
-    assert text((S.RN101,), show_source=True).splitlines()[1:] == [
+    assert text((sample.RN101,), show_source=True).splitlines()[1:] == [
         '      <node name="base-driver" pkg="base_driver" type="driver_node"/>',
         "    " + " " * 14 + "^" + "~" * 10,
     ]
@@ -142,7 +130,7 @@ def test_snapshot_with_source() -> None:
 
 
 def test_tabs_are_expanded_alike_in_both_lines() -> None:
-    shown, carets = excerpt(S.RN401.source_line, S.RN401.span, Severity.WARNING)
+    shown, carets = excerpt(sample.RN401.source_line, sample.RN401.span, Severity.WARNING)
     assert "\t" not in shown and "\t" not in carets
     start = carets.index("^")
     assert shown[start : start + len('"/cmd_vel"')] == '"/cmd_vel"'
@@ -150,7 +138,9 @@ def test_tabs_are_expanded_alike_in_both_lines() -> None:
 
 
 def test_wide_characters_take_two_cells() -> None:
-    shown, carets = excerpt(S.RN202_UNICODE.source_line, S.RN202_UNICODE.span, Severity.WARNING)
+    shown, carets = excerpt(
+        sample.RN202_UNICODE.source_line, sample.RN202_UNICODE.span, Severity.WARNING
+    )
     # three CJK characters (two cells each) precede the literal, which is 12 code points long
     assert carets == "    " + " " * (6 + 19) + "^" + "~" * 11
     assert shown == '    机械臂 = rospy.Publisher("/bras/état", Twist)'
@@ -169,25 +159,28 @@ def test_a_span_past_the_end_of_the_line_gets_one_caret() -> None:
 
 
 def test_without_a_source_line_show_source_prints_just_the_finding() -> None:
-    diagnostic = replace(S.RN101, source_line=None)
+    diagnostic = replace(sample.RN101, source_line=None)
     assert text((diagnostic,), show_source=True) == text((diagnostic,))
 
 
 def test_summary_counts_problems_by_severity() -> None:
-    assert summary(S.DIAGNOSTICS, 12) == "Found 4 problems (1 error, 3 warnings) in 12 files."
-    assert summary((S.RN101,), 1) == "Found 1 problem (1 error) in 1 file."
-    assert summary((S.RN401, S.RN202_UNICODE), 3) == "Found 2 problems (2 warnings) in 3 files."
+    assert summary(sample.DIAGNOSTICS, 12) == "Found 4 problems (1 error, 3 warnings) in 12 files."
+    assert summary((sample.RN101,), 1) == "Found 1 problem (1 error) in 1 file."
+    assert (
+        summary((sample.RN401, sample.RN202_UNICODE), 3)
+        == "Found 2 problems (2 warnings) in 3 files."
+    )
 
 
 def test_summary_when_all_is_well() -> None:
     assert summary((), 12) == "All checks passed: 12 files, no problems."
-    assert summary((S.RN101_SUPPRESSED,), 1) == "All checks passed: 1 file, no problems."
+    assert summary((sample.RN101_SUPPRESSED,), 1) == "All checks passed: 1 file, no problems."
 
 
 def test_statistics_most_frequent_first_then_by_code() -> None:
-    extra = replace(S.RN202_UNICODE, span=Span(9, 1, 9, 5))
-    diagnostics = (*S.DIAGNOSTICS, extra, replace(extra, span=Span(10, 1, 10, 5)))
-    assert statistics(diagnostics, S.RULES) == (
+    extra = replace(sample.RN202_UNICODE, span=Span(9, 1, 9, 5))
+    diagnostics = (*sample.DIAGNOSTICS, extra, replace(extra, span=Span(10, 1, 10, 5)))
+    assert statistics(diagnostics, sample.RULES) == (
         "3\tRN202\thard-coded-absolute-name\n"
         "1\tRN101\tillegal-name\n"
         "1\tRN203\tnot-snake-case\n"
@@ -196,8 +189,8 @@ def test_statistics_most_frequent_first_then_by_code() -> None:
 
 
 def test_statistics_align_counts_and_skip_suppressed() -> None:
-    many = tuple(replace(S.RN401, span=Span(n, 1, n, 2)) for n in range(1, 11))
-    assert statistics((*many, S.RN101, S.RN101_SUPPRESSED), S.RULES) == (
+    many = tuple(replace(sample.RN401, span=Span(n, 1, n, 2)) for n in range(1, 11))
+    assert statistics((*many, sample.RN101, sample.RN101_SUPPRESSED), sample.RULES) == (
         "10\tRN401\tcase-collision\n 1\tRN101\tillegal-name\n"
     )
-    assert statistics((), S.RULES) == ""
+    assert statistics((), sample.RULES) == ""

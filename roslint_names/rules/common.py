@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ..model import FileFacts, Kind, Language, NameUse, Role
+from ..names import Problem, check_name
 
 GRAPH_KINDS = frozenset({Kind.NODE, Kind.NAMESPACE, Kind.TOPIC, Kind.SERVICE, Kind.ACTION})
 _LAUNCH_LANGUAGES = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.URDF})
@@ -23,6 +24,22 @@ _LABELS = {
 def static_uses(facts: FileFacts) -> Iterator[NameUse]:
     """The uses whose value is known; dynamic names are never judged."""
     return (use for use in facts.names if not use.dynamic)
+
+
+def grammar_problems(facts: FileFacts, code: str) -> Iterator[tuple[NameUse, Problem]]:
+    """Each known name the grammar faults under ``code``, with the grammar's verdict.
+
+    The grammar gives one problem per name under its most specific code, so the rules
+    that report grammar problems (RN101, RN102, RN205) never report one name twice.
+    """
+    for use in static_uses(facts):
+        problem = check_name(use.value, use.kind, facts.generation)
+        if problem is not None and problem.code == code:
+            yield use, problem
+
+
+def fix_hint(problem: Problem) -> str:
+    return f"; use '{problem.suggestion}'" if problem.suggestion else ""
 
 
 def chosen_here(use: NameUse, facts: FileFacts) -> bool:

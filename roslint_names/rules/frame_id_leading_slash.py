@@ -4,21 +4,14 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..model import FileFacts, Finding, Kind, Severity
-from ..names import check_name
+from ..model import FileFacts, Finding, Severity
 from ..rule import Rule, RuleContext
-from .common import static_uses
+from .common import fix_hint, grammar_problems
 
 
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
-    for use in static_uses(facts):
-        if use.kind is not Kind.FRAME:
-            continue
-        problem = check_name(use.value, use.kind, facts.generation)
-        if problem is None or problem.code != RULE.code:
-            continue
-        fix = f"; use '{problem.suggestion}'" if problem.suggestion else ""
-        yield Finding(use.span, f"frame id '{use.value}' {problem.reason}{fix}")
+    for use, problem in grammar_problems(facts, RULE.code):
+        yield Finding(use.span, f"frame id '{use.value}' {problem.reason}{fix_hint(problem)}")
 
 
 RULE = Rule(

@@ -5,19 +5,15 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ..model import FileFacts, Finding, Severity
-from ..names import check_name
 from ..rule import Rule, RuleContext
-from .common import label, static_uses
+from .common import fix_hint, grammar_problems, label
 
 
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
-    for use in static_uses(facts):
-        problem = check_name(use.value, use.kind, facts.generation)
-        if problem is None or problem.code != RULE.code:
-            continue
-        fix = f"; use '{problem.suggestion}'" if problem.suggestion else ""
-        ros = f"ROS {facts.generation.value}"
-        yield Finding(use.span, f"{label(use)} '{use.value}' {problem.reason} ({ros}){fix}")
+    ros = f"ROS {facts.generation.value}"
+    for use, problem in grammar_problems(facts, RULE.code):
+        message = f"{label(use)} '{use.value}' {problem.reason} ({ros}){fix_hint(problem)}"
+        yield Finding(use.span, message)
 
 
 RULE = Rule(

@@ -5,18 +5,13 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 from ..model import FileFacts, Finding, Severity
-from ..names import check_name
 from ..rule import Rule, RuleContext
-from .common import label, static_uses
+from .common import fix_hint, grammar_problems, label
 
 
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
-    for use in static_uses(facts):
-        problem = check_name(use.value, use.kind, facts.generation)
-        if problem is None or problem.code != RULE.code:
-            continue
-        fix = f"; use '{problem.suggestion}'" if problem.suggestion else ""
-        yield Finding(use.span, f"{label(use)} '{use.value}' {problem.reason}{fix}")
+    for use, problem in grammar_problems(facts, RULE.code):
+        yield Finding(use.span, f"{label(use)} '{use.value}' {problem.reason}{fix_hint(problem)}")
 
 
 RULE = Rule(
