@@ -1,7 +1,10 @@
 """Run the pipeline over discovered files: extract facts, apply rules, then suppressions.
 
 Extractor modules are imported on first use, so a run over launch files never imports
-libcst or tree-sitter, and a run over one C++ file never imports lxml.
+libcst or tree-sitter, and a run over one C++ file never imports lxml. Facts come from the
+facts cache (``cache``) when a file is unchanged, and are extracted in worker processes
+(``workers``) when there are enough files to pay for them; diagnostics never depend on
+either.
 """
 
 from __future__ import annotations
@@ -9,11 +12,14 @@ from __future__ import annotations
 import importlib
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
+from functools import partial
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .config import Settings, enabled_codes, ignored_for_path
 from .discover import SourceFile
 from .generation import PackageGenerations
+from .lines import split_lines
 from .model import (
     Diagnostic,
     FileFacts,
@@ -27,11 +33,16 @@ from .model import (
 from .registry import Registry
 from .rule import Rule, RuleContext
 from .suppress import Suppression, find_suppressions, is_our_code
+from .workers import Dispatcher
+
+if TYPE_CHECKING:
+    from .cache import FactsCache  # imported by the caller that wants a cache
 
 Extract = Callable[[str, bytes, "Generation | None", Generation], FileFacts]
 
-# Languages whose extractor has landed; the others are discovered but not linted yet.
 EXTRACTOR_MODULES: dict[Language, str] = {
+    Language.CPP: "cpp",
+    Language.PYTHON: "python",
     Language.LAUNCH_XML: "launch_xml",
     Language.LAUNCH_YAML: "launch_yaml",
     Language.URDF: "urdf",
@@ -45,6 +56,20 @@ INVALID_SUPPRESSION = "RN003"
 class LintResult:
     diagnostics: tuple[Diagnostic, ...]  # sorted; suppressed ones flagged, not dropped
     files_checked: int
+    files_extracted: int = 0  # parsed (or prefiltered) this run; the rest came from the cache
+    workers: int = 0  # worker processes started; 0 when everything ran in-process
+
+
+Progress = Callable[[int, int], None]  # (files done, files in total)
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """How a run goes about it, never what it reports: the output is the same for all."""
+
+    jobs: int = 1  # worker processes for extraction; 0: every core; 1: none
+    cache: FactsCache | None = None
+    progress: Progress | None = None
 
 
 def lintable(sources: Iterable[SourceFile]) -> list[SourceFile]:
@@ -57,27 +82,98 @@ def extractor_for(language: Language) -> Extract:
     return extract
 
 
-def lint(sources: Sequence[SourceFile], settings: Settings, registry: Registry) -> LintResult:
+def lint(
+    sources: Sequence[SourceFile],
+    settings: Settings,
+    registry: Registry,
+    run: RunOptions = RunOptions(),  # frozen: sharing the default is safe
+) -> LintResult:
+    """Diagnostics of every lintable source; the same bytes whatever the ``run`` options.
+
+    Each file is read once, here. Its facts come from the cache when its key is there;
+    otherwise the file goes to extraction, in-process or in worker processes (see
+    ``workers``), which store what they extract. Rules and suppressions run here, in the
+    main process, as facts arrive, in whatever order; every file's diagnostics are kept in
+    its own slot and joined in discovery order before the final sort, so the order in which
+    workers finish never shows in the output.
+    """
     enabled = enabled_codes(settings, registry)
     packages = PackageGenerations()
+    fallback = settings.ros or DEFAULT_GENERATION
+    cache, progress = run.cache, run.progress
     checked = lintable(sources)
-    diagnostics: list[Diagnostic] = []
-    for source in checked:
-        data, read_error = _read(source.path)
-        facts = (
-            _unreadable(source, read_error)
-            if data is None
-            else extractor_for(source.language)(
-                source.display,
-                data,
-                packages.for_file(source.path),
-                settings.ros or DEFAULT_GENERATION,
-            )
-        )
-        text = decode_for_display(data or b"")
-        diagnostics.extend(check_file(facts, text, settings, registry, enabled))
+    per_file: list[list[Diagnostic]] = [[] for _ in checked]
+    extracting: dict[int, bytes] = {}  # files sent to extraction: their bytes, to check them
+    done = 0
+
+    def check(index: int, facts: FileFacts, data: bytes) -> None:
+        nonlocal done
+        text = decode_for_display(data)
+        per_file[index] = check_file(facts, text, settings, registry, enabled)
+        done += 1
+        if progress is not None:
+            progress(done, len(checked))
+
+    def check_extracted(results: Iterable[tuple[int, FileFacts]]) -> None:
+        for index, facts in results:
+            check(index, facts, extracting.pop(index))
+
+    if cache is not None:
+        cache.writable()  # create the directory now, not racing in every worker
+    extracted = 0
+    extract = partial(_extract_batch, cache)
+    with Dispatcher(extract, run.jobs, expected_items=len(checked)) as dispatcher:
+        for index, source in enumerate(checked):
+            data, read_error = _read(source.path)
+            if data is None:
+                check(index, _unreadable(source, read_error), b"")
+                continue
+            package = packages.for_file(source.path)
+            job = _Job(index, source.display, source.language, package, fallback)
+            key: str | None = None
+            if cache is not None:
+                key = cache.key(data, source.display, source.language, package, fallback)
+                facts = cache.load(key)
+                if facts is not None:
+                    check(index, facts, data)
+                    continue
+            extracted += 1
+            extracting[index] = data
+            check_extracted(dispatcher.put((job, data, key), len(data)))
+        check_extracted(dispatcher.finish())
+        workers = dispatcher.workers
+    diagnostics = [diagnostic for found in per_file for diagnostic in found]
     diagnostics.sort(key=Diagnostic.sort_key)
-    return LintResult(tuple(diagnostics), len(checked))
+    return LintResult(tuple(diagnostics), len(checked), extracted, workers)
+
+
+@dataclass(frozen=True)
+class _Job:
+    """What an extractor needs besides the bytes; small, so cheap to send to a worker."""
+
+    index: int
+    display: str
+    language: Language
+    package_generation: Generation | None
+    fallback_generation: Generation
+
+
+def _extract_batch(
+    cache: FactsCache | None, batch: list[tuple[_Job, bytes, str | None]]
+) -> list[tuple[int, FileFacts]]:
+    """Extract and store facts: the work of a worker process, or of the main one.
+
+    Module-level so that worker processes can run it; extractor modules are imported on
+    first use, in whichever process extracts.
+    """
+    results: list[tuple[int, FileFacts]] = []
+    for job, data, key in batch:
+        extract = extractor_for(job.language)
+        facts = extract(job.display, data, job.package_generation, job.fallback_generation)
+        if cache is not None and key is not None:
+            cache.store(key, facts)
+        results.append((job.index, facts))
+    return results
 
 
 def check_file(
@@ -90,7 +186,7 @@ def check_file(
     """Every diagnostic of one file: rule findings, then suppression bookkeeping."""
     ignored = ignored_for_path(settings, _relative_to_root(facts.path, settings), registry)
     active = enabled - ignored
-    to_diagnostic = _DiagnosticFactory(facts, settings, text.splitlines())
+    to_diagnostic = _DiagnosticFactory(facts, settings, split_lines(text))
     diagnostics = [
         to_diagnostic(rule, finding.span, finding.message, finding.related)
         for rule in registry.rules

@@ -32,6 +32,7 @@ class Generation(int, Enum):
 class Language(str, Enum):
     CPP = "cpp"
     PYTHON = "python"
+    LAUNCH_PYTHON = "launch-python"  # a .py file defining generate_launch_description
     LAUNCH_XML = "launch-xml"  # ROS 1 .launch/.test and ROS 2 .launch.xml
     LAUNCH_YAML = "launch-yaml"
     URDF = "urdf"  # URDF and XACRO
@@ -130,6 +131,32 @@ class LaunchNode:
     parameters: tuple[str, ...] = ()
 
 
+class EventKind(str, Enum):
+    """What RN301 orders: the runtime's initialisation and the objects that need it."""
+
+    INIT = "init"  # ros::init, rclcpp::init, rclpy.init, rospy.init_node
+    HANDLE = "handle"  # ros::NodeHandle, rclcpp::Node, an rclpy Node, a rospy endpoint...
+
+
+@dataclass(frozen=True)
+class RuntimeEvent:
+    """An init call or a construction that needs one, in the order the code runs them.
+
+    ``scope`` names the code the event runs in: a function (unique within the file, e.g.
+    ``"main@12"``), or ``""`` for what runs when the program or module loads (C++
+    namespace scope and static data members, Python module level). ``order`` is the
+    statement position within that scope. ``static_storage`` marks C++ objects built before
+    ``main()`` starts (globals, static data members), which no init can precede.
+    """
+
+    kind: EventKind
+    api: str  # "ros::init", "ros::NodeHandle", "rclpy.create_node", "rospy.Publisher"
+    span: Span
+    scope: str
+    order: int
+    static_storage: bool = False
+
+
 @dataclass(frozen=True)
 class ParseError:
     """A file, or part of one, that could not be decoded or parsed (becomes RN001)."""
@@ -147,6 +174,7 @@ class FileFacts:
     generation: Generation
     names: tuple[NameUse, ...] = ()
     launch_nodes: tuple[LaunchNode, ...] = ()
+    events: tuple[RuntimeEvent, ...] = ()
     parse_errors: tuple[ParseError, ...] = ()
 
 

@@ -21,10 +21,12 @@ import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 
+from .lines import split_lines
 from .model import Language, Span
 
 # Keys separated by a comma or blanks; the separator is never empty, so no backtracking blow-up.
 _KEYS = r"([A-Za-z0-9_\-]+(?:(?:[ \t]*,[ \t]*|[ \t]+)[A-Za-z0-9_\-]+)*)"
+_MARKERS = re.compile(r"NOLINT|noqa|roslint-names", re.IGNORECASE)
 _NOLINT = re.compile(r"//\s*NOLINT(NEXTLINE)?\(([^)]*)\)")
 _NOQA = re.compile(r"#\s*noqa\s*:\s*" + _KEYS, re.IGNORECASE)
 _XML_IGNORE = re.compile(r"<!--\s*roslint-names\s*:\s*ignore\s+" + _KEYS + r".*?-->")
@@ -40,8 +42,10 @@ class Suppression:
 
 
 def find_suppressions(text: str, language: Language) -> list[Suppression]:
+    if not _MARKERS.search(text):
+        return []  # most files hold no suppression: one scan instead of one per line
     found: list[Suppression] = []
-    for index, line in enumerate(text.splitlines()):
+    for index, line in enumerate(split_lines(text)):
         number = index + 1
         found.extend(_in_line(line, number, language))
     return found
@@ -52,7 +56,7 @@ def _in_line(line: str, number: int, language: Language) -> Iterable[Suppression
         for match in _NOLINT.finditer(line):
             target = number + 1 if match.group(1) else number
             yield _make(match.group(2), frozenset({target}), number, match)
-    elif language is Language.PYTHON:
+    elif language in (Language.PYTHON, Language.LAUNCH_PYTHON):
         for match in _NOQA.finditer(line):
             yield _make(match.group(1), frozenset({number}), number, match)
     else:

@@ -70,3 +70,10 @@ def test_suppressed_findings_are_in_sarif_only_on_request(run_cli: Any, tmp_path
     full_results = full["runs"][0]["results"]
     assert len(full_results) == len(plain_results) + 2
     assert sum("suppressions" in result for result in full_results) == 2
+
+
+def test_lines_are_counted_as_parsers_count_them() -> None:
+    # Found in review: str.splitlines() also breaks at form feed and \x1c-\x1e, so a
+    # suppression after such a character sat on the wrong line.
+    text = "// page one\x0c still line one\nros::Publisher p;  // NOLINT(RN202)\n"
+    assert keys_and_lines(text, Language.CPP) == [(("RN202",), [2])]

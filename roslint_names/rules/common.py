@@ -2,14 +2,19 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
 
 from ..model import FileFacts, Kind, Language, NameUse, Role
 from ..names import Problem, check_name
 
 GRAPH_KINDS = frozenset({Kind.NODE, Kind.NAMESPACE, Kind.TOPIC, Kind.SERVICE, Kind.ACTION})
-_LAUNCH_LANGUAGES = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.URDF})
+_LAUNCH_LANGUAGES = frozenset(
+    {Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.LAUNCH_PYTHON, Language.URDF}
+)
+CODE_LANGUAGES = frozenset({Language.CPP, Language.PYTHON})
 
+_TYPE_SPELLING = re.compile(r"[A-Z][A-Za-z0-9]*[a-z][A-Za-z0-9]*")
 _LABELS = {
     Kind.NODE: "node name",
     Kind.NAMESPACE: "namespace",
@@ -52,6 +57,17 @@ def chosen_here(use: NameUse, facts: FileFacts) -> bool:
     if facts.language in _LAUNCH_LANGUAGES:
         return use.role not in (Role.PARAMETER, Role.REMAP_FROM)
     return True
+
+
+def spelled_as_type(use: NameUse) -> bool:
+    """A service whose last token is spelled like an interface type (``SetBool``).
+
+    RN204 reports it; RN203 leaves that token alone, so the name gets one finding.
+    """
+    if use.kind is not Kind.SERVICE or use.role not in (Role.SERVE, Role.CALL):
+        return False
+    last = use.value.rstrip("/").rsplit("/", 1)[-1]
+    return bool(_TYPE_SPELLING.fullmatch(last))
 
 
 def label(use: NameUse) -> str:

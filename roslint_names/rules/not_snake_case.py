@@ -11,7 +11,7 @@ from collections.abc import Iterator
 from ..model import FileFacts, Finding, Kind, Severity
 from ..names import check_name, is_snake_case, snake_case, tokens
 from ..rule import Rule, RuleContext
-from .common import chosen_here, label, static_uses
+from .common import chosen_here, label, spelled_as_type, static_uses
 
 # Last tokens that ROS packages spell themselves, so no author can choose another spelling:
 # image_transport names a subtopic after its transport plugin (`image_raw/compressedDepth`).
@@ -26,8 +26,8 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
         if problem is not None and problem.fatal:
             continue  # RN101 / RN102 report it; one problem, one finding
         name_tokens = tokens(use.value, use.kind)
-        if name_tokens and name_tokens[-1] in TRANSPORT_SUFFIXES:
-            name_tokens = name_tokens[:-1]
+        if name_tokens and (name_tokens[-1] in TRANSPORT_SUFFIXES or spelled_as_type(use)):
+            name_tokens = name_tokens[:-1]  # image_transport's spelling; RN204's finding
         bad = [token for token in name_tokens if not is_snake_case(token)]
         if not bad:
             continue

@@ -1,0 +1,19 @@
+"""Split decoded text into lines the way the parsers and editors count them.
+
+``str.splitlines()`` also breaks at form feed, ``\\x1c``-``\\x1e`` and Unicode line
+separators, which tree-sitter, lxml and libcst do not: line numbers would drift after such
+a character. Only CRLF, CR and LF end a line here.
+"""
+
+from __future__ import annotations
+
+import re
+
+_LINE_BREAK = re.compile(r"\r\n|\r|\n")
+
+
+def split_lines(text: str) -> list[str]:
+    lines = _LINE_BREAK.split(text)
+    if lines and lines[-1] == "":
+        lines.pop()  # a final line break ends the last line; it does not start a new one
+    return lines

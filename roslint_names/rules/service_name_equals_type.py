@@ -1,0 +1,133 @@
+"""RN204 service-name-equals-type: a service named like a type, or after the wrong one.
+
+Two mistakes, both seen in real code: a service spelled as its type (``"SetBool"``), which
+says what it carries instead of what it does; and a service whose name is the snake_case
+of a different type than it serves or calls (``/set_bool`` with ``std_srvs/Trigger``),
+usually left over after the type changed, and a trap for every client written against
+the name. Option ``strict`` also reports a name equal to its own type (``add_two_ints``
+served with ``AddTwoInts``): half of real services follow that convention, so it is off
+by default.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+from ..model import FileFacts, Finding, Generation, Kind, NameUse, Role, Severity
+from ..names import is_valid, snake_case, tokens
+from ..rule import Rule, RuleContext
+from ..types import InterfaceType, parse_type
+from .common import spelled_as_type, static_uses
+
+# Service types every ROS developer meets, per generation, so a name after one of them is
+# recognised even when the file does not use that type. A ROS 1 service is never named
+# after a ROS 2-only type (roscpp's tutorial serves `add_two_ints` with TwoInts, long before
+# example_interfaces/AddTwoInts existed). Only multi-word names count: a service called
+# "reset" or "spawn" is named after what it does, not after std_srvs/Empty or turtlesim/Spawn.
+_BOTH = (
+    "std_srvs/SetBool",
+    "std_srvs/Trigger",
+    "std_srvs/Empty",
+    "nav_msgs/GetMap",
+    "nav_msgs/GetPlan",
+    "nav_msgs/SetMap",
+    "nav_msgs/LoadMap",
+    "turtlesim/SetPen",
+    "turtlesim/TeleportAbsolute",
+    "turtlesim/TeleportRelative",
+    "controller_manager_msgs/SwitchController",
+    "controller_manager_msgs/LoadController",
+    "controller_manager_msgs/ListControllers",
+    "robot_localization/SetPose",
+    "robot_localization/SetDatum",
+    "sensor_msgs/SetCameraInfo",
+    "moveit_msgs/GetPositionIK",
+    "moveit_msgs/GetPositionFK",
+    "moveit_msgs/GetMotionPlan",
+)
+_ROS1_ONLY = (
+    "gazebo_msgs/SpawnModel",
+    "gazebo_msgs/DeleteModel",
+    "gazebo_msgs/GetModelState",
+    "gazebo_msgs/SetModelState",
+)
+_ROS2_ONLY = (
+    "example_interfaces/AddTwoInts",
+    "lifecycle_msgs/ChangeState",
+    "lifecycle_msgs/GetState",
+    "rcl_interfaces/GetParameters",
+    "rcl_interfaces/SetParameters",
+    "rcl_interfaces/ListParameters",
+    "rcl_interfaces/DescribeParameters",
+    "gazebo_msgs/SpawnEntity",
+    "gazebo_msgs/DeleteEntity",
+    "gazebo_msgs/GetEntityState",
+    "gazebo_msgs/SetEntityState",
+)
+WELL_KNOWN_SERVICE_TYPES: dict[Generation, tuple[InterfaceType, ...]] = {
+    generation: tuple(InterfaceType(*spelling.split("/")) for spelling in spellings)
+    for generation, spellings in (
+        (Generation.ROS1, _BOTH + _ROS1_ONLY),
+        (Generation.ROS2, _BOTH + _ROS2_ONLY),
+    )
+}
+_SERVICE_ROLES = frozenset({Role.SERVE, Role.CALL})
+
+
+def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
+    strict = bool(context.options.get("strict", False))
+    services = [
+        use
+        for use in static_uses(facts)
+        if use.kind is Kind.SERVICE
+        and use.role in _SERVICE_ROLES
+        and is_valid(use.value, use.kind, facts.generation)
+    ]
+    known = _known_types(services, facts.generation)
+    for use in services:
+        name_tokens = tokens(use.value, use.kind)
+        if not name_tokens:
+            continue
+        last = name_tokens[-1]
+        if spelled_as_type(use):
+            yield Finding(
+                use.span,
+                f"service '{use.value}' is spelled like a type ('{last}'); "
+                "name it after what it does, in snake_case",
+            )
+            continue
+        own = parse_type(use.type_name) if use.type_name else None
+        if own is None:
+            continue
+        if last == snake_case(own.name):
+            if strict:
+                yield Finding(use.span, f"service '{use.value}' is named after its own type {own}")
+            continue
+        for other in known:
+            other_name = snake_case(other.name)
+            if other.name != own.name and "_" in other_name and last == other_name:
+                yield Finding(use.span, _wrong_type_message(use, own, other))
+                break
+
+
+def _known_types(services: list[NameUse], generation: Generation) -> list[InterfaceType]:
+    seen = {parsed for use in services if use.type_name and (parsed := parse_type(use.type_name))}
+    return sorted(seen | set(WELL_KNOWN_SERVICE_TYPES[generation]), key=str)
+
+
+def _wrong_type_message(use: NameUse, own: InterfaceType, other: InterfaceType) -> str:
+    verb = "served" if use.role is Role.SERVE else "called"
+    return (
+        f"service '{use.value}' is {verb} with {own} but named after {other}; "
+        "rename it after what it does"
+    )
+
+
+RULE = Rule(
+    code="RN204",
+    name="service-name-equals-type",
+    summary="A service named like a type, or after a different type than it serves",
+    severity=Severity.WARNING,
+    check=check,
+    options={"strict": False},
+)
