@@ -1,0 +1,164 @@
+"""The roscpp and rclcpp APIs that take names: which argument, of which kind and role.
+
+Tables only; ``cpp_sites`` reads the calls. ``api`` strings name the API in messages.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from roslint_names.model import Kind, Role
+
+
+@dataclass(frozen=True)
+class Endpoint:
+    kind: Kind
+    role: Role
+    api: str
+
+
+ENDPOINTS = {
+    "advertise": Endpoint(Kind.TOPIC, Role.PUBLISH, "ros::NodeHandle::advertise"),
+    "serviceClient": Endpoint(Kind.SERVICE, Role.CALL, "ros::NodeHandle::serviceClient"),
+    "create_publisher": Endpoint(Kind.TOPIC, Role.PUBLISH, "rclcpp::Node::create_publisher"),
+    "create_subscription": Endpoint(
+        Kind.TOPIC, Role.SUBSCRIBE, "rclcpp::Node::create_subscription"
+    ),
+    "create_service": Endpoint(Kind.SERVICE, Role.SERVE, "rclcpp::Node::create_service"),
+    "create_client": Endpoint(Kind.SERVICE, Role.CALL, "rclcpp::Node::create_client"),
+    "create_generic_publisher": Endpoint(
+        Kind.TOPIC, Role.PUBLISH, "rclcpp::Node::create_generic_publisher"
+    ),
+    "create_generic_subscription": Endpoint(
+        Kind.TOPIC, Role.SUBSCRIBE, "rclcpp::Node::create_generic_subscription"
+    ),
+    # nav2::LifecycleNode's wrappers around rclcpp_action
+    "create_action_server": Endpoint(
+        Kind.ACTION, Role.ACTION_SERVE, "nav2::LifecycleNode::create_action_server"
+    ),
+    "create_action_client": Endpoint(
+        Kind.ACTION, Role.ACTION_CALL, "nav2::LifecycleNode::create_action_client"
+    ),
+}
+ACTION_FUNCTIONS = {
+    "create_server": Endpoint(Kind.ACTION, Role.ACTION_SERVE, "rclcpp_action::create_server"),
+    "create_client": Endpoint(Kind.ACTION, Role.ACTION_CALL, "rclcpp_action::create_client"),
+}
+SERVICE_FUNCTIONS = frozenset({"call", "waitForService", "exists"})  # ros::service::
+
+
+@dataclass(frozen=True)
+class ParameterSite:
+    name: int  # the argument holding the parameter's name
+    value: int | None  # the argument holding its default or new value
+    api: str
+    minimum: int = 1  # the fewest arguments the call takes (the value's form may vary)
+
+
+# roscpp NodeHandle methods; `param` takes its default last: (name, var, default) or
+# (name, default).
+ROS1_PARAMETERS = {
+    "param": ParameterSite(0, -1, "ros::NodeHandle::param", minimum=2),
+    "getParam": ParameterSite(0, None, "ros::NodeHandle::getParam"),
+    "getParamCached": ParameterSite(0, None, "ros::NodeHandle::getParamCached"),
+    "setParam": ParameterSite(0, 1, "ros::NodeHandle::setParam"),
+    "hasParam": ParameterSite(0, None, "ros::NodeHandle::hasParam"),
+    "deleteParam": ParameterSite(0, None, "ros::NodeHandle::deleteParam"),
+    "searchParam": ParameterSite(0, None, "ros::NodeHandle::searchParam"),
+}
+# ros::param:: free functions
+ROS1_PARAMETER_FUNCTIONS = {
+    "param": ParameterSite(0, -1, "ros::param::param", minimum=2),
+    "get": ParameterSite(0, None, "ros::param::get"),
+    "getCached": ParameterSite(0, None, "ros::param::getCached"),
+    "set": ParameterSite(0, 1, "ros::param::set"),
+    "has": ParameterSite(0, None, "ros::param::has"),
+    "del": ParameterSite(0, None, "ros::param::del"),
+    "search": ParameterSite(0, None, "ros::param::search"),
+}
+ROS2_PARAMETERS = {
+    "declare_parameter": ParameterSite(0, 1, "rclcpp::Node::declare_parameter"),
+    "get_parameter": ParameterSite(0, None, "rclcpp::Node::get_parameter"),
+    "get_parameter_or": ParameterSite(0, 2, "rclcpp::Node::get_parameter_or"),
+    "has_parameter": ParameterSite(0, None, "rclcpp::Node::has_parameter"),
+    "undeclare_parameter": ParameterSite(0, None, "rclcpp::Node::undeclare_parameter"),
+    "describe_parameter": ParameterSite(0, None, "rclcpp::Node::describe_parameter"),
+    # nav2_util's free function: (node, name, default)
+    "declare_parameter_if_not_declared": ParameterSite(
+        1, 2, "nav2_util::declare_parameter_if_not_declared", minimum=2
+    ),
+}
+# tf and tf2: every string argument of these is a frame id.
+FRAME_FUNCTIONS = frozenset(
+    {
+        "lookupTransform",
+        "canTransform",
+        "waitForTransform",
+        "transformPose",
+        "transformPoint",
+        "transformVector",
+        "transformQuaternion",
+        "transformPointCloud",
+    }
+)
+FRAME_FIELDS = frozenset({"frame_id", "child_frame_id"})
+# (argument indexes holding frames) per constructed tf type
+FRAME_CONSTRUCTIONS = {"StampedTransform": (2, 3), "Stamped": (2,)}
+ACTIONLIB = {"SimpleActionServer": Role.ACTION_SERVE, "ActionServer": Role.ACTION_SERVE}
+ACTIONLIB |= {"SimpleActionClient": Role.ACTION_CALL, "ActionClient": Role.ACTION_CALL}
+ACTIONLIB_QUALIFIERS = frozenset({"actionlib", "nav2_util", "nav2", ""})
+SERVICE_WRAPPERS = {"ServiceClient": Role.CALL, "ServiceServer": Role.SERVE}  # nav2
+
+CALL_WORDS = frozenset(
+    {
+        *ENDPOINTS,
+        *ACTION_FUNCTIONS,
+        *ROS1_PARAMETERS,
+        *ROS2_PARAMETERS,
+        *FRAME_FUNCTIONS,
+        "subscribe",
+        "advertiseService",
+        "init",
+        "service",  # ros::service::call
+        # `param` (above) also anchors ros::param::get
+    }
+)
+CONSTRUCTED_TYPES = frozenset(
+    {
+        "NodeHandle",
+        "Node",
+        "LifecycleNode",
+        "Subscriber",
+        "Parameter",
+        *ACTIONLIB,
+        *SERVICE_WRAPPERS,
+        *FRAME_CONSTRUCTIONS,
+    }
+)
+
+_FRAME_PARAMETER = re.compile(r"(?:^|_)frame(?:_id)?$")
+_TOPIC_PARAMETER = re.compile(r"(?:^|_)topic(?:_name)?$")
+_SERVICE_PARAMETER = re.compile(r"(?:^|_)service(?:_name)?$")
+_ACTION_PARAMETER = re.compile(r"(?:^|_)action(?:_name|_server|_server_name)?$")
+MAX_FRAME_ARGUMENTS = 6  # past these, tf's calls take times, durations and outputs
+
+
+def value_fact(parameter: str) -> tuple[Kind, Role] | None:
+    """What a parameter's string value is, judged by the parameter's name.
+
+    ``*frame``/``*frame_id`` hold frame ids; ``*topic``/``*topic_name``, ``*service``,
+    ``*action`` hold graph names, recorded as parameter defaults (never RN202: a default
+    is the recommended fix). Other parameters hold anything.
+    """
+    last = re.split(r"[/.~]", parameter)[-1]
+    if _FRAME_PARAMETER.search(last):
+        return Kind.FRAME, Role.FRAME
+    for pattern, kind in (
+        (_TOPIC_PARAMETER, Kind.TOPIC),
+        (_SERVICE_PARAMETER, Kind.SERVICE),
+        (_ACTION_PARAMETER, Kind.ACTION),
+    ):
+        if pattern.search(last):
+            return kind, Role.PARAMETER_DEFAULT
+    return None
