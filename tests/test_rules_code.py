@@ -57,6 +57,12 @@ def test_rn202_reports_absolute_endpoints_in_code_only() -> None:
     assert messages(rn202, launch) == []
 
 
+def test_rn202_ros1_topic_statistics_are_global_by_design() -> None:
+    # Found over ros_comm: roscpp and rospy publish topic statistics on /statistics.
+    rn202 = hard_coded_absolute_name.check
+    assert messages(rn202, facts(use("/statistics", Role.PUBLISH))) == []
+
+
 def test_rn202_allow_lists() -> None:
     rn202 = hard_coded_absolute_name.check
     file_facts = facts(use("/tf", Role.PUBLISH), use("/joy", Role.SUBSCRIBE))

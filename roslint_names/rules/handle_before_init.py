@@ -1,9 +1,11 @@
 """RN301 handle-before-init: a node handle or node built before the runtime is initialised.
 
 roscpp aborts ("You must call ros::init() before creating the first NodeHandle"), rclcpp
-and rclpy throw, and rospy refuses endpoints before ``init_node``. A global or static
-object is built before ``main()`` runs, so no init can come first; inside one function the
-statement order decides.
+and rclpy throw. rospy is the lenient one: it lets topics be created before ``init_node``,
+but a service or service proxy made then ignores the launch file's remaps and a ``~private``
+name fails or lands under ``/unnamed``; the Python extractor emits only those as handles. A
+global or static object is built before ``main()`` runs, so no init can come first; inside
+one function the statement order decides.
 """
 
 from __future__ import annotations

@@ -24,6 +24,7 @@ GLOBAL_BY_DESIGN = (
     "/parameter_events",
     "/diagnostics",
     "/diagnostics_agg",
+    "/statistics",  # ROS 1 topic statistics, published by roscpp and rospy themselves
 )
 _ENDPOINT_KINDS = frozenset({Kind.TOPIC, Kind.SERVICE, Kind.ACTION})
 

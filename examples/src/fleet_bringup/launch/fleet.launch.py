@@ -1,0 +1,29 @@
+"""Bring up one robot of the fleet: its nodes in the robot's namespace."""
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, GroupAction
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node, PushRosNamespace
+
+
+def generate_launch_description():
+    robot = LaunchConfiguration("robot")
+    remappings = [("/tf", "tf"), ("/tf_static", "tf_static")]
+    return LaunchDescription([
+        DeclareLaunchArgument("robot", default_value="robot2"),
+        GroupAction([
+            PushRosNamespace(robot),
+            Node(
+                package="fleet_bringup",
+                executable="waypoint_follower",
+                name="waypoint_follower",
+                parameters=[{"map_frame": "map"}],
+                remappings=remappings,
+            ),
+            Node(
+                package="fleet_bringup",
+                executable="battery_reporter",
+                name="batteryReporter",
+                parameters=[{"low_threshold": 0.15}],
+            ),
+        ]),
+    ])

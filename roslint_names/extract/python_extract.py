@@ -1,0 +1,80 @@
+"""Python files past the prefilter: decode, parse once, walk once, extract, assemble.
+
+Imported by ``python.py`` only after its prefilter passed, because it imports libcst.
+"""
+
+from __future__ import annotations
+
+from roslint_names.extract import evidence
+from roslint_names.extract.python_code import CodeExtractor
+from roslint_names.extract.python_launch import LaunchExtractor
+from roslint_names.extract.python_source import decode, parse
+from roslint_names.extract.python_spans import Locator
+from roslint_names.extract.python_walk import Walk
+from roslint_names.model import FileFacts, Generation, Language, ParseError, Span
+
+# Imports that only exist in one generation (tf2_ros, message_filters and the message
+# packages exist in both).
+_ROS1_PACKAGES = frozenset(
+    {"rospy", "roslib", "actionlib", "tf", "rostest", "rosbag", "roslaunch", "rosgraph"}
+)
+_ROS2_PACKAGES = frozenset(
+    {"rclpy", "launch", "launch_ros", "launch_testing", "launch_testing_ros", "ament_index_python"}
+)
+_LAUNCH_PACKAGES = frozenset({"launch", "launch_ros"})
+_NODE_PACKAGES = frozenset({"rospy", "rclpy"})
+_ROOTS = frozenset({"generate_launch_description", "generate_test_description"})
+
+
+def import_generation(packages: set[str]) -> Generation | None:
+    ros1 = len(packages & _ROS1_PACKAGES)
+    ros2 = len(packages & _ROS2_PACKAGES)
+    if ros1 == ros2:
+        return None
+    return Generation.ROS1 if ros1 > ros2 else Generation.ROS2
+
+
+def extract_parsed(
+    path: str,
+    data: bytes,
+    package_generation: Generation | None,
+    fallback_generation: Generation,
+    launch_path: bool,
+) -> FileFacts:
+    default_language = Language.LAUNCH_PYTHON if launch_path else Language.PYTHON
+    text = decode(data)
+    module = text if isinstance(text, ParseError) else parse(text)
+    if isinstance(text, ParseError) or isinstance(module, ParseError):
+        error = text if isinstance(text, ParseError) else module
+        assert isinstance(error, ParseError)
+        generation = package_generation or fallback_generation
+        return FileFacts(path, default_language, generation, parse_errors=(error,))
+    try:
+        walk = Walk(module)
+    except RecursionError:
+        error = ParseError("Python code nested too deeply to analyse", Span(1, 1, 1, 2))
+        return FileFacts(
+            path, default_language, package_generation or fallback_generation, parse_errors=(error,)
+        )
+    generation = evidence.decide(
+        package_generation, import_generation(walk.packages), None, fallback_generation
+    )
+    locator = Locator(module, text)
+    code = CodeExtractor(walk, locator, generation)
+    code.run()
+    launch = LaunchExtractor(walk, locator)
+    launch.run()
+    defines_root = any(function.name.value in _ROOTS for function in walk.functions)
+    launch_module = launch.found_actions and not (walk.packages & _NODE_PACKAGES)
+    language = (
+        Language.LAUNCH_PYTHON if launch_path or defines_root or launch_module else Language.PYTHON
+    )
+    names = sorted(code.names + launch.names, key=lambda use: (use.span.line, use.span.column))
+    return FileFacts(
+        path=path,
+        language=language,
+        generation=generation,
+        names=tuple(names),
+        launch_nodes=tuple(launch.nodes),
+        events=tuple(code.events),
+    )

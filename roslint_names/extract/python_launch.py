@@ -1,0 +1,404 @@
+"""ROS 2 Python launch files: the same facts the launch XML and YAML extractors produce.
+
+A launch.py builds a tree of launch actions as Python values; ``python_launch_values``
+evaluates the part of it that is static. The tree is walked from what
+``generate_launch_description`` (or launch_testing's ``generate_test_description``)
+returns, as ``launch_xml.Ros2Launch`` walks an XML file: ``GroupAction`` scopes pushed
+namespaces, remaps and launch configurations; ``PushRosNamespace`` pushes; a node's
+relative namespace is prefixed with the pushed one; composable nodes get the pushed
+namespace, not their container's; a statically false ``IfCondition`` skips its action.
+Namespaces on the facts follow ``launch_xml``: a node's ``namespace=`` carries the
+enclosing namespace, its name and remaps the node's, its parameters the node's full name.
+
+Actions no walk reaches (built in a loop, a comprehension, or a helper this file does not
+call) still get their names checked, in an unknown namespace.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+
+import libcst as cst
+
+from roslint_names.extract.launch_xml import is_frame_parameter, join_namespace, node_path
+from roslint_names.extract.python_launch_values import (
+    Action,
+    ActionCall,
+    LaunchScope,
+    LaunchValues,
+    Written,
+    call_argument,
+    class_key,
+    defined_function,
+)
+from roslint_names.extract.python_scope import Scope, argument_context
+from roslint_names.extract.python_spans import Locator, Where
+from roslint_names.extract.python_walk import Walk
+from roslint_names.extract.substitution import Value, skipped
+from roslint_names.model import Kind, LaunchNode, NameUse, Remap, Role
+
+_IF = ("launch", "IfCondition")
+_UNLESS = ("launch", "UnlessCondition")
+_ROOTS = ("generate_launch_description", "generate_test_description")
+# Keywords, current then pre-Foxy spelling (node_name, node_namespace...).
+_NAME = ":name|node_name"
+_NAMESPACE = ":namespace|node_namespace"
+
+
+@dataclass(frozen=True)
+class Fact:
+    kind: Kind
+    role: Role
+
+
+NODE = Fact(Kind.NODE, Role.NODE_NAME)
+NAMESPACE = Fact(Kind.NAMESPACE, Role.NAMESPACE)
+REMAP_FROM = Fact(Kind.TOPIC, Role.REMAP_FROM)
+REMAP_TO = Fact(Kind.TOPIC, Role.REMAP_TO)
+PARAMETER = Fact(Kind.PARAMETER, Role.PARAMETER)
+FRAME = Fact(Kind.FRAME, Role.FRAME)
+
+
+class LaunchExtractor(LaunchValues):
+    """Walks a module's launch actions like ``launch_xml.Ros2Launch``, emitting facts."""
+
+    def __init__(self, walk: Walk, locator: Locator) -> None:
+        super().__init__(walk, locator)
+        self.names: list[NameUse] = []
+        self.nodes: list[LaunchNode] = []
+        self.found_actions = False
+        self._visited: set[int] = set()
+        self._emitted: set[tuple[int, Fact]] = set()
+
+    # -- entry --------------------------------------------------------------------------
+
+    def run(self) -> None:
+        for root in self.roots():
+            self.visit_all(root, LaunchScope("/"))
+        for site in self.walk.calls:  # what no description reaches: unknown namespace
+            kind = self.action_kind(site.call, site.context.scope)
+            if kind is not None:
+                self.found_actions = True
+                self.visit(ActionCall(kind, site.call, site.context), LaunchScope(None))
+
+    def roots(self) -> Iterator[list[ActionCall]]:
+        for function in self.walk.functions:
+            if function.name.value in _ROOTS:
+                for value, context in self.walk.returns.get(function, []):
+                    yield self.actions(Written(value, context))
+
+    # -- walking ------------------------------------------------------------------------
+
+    def visit_all(self, actions: Sequence[ActionCall], scope: LaunchScope) -> None:
+        for action in actions:
+            self.visit(action, scope)
+
+    def visit(self, action: ActionCall, scope: LaunchScope) -> None:
+        if id(action.call) in self._visited:
+            return
+        self._visited.add(id(action.call))
+        self.found_actions = True
+        if self.excluded(action, scope):
+            return
+        kind = action.kind
+        if kind is Action.DESCRIPTION:
+            self.visit_all(self.children(action, "0:initial_entities"), scope)
+            self.visit_added(action, scope)
+        elif kind is Action.GROUP:
+            self.group(action, scope)
+        elif kind is Action.TIMER:
+            self.visit_all(self.children(action, "1:actions"), scope)
+        elif kind is Action.OPAQUE:
+            self.opaque(action, scope)
+        elif kind is Action.HANDLER:
+            self.handler(action, scope)
+        elif kind is Action.PUSH:
+            self.push(action, scope)
+        elif kind is Action.SET_REMAP:
+            apis = ("SetRemap(src=)", "SetRemap(dst=)")
+            source, target = action.get("0:src"), action.get("1:dst")
+            remap = self.remap(source, target, scope.namespace, scope, apis)
+            scope.remaps.extend([remap] if remap else [])
+        elif kind is Action.SET_PARAMETER:
+            self.set_parameter(action, scope)
+        elif kind is Action.LET:
+            self.let(action, scope)
+        elif kind in (Action.NODE, Action.CONTAINER):
+            self.node(action, scope)
+            self.composable_nodes(action, scope)
+        elif kind is Action.LOAD:
+            self.composable_nodes(action, scope)
+        elif kind is Action.COMPOSABLE:
+            self.node(action, scope)
+        elif kind is Action.INCLUDE:
+            self.include(action, scope)
+
+    def visit_added(self, action: ActionCall, scope: LaunchScope) -> None:
+        """``ld = LaunchDescription(); ld.add_action(x)``: what the variable gets later."""
+        for binding_scope, name in _bound_to(action.call, action.context.scope):
+            for added in self.adders.get((id(binding_scope), name), []):
+                self.visit_all(self.actions(added), scope)
+
+    def excluded(self, action: ActionCall, scope: LaunchScope) -> bool:
+        """A ``condition=IfCondition(x)`` that is statically false (as launch XML's if=)."""
+        condition = action.get(":condition")
+        if condition is None or not isinstance(condition.expr, cst.Call):
+            return False
+        names = condition.scope.qualified(condition.expr.func)
+        tests = {class_key(name) for name in names}
+        inner = call_argument(condition.expr, condition.context, "0:predicate_expression")
+        if inner is None:
+            return False
+        value = self.value(inner, scope)
+        if _IF in tests:
+            return skipped(value, None)
+        if _UNLESS in tests:
+            return skipped(None, value)
+        return False
+
+    def group(self, action: ActionCall, scope: LaunchScope) -> None:
+        """A group keeps pushes, remaps and configurations to itself unless scoped=False;
+        its ``launch_configurations`` are set inside it."""
+        scoped = action.get(":scoped")
+        leaks = scoped is not None and _is_false(scoped.expr)
+        inner = scope if leaks else scope.copy()
+        configurations = action.get(":launch_configurations")
+        if configurations is not None and isinstance(configurations.expr, cst.Dict):
+            for key, value in self.pairs(configurations):
+                name = self.value(key, inner)
+                if not name.dynamic:
+                    inner.variables[name.text] = self.value(value, inner)
+        self.visit_all(self.children(action, "0:actions"), inner)
+
+    def opaque(self, action: ActionCall, scope: LaunchScope) -> None:
+        """``OpaqueFunction(function=launch_setup)``: what the file's function returns runs
+        here, when it is a literal list of actions."""
+        function = action.get("0:function")
+        if function is None:
+            return
+        defined = defined_function(function.expr, function.scope)
+        if defined is not None:
+            for value, context in self.walk.returns.get(defined, []):
+                self.visit_all(self.actions(Written(value, context)), scope)
+
+    def handler(self, action: ActionCall, scope: LaunchScope) -> None:
+        """``RegisterEventHandler(OnProcessExit(on_exit=[...]))``: the actions run later,
+        in the scope the handler was registered in."""
+        handler = action.get("0:event_handler")
+        if handler is None or not isinstance(handler.expr, cst.Call):
+            return
+        for item in handler.expr.args:
+            if item.keyword is not None and item.keyword.value.startswith("on_"):
+                located = Written(
+                    item.value, argument_context(handler.expr, handler.context, item.value)
+                )
+                self.visit_all(self.actions(located), scope)
+
+    def push(self, action: ActionCall, scope: LaunchScope) -> None:
+        """``PushRosNamespace``: the rest of the enclosing group (or file) is inside it."""
+        located = action.get("0:namespace")
+        if located is not None:
+            value = self.emit(
+                NAMESPACE, "PushRosNamespace(namespace=)", located, scope, scope.namespace
+            )
+            scope.namespace = join_namespace(scope.namespace, value)
+
+    def let(self, action: ActionCall, scope: LaunchScope) -> None:
+        """``SetLaunchConfiguration``, launch XML's ``<let>``."""
+        name, value = action.get("0:name"), action.get("1:value")
+        if name is not None and value is not None:
+            key = self.value(name, scope)
+            if not key.dynamic:
+                scope.variables[key.text] = self.value(value, scope)
+
+    def set_parameter(self, action: ActionCall, scope: LaunchScope) -> None:
+        """``SetParameter(name, value)``: for every node after it in its scope."""
+        name = action.get("0:name")
+        if name is None:
+            return
+        value = self.emit(PARAMETER, "SetParameter(name=)", name, scope, scope.namespace)
+        frame = action.get("1:value")
+        if frame is not None and not value.dynamic and is_frame_parameter(value.text):
+            self.frame(frame, scope, scope.namespace, "SetParameter(value=)")
+
+    def include(self, action: ActionCall, scope: LaunchScope) -> None:
+        """``launch_arguments``: a namespace or a frame handed to the included file."""
+        arguments = action.get(":launch_arguments")
+        if arguments is None:
+            return
+        for key, value in self.pairs(arguments):
+            name = self.value(key, scope)
+            if name.dynamic:
+                continue
+            api = f"IncludeLaunchDescription(launch_arguments={name.text!r})"
+            if _is_namespace_argument(name.text):
+                self.emit(NAMESPACE, api, value, scope, scope.namespace)
+            elif is_frame_parameter(name.text):
+                self.frame(value, scope, scope.namespace, api)
+
+    # -- nodes --------------------------------------------------------------------------
+
+    def node(self, action: ActionCall, scope: LaunchScope) -> None:
+        """A node or composable node: its names, then one ``LaunchNode``."""
+        label = action.kind.value
+        namespace = scope.namespace
+        located = action.get(_NAMESPACE)
+        if located is not None:
+            value = self.emit(NAMESPACE, f"{label}(namespace=)", located, scope, namespace)
+            namespace = join_namespace(namespace, value)
+        name_at = action.get(_NAME)
+        name = None
+        if name_at is not None:
+            name_value = self.emit(NODE, f"{label}(name=)", name_at, scope, namespace)
+            name = None if name_value.dynamic else name_value.text
+        remaps = self.remappings(action, scope, namespace, label)
+        parameters = self.parameters(action, scope, node_path(namespace, name), label)
+        composable = action.kind is Action.COMPOSABLE
+        executable = ":plugin|node_plugin" if composable else ":executable|node_executable"
+        self.nodes.append(
+            LaunchNode(
+                package=self.static(action.get(":package"), scope),
+                executable=self.static(action.get(executable), scope),
+                name=name,
+                namespace="" if namespace is None else namespace,
+                span=self.locator.span(name_at.where() if name_at else _callee(action)),
+                remaps=tuple(scope.remaps + remaps),
+                parameters=tuple(parameters),
+            )
+        )
+
+    def composable_nodes(self, action: ActionCall, scope: LaunchScope) -> None:
+        """Composable nodes get the pushed namespace, not their container's."""
+        for description in self.children(action, ":composable_node_descriptions"):
+            self.visit(description, scope)
+
+    def remappings(
+        self, action: ActionCall, scope: LaunchScope, namespace: str | None, label: str
+    ) -> list[Remap]:
+        located = action.get(":remappings")
+        found: list[Remap] = []
+        for rule in [] if located is None else self.items(located):
+            if isinstance(rule.expr, cst.Tuple) and len(rule.expr.elements) == 2:
+                source, target = (
+                    Written(e.value, rule.context.inside(e)) for e in rule.expr.elements
+                )
+                apis = (f"{label}(remappings=) from", f"{label}(remappings=) to")
+                remap = self.remap(source, target, namespace, scope, apis)
+                found.extend([remap] if remap else [])
+        return found
+
+    def remap(
+        self,
+        source: Written | None,
+        target: Written | None,
+        namespace: str | None,
+        scope: LaunchScope,
+        apis: tuple[str, str],
+    ) -> Remap | None:
+        """Emit a remap's two names; the remap when both are static."""
+        if source is None or target is None:
+            return None
+        source_value = self.emit(REMAP_FROM, apis[0], source, scope, namespace)
+        target_value = self.emit(REMAP_TO, apis[1], target, scope, namespace)
+        if source_value.dynamic or target_value.dynamic:
+            return None
+        return Remap(source_value.text, target_value.text, self.locator.span(source.where()))
+
+    def parameters(
+        self, action: ActionCall, scope: LaunchScope, path: str | None, label: str
+    ) -> list[str]:
+        """Names of ``parameters=[{...}]`` dictionaries (nested ones joined with '.');
+        parameter files and other substitutions are not read."""
+        located = action.get(":parameters")
+        found: list[str] = []
+        for item in [] if located is None else self.items(located):
+            dictionary = self.dictionary(item)
+            if dictionary is not None:
+                found += self.parameter_dict(dictionary, scope, "", path, label)
+        return found
+
+    def parameter_dict(
+        self,
+        dictionary: Written,
+        scope: LaunchScope,
+        prefix: str | None,
+        path: str | None,
+        label: str,
+    ) -> list[str]:
+        found: list[str] = []
+        for key, value in self.pairs(dictionary):
+            full = self.parameter_name(key, scope, prefix)
+            nested = self.dictionary(value)
+            if nested is not None:
+                found += self.parameter_dict(
+                    nested, scope, None if full.dynamic else full.text, path, label
+                )
+                continue
+            self.add(PARAMETER, f"{label}(parameters=)", key, full, path)
+            if not full.dynamic:
+                found.append(full.text)
+                if is_frame_parameter(full.text):
+                    self.frame(value, scope, path, f"{label}(parameters=)")
+        return found
+
+    def parameter_name(self, key: Written, scope: LaunchScope, prefix: str | None) -> Value:
+        """``prefix.key``; dynamic when either is (``prefix`` None: a dynamic parent)."""
+        name = self.value(key, scope)
+        if prefix is None or name.dynamic:
+            return Value(self.locator.code(key.expr), dynamic=True)
+        return Value(f"{prefix}.{name.text}" if prefix else name.text)
+
+    def frame(self, located: Written, scope: LaunchScope, namespace: str | None, api: str) -> None:
+        """A frame-like parameter's value, when static and a string."""
+        value = self.value(located, scope)
+        if not value.dynamic and value.text and self.is_text(located):
+            self.add(FRAME, api, located, value, namespace)
+
+    # -- facts --------------------------------------------------------------------------
+
+    def emit(
+        self, fact: Fact, api: str, located: Written, scope: LaunchScope, namespace: str | None
+    ) -> Value:
+        value = self.value(located, scope)
+        self.add(fact, api, located, value, namespace)
+        return value
+
+    def add(
+        self, fact: Fact, api: str, located: Written, value: Value, namespace: str | None
+    ) -> None:
+        """One fact per place: remaps kept in one list and given to six nodes are one use
+        each (the nodes' ``LaunchNode.remaps`` still list them all)."""
+        key = (id(located.expr), fact)
+        if key in self._emitted:
+            return
+        self._emitted.add(key)
+        span = self.locator.span(located.where())
+        self.names.append(
+            NameUse(fact.kind, value.text, span, fact.role, api, value.dynamic, None, namespace)
+        )
+
+
+def _callee(action: ActionCall) -> Where:
+    context = action.context
+    return Where(action.call.func, (action.call, *context.anchors), context.indents)
+
+
+def _is_false(expr: cst.BaseExpression) -> bool:
+    return isinstance(expr, cst.Name) and expr.value == "False"
+
+
+def _is_namespace_argument(name: str) -> bool:
+    return name in ("namespace", "ns") or (
+        name.endswith("_namespace") and not name.startswith("use_")
+    )
+
+
+def _bound_to(call: cst.Call, scope: Scope) -> Iterator[tuple[Scope, str]]:
+    """The variables assigned exactly this call (``ld = LaunchDescription()``)."""
+    current: Scope | None = scope
+    while current is not None:
+        for name, bindings in current.bindings.items():
+            if len(bindings) == 1 and bindings[0].value is call:
+                yield current, name
+        current = current.parent

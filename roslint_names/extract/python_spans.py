@@ -1,0 +1,208 @@
+"""Spans of the few nodes of a Python file that become facts.
+
+libcst's ``PositionProvider`` regenerates the whole module to place every node, which
+costs more than the parse itself. The code of a node is an exact slice of the source, so
+a node whose code occurs once in the file is placed by a string search, and one that does
+not is placed inside its nearest enclosing anchor (argument, call, statement) that can be;
+``PositionProvider`` runs only for what is left.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import libcst as cst
+
+from roslint_names.extract.substitution import Source
+from roslint_names.model import Span
+
+try:
+    from libcst._nodes.internal import CodegenState as _CodegenState
+except ImportError:  # pragma: no cover - a libcst that moved its internals
+    _CodegenState = None  # type: ignore[assignment,misc]
+
+# ---------------------------------------------------------------------------------------
+# Spans
+
+
+def _unique(text: str, needle: str) -> int | None:
+    """Index of the only occurrence of ``needle`` in ``text`` (overlaps count)."""
+    first = text.find(needle)
+    if first < 0 or not needle or text.find(needle, first + 1) >= 0:
+        return None
+    return first
+
+
+@dataclass(frozen=True)
+class Where:
+    """A node to place, and what encloses it: anchors innermost first, block indents."""
+
+    node: cst.CSTNode
+    anchors: tuple[cst.CSTNode, ...] = ()
+    indents: tuple[str, ...] = ()
+
+
+class Locator:
+    """Spans of nodes, without regenerating the whole module when it can be helped.
+
+    ``code`` regenerates a node exactly as written, given the indentation of the blocks
+    around it (a call continued over several lines repeats them), so when that code occurs
+    once in the file, the occurrence is the node. Otherwise the node is placed inside the
+    nearest enclosing anchor (its argument, call or statement) that can be placed, by
+    regenerating only that anchor and noting where the node starts; the module itself is
+    the last anchor. ``PositionProvider`` (slower still) only serves a libcst whose
+    codegen state moved.
+    """
+
+    def __init__(self, module: cst.Module, text: str) -> None:
+        self._module = module
+        self._source = Source(text)
+        self._offsets: dict[int, int | None] = {}
+        self._codes: dict[tuple[int, tuple[str, ...]], str] = {}
+        self._starts: dict[int, dict[int, int]] = {}
+        self._positions: dict[cst.CSTNode, Span] | None = None
+        self._offsets[id(module)] = 0
+        # The module and its statements are written at no indentation: whatever the
+        # indentation of a node placed inside them, they are regenerated without it.
+        self._unindented = {id(module), *(id(statement) for statement in module.body)}
+
+    def code(self, node: cst.CSTNode, indents: tuple[str, ...] = ()) -> str:
+        key = (id(node), indents)
+        if key not in self._codes:
+            self._codes[key] = _code(self._module, _bare(node), indents)
+        return self._codes[key]
+
+    def span(self, where: Where) -> Span:
+        # The module is the last anchor: always placed (at 0), regenerated only when no
+        # nearer anchor could place the node (code repeated verbatim in the file).
+        start = self._offset(where.node, (*where.anchors, self._module), where.indents)
+        if start is None:
+            return self._provided(where.node)
+        return self._source.span(start, start + len(self.code(where.node, where.indents)))
+
+    def head_span(self, where: Where, head: cst.CSTNode) -> Span:
+        """The span of ``head`` (a callee), found inside ``where.node`` (its call)."""
+        return self.span(Where(head, (where.node, *where.anchors), where.indents))
+
+    def _offset(
+        self, node: cst.CSTNode, anchors: Sequence[cst.CSTNode], indents: tuple[str, ...]
+    ) -> int | None:
+        if id(node) in self._offsets:
+            return self._offsets[id(node)]
+        found = _unique(self._source.text, self.code(node, self._indents(node, indents)))
+        for index, anchor in enumerate(anchors):
+            if found is not None:
+                break
+            base = self._offset(anchor, anchors[index + 1 :], indents)
+            inner = None if base is None else self._start_in(anchor, node, indents)
+            found = None if base is None or inner is None else base + inner
+        self._offsets[id(node)] = found
+        return found
+
+    def _start_in(
+        self, anchor: cst.CSTNode, node: cst.CSTNode, indents: tuple[str, ...]
+    ) -> int | None:
+        """Where ``node``'s code starts in ``anchor``'s, from one codegen of the anchor."""
+        if id(anchor) not in self._starts:
+            own = self._indents(anchor, indents)
+            self._starts[id(anchor)] = _starts(self._module, _bare(anchor), own)
+        starts = self._starts[id(anchor)]
+        parens = _parens(node)
+        # A parenthesised node starts at its '('; its span starts after the last one.
+        return starts.get(id(parens[-1]) if parens else id(node), None)
+
+    def _indents(self, node: cst.CSTNode, indents: tuple[str, ...]) -> tuple[str, ...]:
+        return () if id(node) in self._unindented else indents
+
+    def _provided(self, node: cst.CSTNode) -> Span:
+        """libcst's own positions, when its codegen state is not at hand."""
+        from libcst.metadata import MetadataWrapper, PositionProvider
+
+        if self._positions is None:
+            wrapper = MetadataWrapper(self._module, unsafe_skip_copy=True)
+            ranges = wrapper.resolve(PositionProvider)
+            self._positions = {
+                key: Span(r.start.line, r.start.column + 1, r.end.line, r.end.column + 1)
+                for key, r in ranges.items()
+            }
+        return self._positions.get(node, Span(1, 1, 1, 1))
+
+
+def _parens(node: cst.CSTNode) -> Sequence[cst.LeftParen]:
+    """An expression's own parentheses (``with (...)`` and ``from x import (...)`` hold a
+    single optional one, which is part of the statement, not around it)."""
+    lpar = getattr(node, "lpar", ())
+    return lpar if isinstance(lpar, list | tuple) else ()
+
+
+def _bare(node: cst.CSTNode) -> cst.CSTNode:
+    """The node without its own parentheses: a span starts at the literal's quote."""
+    if _parens(node):
+        return node.with_changes(lpar=[], rpar=[])
+    return node
+
+
+def _code(module: cst.Module, node: cst.CSTNode, indents: tuple[str, ...]) -> str:
+    """The node's code as it sits in the file.
+
+    ``Module.code_for_node`` knows nothing of enclosing blocks, so a call continued over
+    indented lines would come out without their indentation; libcst's own codegen state
+    (internal, stable since libcst 0.3) takes it. Without it, such nodes are only placed
+    by ``PositionProvider``: slower, never wrong.
+    """
+    if isinstance(node, cst.SimpleString):
+        return node.value
+    if _CodegenState is None or not indents:
+        return module.code_for_node(node)
+    state = _CodegenState(module.default_indent, module.default_newline, None, list(indents))
+    node._codegen(state)
+    return "".join(state.tokens)
+
+
+def _starts(module: cst.Module, node: cst.CSTNode, indents: tuple[str, ...]) -> dict[int, int]:
+    """Offsets into ``node``'s code where each node inside it starts (for a '(', where it
+    ends: see ``Locator._start_in``); {} without libcst's codegen state."""
+    if _RecordingState is None:
+        return {}
+    state = _RecordingState(module.default_indent, module.default_newline, None, list(indents))
+    node._codegen(state)
+    return state.offsets
+
+
+if _CodegenState is None:  # pragma: no cover - a libcst that moved its internals
+    _RecordingState = None
+else:
+
+    class _RecordingState(_CodegenState):  # type: ignore[no-redef]
+        """libcst's codegen state, noting where each node's code starts.
+
+        ``offsets`` maps a node's id to where its code starts; a '(' to where it ends,
+        which is where the span of the node it parenthesises starts.
+        """
+
+        def __init__(
+            self,
+            default_indent: str,
+            default_newline: str,
+            provider: object,
+            indent_tokens: list[str],
+        ) -> None:
+            super().__init__(default_indent, default_newline, provider, indent_tokens, [])
+            self.length = 0
+            self.offsets: dict[int, int] = {}
+
+        def add_token(self, value: str) -> None:
+            self.tokens.append(value)
+            self.length += len(value)
+
+        def add_indent_tokens(self) -> None:
+            for token in self.indent_tokens:
+                self.add_token(token)
+
+        def before_codegen(self, node: cst.CSTNode) -> None:
+            self.offsets[id(node)] = self.length
+
+        def after_codegen(self, node: cst.CSTNode) -> None:
+            if isinstance(node, cst.LeftParen):
+                self.offsets[id(node)] = self.length
