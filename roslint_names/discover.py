@@ -52,6 +52,8 @@ def classify(path: Path) -> Language | None:
         return Language.CPP
     if suffix == ".py":
         return Language.PYTHON
+    if suffix == ".srv":
+        return Language.SERVICE_DEFINITION
     if name == "package.xml":
         return Language.PACKAGE_XML
     if suffix == ".xml":

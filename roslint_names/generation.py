@@ -1,4 +1,4 @@
-"""Which ROS generation a file belongs to, as far as its package says.
+"""What a file's package says about it: its ROS generation and the package's name.
 
 The nearest ``package.xml`` decides: a catkin build tool means ROS 1, an ament build type or
 build tool means ROS 2. A package that declares both under ``$ROS_VERSION`` conditions
@@ -11,14 +11,21 @@ pre-commit run over a C++ or Python file must not pay for importing an XML parse
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
+from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from .model import Generation
+from .model import Generation, Language
+
+if TYPE_CHECKING:
+    from .discover import SourceFile
 
 _COMMENT = re.compile(r"<!--.*?-->", re.DOTALL)
 _DEPEND = re.compile(
     r"<(buildtool_depend|build_type)(\s[^>]*)?>\s*([A-Za-z0-9_]+)\s*</\1>", re.DOTALL
 )
+_NAME = re.compile(r"<name>\s*([A-Za-z0-9_]+)\s*</name>")
 _CONDITION = re.compile(r"""condition\s*=\s*["']([^"']*)["']""")
 
 
@@ -36,29 +43,56 @@ def package_xml_generation(text: str) -> Generation | None:
     return found.pop() if len(found) == 1 else None
 
 
+def package_xml_name(text: str) -> str | None:
+    match = _NAME.search(_COMMENT.sub("", text))
+    return match.group(1) if match else None
+
+
+@dataclass(frozen=True)
+class _Package:
+    name: str | None
+    generation: Generation | None
+
+
+_NO_PACKAGE = _Package(None, None)
+
+
 class PackageGenerations:
     """Nearest-package.xml lookup with one read per directory for the whole run."""
 
     def __init__(self) -> None:
-        self._by_directory: dict[Path, Generation | None] = {}
+        self._by_directory: dict[Path, _Package] = {}
 
     def for_file(self, path: Path) -> Generation | None:
-        return self._for_directory(path.parent)
+        return self._for_directory(path.parent).generation
 
-    def _for_directory(self, directory: Path) -> Generation | None:
+    def package_name(self, path: Path) -> str | None:
+        return self._for_directory(path.parent).name
+
+    def _for_directory(self, directory: Path) -> _Package:
         if directory in self._by_directory:
             return self._by_directory[directory]
         manifest = directory / "package.xml"
-        generation: Generation | None
+        package: _Package
         if manifest.is_file():
             try:
                 text = manifest.read_text(encoding="utf-8", errors="replace")
             except OSError:
                 text = ""
-            generation = package_xml_generation(text)
+            package = _Package(package_xml_name(text), package_xml_generation(text))
         elif directory.parent == directory:
-            generation = None
+            package = _NO_PACKAGE
         else:
-            generation = self._for_directory(directory.parent)
-        self._by_directory[directory] = generation
-        return generation
+            package = self._for_directory(directory.parent)
+        self._by_directory[directory] = package
+        return package
+
+
+def service_types(sources: Iterable[SourceFile], packages: PackageGenerations) -> frozenset[str]:
+    """``package/Name`` of every ``.srv`` file among ``sources``, named after its package."""
+    return frozenset(
+        f"{package}/{source.path.stem}"
+        for source in sources
+        if source.language is Language.SERVICE_DEFINITION
+        and (package := packages.package_name(source.path))
+    )

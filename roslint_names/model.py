@@ -37,6 +37,7 @@ class Language(str, Enum):
     LAUNCH_YAML = "launch-yaml"
     URDF = "urdf"  # URDF and XACRO
     PACKAGE_XML = "package-xml"
+    SERVICE_DEFINITION = "srv"  # a .srv file: not linted, but its type is known (RN204)
 
 
 class Role(str, Enum):

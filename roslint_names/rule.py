@@ -31,6 +31,9 @@ class RuleContext:
     max_depth: int = 4
     options: Mapping[str, OptionValue] = field(default_factory=dict)
     policies: tuple[NamingPolicy, ...] = ()
+    # Service types of the run beyond the file's own: every .srv file found and every type
+    # another file serves or calls, as "package/Name" (RN204).
+    known_service_types: frozenset[str] = frozenset()
 
 
 Check = Callable[[FileFacts, RuleContext], Iterable[Finding]]

@@ -9,7 +9,7 @@ import pytest
 from conftest import write
 
 from roslint_names.discover import DiscoveryError, classify, discover
-from roslint_names.generation import PackageGenerations, package_xml_generation
+from roslint_names.generation import PackageGenerations, package_xml_generation, service_types
 from roslint_names.model import Generation, Language
 
 
@@ -106,3 +106,14 @@ def test_nearest_package_xml_decides(tmp_path: Path) -> None:
     assert generations.for_file(tmp_path / "src/ros1_pkg/launch/a.launch") is Generation.ROS1
     assert generations.for_file(tmp_path / "src/ros2_pkg/launch/a.launch.xml") is Generation.ROS2
     assert generations.for_file(tmp_path / "src/a.launch") is None
+
+
+def test_service_definitions_are_found_with_their_package(tmp_path: Path) -> None:
+    write(tmp_path, "src/docking_msgs/package.xml", "<package><name>docking_msgs</name></package>")
+    write(tmp_path, "src/docking_msgs/srv/StartDocking.srv", "---\nbool success\n")
+    write(tmp_path, "src/docking_msgs/srv/README.md", "")
+    found = discover([Path("src")], [], tmp_path, tmp_path)
+    assert [(source.display, source.language) for source in found] == [
+        ("src/docking_msgs/srv/StartDocking.srv", Language.SERVICE_DEFINITION)
+    ]
+    assert service_types(found, PackageGenerations()) == frozenset({"docking_msgs/StartDocking"})

@@ -143,3 +143,16 @@ def test_rn204_well_known_types_belong_to_their_generation() -> None:
     assert messages(rn204.check, ros1(reconfigure)) == []
     assert len(messages(rn204.check, ros2(service("add_two_ints", "std_srvs/srv/Trigger")))) == 1
     assert len(messages(rn204.check, ros1(service("set_bool", "std_srvs::Trigger")))) == 1
+
+
+def test_rn204_knows_the_workspace_service_types() -> None:
+    # A type defined by a .srv file of the workspace, or used by another file of the run,
+    # counts like a well-known one: `start_docking` served with Trigger is named after it.
+    docking = facts(service("start_docking", "std_srvs::srv::Trigger"))
+    assert messages(rn204.check, docking) == []
+    context = RuleContext(known_service_types=frozenset({"docking_msgs/StartDocking"}))
+    found = [finding.message for finding in rn204.check(docking, context)]
+    assert found == [
+        "service 'start_docking' is served with std_srvs/Trigger but named after "
+        "docking_msgs/StartDocking; rename it after what it does"
+    ]

@@ -83,7 +83,7 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
         and use.role in _SERVICE_ROLES
         and is_valid(use.value, use.kind, facts.generation)
     ]
-    known = _known_types(services, facts.generation)
+    known = _known_types(services, facts.generation, context.known_service_types)
     for use in services:
         name_tokens = tokens(use.value, use.kind)
         if not name_tokens:
@@ -110,8 +110,11 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
                 break
 
 
-def _known_types(services: list[NameUse], generation: Generation) -> list[InterfaceType]:
-    seen = {parsed for use in services if use.type_name and (parsed := parse_type(use.type_name))}
+def _known_types(
+    services: list[NameUse], generation: Generation, of_the_run: frozenset[str]
+) -> list[InterfaceType]:
+    spellings = [use.type_name for use in services if use.type_name] + sorted(of_the_run)
+    seen = {parsed for spelling in spellings if (parsed := parse_type(spelling))}
     return sorted(seen | set(WELL_KNOWN_SERVICE_TYPES[generation]), key=str)
 
 
