@@ -14,12 +14,16 @@ from pathlib import Path
 from typing import NoReturn, TextIO
 
 from . import __version__
+from .cache import FactsCache
+from .cache import default_directory as default_cache_directory
 from .catalog import CatalogError, load_doc, rule_meta
 from .config import ConfigError, Overrides, apply_overrides, enabled_codes, load_settings
 from .discover import DiscoveryError, discover
-from .engine import lint
+from .engine import LintResult, RunOptions, lint
 from .model import Generation, Kind
 from .names import Problem, check_name
+from .progress import ProgressBar
+from .progress import wanted as progress_wanted
 from .registry import Registry, RegistryError, load_registry
 from .report import FORMATS, ReportContext, render, statistics, summary
 
@@ -104,7 +108,20 @@ def _add_check(check: argparse.ArgumentParser) -> None:
         "--no-cache", action="store_true", help="do not read or write the facts cache"
     )
     check.add_argument(
+        "--cache-dir",
+        type=Path,
+        metavar="DIR",
+        help="keep the facts cache here (default: $XDG_CACHE_HOME/roslint-names "
+        "or ~/.cache/roslint-names)",
+    )
+    check.add_argument(
         "--jobs", "-j", type=_jobs, default=0, help="worker processes (0: all cores)"
+    )
+    check.add_argument(
+        "--verbose",
+        "-v",
+        action="store_true",
+        help="say on stderr where the cache is, what it served and how many workers ran",
     )
     check.set_defaults(run=_run_check)
 
@@ -132,6 +149,8 @@ def _jobs(text: str) -> int:
 
 
 def _run_check(options: argparse.Namespace) -> int:
+    # Started now, so "the run lasts more than a second" counts discovery too.
+    bar = ProgressBar(sys.stderr, enabled=progress_wanted(sys.stderr, os.environ))
     registry = load_registry()
     cwd = Path.cwd()
     overrides = Overrides(
@@ -144,7 +163,14 @@ def _run_check(options: argparse.Namespace) -> int:
     start = config_search_start(options.paths, cwd)
     settings = apply_overrides(load_settings(options.config, start, registry), overrides, registry)
     sources = discover(options.paths, settings.exclude, settings.root, cwd)
-    result = lint(sources, settings, registry)
+    cache = _facts_cache(options)
+    try:
+        run = RunOptions(jobs=options.jobs, cache=cache, progress=bar)
+        result = lint(sources, settings, registry, run)
+    finally:
+        bar.close()  # erased before the report and the summary are written
+    if options.verbose:
+        _print_run_details(result, cache, options.cache_dir or default_cache_directory())
     metas = [rule_meta(rule) for rule in registry.rules]
     enabled = enabled_codes(settings, registry)
     output_is_terminal = options.output is None and sys.stdout.isatty()
@@ -168,6 +194,30 @@ def _run_check(options: argparse.Namespace) -> int:
     print(summary(result.diagnostics, result.files_checked), file=sys.stderr)
     has_findings = any(not diagnostic.suppressed for diagnostic in result.diagnostics)
     return EXIT_FINDINGS if has_findings and not options.exit_zero else EXIT_CLEAN
+
+
+def _facts_cache(options: argparse.Namespace) -> FactsCache | None:
+    if options.no_cache:
+        return None
+    directory = options.cache_dir or default_cache_directory()
+    return None if directory is None else FactsCache(directory.absolute())
+
+
+def _print_run_details(
+    result: LintResult, cache: FactsCache | None, directory: Path | None
+) -> None:
+    where = "off" if cache is None else str(cache.directory)
+    if cache is None and directory is None:
+        where = "off (no home directory)"
+    print(
+        f"roslint-names: cache {where}; {result.files_cached} of {result.files_checked} files "
+        "from the cache, "
+        f"{result.files_extracted} extracted by "
+        + (f"{result.workers} worker processes" if result.workers else "this process"),
+        file=sys.stderr,
+    )
+    for problem in cache.problems if cache is not None else []:
+        print(f"roslint-names: warning: {problem}", file=sys.stderr)
 
 
 def config_search_start(paths: Sequence[Path], cwd: Path) -> Path:

@@ -56,7 +56,8 @@ INVALID_SUPPRESSION = "RN003"
 class LintResult:
     diagnostics: tuple[Diagnostic, ...]  # sorted; suppressed ones flagged, not dropped
     files_checked: int
-    files_extracted: int = 0  # parsed (or prefiltered) this run; the rest came from the cache
+    files_extracted: int = 0  # parsed (or prefiltered) this run
+    files_cached: int = 0  # facts served by the cache
     workers: int = 0  # worker processes started; 0 when everything ran in-process
 
 
@@ -120,7 +121,7 @@ def lint(
 
     if cache is not None:
         cache.writable()  # create the directory now, not racing in every worker
-    extracted = 0
+    extracted = cached = 0
     extract = partial(_extract_batch, cache)
     with Dispatcher(extract, run.jobs, expected_items=len(checked)) as dispatcher:
         for index, source in enumerate(checked):
@@ -133,8 +134,9 @@ def lint(
             key: str | None = None
             if cache is not None:
                 key = cache.key(data, source.display, source.language, package, fallback)
-                facts = cache.load(key)
+                facts = cache.load(key, source.display)
                 if facts is not None:
+                    cached += 1
                     check(index, facts, data)
                     continue
             extracted += 1
@@ -144,7 +146,7 @@ def lint(
         workers = dispatcher.workers
     diagnostics = [diagnostic for found in per_file for diagnostic in found]
     diagnostics.sort(key=Diagnostic.sort_key)
-    return LintResult(tuple(diagnostics), len(checked), extracted, workers)
+    return LintResult(tuple(diagnostics), len(checked), extracted, cached, workers)
 
 
 @dataclass(frozen=True)
@@ -173,6 +175,8 @@ def _extract_batch(
         if cache is not None and key is not None:
             cache.store(key, facts)
         results.append((job.index, facts))
+    if cache is not None:
+        cache.flush()  # a worker process has no "end of run": every batch ends its writes
     return results
 
 

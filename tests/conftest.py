@@ -62,6 +62,20 @@ def chdir(path: Path) -> Iterator[None]:
         os.chdir(previous)
 
 
+@pytest.fixture(autouse=True)
+def private_cache(
+    tmp_path_factory: pytest.TempPathFactory, monkeypatch: pytest.MonkeyPatch
+) -> Path:
+    """Every test gets its own facts cache, outside the tree it lints.
+
+    The suite never writes to the user's cache, and no test sees another's entries.
+    Subprocesses (the pre-commit test) inherit the variable.
+    """
+    directory = tmp_path_factory.mktemp("xdg-cache")
+    monkeypatch.setenv("XDG_CACHE_HOME", str(directory))
+    return directory / "roslint-names"
+
+
 @pytest.fixture
 def run_cli(capsys: pytest.CaptureFixture[str]) -> Any:
     def run(arguments: Sequence[str], cwd: Path) -> Run:

@@ -1,0 +1,415 @@
+"""The facts cache: what an extractor returned for one file, kept between runs.
+
+Only facts are cached, never diagnostics: rules, configuration and suppressions may change
+between runs, and applying them to cached facts is cheap. An entry is found by a key over
+everything an extractor's result depends on: the file's bytes, the path it is reported
+under (it is part of the facts, and the Python extractor reads the file name), the
+language, the package's generation and the fallback generation. Everything that is the
+same for a whole run (this module's format, the tool version, the source of the
+extractors and of the modules they import, the parser libraries, the Python version) is
+hashed once into the name of the directory holding the entries, so a development checkout
+whose extractor changed, or a parser upgrade, never serves stale facts.
+
+Location: ``--cache-dir``, else ``$XDG_CACHE_HOME/roslint-names``, else
+``~/.cache/roslint-names``; never the linted tree. Entries are written to a temporary file
+in their final directory and renamed over the entry (``os.replace`` is atomic on POSIX and
+Windows), so two runs sharing the cache only ever see whole entries. An entry that is
+truncated, corrupt or from another format fails its checksum or its unpickling and counts
+as a miss; the miss rewrites it. A cache that cannot be created or written makes the run
+slower, never wrong: problems are collected in ``problems`` (``--verbose`` prints them).
+
+Most files of a workspace hold nothing (two thirds of a large one: C++ and Python without
+ROS code, launch files without names), and their facts are only a language and a
+generation. They are not given an entry file each (creating thousands of small files is
+what a cold run would spend most of its cache time on, and opening them what a warm run
+would): each is one line of ``empty.log``, ``KEY LANGUAGE GENERATION CHECKSUM``, appended
+by a single ``write`` on an ``O_APPEND`` descriptor, which concurrent runs cannot
+interleave. The log is read once per run; a line that is torn, truncated or fails its
+checksum is skipped, and its file is extracted again.
+
+Why pickle is safe enough here: entries are read with an unpickler that resolves no global
+but the fact classes and enums of ``roslint_names.model``. Unpickling can then only build
+those values; it cannot import a module or call anything else, so a tampered entry can at
+worst yield wrong findings. The directory is created private to the user (0700), like the
+rest of ``~/.cache``.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import io
+import os
+import pickle
+import re
+import sys
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from . import __version__, model
+from .model import FileFacts, Generation, Language
+
+FORMAT_VERSION = 1
+_MAGIC = b"RNFACTS\x01"
+_CHECKSUM_BYTES = 16
+_PREFIX = "facts-v"
+_EMPTY_LOG = "empty.log"
+_LOG_BATCH = 512  # lines buffered before an append; and every batch of extraction ends one
+_CACHEDIR_TAG = (
+    "Signature: 8a477f597d28d172789f06886806bc55\n"
+    "# This file is a cache directory tag created by roslint-names.\n"
+    "# For information about cache directory tags see https://bford.info/cachedir/\n"
+)
+# Another version's (or another checkout's) entries are deleted once no run has used them
+# for this long: a development checkout gets a new directory with every extractor edit.
+STALE_AFTER_SECONDS = 24 * 3600
+
+# What the extractors' results depend on besides their arguments: their own code, the
+# package modules they import (found by following their imports, see
+# ``_extractor_sources``; these are always in), and the parser libraries.
+_EXTRACTOR_SOURCES = ("extract", "model.py", "names.py", "types.py")
+_PARSER_PACKAGES = ("tree_sitter", "tree_sitter_cpp", "libcst", "lxml", "yaml")
+# `from roslint_names.X`, `import roslint_names.X`, `from roslint_names import X`, and the
+# relative `from ..X` (in extract/) or `from .X` (in a top-level module), at any indent.
+_PACKAGE_IMPORT = re.compile(
+    rb"^[ \t]*(?:from|import)[ \t]+"
+    rb"(?:roslint_names\.(\w+)|roslint_names[ \t]+import[ \t]+(\w+)|\.\.?(\w+))",
+    re.MULTILINE,
+)
+
+
+def default_directory(environ: Mapping[str, str] | None = None) -> Path | None:
+    """``$XDG_CACHE_HOME/roslint-names`` or ``~/.cache/roslint-names``; None without a home."""
+    environ = os.environ if environ is None else environ
+    xdg = environ.get("XDG_CACHE_HOME", "")
+    if xdg and os.path.isabs(xdg):  # the XDG spec says to ignore a relative value
+        return Path(xdg) / "roslint-names"
+    try:
+        return Path.home() / ".cache" / "roslint-names"
+    except RuntimeError:  # no HOME and no passwd entry: run without a cache
+        return None
+
+
+@dataclass
+class CacheStats:
+    hits: int = 0
+    misses: int = 0
+    corrupt: int = 0
+    written: int = 0
+
+
+@dataclass
+class FactsCache:
+    """Entries under ``root``; picklable, so worker processes write their own entries."""
+
+    root: Path
+    stats: CacheStats = field(default_factory=CacheStats)
+    problems: list[str] = field(default_factory=list)
+    _directory: Path | None = field(default=None, init=False)
+    _writable: bool | None = field(default=None, init=False)
+    _subdirectories: set[str] = field(default_factory=set, init=False)
+    _empty: dict[str, tuple[Language, Generation]] | None = field(default=None, init=False)
+    _pending: list[str] = field(default_factory=list, init=False)
+
+    @property
+    def directory(self) -> Path:
+        """This run's entries: the root plus the fingerprint of everything run-constant."""
+        if self._directory is None:
+            self._directory = self.root / f"{_PREFIX}{FORMAT_VERSION}-{run_fingerprint()}"
+        return self._directory
+
+    def key(
+        self,
+        data: bytes,
+        path: str,
+        language: Language,
+        package_generation: Generation | None,
+        fallback_generation: Generation,
+    ) -> str:
+        digest = hashlib.blake2b(digest_size=20)
+        package = "-" if package_generation is None else str(package_generation.value)
+        header = f"{path}\0{language.value}\0{package}\0{fallback_generation.value}\0"
+        digest.update(header.encode("utf-8", errors="surrogatepass"))
+        digest.update(data)
+        return digest.hexdigest()
+
+    def load(self, key: str, path: str) -> FileFacts | None:
+        """The facts stored under ``key`` (for the file reported as ``path``), or None."""
+        if self._empty is None:
+            self._empty = _read_log(os.path.join(self.directory, _EMPTY_LOG))
+        empty = self._empty.get(key)
+        if empty is not None:
+            self.stats.hits += 1
+            return FileFacts(path, *empty)
+        try:
+            # os.path.join, not Path: this runs for every file of a warm run.
+            with open(os.path.join(self.directory, key[:2], key[2:]), "rb") as stream:
+                blob = stream.read()
+        except OSError:  # absent (the usual miss), or unreadable: either way, extract
+            self.stats.misses += 1
+            return None
+        facts = _decode(blob)
+        if facts is None:
+            self.stats.corrupt += 1
+            self.stats.misses += 1
+        else:
+            self.stats.hits += 1
+        return facts
+
+    def store(self, key: str, facts: FileFacts) -> None:
+        """Keep ``facts``; call ``flush`` before the process ends."""
+        if not self.writable():
+            return
+        if not (facts.names or facts.launch_nodes or facts.events or facts.parse_errors):
+            self._pending.append(_log_line(key, facts.language, facts.generation))
+            if len(self._pending) >= _LOG_BATCH:
+                self.flush()
+            return
+        payload = pickle.dumps(facts, protocol=pickle.HIGHEST_PROTOCOL)
+        blob = _MAGIC + hashlib.blake2b(payload, digest_size=_CHECKSUM_BYTES).digest() + payload
+        entry = self._entry(key)
+        # A unique temporary name in the entry's own directory: the rename stays on one
+        # file system (so it is atomic) and two writers never share a temporary file.
+        temporary = entry.with_name(f".{entry.name}.{os.getpid()}.{os.urandom(4).hex()}.tmp")
+        try:
+            self._make_subdirectory(entry.parent)
+            descriptor = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+            try:
+                with os.fdopen(descriptor, "wb") as stream:
+                    stream.write(blob)
+                os.replace(temporary, entry)
+            except BaseException:
+                _remove(temporary)
+                raise
+        except OSError as error:
+            self._cannot_write(error)
+            return
+        self.stats.written += 1
+
+    def flush(self) -> None:
+        """Append the buffered lines of empty facts to the log, in one write."""
+        if not self._pending:
+            return
+        lines, self._pending = "".join(self._pending).encode("ascii"), []
+        try:
+            flags = os.O_WRONLY | os.O_APPEND | os.O_CREAT
+            descriptor = os.open(os.path.join(self.directory, _EMPTY_LOG), flags, 0o600)
+            try:
+                written = os.write(descriptor, lines)
+            finally:
+                os.close(descriptor)
+        except OSError as error:
+            self._cannot_write(error)
+            return
+        # A short write (a full disk) leaves a torn last line, which readers skip.
+        self.stats.written += lines[:written].count(b"\n")
+
+    def writable(self) -> bool:
+        """Create this run's directory once; False (and a problem noted) when impossible."""
+        if self._writable is None:
+            self._writable = self._open()
+        return self._writable
+
+    def _open(self) -> bool:
+        directory = self.directory
+        try:
+            # exist_ok everywhere: another run may be creating the same directories.
+            self.root.mkdir(parents=True, mode=0o700, exist_ok=True)
+            tag = self.root / "CACHEDIR.TAG"  # tells backup tools to skip the cache
+            if not tag.exists():
+                tag.write_text(_CACHEDIR_TAG, encoding="ascii")
+            directory.mkdir(mode=0o700, exist_ok=True)
+        except OSError as error:
+            reason = error.strerror or str(error)
+            self._problem(f"cache disabled: cannot create {directory}: {reason}")
+            return False
+        with contextlib.suppress(OSError):  # best effort: a read-only cache is still read
+            os.utime(directory)  # "in use": keeps it from being pruned as stale
+        _prune(self.root, keep=directory.name)
+        return True
+
+    def _entry(self, key: str) -> Path:
+        return self.directory / key[:2] / key[2:]
+
+    def _make_subdirectory(self, subdirectory: Path) -> None:
+        if subdirectory.name not in self._subdirectories:
+            subdirectory.mkdir(mode=0o700, exist_ok=True)
+            self._subdirectories.add(subdirectory.name)
+
+    def _cannot_write(self, error: OSError) -> None:
+        reason = error.strerror or str(error)
+        self._problem(f"cannot write cache entries in {self.directory}: {reason}")
+
+    def _problem(self, message: str) -> None:
+        if message not in self.problems:  # said once, however many entries fail
+            self.problems.append(message)
+
+
+def _log_line(key: str, language: Language, generation: Generation) -> str:
+    record = f"{key} {language.value} {generation.value}"
+    return f"{record} {_line_checksum(record)}\n"
+
+
+def _line_checksum(record: str) -> str:
+    return hashlib.blake2b(record.encode("ascii"), digest_size=4).hexdigest()
+
+
+_LANGUAGES = {language.value: language for language in Language}
+_GENERATIONS = {str(generation.value): generation for generation in Generation}
+
+
+def _read_log(path: str) -> dict[str, tuple[Language, Generation]]:
+    try:
+        with open(path, "rb") as stream:
+            data = stream.read()
+    except OSError:
+        return {}
+    found: dict[str, tuple[Language, Generation]] = {}
+    # The part after the last line break is a line still being written, or a torn one.
+    for raw in data.split(b"\n")[:-1]:
+        try:
+            key, language, generation, checksum = raw.decode("ascii").split(" ")
+        except (UnicodeDecodeError, ValueError):
+            continue
+        record = f"{key} {language} {generation}"
+        if (
+            checksum == _line_checksum(record)
+            and language in _LANGUAGES
+            and generation in _GENERATIONS
+        ):
+            found[key] = (_LANGUAGES[language], _GENERATIONS[generation])
+    return found
+
+
+def _decode(blob: bytes) -> FileFacts | None:
+    header = len(_MAGIC) + _CHECKSUM_BYTES
+    if len(blob) < header or not blob.startswith(_MAGIC):
+        return None
+    payload = blob[header:]
+    if hashlib.blake2b(payload, digest_size=_CHECKSUM_BYTES).digest() != blob[len(_MAGIC) : header]:
+        return None
+    try:
+        facts = _FactsUnpickler(io.BytesIO(payload)).load()
+    except Exception:  # any malformed pickle: a miss, never a crash
+        return None
+    return facts if isinstance(facts, FileFacts) else None
+
+
+_MODEL_CLASSES = frozenset(
+    name
+    for name, value in vars(model).items()
+    if isinstance(value, type) and value.__module__ == model.__name__
+)
+
+
+class _FactsUnpickler(pickle.Unpickler):
+    """Builds fact values and nothing else (see the module docstring)."""
+
+    def find_class(self, module: str, name: str) -> type:
+        if module == model.__name__ and name in _MODEL_CLASSES:
+            found: type = getattr(model, name)
+            return found
+        raise pickle.UnpicklingError(f"{module}.{name} is not a fact class")
+
+
+_FINGERPRINT: str | None = None
+
+
+def run_fingerprint() -> str:
+    """A hash of everything that is the same for every file of a run; computed once."""
+    global _FINGERPRINT  # noqa: PLW0603 - a per-process memo of a pure function
+    if _FINGERPRINT is None:
+        digest = hashlib.blake2b(digest_size=8)
+        header = f"{FORMAT_VERSION}\0{__version__}\0{sys.version_info[:2]}\0"
+        digest.update(header.encode())
+        package = Path(__file__).parent
+        for source, content in _extractor_sources(package).items():
+            digest.update(source.relative_to(package).as_posix().encode() + b"\0" + content)
+        digest.update(_parser_stamp())
+        _FINGERPRINT = digest.hexdigest()
+    return _FINGERPRINT
+
+
+def _extractor_sources(package: Path) -> dict[Path, bytes]:
+    """The extractors' code and every package module it imports, transitively, by path.
+
+    Following the imports rather than listing modules means a helper module the extractors
+    start to use (``lines.py``, say) is fingerprinted without anyone remembering to.
+    """
+    pending: list[Path] = []
+    for name in _EXTRACTOR_SOURCES:
+        path = package / name
+        pending.extend(sorted(path.glob("*.py")) if path.is_dir() else [path])
+    found: dict[Path, bytes] = {}
+    while pending:
+        path = pending.pop(0)
+        if path in found:
+            continue
+        try:
+            found[path] = content = path.read_bytes()
+        except OSError:
+            found[path] = b"\xff"  # absent: still a state of the code worth telling apart
+            continue
+        for match in _PACKAGE_IMPORT.finditer(content):
+            module = next(group for group in match.groups() if group).decode("ascii")
+            if (package / f"{module}.py").is_file():
+                pending.append(package / f"{module}.py")
+    return dict(sorted(found.items()))
+
+
+def _parser_stamp() -> bytes:
+    """Names, sizes and times of the parser packages' files: changes when one is upgraded.
+
+    Reading their versions through ``importlib.metadata`` costs more than a one-file run
+    may spend, and importing them would defeat the lazy imports; ``find_spec`` does neither.
+    """
+    from importlib.util import find_spec
+
+    stamp: list[str] = []
+    for package in _PARSER_PACKAGES:
+        try:
+            spec = find_spec(package)
+        except (ImportError, ValueError):
+            spec = None
+        locations = list(spec.submodule_search_locations or []) if spec else []
+        stamp.append(f"{package}:{spec.origin if spec else None}")
+        for location in locations:
+            try:
+                entries = sorted(os.scandir(location), key=lambda entry: entry.name)
+                for entry in entries:
+                    if entry.is_file():
+                        status = entry.stat()
+                        stamp.append(f"{entry.name}:{status.st_size}:{status.st_mtime_ns}")
+            except OSError:
+                stamp.append("?")
+    return "\n".join(stamp).encode("utf-8", errors="surrogateescape")
+
+
+def _prune(root: Path, keep: str) -> None:
+    """Delete other versions' entry directories that no run has used for a day."""
+    now = time.time()
+    try:
+        candidates = [
+            entry
+            for entry in os.scandir(root)
+            if entry.name.startswith(_PREFIX) and entry.name != keep and entry.is_dir()
+        ]
+    except OSError:
+        return
+    stale = [
+        entry.path
+        for entry in candidates
+        if now - entry.stat(follow_symlinks=False).st_mtime > STALE_AFTER_SECONDS
+    ]
+    if stale:
+        import shutil
+
+        for path in stale:
+            shutil.rmtree(path, ignore_errors=True)
+
+
+def _remove(path: Path) -> None:
+    with contextlib.suppress(OSError):
+        path.unlink()

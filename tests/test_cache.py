@@ -1,0 +1,332 @@
+"""The facts cache: hits skip extraction, anything that changes facts misses, damage heals."""
+
+from __future__ import annotations
+
+import hashlib
+import multiprocessing
+import os
+import pickle
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from roslint_names import cache as cache_module
+from roslint_names import engine
+from roslint_names.cache import FactsCache, default_directory
+from roslint_names.model import FileFacts, Generation, Kind, Language, NameUse, Role, Span
+from tests.conftest import write, write_package
+
+LAUNCH = """<launch>
+  <node pkg="robot_base" type="driver_node" name="base-driver">
+    <remap from="Cmd_Vel" to="/cmd_vel/"/>
+  </node>
+</launch>
+"""
+FACTS = FileFacts(
+    path="robot.launch",
+    language=Language.LAUNCH_XML,
+    generation=Generation.ROS1,
+    names=(NameUse(Kind.TOPIC, "/cmd_vel", Span(3, 18, 3, 27), Role.REMAP_TO, "<remap to>"),),
+)
+
+
+@pytest.fixture
+def extractions(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """The paths the engine extracted, in order (in-process runs only)."""
+    seen: list[str] = []
+    real = engine.extractor_for
+
+    def counting(language: Language) -> engine.Extract:
+        extract = real(language)
+
+        def wrapper(
+            path: str, data: bytes, package: Generation | None, fallback: Generation
+        ) -> Any:
+            seen.append(path)
+            return extract(path, data, package, fallback)
+
+        return wrapper
+
+    monkeypatch.setattr(engine, "extractor_for", counting)
+    return seen
+
+
+@pytest.fixture
+def check(run_cli: Any, tmp_path: Path) -> Callable[..., Any]:
+    """Run `check --format json --jobs 1` over the tree in ``tmp_path/ws``."""
+    workspace = tmp_path / "ws"
+    workspace.mkdir()
+
+    def run(*options: str) -> Any:
+        return run_cli(["check", "--format", "json", "--jobs", "1", *options, "."], workspace)
+
+    return run
+
+
+def entries(root: Path) -> list[Path]:
+    return sorted(path for path in root.glob("facts-v*/*/*") if path.is_file())
+
+
+def log_lines(root: Path) -> list[str]:
+    return [
+        line for log in root.glob("facts-v*/empty.log") for line in log.read_text().splitlines()
+    ]
+
+
+def test_a_hit_returns_the_same_facts_without_extracting(
+    check: Callable[..., Any], tmp_path: Path, extractions: list[str], private_cache: Path
+) -> None:
+    write_package(tmp_path / "ws", ros=1)
+    write(tmp_path / "ws", "launch/robot.launch", LAUNCH)
+    write(tmp_path / "ws", "launch/clean.launch", "<launch/>\n")
+    cold = check()
+    assert sorted(extractions) == ["launch/clean.launch", "launch/robot.launch"]
+    assert len(entries(private_cache)) == 1  # robot.launch; clean.launch is a log line
+    assert len(log_lines(private_cache)) == 1
+    extractions.clear()
+    warm = check()
+    assert extractions == []
+    assert warm == cold and cold.codes()
+
+
+def test_store_then_load_gives_equal_facts(tmp_path: Path) -> None:
+    cache = FactsCache(tmp_path / "cache")
+    key = cache.key(b"<launch/>", "robot.launch", Language.LAUNCH_XML, None, Generation.ROS2)
+    assert cache.load(key, FACTS.path) is None
+    cache.store(key, FACTS)
+    assert cache.load(key, FACTS.path) == FACTS
+    assert (cache.stats.hits, cache.stats.misses, cache.stats.written) == (1, 1, 1)
+
+
+def test_empty_facts_are_a_log_line_and_come_back_equal(tmp_path: Path) -> None:
+    empty = FileFacts("scripts/setup.py", Language.LAUNCH_PYTHON, Generation.ROS1)
+    writer = FactsCache(tmp_path)
+    key = writer.key(b"", empty.path, Language.PYTHON, None, Generation.ROS1)
+    writer.store(key, empty)
+    writer.flush()
+    assert entries(tmp_path) == [] and len(log_lines(tmp_path)) == 1
+    assert FactsCache(tmp_path).load(key, empty.path) == empty
+
+
+def test_everything_an_extractor_sees_is_in_the_key(tmp_path: Path) -> None:
+    cache = FactsCache(tmp_path)
+    base = (b"<launch/>", "a.launch", Language.LAUNCH_XML, Generation.ROS1, Generation.ROS2)
+    variants = [
+        (b"<launch />", *base[1:]),
+        (base[0], "b.launch", *base[2:]),
+        (*base[:2], Language.URDF, *base[3:]),
+        (*base[:3], None, base[4]),
+        (*base[:3], Generation.ROS2, base[4]),
+        (*base[:4], Generation.ROS1),
+    ]
+    keys = {cache.key(*base), *(cache.key(*variant) for variant in variants)}
+    assert len(keys) == 1 + len(variants)
+
+
+def test_a_changed_file_misses(
+    check: Callable[..., Any], tmp_path: Path, extractions: list[str]
+) -> None:
+    write(tmp_path / "ws", "robot.launch", LAUNCH)
+    write(tmp_path / "ws", "other.launch", "<launch/>\n")
+    check()
+    extractions.clear()
+    write(tmp_path / "ws", "robot.launch", LAUNCH.replace("base-driver", "base_driver"))
+    result = check()
+    assert extractions == ["robot.launch"]
+    assert "RN101" not in result.codes()
+
+
+def test_a_changed_package_generation_misses(
+    check: Callable[..., Any], tmp_path: Path, extractions: list[str]
+) -> None:
+    write_package(tmp_path / "ws", ros=1)
+    write(tmp_path / "ws", "robot.launch", LAUNCH)
+    ros1 = check()
+    extractions.clear()
+    write_package(tmp_path / "ws", ros=2)
+    ros2 = check()
+    assert extractions == ["robot.launch"]
+    assert ros1.stdout != ros2.stdout  # RN102 is an error in ROS 2, a warning in ROS 1
+
+
+def test_a_changed_fallback_generation_misses(
+    check: Callable[..., Any], tmp_path: Path, extractions: list[str]
+) -> None:
+    write(tmp_path / "ws", "robot.launch", LAUNCH)
+    check("--ros", "1")
+    extractions.clear()
+    check("--ros", "2")
+    assert extractions == ["robot.launch"]
+    extractions.clear()
+    check("--ros", "1")
+    assert extractions == []
+
+
+def test_a_corrupt_entry_is_ignored_and_rewritten(
+    check: Callable[..., Any], tmp_path: Path, extractions: list[str], private_cache: Path
+) -> None:
+    write(tmp_path / "ws", "robot.launch", LAUNCH)
+    good = check()
+    [entry] = entries(private_cache)
+    blob = entry.read_bytes()
+    for damage in (blob[: len(blob) // 2], b"", b"garbage", blob[:-1] + bytes([blob[-1] ^ 1])):
+        entry.write_bytes(damage)
+        extractions.clear()
+        assert check() == good
+        assert extractions == ["robot.launch"]
+        assert entry.read_bytes() == blob  # rewritten whole
+
+
+def test_an_entry_naming_anything_but_facts_is_never_unpickled(tmp_path: Path) -> None:
+    cache = FactsCache(tmp_path)
+    key = cache.key(b"x", "a.launch", Language.LAUNCH_XML, None, Generation.ROS2)
+    cache.store(key, FACTS)
+    [entry] = entries(tmp_path)
+    payload = pickle.dumps(os.getcwd)  # a global outside roslint_names.model
+    checksum = hashlib.blake2b(payload, digest_size=16).digest()
+    entry.write_bytes(b"RNFACTS\x01" + checksum + payload)
+    assert cache.load(key, FACTS.path) is None
+    assert cache.stats.corrupt == 1
+
+
+def _store_repeatedly(root: str, key: str, rounds: int) -> None:
+    cache = FactsCache(Path(root))
+    for round_ in range(rounds):
+        cache.store(key, FACTS)
+        empty = FileFacts(f"{os.getpid()}-{round_}.py", Language.PYTHON, Generation.ROS2)
+        cache.store(f"{os.getpid():08x}{round_:032x}", empty)
+        if round_ % 7 == 0:
+            cache.flush()  # appends of different sizes, racing with the other writer's
+    cache.flush()
+
+
+def test_two_writers_racing_leave_a_valid_entry(tmp_path: Path) -> None:
+    cache = FactsCache(tmp_path)
+    key = cache.key(b"race", "robot.launch", Language.LAUNCH_XML, None, Generation.ROS1)
+    cache.writable()
+    context = multiprocessing.get_context("spawn")
+    writers = [
+        context.Process(target=_store_repeatedly, args=(str(tmp_path), key, 200)) for _ in range(2)
+    ]
+    for writer in writers:
+        writer.start()
+    while any(writer.is_alive() for writer in writers):
+        assert cache.load(key, FACTS.path) in (None, FACTS)  # absent or whole, never half
+    for writer in writers:
+        writer.join()
+        assert writer.exitcode == 0
+    assert cache.stats.corrupt == 0
+    assert cache.load(key, FACTS.path) == FACTS
+    assert [path.name for path in entries(tmp_path)] == [key[2:]]  # no temporary file left
+    lines = log_lines(tmp_path)
+    assert len(lines) == 2 * 200  # every append whole, none lost
+    assert len(cache_module._read_log(str(next(tmp_path.glob("facts-v*/empty.log"))))) == 400
+
+
+def test_a_torn_or_damaged_log_line_is_skipped(tmp_path: Path) -> None:
+    cache = FactsCache(tmp_path)
+    keys = [
+        cache.key(bytes([n]), f"{n}.py", Language.PYTHON, None, Generation.ROS2) for n in range(4)
+    ]
+    for key in keys:
+        cache.store(key, FileFacts("x.py", Language.PYTHON, Generation.ROS2))
+    cache.flush()
+    [log] = tmp_path.glob("facts-v*/empty.log")
+    first, second, third, fourth = log.read_bytes().splitlines(keepends=True)
+    damaged = second.replace(b" python ", b" launch-xml ")  # checksum no longer matches
+    log.write_bytes(first + b"garbage line\n" + damaged + b"\xff\xfe\n" + third + fourth[:-1])
+    fresh = FactsCache(tmp_path)
+    found = [fresh.load(key, "x.py") is not None for key in keys]
+    assert found == [True, False, True, False]  # the last one lacks its line break
+
+
+def test_no_cache_neither_creates_nor_reads_the_directory(
+    check: Callable[..., Any], tmp_path: Path, extractions: list[str], private_cache: Path
+) -> None:
+    write(tmp_path / "ws", "robot.launch", LAUNCH)
+    check("--no-cache")
+    assert not private_cache.exists()
+    check()
+    extractions.clear()
+    check("--no-cache")
+    assert extractions == ["robot.launch"]
+
+
+def test_cache_dir_option_is_used(check: Callable[..., Any], tmp_path: Path) -> None:
+    write(tmp_path / "ws", "robot.launch", LAUNCH)
+    check("--cache-dir", str(tmp_path / "mine"))
+    assert len(entries(tmp_path / "mine")) == 1
+    assert (tmp_path / "mine" / "CACHEDIR.TAG").is_file()
+
+
+def tree_digest(root: Path) -> dict[str, str]:
+    return {
+        path.relative_to(root).as_posix(): (
+            "dir" if path.is_dir() else hashlib.sha256(path.read_bytes()).hexdigest()
+        )
+        for path in sorted(root.rglob("*"))
+    }
+
+
+def test_the_cache_never_writes_under_the_linted_tree(
+    check: Callable[..., Any], tmp_path: Path, private_cache: Path
+) -> None:
+    workspace = tmp_path / "ws"
+    write_package(workspace, ros=1)
+    write(workspace, "launch/robot.launch", LAUNCH)
+    write(workspace, "urdf/robot.urdf", '<robot name="r"><link name="base_link"/></robot>\n')
+    before = tree_digest(workspace)
+    check()
+    check()
+    assert tree_digest(workspace) == before
+    assert entries(private_cache)
+
+
+def test_an_unwritable_cache_directory_only_slows_the_run(
+    check: Callable[..., Any], tmp_path: Path
+) -> None:
+    write(tmp_path / "ws", "robot.launch", LAUNCH)
+    expected = check("--no-cache")
+    blocked = tmp_path / "not-a-directory"
+    blocked.write_text("a file where the cache directory should be\n")
+    quiet = check("--cache-dir", str(blocked))
+    assert (quiet.exit_code, quiet.stdout, quiet.stderr) == (
+        expected.exit_code,
+        expected.stdout,
+        expected.stderr,
+    )
+    verbose = check("--cache-dir", str(blocked), "--verbose")
+    assert verbose.stdout == expected.stdout
+    assert verbose.stderr.count("cache disabled") == 1
+
+
+def test_default_directory_follows_xdg() -> None:
+    assert default_directory({"XDG_CACHE_HOME": "/x/cache"}) == Path("/x/cache/roslint-names")
+    home = Path.home() / ".cache" / "roslint-names"
+    assert default_directory({"XDG_CACHE_HOME": "relative/cache"}) == home  # spec: ignore
+    assert default_directory({}) == home
+
+
+def test_the_fingerprint_covers_the_extractors_and_the_model() -> None:
+    package = Path(cache_module.__file__).parent
+    sources = {
+        path.relative_to(package).as_posix() for path in cache_module._extractor_sources(package)
+    }
+    assert {"extract/launch_xml.py", "extract/substitution.py", "model.py", "names.py"} <= sources
+    assert cache_module.run_fingerprint() == cache_module.run_fingerprint()
+
+
+def test_stale_directories_of_other_versions_are_pruned(tmp_path: Path) -> None:
+    old = tmp_path / "facts-v0-0123456789abcdef"
+    recent = tmp_path / "facts-v0-fedcba9876543210"
+    unrelated = tmp_path / "my-notes"
+    for directory in (old, recent, unrelated):
+        (directory / "ab").mkdir(parents=True)
+    long_ago = 1_000_000_000
+    os.utime(old, (long_ago, long_ago))
+    os.utime(unrelated, (long_ago, long_ago))
+    assert FactsCache(tmp_path).writable()
+    assert not old.exists()
+    assert recent.exists() and unrelated.exists()

@@ -1,0 +1,187 @@
+"""Worker processes and the cache change how fast a run is, never what it prints.
+
+Also the worker dispatcher on its own, and when the progress line is drawn. No test here
+measures time: the benchmark in bench/ does that.
+"""
+
+from __future__ import annotations
+
+import io
+import re
+import shutil
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from roslint_names import workers
+from roslint_names.progress import DELAY_SECONDS, ProgressBar, wanted
+from roslint_names.workers import Dispatcher, worker_count
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+
+@pytest.fixture
+def workspace(tmp_path: Path) -> Path:
+    """The example workspace twice over (C++, Python, launch XML/YAML, XACRO)."""
+    root = tmp_path / "ws"
+    shutil.copytree(EXAMPLES, root)
+    shutil.copytree(EXAMPLES / "src", root / "src" / "copy")
+    return root
+
+
+@pytest.fixture
+def small_chunks(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Start workers from the second file on and send two files per chunk, so that even a
+    small workspace is spread over several chunks and both workers."""
+    monkeypatch.setattr(workers, "MIN_ITEMS", 2)
+    monkeypatch.setattr(workers, "CHUNK_ITEMS", 2)
+
+
+@pytest.mark.usefixtures("small_chunks")
+@pytest.mark.parametrize("output_format", ["text", "json", "sarif"])
+def test_output_bytes_do_not_depend_on_jobs_or_cache(
+    run_cli: Any, workspace: Path, tmp_path: Path, output_format: str
+) -> None:
+    def run(*options: str) -> Any:
+        arguments = ["check", "--format", output_format, "--show-source", "--verbose", *options]
+        return run_cli([*arguments, "."], workspace)
+
+    def details(result: Any) -> str:
+        return str(result.stderr.splitlines()[0])
+
+    cache = ["--cache-dir", str(tmp_path / "cache")]
+    reference = run("--jobs", "1", "--no-cache")
+    assert reference.exit_code == 1 and reference.stdout
+    cold_parallel = run("--jobs", "2", *cache)
+    assert "extracted by 2 worker processes" in details(cold_parallel)
+    warm_parallel = run("--jobs", "2", *cache)
+    assert re.search(r" (\d+) of \1 files from the cache, 0 extracted", details(warm_parallel))
+    warm_single = run("--jobs", "1", *cache)
+    other_cache = ["--cache-dir", str(tmp_path / "other")]
+    cold_single = run("--jobs", "1", *other_cache)
+    assert "extracted by this process" in details(cold_single)
+    for result in (cold_parallel, warm_parallel, warm_single, cold_single):
+        assert result.stdout == reference.stdout
+        assert result.exit_code == reference.exit_code
+        assert result.stderr.splitlines()[1:] == reference.stderr.splitlines()[1:]
+
+
+def test_few_files_start_no_worker(run_cli: Any, tmp_path: Path) -> None:
+    shutil.copytree(EXAMPLES, tmp_path / "ws")
+    result = run_cli(["check", "--jobs", "2", "--verbose", "--no-cache", "."], tmp_path / "ws")
+    assert " extracted by this process" in result.stderr
+
+
+def test_zero_jobs_means_every_core(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(workers, "available_cores", lambda: 6)
+    assert (worker_count(0), worker_count(1), worker_count(3)) == (6, 1, 3)
+
+
+def _square_all(items: list[int]) -> list[tuple[int, int]]:
+    return [(item, item * item) for item in items]
+
+
+def _fail_on_seven(items: list[int]) -> list[int]:
+    if 7 in items:
+        raise ValueError("seven")
+    return items
+
+
+def run_all(dispatcher: Dispatcher[int, Any], items: range) -> list[Any]:
+    results: list[Any] = []
+    with dispatcher:
+        for item in items:
+            results.extend(dispatcher.put(item, size=1000))
+        results.extend(dispatcher.finish())
+    return results
+
+
+@pytest.mark.usefixtures("small_chunks")
+@pytest.mark.parametrize(("jobs", "count", "started"), [(1, 50, 0), (2, 1, 0), (2, 50, 2)])
+def test_dispatcher_returns_every_result_once(jobs: int, count: int, started: int) -> None:
+    dispatcher: Dispatcher[int, tuple[int, int]] = Dispatcher(_square_all, jobs)
+    results = run_all(dispatcher, range(count))
+    assert sorted(results) == [(item, item * item) for item in range(count)]
+    assert dispatcher.workers == 0  # closed
+    probe: Dispatcher[int, tuple[int, int]] = Dispatcher(_square_all, jobs)
+    with probe:
+        for item in range(count):
+            probe.put(item, size=1)
+        assert probe.workers == started
+        list(probe.finish())
+
+
+@pytest.mark.usefixtures("small_chunks")
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_a_worker_error_reaches_the_caller(jobs: int) -> None:
+    with pytest.raises(ValueError, match="seven"):
+        run_all(Dispatcher(_fail_on_seven, jobs), range(20))
+
+
+class FakeTerminal(io.StringIO):
+    def __init__(self, terminal: bool) -> None:
+        super().__init__()
+        self.terminal = terminal
+
+    def isatty(self) -> bool:
+        return self.terminal
+
+
+class Clock:
+    def __init__(self) -> None:
+        self.now = 100.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+def make_bar(terminal: bool = True) -> tuple[ProgressBar, FakeTerminal, Clock]:
+    stream, clock = FakeTerminal(terminal), Clock()
+    bar = ProgressBar(stream, enabled=wanted(stream, {"TERM": "xterm"}), clock=clock, width=60)
+    return bar, stream, clock
+
+
+def test_progress_is_drawn_only_on_a_terminal() -> None:
+    assert wanted(FakeTerminal(True), {"TERM": "xterm"})
+    assert not wanted(FakeTerminal(False), {"TERM": "xterm"})
+    assert not wanted(FakeTerminal(True), {"TERM": "dumb"})
+    bar, stream, clock = make_bar(terminal=False)
+    clock.now += 10
+    bar(5, 10)
+    bar.close()
+    assert stream.getvalue() == ""
+
+
+def test_a_short_run_draws_nothing() -> None:
+    bar, stream, clock = make_bar()
+    for done in range(1, 11):
+        clock.now += DELAY_SECONDS / 20
+        bar(done, 10)
+    bar.close()
+    assert stream.getvalue() == ""
+
+
+def test_a_long_run_draws_one_line_and_erases_it() -> None:
+    bar, stream, clock = make_bar()
+    clock.now += DELAY_SECONDS + 0.5
+    bar(1, 4)
+    bar(2, 4)  # within the refresh interval: not drawn
+    clock.now += 1
+    bar(3, 4)
+    drawn = stream.getvalue()
+    assert drawn.count("\r") == 2 and "\n" not in drawn
+    assert "1/4 files" in drawn and "3/4 files" in drawn and "2/4" not in drawn
+    assert bar.shown
+    bar.close()
+    assert stream.getvalue().endswith("\r\x1b[K") and not bar.shown
+
+
+def test_the_progress_line_fits_its_width() -> None:
+    bar, _, _ = make_bar()
+    line: Callable[[int, int, float], str] = bar.line
+    assert len(line(0, 8123, 0.0)) == 60
+    assert len(line(8123, 8123, 12.0)) == 60
+    half = line(4000, 8000, 3.0)
+    assert abs(half.count("#") - half.count(".")) <= 1
