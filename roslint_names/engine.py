@@ -18,13 +18,14 @@ from typing import TYPE_CHECKING
 
 from .config import Settings, enabled_codes, ignored_for_path
 from .discover import SourceFile
-from .generation import PackageGenerations
+from .generation import PackageGenerations, service_types
 from .lines import split_lines
 from .model import (
     Diagnostic,
     FileFacts,
     Finding,
     Generation,
+    Kind,
     Language,
     ParseError,
     RelatedLocation,
@@ -33,6 +34,7 @@ from .model import (
 from .registry import Registry
 from .rule import Rule, RuleContext
 from .suppress import Suppression, find_suppressions, is_our_code
+from .types import parse_type
 from .workers import Dispatcher
 
 if TYPE_CHECKING:
@@ -105,15 +107,30 @@ def lint(
     checked = lintable(sources)
     per_file: list[list[Diagnostic]] = [[] for _ in checked]
     extracting: dict[int, bytes] = {}  # files sent to extraction: their bytes, to check them
+    # RN204 compares a service's name with every service type of the run, known only once
+    # every file is extracted: files that serve or call a typed service wait for that list;
+    # the others (nearly all) are checked as their facts arrive.
+    run_service_types = set(service_types(sources, packages))
+    waiting: list[tuple[int, FileFacts, bytes]] = []
     done = 0
 
     def check(index: int, facts: FileFacts, data: bytes) -> None:
         nonlocal done
-        text = decode_for_display(data)
-        per_file[index] = check_file(facts, text, settings, registry, enabled)
+        types = typed_services(facts)
+        if types:
+            run_service_types.update(types)
+            waiting.append((index, facts, data))
+        else:
+            check_now(index, facts, data, frozenset())
         done += 1
         if progress is not None:
             progress(done, len(checked))
+
+    def check_now(index: int, facts: FileFacts, data: bytes, known: frozenset[str]) -> None:
+        text = decode_for_display(data)
+        per_file[index] = check_file(
+            facts, text, settings, registry, enabled, known_service_types=known
+        )
 
     def check_extracted(results: Iterable[tuple[int, FileFacts]]) -> None:
         for index, facts in results:
@@ -144,6 +161,9 @@ def lint(
             check_extracted(dispatcher.put((job, data, key), len(data)))
         check_extracted(dispatcher.finish())
         workers = dispatcher.workers
+    known = frozenset(run_service_types)
+    for index, facts, data in waiting:
+        check_now(index, facts, data, known)
     diagnostics = [diagnostic for found in per_file for diagnostic in found]
     diagnostics.sort(key=Diagnostic.sort_key)
     return LintResult(tuple(diagnostics), len(checked), extracted, cached, workers)
@@ -186,16 +206,18 @@ def check_file(
     settings: Settings,
     registry: Registry,
     enabled: frozenset[str],
+    *,
+    known_service_types: frozenset[str] = frozenset(),
 ) -> list[Diagnostic]:
     """Every diagnostic of one file: rule findings, then suppression bookkeeping."""
     ignored = ignored_for_path(settings, _relative_to_root(facts.path, settings), registry)
     active = enabled - ignored
-    to_diagnostic = _DiagnosticFactory(facts, settings, split_lines(text))
+    to_diagnostic = _DiagnosticFactory(facts, settings, text)
     diagnostics = [
         to_diagnostic(rule, finding.span, finding.message, finding.related)
         for rule in registry.rules
         if rule.code in active and rule.check is not None
-        for finding in _run(rule, facts, settings)
+        for finding in _run(rule, facts, settings, known_service_types)
     ]
     suppressions = find_suppressions(text, facts.language)
     diagnostics, used = _apply_suppressions(diagnostics, suppressions, registry)
@@ -219,11 +241,30 @@ def check_file(
     return diagnostics
 
 
-def _run(rule: Rule, facts: FileFacts, settings: Settings) -> Iterable[Finding]:
+def _run(
+    rule: Rule, facts: FileFacts, settings: Settings, known_service_types: frozenset[str]
+) -> Iterable[Finding]:
     assert rule.check is not None
     options = {**rule.options, **settings.rule_options.get(rule.code, {})}
-    context = RuleContext(max_depth=settings.max_depth, options=options, policies=settings.policies)
+    context = RuleContext(
+        max_depth=settings.max_depth,
+        options=options,
+        policies=settings.policies,
+        known_service_types=known_service_types,
+    )
     return rule.check(facts, context)
+
+
+def typed_services(facts: FileFacts) -> set[str]:
+    """``package/Name`` of every service type the file serves or calls."""
+    return {
+        str(parsed)
+        for use in facts.names
+        if use.kind is Kind.SERVICE
+        and use.type_name
+        and (parsed := parse_type(use.type_name)) is not None
+        and parsed.package is not None
+    }
 
 
 def _apply_suppressions(
@@ -245,19 +286,25 @@ def _apply_suppressions(
     return result, used
 
 
-@dataclass(frozen=True)
 class _DiagnosticFactory:
-    """Binds findings of one file to its path, severities and source lines."""
+    """Binds findings of one file to its path, severities and source lines.
 
-    facts: FileFacts
-    settings: Settings
-    lines: Sequence[str]
+    The lines are split on the first diagnostic only: most files have none.
+    """
+
+    def __init__(self, facts: FileFacts, settings: Settings, text: str) -> None:
+        self.facts = facts
+        self.settings = settings
+        self._text = text
+        self._lines: list[str] | None = None
 
     def __call__(
         self, rule: Rule, span: Span, message: str, related: tuple[RelatedLocation, ...] = ()
     ) -> Diagnostic:
+        if self._lines is None:
+            self._lines = split_lines(self._text)
         severity = self.settings.severity.get(rule.code) or rule.severity_for(self.facts.generation)
-        in_file = 0 < span.line <= len(self.lines)
+        in_file = 0 < span.line <= len(self._lines)
         return Diagnostic(
             path=self.facts.path,
             span=span,
@@ -266,7 +313,7 @@ class _DiagnosticFactory:
             severity=severity,
             message=message,
             related=related,
-            source_line=self.lines[span.line - 1] if in_file else None,
+            source_line=self._lines[span.line - 1] if in_file else None,
         )
 
 

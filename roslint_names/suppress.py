@@ -26,7 +26,17 @@ from .model import Language, Span
 
 # Keys separated by a comma or blanks; the separator is never empty, so no backtracking blow-up.
 _KEYS = r"([A-Za-z0-9_\-]+(?:(?:[ \t]*,[ \t]*|[ \t]+)[A-Za-z0-9_\-]+)*)"
-_MARKERS = re.compile(r"NOLINT|noqa|roslint-names", re.IGNORECASE)
+_NOQA_LANGUAGES = frozenset({Language.PYTHON, Language.LAUNCH_PYTHON})
+_MARKER = {
+    Language.CPP: "NOLINT",
+    Language.PYTHON: "noqa",
+    Language.LAUNCH_PYTHON: "noqa",
+    Language.LAUNCH_XML: "roslint-names",
+    Language.LAUNCH_YAML: "roslint-names",
+    Language.URDF: "roslint-names",
+    Language.PACKAGE_XML: "roslint-names",
+    Language.SERVICE_DEFINITION: "roslint-names",
+}
 _NOLINT = re.compile(r"//\s*NOLINT(NEXTLINE)?\(([^)]*)\)")
 _NOQA = re.compile(r"#\s*noqa\s*:\s*" + _KEYS, re.IGNORECASE)
 _XML_IGNORE = re.compile(r"<!--\s*roslint-names\s*:\s*ignore\s+" + _KEYS + r".*?-->")
@@ -42,8 +52,10 @@ class Suppression:
 
 
 def find_suppressions(text: str, language: Language) -> list[Suppression]:
-    if not _MARKERS.search(text):
-        return []  # most files hold no suppression: one scan instead of one per line
+    if _MARKER[language] not in text and not (
+        language in _NOQA_LANGUAGES and "NOQA" in text  # flake8 accepts either case
+    ):
+        return []  # most files hold no suppression: one substring search, not a regex per line
     found: list[Suppression] = []
     for index, line in enumerate(split_lines(text)):
         number = index + 1

@@ -97,3 +97,37 @@ def test_ros1_frame_leading_slash_is_a_warning_ros2_an_error(run_cli: Any, tmp_p
         ("ros1/launch/a.launch", "RN205", "warning"),
         ("ros2/launch/a.launch.xml", "RN205", "error"),
     ]
+
+
+SRV_SERVER = """#include <rclcpp/rclcpp.hpp>
+#include <std_srvs/srv/trigger.hpp>
+
+class Dock : public rclcpp::Node
+{
+public:
+  Dock() : Node("dock")
+  {
+    service_ = create_service<std_srvs::srv::Trigger>(
+      "start_docking",
+      [](const std::shared_ptr<std_srvs::srv::Trigger::Request>,
+         std::shared_ptr<std_srvs::srv::Trigger::Response> response) { response->success = true; });
+  }
+
+private:
+  rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr service_;
+};
+"""
+
+
+def test_rn204_sees_the_workspace_srv_files(run_cli: Any, tmp_path: Any) -> None:
+    write(tmp_path, "src/dock/src/dock.cpp", SRV_SERVER)
+    write_package(tmp_path / "src" / "dock", 2, name="dock")
+    result = run_cli(["check", "--format", "json", "src"], tmp_path)
+    assert result.codes() == []
+    write(tmp_path, "src/docking_msgs/srv/StartDocking.srv", "---\nbool success\n")
+    write_package(tmp_path / "src" / "docking_msgs", 2, name="docking_msgs")
+    result = run_cli(["check", "--format", "json", "src"], tmp_path)
+    assert [(f["code"], f["path"]) for f in result.findings()] == [
+        ("RN204", "src/dock/src/dock.cpp")
+    ]
+    assert "named after docking_msgs/StartDocking" in result.findings()[0]["message"]
