@@ -17,11 +17,21 @@ call) still get their names checked, in an unknown namespace.
 from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
 
 import libcst as cst
 
-from roslint_names.extract.launch_xml import is_frame_parameter, join_namespace, node_path
+from roslint_names.extract.launch_xml import (
+    FRAME,
+    NAMESPACE,
+    NODE,
+    PARAMETER,
+    REMAP_FROM,
+    REMAP_TO,
+    Fact,
+    is_frame_parameter,
+    join_namespace,
+    node_path,
+)
 from roslint_names.extract.python_launch_values import (
     Action,
     ActionCall,
@@ -36,7 +46,7 @@ from roslint_names.extract.python_scope import Scope, argument_context
 from roslint_names.extract.python_spans import Locator, Where
 from roslint_names.extract.python_walk import Walk
 from roslint_names.extract.substitution import Value, skipped
-from roslint_names.model import Kind, LaunchNode, NameUse, Remap, Role
+from roslint_names.model import LaunchNode, NameUse, Remap
 
 _IF = ("launch", "IfCondition")
 _UNLESS = ("launch", "UnlessCondition")
@@ -44,20 +54,6 @@ _ROOTS = ("generate_launch_description", "generate_test_description")
 # Keywords, current then pre-Foxy spelling (node_name, node_namespace...).
 _NAME = ":name|node_name"
 _NAMESPACE = ":namespace|node_namespace"
-
-
-@dataclass(frozen=True)
-class Fact:
-    kind: Kind
-    role: Role
-
-
-NODE = Fact(Kind.NODE, Role.NODE_NAME)
-NAMESPACE = Fact(Kind.NAMESPACE, Role.NAMESPACE)
-REMAP_FROM = Fact(Kind.TOPIC, Role.REMAP_FROM)
-REMAP_TO = Fact(Kind.TOPIC, Role.REMAP_TO)
-PARAMETER = Fact(Kind.PARAMETER, Role.PARAMETER)
-FRAME = Fact(Kind.FRAME, Role.FRAME)
 
 
 class LaunchExtractor(LaunchValues):
