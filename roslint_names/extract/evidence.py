@@ -11,10 +11,12 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterable, Iterator
-
-from lxml import etree
+from typing import TYPE_CHECKING
 
 from roslint_names.model import Generation
+
+if TYPE_CHECKING:  # the XML extractors that call in here have lxml loaded; Python does not
+    from lxml import etree
 
 _ROS1_EXTENSIONS = (".launch", ".test")
 _ROS2_SUFFIXES = (".launch.xml", "_launch.xml", ".launch.yaml", "_launch.yaml", ".launch.yml")
@@ -57,6 +59,8 @@ def _elements(root: etree._Element) -> Iterator[etree._Element]:
 
 
 def _local(element: etree._Element) -> str:
+    from lxml import etree
+
     return etree.QName(element).localname
 
 

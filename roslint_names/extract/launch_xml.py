@@ -17,7 +17,6 @@ they live). ``None`` when the namespace depends on something dynamic.
 
 from __future__ import annotations
 
-import re
 from abc import ABC, abstractmethod
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -26,6 +25,18 @@ from typing import Protocol
 from lxml import etree
 
 from roslint_names.extract import evidence, xmlsafe
+from roslint_names.extract.launch_common import (
+    FRAME,
+    NAMESPACE,
+    NODE,
+    PARAMETER,
+    REMAP_FROM,
+    REMAP_TO,
+    Fact,
+    is_frame_parameter,
+    join_namespace,
+    node_path,
+)
 from roslint_names.extract.substitution import (
     ARG,
     Assignment,
@@ -49,13 +60,11 @@ from roslint_names.extract.substitution import (
 from roslint_names.model import (
     FileFacts,
     Generation,
-    Kind,
     Language,
     LaunchNode,
     NameUse,
     ParseError,
     Remap,
-    Role,
     Span,
 )
 
@@ -125,56 +134,12 @@ class XmlEntity:
 
 
 # ---------------------------------------------------------------------------------------
-# Helpers shared by both generations
-
-
-def join_namespace(parent: str | None, child: Value) -> str | None:
-    """roslaunch's ``ns_join`` and launch_ros's ``prefix_namespace``: an absolute child
-    replaces the parent, a relative one is appended. "/" is the root; None is unknown."""
-    if child.dynamic or child.text.startswith("~"):
-        return None
-    if child.text.startswith("/"):
-        return child.text.rstrip("/") or "/"
-    if parent is None:
-        return None
-    if not child.text:
-        return parent
-    return f"{parent.rstrip('/')}/{child.text}".rstrip("/") or "/"
+# Helpers shared by both generations (the parser-free ones live in launch_common)
 
 
 def absolute_namespace(value: Value) -> str | None:
     """``__ns:=x`` replaces the namespace outright; roscpp and rcl make it absolute."""
     return join_namespace("/", value)
-
-
-def node_path(namespace: str | None, name: str | None) -> str | None:
-    if namespace is None or name is None:
-        return None
-    return f"{namespace.rstrip('/')}/{name}"
-
-
-_FRAME_TOKEN = re.compile(r"(?:^|_)frame(?:_id)?$")
-
-
-def is_frame_parameter(name: str) -> bool:
-    """``frame_id``, ``frame``, ``*_frame``, ``*_frame_id``: values that are tf2 frame ids."""
-    return bool(_FRAME_TOKEN.search(re.split(r"[/.~]", name)[-1]))
-
-
-@dataclass(frozen=True)
-class Fact:
-    """The kind of a name and what the launch file does with it."""
-
-    kind: Kind
-    role: Role
-
-
-NODE = Fact(Kind.NODE, Role.NODE_NAME)
-NAMESPACE = Fact(Kind.NAMESPACE, Role.NAMESPACE)
-REMAP_FROM = Fact(Kind.TOPIC, Role.REMAP_FROM)
-REMAP_TO = Fact(Kind.TOPIC, Role.REMAP_TO)
-PARAMETER = Fact(Kind.PARAMETER, Role.PARAMETER)
-FRAME = Fact(Kind.FRAME, Role.FRAME)
 
 
 @dataclass

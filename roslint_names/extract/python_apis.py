@@ -12,7 +12,7 @@ from enum import Enum
 
 import libcst as cst
 
-from roslint_names.extract.launch_xml import is_frame_parameter
+from roslint_names.extract.launch_common import is_frame_parameter
 from roslint_names.model import EventKind, Kind, Role
 
 

@@ -19,7 +19,7 @@ from dataclasses import dataclass, replace
 
 import libcst as cst
 
-from roslint_names.extract.launch_xml import is_frame_parameter
+from roslint_names.extract.launch_common import is_frame_parameter
 from roslint_names.extract.python_apis import (
     ACTIONLIB,
     DECLARE_PARAMETERS,

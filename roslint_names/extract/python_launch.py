@@ -20,7 +20,7 @@ from collections.abc import Iterator, Sequence
 
 import libcst as cst
 
-from roslint_names.extract.launch_xml import (
+from roslint_names.extract.launch_common import (
     FRAME,
     NAMESPACE,
     NODE,
