@@ -107,9 +107,9 @@ def lint(
     checked = lintable(sources)
     per_file: list[list[Diagnostic]] = [[] for _ in checked]
     extracting: dict[int, bytes] = {}  # files sent to extraction: their bytes, to check them
-    # RN204 compares a service's name with every service type of the run, known only once
-    # every file is extracted: files that serve or call a typed service wait for that list;
-    # the others (nearly all) are checked as their facts arrive.
+    # RN204 compares a service's name with every service type of the run (of the file's own
+    # generation), known only once every file is extracted: files that serve or call a typed
+    # service wait for that list; the others (nearly all) are checked as their facts arrive.
     run_service_types = set(service_types(sources, packages))
     waiting: list[tuple[int, FileFacts, bytes]] = []
     done = 0
@@ -118,7 +118,7 @@ def lint(
         nonlocal done
         types = typed_services(facts)
         if types:
-            run_service_types.update(types)
+            run_service_types.update((facts.generation, spelling) for spelling in types)
             waiting.append((index, facts, data))
         else:
             check_now(index, facts, data, frozenset())
@@ -161,8 +161,12 @@ def lint(
             check_extracted(dispatcher.put((job, data, key), len(data)))
         check_extracted(dispatcher.finish())
         workers = dispatcher.workers
-    known = frozenset(run_service_types)
     for index, facts, data in waiting:
+        known = frozenset(
+            spelling
+            for generation, spelling in run_service_types
+            if generation in (facts.generation, None)
+        )
         check_now(index, facts, data, known)
     diagnostics = [diagnostic for found in per_file for diagnostic in found]
     diagnostics.sort(key=Diagnostic.sort_key)

@@ -88,10 +88,16 @@ class PackageGenerations:
         return package
 
 
-def service_types(sources: Iterable[SourceFile], packages: PackageGenerations) -> frozenset[str]:
-    """``package/Name`` of every ``.srv`` file among ``sources``, named after its package."""
+def service_types(
+    sources: Iterable[SourceFile], packages: PackageGenerations
+) -> frozenset[tuple[Generation | None, str]]:
+    """The generation and ``package/Name`` of every ``.srv`` file among ``sources``.
+
+    The generation is the package's (None when it builds for both): a ROS 1 package's
+    service type is no name for a ROS 2 service to be measured against.
+    """
     return frozenset(
-        f"{package}/{source.path.stem}"
+        (packages.for_file(source.path), f"{package}/{source.path.stem}")
         for source in sources
         if source.language is Language.SERVICE_DEFINITION
         and (package := packages.package_name(source.path))

@@ -116,4 +116,6 @@ def test_service_definitions_are_found_with_their_package(tmp_path: Path) -> Non
     assert [(source.display, source.language) for source in found] == [
         ("src/docking_msgs/srv/StartDocking.srv", Language.SERVICE_DEFINITION)
     ]
-    assert service_types(found, PackageGenerations()) == frozenset({"docking_msgs/StartDocking"})
+    assert service_types(found, PackageGenerations()) == frozenset(
+        {(None, "docking_msgs/StartDocking")}  # that package.xml names no build tool
+    )

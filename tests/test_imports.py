@@ -7,7 +7,6 @@ import sys
 from pathlib import Path
 
 import pytest
-
 from conftest import write
 
 PARSERS = ("lxml", "libcst", "tree_sitter", "yaml")
@@ -24,7 +23,8 @@ FILES = {
         {"libcst"},
     ),
     "talker.cpp": (
-        '#include <ros/ros.h>\nint main(int argc, char** argv)\n{\n  ros::init(argc, argv, "talker");\n}\n',
+        "#include <ros/ros.h>\nint main(int argc, char** argv)\n"
+        '{\n  ros::init(argc, argv, "talker");\n}\n',
         {"tree_sitter"},
     ),
     "robot.launch": ('<launch>\n  <node name="talker" pkg="p" type="t"/>\n</launch>\n', {"lxml"}),

@@ -131,3 +131,45 @@ def test_rn204_sees_the_workspace_srv_files(run_cli: Any, tmp_path: Any) -> None
         ("RN204", "src/dock/src/dock.cpp")
     ]
     assert "named after docking_msgs/StartDocking" in result.findings()[0]["message"]
+
+
+ROS1_TUTORIAL = """#include <ros/ros.h>
+#include <roscpp_tutorials/TwoInts.h>
+
+bool add(roscpp_tutorials::TwoInts::Request& req, roscpp_tutorials::TwoInts::Response& res)
+{
+  res.sum = req.a + req.b;
+  return true;
+}
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "add_two_ints_server");
+  ros::NodeHandle n;
+  ros::ServiceServer service = n.advertiseService("add_two_ints", add);
+  ros::spin();
+  return 0;
+}
+"""
+ROS2_CLIENT = """import rclpy
+from example_interfaces.srv import AddTwoInts
+
+
+def main():
+    rclpy.init()
+    node = rclpy.create_node("add_two_ints_client")
+    client = node.create_client(AddTwoInts, "add_two_ints")
+    rclpy.spin(node)
+"""
+
+
+def test_rn204_run_types_stay_within_their_generation(run_cli: Any, tmp_path: Any) -> None:
+    # Found over ros_tutorials + rclpy in one run: a ROS 2 file's AddTwoInts was held
+    # against roscpp's ROS 1 tutorial, whose add_two_ints serves roscpp_tutorials/TwoInts.
+    write(tmp_path, "ros1/add_two_ints_server.cpp", ROS1_TUTORIAL)
+    write_package(tmp_path / "ros1", 1, name="roscpp_tutorials")
+    write(tmp_path, "ros2/add_two_ints_client.py", ROS2_CLIENT)
+    write_package(tmp_path / "ros2", 2, name="demo_nodes_py")
+    write(tmp_path, "ros1_msgs/srv/EmptySrv.srv", "---\n")
+    write_package(tmp_path / "ros1_msgs", 1, name="test_rospy")
+    assert run_cli(["check", "--format", "json", "."], tmp_path).codes() == []
