@@ -156,3 +156,16 @@ def test_rn204_knows_the_workspace_service_types() -> None:
         "service 'start_docking' is served with std_srvs/Trigger but named after "
         "docking_msgs/StartDocking; rename it after what it does"
     ]
+
+
+def test_rn204_a_name_ending_in_its_own_type_is_named_after_it() -> None:
+    # Found over ros_tutorials: roscpp serves add_two_ints with roscpp_tutorials/TwoInts
+    # while rospy_tutorials/AddTwoInts.srv sits in the same workspace. 'add' + 'two_ints'
+    # names the service after its own type, with a verb; it is not named after AddTwoInts.
+    context = RuleContext(known_service_types=frozenset({"rospy_tutorials/AddTwoInts"}))
+    tutorial = facts(service("add_two_ints", "roscpp_tutorials::TwoInts"))
+    assert list(rn204.check(tutorial, context)) == []
+    bad = facts(service("add_two_ints", "rospy_tutorials/BadTwoInts", Role.CALL))
+    assert len(list(rn204.check(bad, context))) == 1
+    strict = RuleContext(options={"strict": True})
+    assert list(rn204.check(tutorial, strict)) == []  # strict is about equal names only

@@ -99,10 +99,13 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
         own = parse_type(use.type_name) if use.type_name else None
         if own is None:
             continue
-        if last == snake_case(own.name):
+        own_name = snake_case(own.name)
+        if last == own_name:
             if strict:
                 yield Finding(use.span, f"service '{use.value}' is named after its own type {own}")
             continue
+        if last.endswith("_" + own_name):
+            continue  # a verb and its own type ('add' + 'two_ints' with TwoInts)
         for other in known:
             other_name = snake_case(other.name)
             if other.name != own.name and "_" in other_name and last == other_name:
