@@ -7,7 +7,7 @@ use, so the plugin path is exercised by every run.
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from dataclasses import dataclass
 from functools import cache
 from importlib.metadata import entry_points
@@ -80,7 +80,3 @@ def load_registry() -> Registry:
             "no rules are registered: roslint-names is not installed (run `pip install .`)"
         )
     return build_registry(loaded)
-
-
-def ordered_codes(rules: Sequence[Rule]) -> list[str]:
-    return [rule.code for rule in rules]

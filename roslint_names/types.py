@@ -47,13 +47,3 @@ def parse_type(spelling: str) -> InterfaceType | None:
     if len(parts) == 1:
         return InterfaceType(None, parts[0])
     return InterfaceType(parts[-2], parts[-1])
-
-
-def same_type(first: str, second: str) -> bool:
-    """Whether two spellings name one type; a spelling without package matches by name."""
-    a, b = parse_type(first), parse_type(second)
-    if a is None or b is None:
-        return False
-    if a.package is None or b.package is None:
-        return a.name == b.name
-    return a == b

@@ -226,19 +226,6 @@ def _ancestors(node: Node) -> Iterator[Node]:
         parent = parent.parent
 
 
-def base_name(source: Source, node: Node) -> str:
-    """``Node`` of ``rclcpp::Node``, ``SimpleActionServer`` of ``a::SimpleActionServer<T>``."""
-    while True:
-        if node.type in ("qualified_identifier", "template_type", "template_function"):
-            name = node.child_by_field_name("name")
-            if name is None:
-                break
-            node = name
-        else:
-            break
-    return source.text(node)
-
-
 def compact(text: str) -> str:
     """A type or expression spelling without layout: ``std_msgs::String``."""
     text = re.sub(r"\s+", " ", text.strip())
