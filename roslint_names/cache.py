@@ -162,7 +162,14 @@ class FactsCache:
         """Keep ``facts``; call ``flush`` before the process ends."""
         if not self.writable():
             return
-        if not (facts.names or facts.launch_nodes or facts.events or facts.parse_errors):
+        if not (
+            facts.names
+            or facts.launch_nodes
+            or facts.events
+            or facts.parse_errors
+            or facts.includes
+            or facts.executables
+        ):
             self._pending.append(_log_line(key, facts.language, facts.generation))
             if len(self._pending) >= _LOG_BATCH:
                 self.flush()

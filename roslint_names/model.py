@@ -38,6 +38,9 @@ class Language(str, Enum):
     URDF = "urdf"  # URDF and XACRO
     PACKAGE_XML = "package-xml"
     SERVICE_DEFINITION = "srv"  # a .srv file: not linted, but its type is known (RN204)
+    CMAKE = "cmake"  # CMakeLists.txt: the executables and component plugins a package builds
+    SETUP_PY = "setup-py"  # setup.py: a Python package's console_scripts
+    SETUP_CFG = "setup-cfg"  # setup.cfg: console_scripts declared in [options.entry_points]
 
 
 class Role(str, Enum):
@@ -121,6 +124,13 @@ class LaunchNode:
 
     The workspace model (resolution across files) is built from these; file rules look at
     the ``NameUse`` facts the extractor emits for the same attributes.
+
+    ``remaps`` lists the group-level remaps in force first, then the node's own (its
+    ``<remap>`` children, ``remappings=``, ``-r``/``from:=to`` on its command line);
+    ``own_remaps`` says how many of the last ones are the node's own. ``anchored`` is true
+    when this file made the namespace absolute (an absolute ``ns``/``namespace`` on the
+    node or an enclosing group or push, ``__ns:=``): an including file's namespace then
+    does not prefix it.
     """
 
     package: str | None
@@ -130,6 +140,55 @@ class LaunchNode:
     span: Span
     remaps: tuple[Remap, ...] = ()
     parameters: tuple[str, ...] = ()
+    own_remaps: int = 0
+    anchored: bool = False
+
+
+@dataclass(frozen=True)
+class LaunchInclude:
+    """A launch file including another: where the included file is and the scope it gets.
+
+    ``package`` and ``path`` locate the included file: ``$(find pkg)/launch/a.launch``,
+    ``$(find-pkg-share pkg)/launch/a.launch.py``, ``FindPackageShare('pkg')`` joined with
+    ``'launch'``, ``'a.launch.py'`` and ``get_package_share_directory('pkg')`` all give
+    ``package="pkg"`` and ``path="launch/a.launch[.py]"`` (relative to the package's
+    directory, '/'-separated). With ``package`` None, ``path`` is relative to the including
+    file's directory (``$(dirname)``, ``ThisLaunchFileDir()``) or absolute. ``path`` is None
+    when not statically known. ``namespace`` follows ``LaunchNode.namespace``; ``anchored``
+    likewise. ``arguments`` are the statically known values handed to the included file
+    (``<arg name value>`` children, ``launch_arguments``), sorted by name; ``remaps`` are
+    the group-level remaps in force at the include, which apply to the included nodes.
+    """
+
+    package: str | None
+    path: str | None
+    namespace: str
+    span: Span
+    arguments: tuple[tuple[str, str], ...] = ()
+    remaps: tuple[Remap, ...] = ()
+    anchored: bool = False
+
+
+class ExecutableKind(str, Enum):
+    PROGRAM = "program"  # what <node type|exec> and Node(executable=) name
+    PLUGIN = "plugin"  # a component class, what <composable_node plugin> names
+
+
+@dataclass(frozen=True)
+class Executable:
+    """A program or component plugin a package builds or installs, and its source files.
+
+    ``name`` is what launch files use: the CMake target or ``EXECUTABLE`` name, the
+    console_scripts entry, the script's file name (``talker.py``), or the plugin's C++
+    class (``demo_nodes_cpp::Talker``). ``sources`` are paths relative to the build file's
+    directory, '/'-separated, normalised; a console_scripts module ``a.b`` is given as
+    ``a/b.py``.
+    """
+
+    name: str
+    kind: ExecutableKind
+    sources: tuple[str, ...]
+    span: Span
 
 
 class EventKind(str, Enum):
@@ -177,6 +236,8 @@ class FileFacts:
     launch_nodes: tuple[LaunchNode, ...] = ()
     events: tuple[RuntimeEvent, ...] = ()
     parse_errors: tuple[ParseError, ...] = ()
+    includes: tuple[LaunchInclude, ...] = ()
+    executables: tuple[Executable, ...] = ()
 
 
 @dataclass(frozen=True)
