@@ -50,6 +50,12 @@ def classify(path: Path) -> Language | None:
         return Language.URDF
     if suffix in _CPP_SUFFIXES:
         return Language.CPP
+    if name == "cmakelists.txt":
+        return Language.CMAKE
+    if name == "setup.py":
+        return Language.SETUP_PY
+    if name == "setup.cfg":
+        return Language.SETUP_CFG
     if suffix == ".py":
         return Language.PYTHON
     if suffix == ".srv":

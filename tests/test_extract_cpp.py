@@ -282,10 +282,10 @@ def test_handle_namespaces_reach_the_names_used_through_them() -> None:
     )
     assert [(u.value, u.namespace) for u in facts.names] == [
         ("rate", "~"),
-        ("arm", None),
+        ("arm", ""),  # a default-constructed handle is in the node's own namespace
         ("command", "arm"),
         ("gain", "~"),
-        ("joint_states", None),
+        ("joint_states", ""),
         ("frame", "~"),
         ("laser", "~"),
     ]

@@ -112,7 +112,9 @@ class Handles:
             return second  # rclcpp::Node(name, namespace, options)
         if not values:
             initializer = construction.initializer  # `ros::NodeHandle nh = other;`
-            return None if initializer is None else self.namespace_of(initializer, depth + 1)
+            if initializer is None:
+                return ""  # a default handle is in the node's own namespace
+            return self.namespace_of(initializer, depth + 1)
         first = self._folder.fold(values[0])
         if not first.dynamic:
             return first.text  # NodeHandle(ns) and NodeHandle(ns, remappings)

@@ -1,0 +1,1 @@
+"""The workspace model: every file's facts joined into one static computation graph."""
