@@ -8,7 +8,7 @@ text, and the test suite runs every fenced Bad/Good example it holds.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cache
 from pathlib import Path
 
@@ -27,6 +27,9 @@ class Example:
     ros: Generation | None  # forced generation; None lets detection decide
     code: str
     line: int  # line of the page where the example's code starts
+    # More files of the same example (graph rules need several): fences marked `also`
+    # right after it, as (filename, code).
+    also: tuple[tuple[str, str], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -97,6 +100,13 @@ def parse_page(code: str, name: str, markdown: str) -> RuleDoc:
         attributes = dict(word.split("=", 1) for word in words[2:] if "=" in word)
         if "file" not in attributes:
             raise CatalogError(f"{code}: example at line {start_line} has no file=NAME")
+        if "also" in words[2:]:
+            if not examples or examples[-1].verdict != words[1]:
+                raise CatalogError(f"{code}: `also` at line {start_line} follows no example")
+            previous = examples[-1]
+            extra = (*previous.also, (attributes["file"], body))
+            examples[-1] = replace(previous, also=extra)
+            continue
         ros = attributes.get("ros")
         examples.append(
             Example(

@@ -17,8 +17,15 @@ from . import __version__
 from .cache import FactsCache
 from .cache import default_directory as default_cache_directory
 from .catalog import CatalogError, load_doc, rule_meta
-from .config import ConfigError, Overrides, apply_overrides, enabled_codes, load_settings
-from .discover import DiscoveryError, discover
+from .config import (
+    ConfigError,
+    Overrides,
+    Settings,
+    apply_overrides,
+    enabled_codes,
+    load_settings,
+)
+from .discover import DiscoveryError, SourceFile, discover, workspace_root
 from .engine import LintResult, RunOptions, lint
 from .model import Generation, Kind
 from .names import Problem, check_name
@@ -30,7 +37,7 @@ from .report import FORMATS, ReportContext, render, statistics, summary
 EXIT_CLEAN = 0
 EXIT_FINDINGS = 1
 EXIT_ERROR = 2
-COMMANDS = ("check", "validate", "rule", "rules")
+COMMANDS = ("check", "graph", "validate", "rule", "rules")
 
 
 class UsageError(Exception):
@@ -77,6 +84,7 @@ def _parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"roslint-names {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     _add_check(commands.add_parser("check", help="lint files and directories (the default)"))
+    _add_graph(commands.add_parser("graph", help="print the workspace's computation graph"))
     _add_validate(commands.add_parser("validate", help="judge names by the ROS grammar alone"))
     rule = commands.add_parser("rule", help="print one rule's catalog page")
     rule.add_argument("rule", metavar="CODE|SLUG")
@@ -126,6 +134,22 @@ def _add_check(check: argparse.ArgumentParser) -> None:
     check.set_defaults(run=_run_check)
 
 
+def _add_graph(graph: argparse.ArgumentParser) -> None:
+    graph.add_argument("paths", nargs="*", type=Path, default=[Path(".")], metavar="PATH")
+    graph.add_argument("--format", choices=("dot", "mermaid", "json"), default="dot")
+    graph.add_argument("--output", "-o", type=Path, help="write the graph to FILE")
+    graph.add_argument("--config", type=Path, help="use this config file, not the nearest one")
+    graph.add_argument("--ros", choices=("1", "2", "auto"), help="generation when undecided")
+    graph.add_argument(
+        "--no-cache", action="store_true", help="do not read or write the facts cache"
+    )
+    graph.add_argument("--cache-dir", type=Path, metavar="DIR", help="keep the facts cache here")
+    graph.add_argument(
+        "--jobs", "-j", type=_jobs, default=0, help="worker processes (0: all cores)"
+    )
+    graph.set_defaults(run=_run_graph)
+
+
 def _add_validate(validate: argparse.ArgumentParser) -> None:
     validate.add_argument("names", nargs="+", metavar="NAME", help="names, or - for stdin")
     validate.add_argument("--ros", choices=("1", "2"), default="2")
@@ -163,10 +187,11 @@ def _run_check(options: argparse.Namespace) -> int:
     start = config_search_start(options.paths, cwd)
     settings = apply_overrides(load_settings(options.config, start, registry), overrides, registry)
     sources = discover(options.paths, settings.exclude, settings.root, cwd)
+    workspace = _workspace_context(options.paths, settings, registry, cwd)
     cache = _facts_cache(options)
     try:
         run = RunOptions(jobs=options.jobs, cache=cache, progress=bar)
-        result = lint(sources, settings, registry, run)
+        result = lint(sources, settings, registry, run, context=workspace)
     finally:
         bar.close()  # erased before the report and the summary are written
     if options.verbose:
@@ -194,6 +219,45 @@ def _run_check(options: argparse.Namespace) -> int:
     print(summary(result.diagnostics, result.files_checked), file=sys.stderr)
     has_findings = any(not diagnostic.suppressed for diagnostic in result.diagnostics)
     return EXIT_FINDINGS if has_findings and not options.exit_zero else EXIT_CLEAN
+
+
+def _workspace_context(
+    paths: Sequence[Path],
+    settings: Settings,
+    registry: Registry,
+    cwd: Path,
+    *,
+    for_graph: bool = False,
+) -> list[SourceFile]:
+    """For a run over files (what pre-commit does): the rest of their workspaces, which
+    the graph rules need to see. Nothing is reported in them. A run over directories is
+    taken to name its workspace."""
+    enabled = enabled_codes(settings, registry)
+    graph_rules = any(rule.check_workspace and rule.code in enabled for rule in registry.rules)
+    if not (graph_rules or for_graph):
+        return []
+    files = [(cwd / path).absolute() for path in paths if (cwd / path).is_file()]
+    roots = sorted({root for path in files if (root := workspace_root(path)) is not None})
+    return discover(roots, settings.exclude, settings.root, cwd) if roots else []
+
+
+def _run_graph(options: argparse.Namespace) -> int:
+    from .render import RENDERERS  # only this command draws graphs
+
+    registry = load_registry()
+    cwd = Path.cwd()
+    overrides = Overrides(
+        ros=None if options.ros in (None, "auto") else Generation(int(options.ros))
+    )
+    start = config_search_start(options.paths, cwd)
+    settings = apply_overrides(load_settings(options.config, start, registry), overrides, registry)
+    sources = discover(options.paths, settings.exclude, settings.root, cwd)
+    context = _workspace_context(options.paths, settings, registry, cwd, for_graph=True)
+    run = RunOptions(jobs=options.jobs, cache=_facts_cache(options))
+    result = lint(sources, settings, registry, run, context=context, want_graph=True)
+    assert result.graph is not None
+    _write(RENDERERS[options.format](result.graph), options.output)
+    return EXIT_CLEAN
 
 
 def _facts_cache(options: argparse.Namespace) -> FactsCache | None:

@@ -166,6 +166,26 @@ def discover(
     return sorted(found.values(), key=lambda source: source.display)
 
 
+def workspace_root(path: Path) -> Path | None:
+    """The workspace a file belongs to, for the graph rules of a per-file run.
+
+    The nearest directory above it whose ``src/`` holds packages (a catkin or colcon
+    workspace), else the root of its git repository; None when it is in neither.
+    """
+    for directory in path.parents:
+        source = directory / "src"
+        if source.is_dir() and _holds_packages(source):
+            return directory
+        if (directory / ".git").exists():
+            return directory
+    return None
+
+
+def _holds_packages(directory: Path) -> bool:
+    """A package.xml one or two levels down (``src/pkg``, ``src/repo/pkg``)."""
+    return any(directory.glob("*/package.xml")) or any(directory.glob("*/*/package.xml"))
+
+
 def _repository_ancestors(directory: Path) -> list[Path]:
     """The directories above ``directory`` up to its git root, outermost first.
 

@@ -32,10 +32,13 @@ from .model import (
     Span,
 )
 from .registry import Registry
-from .rule import Rule, RuleContext
+from .rule import Rule, RuleContext, WorkspaceFinding
 from .suppress import Suppression, find_suppressions, is_our_code
 from .types import parse_type
 from .workers import Dispatcher
+from .workspace.build import build
+from .workspace.graph import Graph
+from .workspace.index import Package
 
 if TYPE_CHECKING:
     from .cache import FactsCache  # imported by the caller that wants a cache
@@ -48,7 +51,12 @@ EXTRACTOR_MODULES: dict[Language, str] = {
     Language.LAUNCH_XML: "launch_xml",
     Language.LAUNCH_YAML: "launch_yaml",
     Language.URDF: "urdf",
+    Language.CMAKE: "cmake",
+    Language.SETUP_PY: "setup_py",
+    Language.SETUP_CFG: "setup_py",
 }
+# Launch files an including file can hand arguments to (see ``workspace.launch_tree``).
+SPECIALISABLE = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.PYTHON})
 DEFAULT_GENERATION = Generation.ROS2
 UNUSED_SUPPRESSION = "RN002"
 INVALID_SUPPRESSION = "RN003"
@@ -61,6 +69,7 @@ class LintResult:
     files_extracted: int = 0  # parsed (or prefiltered) this run
     files_cached: int = 0  # facts served by the cache
     workers: int = 0  # worker processes started; 0 when everything ran in-process
+    graph: Graph | None = None  # the workspace graph, when a graph rule or the caller wants it
 
 
 Progress = Callable[[int, int], None]  # (files done, files in total)
@@ -90,6 +99,9 @@ def lint(
     settings: Settings,
     registry: Registry,
     run: RunOptions = RunOptions(),  # frozen: sharing the default is safe
+    *,
+    context: Sequence[SourceFile] = (),
+    want_graph: bool = False,
 ) -> LintResult:
     """Diagnostics of every lintable source; the same bytes whatever the ``run`` options.
 
@@ -99,38 +111,57 @@ def lint(
     main process, as facts arrive, in whatever order; every file's diagnostics are kept in
     its own slot and joined in discovery order before the final sort, so the order in which
     workers finish never shows in the output.
+
+    ``context`` files (the rest of the workspace of a per-file run) are extracted for the
+    graph rules only: nothing is reported in them. Once every file is in, the graph rules
+    run over the workspace graph and report into the files of ``sources``.
     """
     enabled = enabled_codes(settings, registry)
+    graph_rules = [r for r in registry.rules if r.check_workspace and r.code in enabled]
     packages = PackageGenerations()
     fallback = settings.ros or DEFAULT_GENERATION
     cache, progress = run.cache, run.progress
     checked = lintable(sources)
-    per_file: list[list[Diagnostic]] = [[] for _ in checked]
+    reported = len(checked)
+    if graph_rules or want_graph:
+        given = {source.path for source in checked}
+        checked += [source for source in lintable(context) if source.path not in given]
+    else:
+        context = ()
+    per_file: list[list[Diagnostic]] = [[] for _ in range(reported)]
+    suppressions_of: dict[int, list[Suppression]] = {}
+    all_facts: list[FileFacts | None] = [None] * len(checked)
+    keep_facts = bool(graph_rules) or want_graph
     extracting: dict[int, bytes] = {}  # files sent to extraction: their bytes, to check them
     # RN204 compares a service's name with every service type of the run (of the file's own
     # generation), known only once every file is extracted: files that serve or call a typed
     # service wait for that list; the others (nearly all) are checked as their facts arrive.
-    run_service_types = set(service_types(sources, packages))
+    run_service_types = set(service_types([*sources, *context], packages))
     waiting: list[tuple[int, FileFacts, bytes]] = []
     done = 0
 
     def check(index: int, facts: FileFacts, data: bytes) -> None:
         nonlocal done
+        if keep_facts:
+            all_facts[index] = facts
         types = typed_services(facts)
-        if types:
-            run_service_types.update((facts.generation, spelling) for spelling in types)
-            waiting.append((index, facts, data))
-        else:
-            check_now(index, facts, data, frozenset())
+        run_service_types.update((facts.generation, spelling) for spelling in types)
+        if index < reported:
+            if types:
+                waiting.append((index, facts, data))
+            else:
+                check_now(index, facts, data, frozenset())
         done += 1
         if progress is not None:
             progress(done, len(checked))
 
     def check_now(index: int, facts: FileFacts, data: bytes, known: frozenset[str]) -> None:
         text = decode_for_display(data)
-        per_file[index] = check_file(
+        per_file[index], found = check_file(
             facts, text, settings, registry, enabled, known_service_types=known
         )
+        if found:
+            suppressions_of[index] = found
 
     def check_extracted(results: Iterable[tuple[int, FileFacts]]) -> None:
         for index, facts in results:
@@ -168,9 +199,135 @@ def lint(
             if generation in (facts.generation, None)
         )
         check_now(index, facts, data, known)
+    graph: Graph | None = None
+    if keep_facts:
+        known_facts = [facts for facts in all_facts if facts is not None]
+        specialise = _Specialiser(checked, packages, fallback, cache)
+        graph = build(known_facts, _packages(checked, packages), specialise)
+        _report_graph(
+            graph,
+            graph_rules,
+            reported=checked[:reported],
+            facts=known_facts,
+            per_file=per_file,
+            suppressions_of=suppressions_of,
+            settings=settings,
+            registry=registry,
+        )
     diagnostics = [diagnostic for found in per_file for diagnostic in found]
     diagnostics.sort(key=Diagnostic.sort_key)
-    return LintResult(tuple(diagnostics), len(checked), extracted, cached, workers)
+    return LintResult(tuple(diagnostics), reported, extracted, cached, workers, graph)
+
+
+def _packages(sources: Sequence[SourceFile], packages: PackageGenerations) -> list[Package]:
+    """Every package holding a file of the run, by name and display directory."""
+    found: dict[str, Package] = {}
+    for source in sources:
+        name = packages.package_name(source.path)
+        directory = packages.package_directory(source.path)
+        if name is None or directory is None or name in found:
+            continue
+        relative = source.path.relative_to(directory).as_posix()
+        display = source.display[: -len(relative)].rstrip("/")
+        found[name] = Package(name, display)
+    return list(found.values())
+
+
+class _Specialiser:
+    """An included launch file's facts under the arguments its includer hands it: the
+    same extraction, with those arguments, through the same cache."""
+
+    def __init__(
+        self,
+        sources: Sequence[SourceFile],
+        packages: PackageGenerations,
+        fallback: Generation,
+        cache: FactsCache | None,
+    ) -> None:
+        self._sources = {source.display: source for source in sources}
+        self._packages = packages
+        self._fallback = fallback
+        self._cache = cache
+        self._memo: dict[tuple[str, tuple[tuple[str, str], ...]], FileFacts | None] = {}
+
+    def __call__(self, display: str, arguments: tuple[tuple[str, str], ...]) -> FileFacts | None:
+        key = (display, arguments)
+        if key not in self._memo:
+            self._memo[key] = self._extract(display, arguments)
+        return self._memo[key]
+
+    def _extract(self, display: str, arguments: tuple[tuple[str, str], ...]) -> FileFacts | None:
+        source = self._sources.get(display)
+        if source is None or source.language not in SPECIALISABLE:
+            return None
+        data, _ = _read(source.path)
+        if data is None:
+            return None
+        package = self._packages.for_file(source.path)
+        cache_key = None
+        if self._cache is not None:
+            # The arguments are part of what the facts depend on: key them with the path.
+            keyed = f"{display}\0{arguments!r}"
+            cache_key = self._cache.key(data, keyed, source.language, package, self._fallback)
+            found = self._cache.load(cache_key, display)
+            if found is not None:
+                return found
+        module = importlib.import_module(
+            f"roslint_names.extract.{EXTRACTOR_MODULES[source.language]}"
+        )
+        facts: FileFacts = module.extract(
+            display, data, package, self._fallback, arguments=arguments
+        )
+        if self._cache is not None and cache_key is not None:
+            self._cache.store(cache_key, facts)
+        return facts
+
+
+def _report_graph(
+    graph: Graph,
+    rules: Sequence[Rule],
+    *,
+    reported: Sequence[SourceFile],
+    facts: Sequence[FileFacts],
+    per_file: list[list[Diagnostic]],
+    suppressions_of: dict[int, list[Suppression]],
+    settings: Settings,
+    registry: Registry,
+) -> None:
+    """Graph rules' findings, each into its file's slot with that file's suppressions;
+    findings in files outside ``reported`` (a per-file run's context) are dropped."""
+    slots = {source.display: index for index, source in enumerate(reported)}
+    facts_of = {f.path: f for f in facts}
+    found: dict[int, list[tuple[Rule, WorkspaceFinding]]] = {}
+    for rule in rules:
+        assert rule.check_workspace is not None
+        for item in rule.check_workspace(graph, _context(rule, settings, frozenset())):
+            index = slots.get(item.path)
+            if index is not None:
+                found.setdefault(index, []).append((rule, item))
+    for index, items in sorted(found.items()):
+        source = reported[index]
+        file_facts = facts_of[source.display]
+        ignored = ignored_for_path(settings, _relative_to_root(source.display, settings), registry)
+        data, _ = _read(source.path)
+        to_diagnostic = _DiagnosticFactory(file_facts, settings, decode_for_display(data or b""))
+        fresh = [
+            to_diagnostic(rule, item.finding.span, item.finding.message, item.finding.related)
+            for rule, item in items
+            if rule.code not in ignored
+        ]
+        suppressions = suppressions_of.get(index, [])
+        fresh, used = _apply_suppressions(fresh, suppressions, registry)
+        per_file[index] = [d for d in per_file[index] if not _now_used(d, used)] + fresh
+
+
+def _now_used(diagnostic: Diagnostic, used: set[tuple[Suppression, str]]) -> bool:
+    """An RN002 'silences nothing' on a suppression a graph finding turned out to use."""
+    return diagnostic.code == UNUSED_SUPPRESSION and any(
+        suppression.span == diagnostic.span
+        and diagnostic.message.startswith(f"suppression of {code} ")
+        for suppression, code in used
+    )
 
 
 @dataclass(frozen=True)
@@ -212,8 +369,9 @@ def check_file(
     enabled: frozenset[str],
     *,
     known_service_types: frozenset[str] = frozenset(),
-) -> list[Diagnostic]:
-    """Every diagnostic of one file: rule findings, then suppression bookkeeping."""
+) -> tuple[list[Diagnostic], list[Suppression]]:
+    """Every diagnostic of one file: rule findings, then suppression bookkeeping; and the
+    file's suppressions, for the graph rules' findings still to come."""
     ignored = ignored_for_path(settings, _relative_to_root(facts.path, settings), registry)
     active = enabled - ignored
     to_diagnostic = _DiagnosticFactory(facts, settings, text)
@@ -242,21 +400,24 @@ def check_file(
             ):
                 message = f"suppression of {rule.code} ({rule.name}) silences nothing here"
                 diagnostics.append(to_diagnostic(unused_rule, suppression.span, message))
-    return diagnostics
+    return diagnostics, list(suppressions)
 
 
 def _run(
     rule: Rule, facts: FileFacts, settings: Settings, known_service_types: frozenset[str]
 ) -> Iterable[Finding]:
     assert rule.check is not None
+    return rule.check(facts, _context(rule, settings, known_service_types))
+
+
+def _context(rule: Rule, settings: Settings, known_service_types: frozenset[str]) -> RuleContext:
     options = {**rule.options, **settings.rule_options.get(rule.code, {})}
-    context = RuleContext(
+    return RuleContext(
         max_depth=settings.max_depth,
         options=options,
         policies=settings.policies,
         known_service_types=known_service_types,
     )
-    return rule.check(facts, context)
 
 
 def typed_services(facts: FileFacts) -> set[str]:

@@ -52,6 +52,7 @@ def package_xml_name(text: str) -> str | None:
 class _Package:
     name: str | None
     generation: Generation | None
+    directory: Path | None = None  # where its package.xml is
 
 
 _NO_PACKAGE = _Package(None, None)
@@ -69,6 +70,10 @@ class PackageGenerations:
     def package_name(self, path: Path) -> str | None:
         return self._for_directory(path.parent).name
 
+    def package_directory(self, path: Path) -> Path | None:
+        """The directory of the package.xml nearest above ``path``."""
+        return self._for_directory(path.parent).directory
+
     def _for_directory(self, directory: Path) -> _Package:
         if directory in self._by_directory:
             return self._by_directory[directory]
@@ -79,7 +84,7 @@ class PackageGenerations:
                 text = manifest.read_text(encoding="utf-8", errors="replace")
             except OSError:
                 text = ""
-            package = _Package(package_xml_name(text), package_xml_generation(text))
+            package = _Package(package_xml_name(text), package_xml_generation(text), directory)
         elif directory.parent == directory:
             package = _NO_PACKAGE
         else:

@@ -2,7 +2,8 @@
 
 A rule is a module in ``roslint_names/rules/`` (or a plugin) that exposes one ``Rule`` value
 through the ``roslint_names.rules`` entry-point group. Its ``check`` is pure: facts of one
-file and the settings that concern it in, findings out.
+file and the settings that concern it in, findings out. A graph rule's ``check_workspace``
+is pure too: the workspace's resolved graph in, findings in any of its files out.
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 
 from .model import FileFacts, Finding, Generation, Kind, Severity
+from .workspace.graph import Graph
 
 OptionValue = bool | int | str | tuple[str, ...]
 
@@ -40,6 +42,17 @@ Check = Callable[[FileFacts, RuleContext], Iterable[Finding]]
 
 
 @dataclass(frozen=True)
+class WorkspaceFinding:
+    """A graph rule's finding and the file it belongs to (a display path of the run)."""
+
+    path: str
+    finding: Finding
+
+
+WorkspaceCheck = Callable[[Graph, RuleContext], Iterable[WorkspaceFinding]]
+
+
+@dataclass(frozen=True)
 class Rule:
     code: str  # RNxxx, stable forever
     name: str  # kebab-case slug
@@ -49,6 +62,7 @@ class Rule:
     ros1_severity: Severity | None = None  # when ROS 1 tolerates what ROS 2 rejects
     enabled_by_default: bool = True
     options: Mapping[str, OptionValue] = field(default_factory=dict)  # name -> default
+    check_workspace: WorkspaceCheck | None = None  # graph rules: the whole workspace at once
 
     def severity_for(self, generation: Generation) -> Severity:
         if generation is Generation.ROS1 and self.ros1_severity is not None:

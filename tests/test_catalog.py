@@ -43,7 +43,10 @@ def test_example(code: str, example: Example, run_cli: Any, tmp_path: Path) -> N
     if doc.config is not None:
         write(tmp_path, "roslint-names.toml", doc.config)
     write(tmp_path, example.filename, example.code)
-    result = run_cli(["check", "--format", "json", "--select", "ALL", example.filename], tmp_path)
+    for filename, code_text in example.also:
+        write(tmp_path, filename, code_text)
+    files = [example.filename, *(filename for filename, _ in example.also)]
+    result = run_cli(["check", "--format", "json", "--select", "ALL", *files], tmp_path)
     assert result.exit_code in (0, 1), result.stderr
     found = result.codes()
     if example.verdict == "bad":

@@ -9,10 +9,12 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..model import FileFacts, Finding, Role, Severity
+from ..model import FileFacts, Finding, Kind, Role, Severity
 from ..names import depth, is_valid
-from ..rule import Rule, RuleContext
+from ..rule import Rule, RuleContext, WorkspaceFinding
+from ..workspace.graph import Endpoint, Graph, Location, NodeInstance
 from .common import GRAPH_KINDS, label, static_uses
+from .graph_common import finding, instances
 
 
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
@@ -30,10 +32,53 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             )
 
 
+def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFinding]:
+    """Names that only grow too deep once launched: blamed on the launch site (a ``<node>``
+    or an include) whose namespace pushes them over the limit."""
+    nodes = instances(graph)
+    reported: set[tuple[Location, str]] = set()
+    for endpoint in graph.endpoints:
+        node = nodes.get((endpoint.root, endpoint.node))
+        if node is None or not node.launched_at:
+            continue
+        levels = depth(endpoint.resource, endpoint.resource_kind)
+        own = _own_depth(endpoint)
+        if levels <= context.max_depth or own > context.max_depth:
+            continue  # fine, or too deep in the code already (reported there)
+        site = _pushing_site(node, own, context.max_depth)
+        if (site, endpoint.resource) in reported:
+            continue
+        reported.add((site, endpoint.resource))
+        message = (
+            f"{endpoint.resource_kind.value} '{endpoint.written}' of node '{node.name}' "
+            f"resolves to '{endpoint.resource}' once launched here: {levels} levels; "
+            f"the limit is {context.max_depth} (max-depth)"
+        )
+        yield finding(site, message, [(endpoint.location, f"'{endpoint.written}' in the code")])
+
+
+def _own_depth(endpoint: Endpoint) -> int:
+    """Levels the name has in the code alone: a private name counts the node's own."""
+    written = endpoint.written
+    if written.startswith("/"):
+        return depth(written, endpoint.resource_kind)
+    bare = written.lstrip("~").lstrip("/")
+    extra = 1 if written.startswith("~") else 0
+    return (depth(bare, endpoint.resource_kind) if bare else 0) + extra
+
+
+def _pushing_site(node: NodeInstance, own: int, limit: int) -> Location:
+    for site, namespace in zip(node.launched_at, node.launch_namespaces, strict=False):
+        if depth(namespace, Kind.NAMESPACE) + own > limit:
+            return site
+    return node.launched_at[-1]
+
+
 RULE = Rule(
     code="RN201",
     name="name-too-deep",
     summary="A name with more than max-depth tokens (default 4)",
     severity=Severity.WARNING,
     check=check,
+    check_workspace=check_workspace,
 )

@@ -33,6 +33,16 @@ class EdgeKind(str, Enum):
 
 
 @dataclass(frozen=True, order=True)
+class NodeRemap(Remap):
+    """A remap applied to one node: both sides fully qualified, where it is written, and
+    whether it is the node's own (RN404 judges only those: a group's remap is meant for
+    whichever of its nodes uses the name)."""
+
+    path: str = ""
+    own: bool = False
+
+
+@dataclass(frozen=True)
 class NodeInstance:
     """One node as it runs: launched by a launch tree, or code no launch file starts.
 
@@ -51,10 +61,21 @@ class NodeInstance:
     root: str
     launched_at: tuple[Location, ...]
     sources: tuple[str, ...]
-    remaps: tuple[Remap, ...] = ()  # resolved: both sides fully qualified
+    remaps: tuple[NodeRemap, ...] = ()
+    # The namespace in force after each launch site of ``launched_at`` (RN201 blames the
+    # site that pushes a name over the depth limit).
+    launch_namespaces: tuple[str, ...] = ()
+    # Every name the node's code uses, fully qualified but before remapping (RN404), and
+    # whether that list is complete: false when some name is dynamic or resolved through a
+    # handle whose namespace the code does not show.
+    uses: tuple[str, ...] = ()
+    uses_complete: bool = False
+
+    def sort_key(self) -> tuple[str, str, tuple[Location, ...], tuple[str, ...]]:
+        return (self.name, self.root, self.launched_at, self.sources)
 
 
-@dataclass(frozen=True, order=True)
+@dataclass(frozen=True)
 class Endpoint:
     """A node publishing, subscribing, serving or calling one resolved name.
 
@@ -72,6 +93,17 @@ class Endpoint:
     type_name: str | None
     location: Location
     written: str
+
+    def sort_key(self) -> tuple[str, str, str, str, str, Location, str]:
+        return (
+            self.resource,
+            self.resource_kind.value,
+            self.edge.value,
+            self.node,
+            self.root,
+            self.location,
+            self.type_name or "",
+        )
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,82 @@
+"""RN401 case-collision: resolved names equal ignoring case but not equal.
+
+``/cmd_vel`` published in C++ and ``/Cmd_Vel`` subscribed in Python never meet: ROS names
+are case-sensitive. Names are compared after resolution (namespaces, private names,
+remaps), grouped by their lower-case form, so two robots whose identical names sit in
+different namespaces never collide. A collision that comes from the namespaces (one code
+launched under ``robot1`` and ``Robot1``) is blamed on the launch sites, not the code.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterator
+
+from ..model import Severity
+from ..rule import Rule, RuleContext, WorkspaceFinding
+from ..workspace.graph import Graph, Location
+from .graph_common import finding, instances, launch_site, where
+
+# (what, resolved name) -> places that use it
+_Uses = dict[tuple[str, str], set[Location]]
+
+
+def _uses(graph: Graph) -> _Uses:
+    nodes = instances(graph)
+    spellings: dict[tuple[str, str], set[Location]] = defaultdict(set)
+    by_code: dict[Location, set[str]] = defaultdict(set)
+    for endpoint in graph.endpoints:
+        by_code[endpoint.location].add(endpoint.resource)
+    for endpoint in graph.endpoints:
+        location = endpoint.location
+        node = nodes.get((endpoint.root, endpoint.node))
+        # One code location under two spellings: the namespaces differ in case.
+        site = None if node is None else launch_site(node)
+        if site is not None and _spelled_twice(by_code[location], endpoint.resource):
+            location = site
+        spellings[(endpoint.resource_kind.value, endpoint.resource)].add(location)
+    for node in graph.nodes:
+        site = launch_site(node)
+        if site is not None:
+            spellings[("node", node.name)].add(site)
+    return spellings
+
+
+def _spelled_twice(resources: set[str], resource: str) -> bool:
+    lower = resource.lower()
+    return any(other != resource and other.lower() == lower for other in resources)
+
+
+def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFinding]:
+    del context
+    groups: dict[str, list[tuple[str, str]]] = defaultdict(list)
+    uses = _uses(graph)
+    for key in sorted(uses):
+        groups[key[1].lower()].append(key)
+    for keys in groups.values():
+        spellings = sorted({name for _, name in keys})
+        if len(spellings) < 2:
+            continue
+        for what, name in keys:
+            others = [(w, n) for w, n in keys if n != name]
+            related = [(loc, f"{w} '{n}'") for w, n in others for loc in uses[(w, n)]]
+            first_other = sorted(related)[0][0]
+            count = len(related)
+            also = f" and {count - 1} more" if count > 1 else ""
+            for location in sorted(uses[(what, name)]):
+                message = (
+                    f"{what} '{name}' differs only in case from '{others[0][1]}' "
+                    f"at {where(first_other)}{also}; ROS names are case-sensitive, "
+                    f"so the two never meet"
+                )
+                yield finding(location, message, related)
+
+
+RULE = Rule(
+    code="RN401",
+    name="case-collision",
+    summary="Two resolved names of the workspace equal ignoring case but not equal",
+    severity=Severity.WARNING,
+    check=None,
+    check_workspace=check_workspace,
+)

@@ -1,0 +1,83 @@
+"""RN403 message-type-mismatch: one resolved topic, service or action, two types.
+
+A publisher and a subscriber of one topic with different message types never exchange a
+message (ROS 1 refuses the connection on the md5sum, ROS 2 on the type name), and nothing
+fails loudly. Types are compared in one canonical spelling (``std_msgs::msg::String``,
+``std_msgs/String`` and ``std_msgs.msg.String`` are one type); a type the code names
+without its package matches any package's type of that name.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterator
+
+from ..model import Kind, Severity
+from ..rule import Rule, RuleContext, WorkspaceFinding
+from ..workspace.graph import EdgeKind, Endpoint, Graph, Location
+from .graph_common import finding, where
+
+
+def _compatible(one: str, other: str) -> bool:
+    if one == other:
+        return True
+    if "/" in one and "/" in other:
+        return False
+    return one.rpartition("/")[2] == other.rpartition("/")[2]
+
+
+def _mismatches(endpoints: list[Endpoint]) -> bool:
+    types = sorted({e.type_name for e in endpoints if e.type_name})
+    return any(not _compatible(a, b) for i, a in enumerate(types) for b in types[i + 1 :])
+
+
+_DONE = {
+    EdgeKind.PUBLISH: "published",
+    EdgeKind.SUBSCRIBE: "subscribed",
+    EdgeKind.SERVE: "served",
+    EdgeKind.CALL: "called",
+    EdgeKind.ACTION_SERVE: "served",
+    EdgeKind.ACTION_CALL: "called",
+}
+
+
+def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFinding]:
+    del context
+    by_resource: dict[tuple[Kind, str], list[Endpoint]] = defaultdict(list)
+    for endpoint in graph.endpoints:
+        if endpoint.type_name:
+            by_resource[(endpoint.resource_kind, endpoint.resource)].append(endpoint)
+    reported: set[tuple[Location, str]] = set()
+    for (kind, resource), endpoints in sorted(by_resource.items()):
+        if not _mismatches(endpoints):
+            continue
+        for endpoint in sorted(endpoints, key=Endpoint.sort_key):
+            mine = endpoint.type_name or ""
+            conflicting = sorted(
+                {o for o in endpoints if o.type_name and not _compatible(o.type_name, mine)},
+                key=lambda o: (o.location, o.edge.value),
+            )
+            if not conflicting or (endpoint.location, resource) in reported:
+                continue
+            reported.add((endpoint.location, resource))
+            first = conflicting[0]
+            more = f" and {len(conflicting) - 1} more" if len(conflicting) > 1 else ""
+            message = (
+                f"{kind.value} '{resource}' is {_DONE[endpoint.edge]} here as '{mine}' but "
+                f"{_DONE[first.edge]} as '{first.type_name}' at {where(first.location)}{more}; "
+                "the two never connect"
+            )
+            related = [
+                (o.location, f"{_DONE[o.edge]} as '{o.type_name}' by {o.node}") for o in conflicting
+            ]
+            yield finding(endpoint.location, message, related)
+
+
+RULE = Rule(
+    code="RN403",
+    name="message-type-mismatch",
+    summary="Endpoints of one resolved topic, service or action with different types",
+    severity=Severity.ERROR,
+    check=None,
+    check_workspace=check_workspace,
+)

@@ -1,0 +1,68 @@
+"""RN404 unused-remap: a node's remap whose ``from`` its code never uses.
+
+A remap that matches nothing is silently ignored: usually the name was misspelled
+(``<remap from="cmd_vel" .../>`` for a node that publishes ``cmd_vel_out``), changed in
+the code later, or written relative when the code uses a private name. Only a node's own
+remaps are judged (a group's remap is meant for whichever of its nodes uses the name),
+only when the node's code is in the workspace and every name it uses is known statically.
+A remap of a name's parent or child counts as used: actions and image_transport derive
+sub-topics (``move_base/goal``, ``image/compressed``) from the name the code gives.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterator
+
+from ..model import Severity
+from ..rule import Rule, RuleContext, WorkspaceFinding
+from ..workspace.graph import Graph, Location, NodeInstance, NodeRemap
+from .graph_common import finding
+
+_MAX_LISTED = 5
+
+
+def _used(remap: NodeRemap, node: NodeInstance) -> bool:
+    source = remap.source.rstrip("/")
+    return any(
+        use == source or use.startswith(source + "/") or source.startswith(use + "/")
+        for use in node.uses
+    )
+
+
+def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFinding]:
+    del context
+    verdicts: dict[Location, list[tuple[bool, NodeRemap, NodeInstance]]] = defaultdict(list)
+    for node in graph.nodes:
+        if not node.uses_complete or not node.uses:
+            continue  # code we cannot see all of: a remap may rename what we miss
+        for remap in node.remaps:
+            if remap.own:
+                location = Location(remap.path, remap.span)
+                verdicts[location].append((_used(remap, node), remap, node))
+    for location, seen in sorted(verdicts.items()):
+        if any(used for used, _, _ in seen):
+            continue  # used by one start of the node: the remap does its job there
+        _, remap, node = seen[0]
+        listed = ", ".join(f"'{use}'" for use in node.uses[:_MAX_LISTED])
+        more = f" and {len(node.uses) - _MAX_LISTED} more" if len(node.uses) > _MAX_LISTED else ""
+        message = (
+            f"remap from '{remap.source}' renames nothing: node '{node.name}' "
+            f"({', '.join(node.sources)}) never uses that name; it uses {listed}{more}"
+        )
+        related = [
+            (endpoint.location, f"{endpoint.resource_kind.value} '{endpoint.written}'")
+            for endpoint in graph.endpoints
+            if endpoint.node == node.name and endpoint.root == node.root
+        ]
+        yield finding(location, message, related)
+
+
+RULE = Rule(
+    code="RN404",
+    name="unused-remap",
+    summary="A node's remap whose from name the node's code never uses",
+    severity=Severity.WARNING,
+    check=None,
+    check_workspace=check_workspace,
+)

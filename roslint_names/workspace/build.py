@@ -1,0 +1,293 @@
+"""Build the graph: launched nodes and code no launch file starts, their names resolved.
+
+Every endpoint the code of a node declares is resolved in the node's namespace, with its
+node name for private names, by the rules of its generation (``names.resolve``), then
+renamed by the node's remaps. Each file's facts are visited a bounded number of times
+(once per node instance that runs it), and resources are grouped by resolved name, never
+compared pairwise, so building costs about the sum of the extractions.
+"""
+
+from __future__ import annotations
+
+import posixpath
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+from roslint_names.model import (
+    ENDPOINT_ROLES,
+    FileFacts,
+    Generation,
+    Kind,
+    Language,
+    NameUse,
+    Role,
+)
+from roslint_names.names import NameResolutionError, resolve
+from roslint_names.types import parse_type
+from roslint_names.workspace.graph import (
+    EdgeKind,
+    Endpoint,
+    Graph,
+    Location,
+    NodeInstance,
+    NodeRemap,
+)
+from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
+from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Specialise
+
+_EDGES = {
+    Role.PUBLISH: EdgeKind.PUBLISH,
+    Role.SUBSCRIBE: EdgeKind.SUBSCRIBE,
+    Role.SERVE: EdgeKind.SERVE,
+    Role.CALL: EdgeKind.CALL,
+    Role.ACTION_SERVE: EdgeKind.ACTION_SERVE,
+    Role.ACTION_CALL: EdgeKind.ACTION_CALL,
+}
+_RESOURCE_KINDS = frozenset({Kind.TOPIC, Kind.SERVICE, Kind.ACTION})
+# Names a node's code uses that a remap can rename: graph resources and, in ROS 1, params.
+_REMAPPABLE_KINDS = frozenset({Kind.TOPIC, Kind.SERVICE, Kind.ACTION, Kind.PARAMETER})
+_REMAPPABLE_ROLES = ENDPOINT_ROLES | {Role.PARAMETER}
+_TEST_DIRECTORIES = frozenset({"test", "tests", "testing"})
+
+
+@dataclass(frozen=True)
+class _Instance:
+    """What resolution needs to know about one running node."""
+
+    name: str  # base name
+    namespace: str  # fully qualified
+    generation: Generation
+
+
+def build(facts: Iterable[FileFacts], packages: Sequence[Package], specialise: Specialise) -> Graph:
+    index = WorkspaceIndex(facts, packages)
+    nodes: list[NodeInstance] = []
+    endpoints: list[Endpoint] = []
+    launched_sources: set[str] = set()
+    for launched in LaunchTrees(index, specialise).launched():
+        sources = index.sources_of(launched.node.package, launched.node.executable)
+        launched_sources.update(sources)
+        built = _launched_instance(index, launched, sources)
+        if built is not None:
+            nodes.append(built[0])
+            endpoints.extend(built[1])
+    for sources in _unlaunched_programs(index, launched_sources):
+        built = _unlaunched_instance(index, sources)
+        if built is not None:
+            nodes.append(built[0])
+            endpoints.extend(built[1])
+    return Graph(
+        tuple(sorted(set(nodes), key=NodeInstance.sort_key)),
+        tuple(sorted(set(endpoints), key=Endpoint.sort_key)),
+    )
+
+
+# ---------------------------------------------------------------------------------------
+# Instances
+
+
+def _launched_instance(
+    index: WorkspaceIndex, launched: Launched, sources: tuple[str, ...]
+) -> tuple[NodeInstance, list[Endpoint]] | None:
+    code = [index.facts[path] for path in sources]
+    name = launched.node.name or _code_node_name(code)
+    if name is None:
+        return None
+    launch_facts = index.facts.get(launched.path)
+    generation = _generation(code, launch_facts)
+    instance = _Instance(name, launched.namespace, generation)
+    full_name = _full_name(instance)
+    remaps = [
+        NodeRemap(
+            _resolve_quietly(remap.source, instance) or remap.source,
+            _resolve_quietly(remap.target, instance) or remap.target,
+            remap.span,
+            path=path,
+            own=own,
+        )
+        for remap, path, own in launched.remaps
+    ]
+    endpoints, uses, complete = _resolve_code(code, instance, remaps, launched.root, full_name)
+    node = NodeInstance(
+        name=full_name,
+        generation=generation,
+        package=launched.node.package,
+        executable=launched.node.executable,
+        root=launched.root,
+        launched_at=launched.sites,
+        sources=sources,
+        remaps=tuple(remaps),
+        launch_namespaces=launched.site_namespaces,
+        uses=uses,
+        uses_complete=complete and bool(sources),
+    )
+    return node, endpoints
+
+
+def _unlaunched_programs(index: WorkspaceIndex, launched: set[str]) -> list[tuple[str, ...]]:
+    """Code no launch file starts, one program per executable (else per file); tests are
+    left out: they build throwaway graphs on purpose."""
+    grouped: list[tuple[str, ...]] = []
+    seen: set[str] = set(launched)
+    for _, sources in sorted(index.built_sources().items()):
+        fresh = tuple(path for path in sources if path not in seen and not _is_test(path))
+        seen.update(sources)
+        if fresh and any(_has_endpoints(index.facts[path]) for path in fresh):
+            grouped.append(fresh)
+    for path, facts in sorted(index.facts.items()):
+        if (
+            path not in seen
+            and facts.language in CODE_LANGUAGES
+            and not _is_test(path)
+            and _has_endpoints(facts)
+        ):
+            grouped.append((path,))
+    return grouped
+
+
+def _unlaunched_instance(
+    index: WorkspaceIndex, sources: tuple[str, ...]
+) -> tuple[NodeInstance, list[Endpoint]] | None:
+    code = [index.facts[path] for path in sources]
+    name = _code_node_name(code) or _stem(sources[0])
+    instance = _Instance(name, "/", _generation(code, None))
+    full_name = _full_name(instance)
+    endpoints, uses, complete = _resolve_code(code, instance, [], "", full_name)
+    package = index.package_of(sources[0])
+    node = NodeInstance(
+        name=full_name,
+        generation=instance.generation,
+        package=None if package is None else package.name,
+        executable=None,
+        root="",
+        launched_at=(),
+        sources=sources,
+        uses=uses,
+        uses_complete=complete,
+    )
+    return node, endpoints
+
+
+def _code_node_name(code: Sequence[FileFacts]) -> str | None:
+    """The one static node name the code gives itself (``ros::init``, ``Node("x")``)."""
+    found = {
+        use.value
+        for facts in code
+        for use in facts.names
+        if use.role is Role.NODE_NAME and not use.dynamic and use.value
+    }
+    return found.pop() if len(found) == 1 else None
+
+
+def _generation(code: Sequence[FileFacts], launch: FileFacts | None) -> Generation:
+    generations = {facts.generation for facts in code}
+    if len(generations) == 1:
+        return generations.pop()
+    return launch.generation if launch is not None else Generation.ROS2
+
+
+def _full_name(instance: _Instance) -> str:
+    return f"{instance.namespace.rstrip('/')}/{instance.name}"
+
+
+def _stem(path: str) -> str:
+    return posixpath.basename(path).split(".", 1)[0]
+
+
+def _is_test(path: str) -> bool:
+    return any(part in _TEST_DIRECTORIES for part in path.split("/")[:-1])
+
+
+def _has_endpoints(facts: FileFacts) -> bool:
+    return any(use.role in ENDPOINT_ROLES for use in facts.names)
+
+
+# ---------------------------------------------------------------------------------------
+# Resolution
+
+
+def _resolve_code(
+    code: Sequence[FileFacts],
+    instance: _Instance,
+    remaps: Sequence[NodeRemap],
+    root: str,
+    full_name: str,
+) -> tuple[list[Endpoint], tuple[str, ...], bool]:
+    """The node's endpoints after remapping; every remappable name it uses before
+    remapping; whether that list is complete."""
+    endpoints: list[Endpoint] = []
+    uses: set[str] = set()
+    complete = True
+    for facts in code:
+        for use in facts.names:
+            if use.kind not in _REMAPPABLE_KINDS or use.role not in _REMAPPABLE_ROLES:
+                continue
+            resolved, certain = _resolve_use(use, facts.language, instance)
+            complete = complete and certain
+            if resolved is None:
+                continue
+            uses.add(resolved)
+            edge = _EDGES.get(use.role)
+            if edge is None or use.kind not in _RESOURCE_KINDS:
+                continue
+            endpoints.append(
+                Endpoint(
+                    resource=_remapped(resolved, remaps, instance.generation),
+                    resource_kind=use.kind,
+                    edge=edge,
+                    node=full_name,
+                    root=root,
+                    type_name=_canonical_type(use.type_name),
+                    location=Location(facts.path, use.span),
+                    written=use.value,
+                )
+            )
+    return endpoints, tuple(sorted(uses)), complete
+
+
+def _resolve_use(use: NameUse, language: Language, instance: _Instance) -> tuple[str | None, bool]:
+    """The fully qualified name of a use, and whether it is certain.
+
+    A ROS 1 C++ name goes through a NodeHandle: ``""`` is the node's namespace, ``"~"`` its
+    private one, a relative or absolute namespace nests; ``None`` (a handle the file does
+    not show, e.g. a constructor parameter) is resolved in the node's namespace, uncertain.
+    ROS 2 and Python names resolve against the node itself.
+    """
+    if use.dynamic:
+        return None, False
+    namespace = instance.namespace
+    certain = True
+    if instance.generation is Generation.ROS1 and language is Language.CPP:
+        handle = use.namespace
+        if handle is None:
+            certain = use.value.startswith(("/", "~"))
+        elif handle == "~":
+            namespace = _full_name(instance)
+        elif handle:
+            try:
+                namespace = resolve(handle, Generation.ROS1, instance.namespace, instance.name)
+            except NameResolutionError:
+                return None, False
+    resolved = _resolve_quietly(use.value, _Instance(instance.name, namespace, instance.generation))
+    return resolved, certain and resolved is not None
+
+
+def _resolve_quietly(name: str, instance: _Instance) -> str | None:
+    try:
+        return resolve(name, instance.generation, instance.namespace, instance.name)
+    except NameResolutionError:
+        return None
+
+
+def _remapped(name: str, remaps: Sequence[NodeRemap], generation: Generation) -> str:
+    """roscpp keeps the last remap of a name (the node's own come after its group's); rcl
+    applies the first matching rule."""
+    matching = [remap.target for remap in remaps if remap.source == name]
+    if not matching:
+        return name
+    return matching[-1] if generation is Generation.ROS1 else matching[0]
+
+
+def _canonical_type(spelling: str | None) -> str | None:
+    parsed = None if spelling is None else parse_type(spelling)
+    return None if parsed is None else str(parsed)

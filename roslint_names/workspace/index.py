@@ -1,0 +1,145 @@
+"""Where things are: packages by name, the package of a file, executables' source files.
+
+Paths here are the display paths of the run ('/'-separated strings as reports show them),
+so the index needs nothing but the facts and the list of package manifests.
+"""
+
+from __future__ import annotations
+
+import posixpath
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+
+from roslint_names.model import ExecutableKind, FileFacts, Language
+
+CODE_LANGUAGES = frozenset({Language.CPP, Language.PYTHON})
+
+
+@dataclass(frozen=True)
+class Package:
+    name: str
+    directory: str  # display path of the directory holding package.xml; "" for "."
+
+
+def parent(path: str) -> str:
+    return posixpath.dirname(path)
+
+
+def join(directory: str, relative: str) -> str:
+    """``directory/relative`` normalised; '..' is kept only above the run's root."""
+    joined = posixpath.normpath(posixpath.join(directory, relative)) if directory else relative
+    joined = posixpath.normpath(joined)
+    return "" if joined == "." else joined
+
+
+class WorkspaceIndex:
+    """Packages, files and executables of one run."""
+
+    def __init__(self, facts: Iterable[FileFacts], packages: Sequence[Package]) -> None:
+        self.facts: dict[str, FileFacts] = {f.path: f for f in facts}
+        self.packages: dict[str, Package] = {}
+        for package in sorted(packages, key=lambda p: (p.directory, p.name)):
+            self.packages.setdefault(package.name, package)  # a duplicate name: the first
+        self._package_by_directory = {p.directory: p for p in packages}
+        self._files_by_package: dict[str, list[str]] = {}
+        for path in sorted(self.facts):
+            owner = self.package_of(path)
+            if owner is not None:
+                self._files_by_package.setdefault(owner.name, []).append(path)
+        self._programs: dict[tuple[str, str], list[str]] = {}
+        self._plugins: dict[str, list[str]] = {}
+        self._index_executables()
+
+    # -- packages -----------------------------------------------------------------------
+
+    def package_of(self, path: str) -> Package | None:
+        directory = parent(path)
+        while True:
+            package = self._package_by_directory.get(directory)
+            if package is not None:
+                return package
+            if not directory or directory in ("/", "."):
+                return None
+            up = parent(directory)
+            if up == directory:
+                return None
+            directory = up
+
+    def files_of(self, package: str) -> list[str]:
+        return self._files_by_package.get(package, [])
+
+    def find_in_package(self, package: str, relative: str) -> str | None:
+        """A package file by its path in the package; else by its path in the *installed*
+        share directory, which CMake ``install(DIRECTORY ...)`` and setup.py ``data_files``
+        often flatten (``launch/a.launch.py`` installed from ``launch/robot/a.launch.py``):
+        the package's only file with that name."""
+        found = self.packages.get(package)
+        if found is None:
+            return None
+        exact = join(found.directory, relative)
+        if exact in self.facts:
+            return exact
+        name = posixpath.basename(relative)
+        candidates = [p for p in self.files_of(package) if posixpath.basename(p) == name]
+        return candidates[0] if len(candidates) == 1 else None
+
+    # -- executables --------------------------------------------------------------------
+
+    def sources_of(self, package: str | None, executable: str | None) -> tuple[str, ...]:
+        """The code a launch ``<node pkg type|exec>`` or ``plugin`` runs, as far as the
+        workspace holds it: the build files' targets, else (rosrun's rule) the package's
+        code files of that name, ``talker.py`` or ``talker`` for ``talker.py``."""
+        if executable is None:
+            return ()
+        if "::" in executable:
+            return tuple(self._plugins.get(executable, ()))
+        if package is None:
+            return ()
+        built = self._programs.get((package, executable))
+        if built:
+            return tuple(built)
+        return tuple(
+            path
+            for path in self.files_of(package)
+            if self.facts[path].language in CODE_LANGUAGES
+            and posixpath.basename(path) in (executable, f"{executable}.py")
+        )
+
+    def built_sources(self) -> dict[tuple[str, str], list[str]]:
+        """(package, executable) -> sources, for grouping code no launch file starts."""
+        return dict(self._programs)
+
+    def _index_executables(self) -> None:
+        for path, facts in sorted(self.facts.items()):
+            if not facts.executables:
+                continue
+            package = self.package_of(path)
+            directory = parent(path)
+            for executable in facts.executables:
+                sources = self._existing(directory, executable.sources)
+                if not sources:
+                    continue
+                if executable.kind is ExecutableKind.PLUGIN:
+                    self._plugins.setdefault(executable.name, []).extend(sources)
+                elif package is not None:
+                    key = (package.name, executable.name)
+                    self._programs.setdefault(key, []).extend(sources)
+
+    def _existing(self, directory: str, relatives: Iterable[str]) -> list[str]:
+        """Sources that are files of the run; a console_scripts module ``a/b.py`` may be a
+        package, ``a/b/__init__.py``."""
+        found: list[str] = []
+        for relative in relatives:
+            path = join(directory, relative)
+            if path in self.facts:
+                found.append(path)
+            elif path.endswith(".py"):
+                package_init = path[: -len(".py")] + "/__init__.py"
+                if package_init in self.facts:
+                    found.append(package_init)
+        return found
+
+
+def packages_from(manifests: Mapping[str, str]) -> list[Package]:
+    """``{package.xml display path: package name}`` as packages."""
+    return [Package(name, parent(path)) for path, name in manifests.items()]

@@ -1,0 +1,151 @@
+"""Launch trees: every node a root launch file starts, through its includes.
+
+A root is a launch file no other launch file of the workspace includes. Each include is
+followed into the file it names (``$(find pkg)``, ``FindPackageShare``, ``$(dirname)``...),
+with the namespace pushed at the include prefixed to the included file's relative
+namespaces, the group-level remaps in force carried in, and the statically known
+arguments handed over: an included file that receives arguments is extracted again with
+them (``Specialise``), exactly as the launch system would evaluate it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+
+from roslint_names.model import FileFacts, Generation, Language, LaunchInclude, LaunchNode, Remap
+from roslint_names.names import join_namespace
+from roslint_names.workspace.graph import Location
+from roslint_names.workspace.index import WorkspaceIndex, join, parent
+
+LAUNCH_LANGUAGES = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.LAUNCH_PYTHON})
+MAX_INCLUDE_DEPTH = 16  # deeper than any real bringup; stops include cycles and blow-ups
+
+# (display path, arguments) -> the file's facts extracted with those arguments, or None
+Specialise = Callable[[str, tuple[tuple[str, str], ...]], "FileFacts | None"]
+
+
+@dataclass(frozen=True)
+class Launched:
+    """One ``LaunchNode`` as a launch tree starts it."""
+
+    root: str  # the root launch file
+    node: LaunchNode
+    path: str  # the file that holds the <node>
+    namespace: str  # fully qualified, includes' namespaces applied
+    remaps: tuple[tuple[Remap, str, bool], ...]  # (remap, file it is written in, own)
+    sites: tuple[Location, ...]  # includes from the root, then the node
+    site_namespaces: tuple[str, ...]  # namespace in force after each site
+
+
+@dataclass(frozen=True)
+class _Frame:
+    """Where the walk is: the file, and what its includers give it."""
+
+    path: str
+    arguments: tuple[tuple[str, str], ...]
+    namespace: str  # prefix for the file's relative namespaces
+    remaps: tuple[tuple[Remap, str], ...]
+    sites: tuple[Location, ...]
+    site_namespaces: tuple[str, ...]
+    visiting: frozenset[str]
+
+
+class LaunchTrees:
+    def __init__(self, index: WorkspaceIndex, specialise: Specialise) -> None:
+        self.index = index
+        self.specialise = specialise
+        self.launch_files = sorted(
+            path for path, facts in index.facts.items() if facts.language in LAUNCH_LANGUAGES
+        )
+        self.targets: dict[tuple[str, LaunchInclude], str | None] = {
+            (path, include): self.target(path, include)
+            for path in self.launch_files
+            for include in index.facts[path].includes
+        }
+
+    def target(self, path: str, include: LaunchInclude) -> str | None:
+        """The display path of the file an include names, when the workspace holds it."""
+        if include.path is None:
+            return None
+        if include.package is not None:
+            return self.index.find_in_package(include.package, include.path)
+        if include.path.startswith("/"):
+            return None  # an absolute path outside the run's display paths
+        candidate = join(parent(path), include.path)
+        return candidate if candidate in self.index.facts else None
+
+    def roots(self) -> list[str]:
+        included = {target for target in self.targets.values() if target is not None}
+        return [path for path in self.launch_files if path not in included]
+
+    def launched(self) -> Iterator[Launched]:
+        for root in self.roots():
+            yield from self._walk(root, _Frame(root, (), "/", (), (), (), frozenset({root})))
+
+    def _walk(self, root: str, frame: _Frame) -> Iterator[Launched]:
+        facts = self._facts(frame.path, frame.arguments)
+        if facts is None:
+            return
+        for node in facts.launch_nodes:
+            launched = self._node(root, frame, node)
+            if launched is not None:
+                yield launched
+        if len(frame.sites) >= MAX_INCLUDE_DEPTH:
+            return
+        for include in facts.includes:
+            target = self._target(frame.path, include)
+            if target is None or target in frame.visiting:
+                continue
+            namespace = _nest(frame.namespace, include.namespace, include.anchored)
+            if namespace is None:
+                continue  # a namespace we cannot know: no guess about what runs where
+            site = Location(frame.path, include.span)
+            inner = _Frame(
+                path=target,
+                arguments=include.arguments,
+                namespace=namespace,
+                remaps=frame.remaps + tuple((remap, frame.path) for remap in include.remaps),
+                sites=(*frame.sites, site),
+                site_namespaces=(*frame.site_namespaces, namespace),
+                visiting=frame.visiting | {target},
+            )
+            yield from self._walk(root, inner)
+
+    def _target(self, path: str, include: LaunchInclude) -> str | None:
+        known = self.targets.get((path, include), "")
+        return self.target(path, include) if known == "" else known
+
+    def _facts(self, path: str, arguments: tuple[tuple[str, str], ...]) -> FileFacts | None:
+        if not arguments:
+            return self.index.facts.get(path)
+        return self.specialise(path, arguments)
+
+    def _node(self, root: str, frame: _Frame, node: LaunchNode) -> Launched | None:
+        namespace = _nest(frame.namespace, node.namespace, node.anchored)
+        if namespace is None:
+            return None
+        own_from = len(node.remaps) - node.own_remaps
+        remaps = tuple((remap, path, False) for remap, path in frame.remaps) + tuple(
+            (remap, frame.path, index >= own_from) for index, remap in enumerate(node.remaps)
+        )
+        site = Location(frame.path, node.span)
+        return Launched(
+            root=root,
+            node=node,
+            path=frame.path,
+            namespace=namespace,
+            remaps=remaps,
+            sites=(*frame.sites, site),
+            site_namespaces=(*frame.site_namespaces, namespace),
+        )
+
+
+def _nest(prefix: str, namespace: str, anchored: bool) -> str | None:
+    """A file's namespace (rooted at "/") inside the namespace its includer pushed."""
+    if not namespace:
+        return None  # dynamic
+    if anchored or prefix == "/":
+        return namespace
+    # join_namespace takes a generation it does not use: both nest alike.
+    return join_namespace(prefix, namespace.lstrip("/"), Generation.ROS2)
