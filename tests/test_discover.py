@@ -32,7 +32,10 @@ from roslint_names.model import Generation, Language
         ("plugins.xml", "<library path='x'/>", None),
         ("bringup.yaml", "# launch\nlaunch:\n- node: {pkg: a, exec: b}\n", Language.LAUNCH_YAML),
         ("params.yaml", "amcl:\n  ros__parameters:\n    use_sim_time: true\n", None),
-        ("CMakeLists.txt", "", None),
+        ("CMakeLists.txt", "", Language.CMAKE),
+        ("setup.py", "from setuptools import setup\n", Language.SETUP_PY),
+        ("setup.cfg", "[options.entry_points]\n", Language.SETUP_CFG),
+        ("notes.txt", "", None),
     ],
 )
 def test_classify(tmp_path: Path, name: str, text: str, language: Language | None) -> None:
