@@ -52,7 +52,10 @@ class Suppression:
 
 
 def find_suppressions(text: str, language: Language) -> list[Suppression]:
-    if _MARKER[language] not in text and not (
+    marker = _MARKER.get(language)
+    if marker is None:
+        return []  # build files: context for the graph, nothing in them is reported
+    if marker not in text and not (
         language in _NOQA_LANGUAGES and "NOQA" in text  # flake8 accepts either case
     ):
         return []  # most files hold no suppression: one substring search, not a regex per line

@@ -1,0 +1,471 @@
+"""The workspace model end to end: launch trees, executables, resolution, graph rules.
+
+Each test writes a small but realistic workspace (packages with package.xml, build
+files, launch files and nodes) and runs the real CLI over it.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+from conftest import AMENT_PACKAGE, CATKIN_PACKAGE, write
+
+# ---------------------------------------------------------------------------------------
+# A ROS 1 workspace: one base launch file for a robot, included per robot
+
+
+SMOOTHER_CPP = """\
+#include <geometry_msgs/Twist.h>
+#include <ros/ros.h>
+
+class VelocitySmoother
+{
+public:
+  VelocitySmoother()
+  {
+    ros::NodeHandle nh;
+    raw_sub_ = nh.subscribe("cmd_vel", 10, &VelocitySmoother::onCommand, this);
+    smooth_pub_ = nh.advertise<geometry_msgs::Twist>("cmd_vel_smooth", 10);
+  }
+
+private:
+  void onCommand(const geometry_msgs::Twist::ConstPtr& msg) { smooth_pub_.publish(*msg); }
+  ros::Subscriber raw_sub_;
+  ros::Publisher smooth_pub_;
+};
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "velocity_smoother");
+  VelocitySmoother smoother;
+  ros::spin();
+  return 0;
+}
+"""
+
+BATTERY_CPP = """\
+#include <ros/ros.h>
+#include <sensor_msgs/BatteryState.h>
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "battery_monitor");
+  ros::NodeHandle nh;
+  ros::Publisher low_pub = nh.advertise<sensor_msgs::BatteryState>("battery/low", 1, true);
+  ros::spin();
+  return 0;
+}
+"""
+
+ALARM_PY = """\
+#!/usr/bin/env python
+import rospy
+from std_msgs.msg import Bool
+
+
+def on_low(msg):
+    rospy.logwarn("battery low: %s", msg.data)
+
+
+def main():
+    rospy.init_node("low_battery_alarm")
+    rospy.Subscriber("battery/low", Bool, on_low)
+    rospy.spin()
+
+
+if __name__ == "__main__":
+    main()
+"""
+
+CMAKE_ROS1 = """\
+cmake_minimum_required(VERSION 3.0.2)
+project(turtle_base)
+find_package(catkin REQUIRED COMPONENTS roscpp geometry_msgs sensor_msgs)
+catkin_package()
+include_directories(${catkin_INCLUDE_DIRS})
+
+add_executable(velocity_smoother src/velocity_smoother.cpp)
+target_link_libraries(velocity_smoother ${catkin_LIBRARIES})
+
+add_executable(${PROJECT_NAME}_battery src/battery_monitor.cpp)
+target_link_libraries(${PROJECT_NAME}_battery ${catkin_LIBRARIES})
+
+catkin_install_python(PROGRAMS scripts/low_battery_alarm.py
+  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+"""
+
+BASE_LAUNCH = """\
+<launch>
+  <arg name="smoother_name" default="velocity_smoother"/>
+  <node name="$(arg smoother_name)" pkg="turtle_base" type="velocity_smoother"/>
+  <node name="battery_monitor" pkg="turtle_base" type="turtle_base_battery"/>
+</launch>
+"""
+
+
+def ros1_workspace(root: Path) -> None:
+    write(root, "src/turtle_base/package.xml", CATKIN_PACKAGE.format(name="turtle_base"))
+    write(root, "src/turtle_base/CMakeLists.txt", CMAKE_ROS1)
+    write(root, "src/turtle_base/src/velocity_smoother.cpp", SMOOTHER_CPP)
+    write(root, "src/turtle_base/src/battery_monitor.cpp", BATTERY_CPP)
+    write(root, "src/turtle_base/scripts/low_battery_alarm.py", ALARM_PY)
+    write(root, "src/turtle_base/launch/base.launch", BASE_LAUNCH)
+
+
+def graph_of(run_cli: Any, root: Path, *paths: str) -> dict[str, Any]:
+    result = run_cli(["graph", "--format", "json", *(paths or ["."])], root)
+    assert result.exit_code == 0, result.stderr
+    graph: dict[str, Any] = json.loads(result.stdout)
+    return graph
+
+
+def node_names(graph: dict[str, Any]) -> list[str]:
+    return sorted(node["name"] for node in graph["nodes"])
+
+
+def findings(
+    run_cli: Any, root: Path, *arguments: str, select: str = "RN4"
+) -> list[dict[str, Any]]:
+    result = run_cli(["check", "--format", "json", "--select", select, *arguments], root)
+    assert result.exit_code in (0, 1), result.stderr
+    found: list[dict[str, Any]] = result.findings()
+    return found
+
+
+def test_the_same_file_included_for_two_robots_is_neither_a_collision_nor_a_duplicate(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    ros1_workspace(tmp_path)
+    write(
+        tmp_path,
+        "src/turtle_base/launch/robots.launch",
+        "<launch>\n"
+        '  <include file="$(find turtle_base)/launch/base.launch" ns="robot1"/>\n'
+        '  <include file="$(find turtle_base)/launch/base.launch" ns="robot2"/>\n'
+        "</launch>\n",
+    )
+    graph = graph_of(run_cli, tmp_path)
+    launched = [n["name"] for n in graph["nodes"] if n["launched_at"]]
+    assert sorted(launched) == [
+        "/robot1/battery_monitor",
+        "/robot1/velocity_smoother",
+        "/robot2/battery_monitor",
+        "/robot2/velocity_smoother",
+    ]
+    topics = {topic["name"] for topic in graph["topics"]}
+    assert {"/robot1/cmd_vel", "/robot2/cmd_vel_smooth", "/robot2/battery/low"} <= topics
+    assert [f["code"] for f in findings(run_cli, tmp_path, ".")] == []
+
+
+def test_a_copied_include_starts_the_same_nodes_twice(run_cli: Any, tmp_path: Path) -> None:
+    ros1_workspace(tmp_path)
+    write(
+        tmp_path,
+        "src/turtle_base/launch/robots.launch",
+        "<launch>\n"
+        '  <include file="$(find turtle_base)/launch/base.launch" ns="robot1"/>\n'
+        '  <include file="$(find turtle_base)/launch/base.launch" ns="robot1"/>\n'
+        "</launch>\n",
+    )
+    found = findings(run_cli, tmp_path, ".")
+    assert {(f["code"], f["path"], f["line"]) for f in found} == {
+        ("RN402", "src/turtle_base/launch/robots.launch", 2),
+        ("RN402", "src/turtle_base/launch/robots.launch", 3),
+    }
+    assert all(f["related"] for f in found)
+
+
+def test_two_node_tags_with_one_name_in_one_group(run_cli: Any, tmp_path: Path) -> None:
+    write(tmp_path, "src/bringup/package.xml", CATKIN_PACKAGE.format(name="bringup"))
+    write(
+        tmp_path,
+        "src/bringup/launch/sensors.launch",
+        "<launch>\n"
+        '  <group ns="front">\n'
+        '    <node name="lidar" pkg="urg_node" type="urg_node"/>\n'
+        "  </group>\n"
+        '  <node name="lidar" pkg="urg_node" type="urg_node" ns="front"/>\n'
+        '  <node name="lidar" pkg="urg_node" type="urg_node" ns="rear"/>\n'
+        "</launch>\n",
+    )
+    found = findings(run_cli, tmp_path, ".")
+    assert [(f["code"], f["line"]) for f in found] == [("RN402", 3), ("RN402", 5)]
+    assert "'/front/lidar'" in found[0]["message"]
+
+
+def test_arguments_handed_to_an_include_rename_its_nodes(run_cli: Any, tmp_path: Path) -> None:
+    ros1_workspace(tmp_path)
+    write(
+        tmp_path,
+        "src/turtle_base/launch/robots.launch",
+        "<launch>\n"
+        '  <include file="$(find turtle_base)/launch/base.launch" ns="robot1">\n'
+        '    <arg name="smoother_name" value="smoother"/>\n'
+        "  </include>\n"
+        "</launch>\n",
+    )
+    graph = graph_of(run_cli, tmp_path)
+    assert "/robot1/smoother" in node_names(graph)
+    assert "/robot1/velocity_smoother" not in node_names(graph)
+
+
+def test_a_group_remap_reaches_the_included_nodes_and_is_not_judged_unused(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    ros1_workspace(tmp_path)
+    write(
+        tmp_path,
+        "src/turtle_base/launch/robots.launch",
+        "<launch>\n"
+        '  <group ns="robot1">\n'
+        '    <remap from="cmd_vel" to="mux/cmd_vel"/>\n'
+        '    <include file="$(find turtle_base)/launch/base.launch"/>\n'
+        "  </group>\n"
+        "</launch>\n",
+    )
+    graph = graph_of(run_cli, tmp_path)
+    subscribed = {
+        edge["resource"]
+        for edge in graph["edges"]
+        if edge["node"] == "/robot1/velocity_smoother" and edge["edge"] == "subscribe"
+    }
+    assert subscribed == {"/robot1/mux/cmd_vel"}
+    assert findings(run_cli, tmp_path, ".") == []
+
+
+def test_types_that_disagree_on_one_resolved_topic(run_cli: Any, tmp_path: Path) -> None:
+    ros1_workspace(tmp_path)
+    write(
+        tmp_path,
+        "src/turtle_base/launch/robot.launch",
+        "<launch>\n"
+        '  <group ns="robot1">\n'
+        '    <include file="$(find turtle_base)/launch/base.launch"/>\n'
+        '    <node name="alarm" pkg="turtle_base" type="low_battery_alarm.py"/>\n'
+        "  </group>\n"
+        "</launch>\n",
+    )
+    found = findings(run_cli, tmp_path, ".")
+    assert {(f["code"], f["path"]) for f in found} == {
+        ("RN403", "src/turtle_base/src/battery_monitor.cpp"),
+        ("RN403", "src/turtle_base/scripts/low_battery_alarm.py"),
+    }
+    message = next(f["message"] for f in found if f["path"].endswith(".py"))
+    assert "'/robot1/battery/low'" in message
+    assert "'std_msgs/Bool'" in message and "'sensor_msgs/BatteryState'" in message
+
+
+def test_a_node_remap_its_code_never_uses(run_cli: Any, tmp_path: Path) -> None:
+    ros1_workspace(tmp_path)
+    write(
+        tmp_path,
+        "src/turtle_base/launch/smoother.launch",
+        "<launch>\n"
+        '  <node name="velocity_smoother" pkg="turtle_base" type="velocity_smoother">\n'
+        '    <remap from="cmd_vel_raw" to="teleop/cmd_vel"/>\n'
+        '    <remap from="cmd_vel_smooth" to="mobile_base/cmd_vel"/>\n'
+        "  </node>\n"
+        "</launch>\n",
+    )
+    # (the unlaunched alarm and battery monitor disagree on /battery/low: RN403, not here)
+    found = findings(run_cli, tmp_path, ".", select="RN404")
+    assert [(f["code"], f["line"]) for f in found] == [("RN404", 3)]
+    assert "'/cmd_vel_raw'" in found[0]["message"]
+    assert "'/cmd_vel'" in found[0]["message"]  # what the node does use
+
+
+def test_a_per_file_run_sees_the_workspace_but_reports_only_its_files(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    ros1_workspace(tmp_path)
+    write(
+        tmp_path,
+        "src/turtle_base/launch/robot.launch",
+        "<launch>\n"
+        '  <include file="$(find turtle_base)/launch/base.launch"/>\n'
+        '  <node name="alarm" pkg="turtle_base" type="low_battery_alarm.py"/>\n'
+        "</launch>\n",
+    )
+    alarm = "src/turtle_base/scripts/low_battery_alarm.py"
+    found = findings(run_cli, tmp_path, alarm)
+    assert [(f["code"], f["path"]) for f in found] == [("RN403", alarm)]
+    assert found[0]["related"][0]["path"] == "src/turtle_base/src/battery_monitor.cpp"
+
+
+def test_a_graph_finding_is_suppressed_like_any_other(run_cli: Any, tmp_path: Path) -> None:
+    ros1_workspace(tmp_path)
+    write(
+        tmp_path,
+        "src/turtle_base/launch/smoother.launch",
+        "<launch>\n"
+        '  <node name="velocity_smoother" pkg="turtle_base" type="velocity_smoother">\n'
+        "    <!-- roslint-names: ignore RN404 (the next release renames the topic) -->\n"
+        '    <remap from="cmd_vel_raw" to="teleop/cmd_vel"/>\n'
+        "  </node>\n"
+        "</launch>\n",
+    )
+    result = run_cli(["check", "--format", "json", "--select", "RN404,RN002", "."], tmp_path)
+    assert result.exit_code == 0, result.stdout
+    assert result.codes() == []
+
+
+# ---------------------------------------------------------------------------------------
+# ROS 2: Python launch with GroupAction + PushRosNamespace, setup.py console_scripts
+
+REPORTER_PY = """\
+import rclpy
+from rclpy.node import Node
+from sensor_msgs.msg import BatteryState
+
+
+class BatteryReporter(Node):
+    def __init__(self):
+        super().__init__("battery_reporter")
+        self.state_pub = self.create_publisher(BatteryState, "battery_state", 10)
+
+
+def main():
+    rclpy.init()
+    rclpy.spin(BatteryReporter())
+"""
+
+SETUP_PY = """\
+from setuptools import setup
+
+package_name = "fleet_nodes"
+
+setup(
+    name=package_name,
+    version="0.1.0",
+    packages=[package_name],
+    entry_points={
+        "console_scripts": [
+            f"battery_reporter = {package_name}.battery_reporter:main",
+        ],
+    },
+)
+"""
+
+ROBOT_LAUNCH_PY = """\
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    return LaunchDescription([
+        Node(package="fleet_nodes", executable="battery_reporter", name="battery"),
+    ])
+"""
+
+FLEET_LAUNCH_PY = """\
+from launch import LaunchDescription
+from launch.actions import GroupAction, IncludeLaunchDescription
+from launch.launch_description_sources import PythonLaunchDescriptionSource
+from launch.substitutions import PathJoinSubstitution
+from launch_ros.actions import PushRosNamespace
+from launch_ros.substitutions import FindPackageShare
+
+
+def robot(namespace):
+    return GroupAction([
+        PushRosNamespace(namespace),
+        IncludeLaunchDescription(
+            PythonLaunchDescriptionSource(
+                PathJoinSubstitution([FindPackageShare("fleet_nodes"), "launch", "robot.launch.py"])
+            )
+        ),
+    ])
+
+
+def generate_launch_description():
+    return LaunchDescription([robot("robot1"), robot("robot2")])
+"""
+
+
+def ros2_workspace(root: Path) -> None:
+    write(root, "src/fleet_nodes/package.xml", AMENT_PACKAGE.format(name="fleet_nodes"))
+    write(root, "src/fleet_nodes/setup.py", SETUP_PY)
+    write(root, "src/fleet_nodes/fleet_nodes/__init__.py", "")
+    write(root, "src/fleet_nodes/fleet_nodes/battery_reporter.py", REPORTER_PY)
+    write(root, "src/fleet_nodes/launch/robot.launch.py", ROBOT_LAUNCH_PY)
+
+
+def test_push_ros_namespace_inside_group_action_reaches_the_included_nodes(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    ros2_workspace(tmp_path)
+    write(
+        tmp_path,
+        "src/fleet_nodes/launch/fleet.launch.py",
+        FLEET_LAUNCH_PY.replace('robot("robot1"), robot("robot2")', 'robot("robot1")'),
+    )
+    graph = graph_of(run_cli, tmp_path)
+    assert node_names(graph) == ["/robot1/battery"]
+    (node,) = graph["nodes"]
+    assert node["sources"] == ["src/fleet_nodes/fleet_nodes/battery_reporter.py"]
+    assert [t["name"] for t in graph["topics"]] == ["/robot1/battery_state"]
+
+
+def test_ros2_case_collision_between_cpp_and_python(run_cli: Any, tmp_path: Path) -> None:
+    ros2_workspace(tmp_path)
+    write(
+        tmp_path,
+        "src/fleet_nodes/src/dashboard.cpp",
+        "#include <rclcpp/rclcpp.hpp>\n"
+        "#include <sensor_msgs/msg/battery_state.hpp>\n"
+        "class Dashboard : public rclcpp::Node {\n"
+        " public:\n"
+        '  Dashboard() : Node("dashboard") {\n'
+        "    sub_ = create_subscription<sensor_msgs::msg::BatteryState>(\n"
+        '        "Battery_State", 10, [](sensor_msgs::msg::BatteryState::SharedPtr) {});\n'
+        "  }\n"
+        "  rclcpp::Subscription<sensor_msgs::msg::BatteryState>::SharedPtr sub_;\n"
+        "};\n",
+    )
+    found = findings(run_cli, tmp_path, ".")
+    assert {(f["code"], f["path"]) for f in found} == {
+        ("RN401", "src/fleet_nodes/fleet_nodes/battery_reporter.py"),
+        ("RN401", "src/fleet_nodes/src/dashboard.cpp"),
+    }
+    for finding in found:
+        assert len(finding["related"]) == 1
+
+
+def test_a_name_pushed_too_deep_by_the_launch_file_is_blamed_on_the_launch_site(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    ros2_workspace(tmp_path)
+    write(
+        tmp_path,
+        "src/fleet_nodes/launch/fleet.launch.py",
+        FLEET_LAUNCH_PY.replace(
+            'robot("robot1"), robot("robot2")', 'robot("site_a/warehouse/level_2/robot1")'
+        ),
+    )
+    result = run_cli(["check", "--format", "json", "--select", "RN201", "."], tmp_path)
+    found = result.findings()
+    assert [(f["code"], f["path"]) for f in found] == [
+        ("RN201", "src/fleet_nodes/launch/fleet.launch.py")
+    ]
+    assert "'/site_a/warehouse/level_2/robot1/battery_state'" in found[0]["message"]
+
+
+def test_the_example_workspace_graph_renders_with_graphviz(run_cli: Any) -> None:
+    import shutil
+    import subprocess
+
+    import pytest
+
+    if shutil.which("dot") is None:
+        pytest.skip("Graphviz `dot` is not installed (.ci/run installs it)")
+    examples = Path(__file__).resolve().parent.parent / "examples"
+    result = run_cli(["graph", "--format", "dot", "."], examples)
+    assert result.exit_code == 0, result.stderr
+    rendered = subprocess.run(
+        ["dot", "-Tsvg"], input=result.stdout, capture_output=True, text=True, check=False
+    )
+    assert rendered.returncode == 0, rendered.stderr
+    assert rendered.stderr == ""
+    assert "/robot1/" in rendered.stdout
