@@ -13,6 +13,10 @@ Namespaces on the facts: a node's ``ns``/``namespace`` attribute, a group's and 
 namespace carry the namespace enclosing them; a node's name, remaps and command-line names
 carry the node's namespace; its parameters carry the node's full name (that is where
 they live). ``None`` when the namespace depends on something dynamic.
+
+Includes become ``LaunchInclude`` facts (where the file is: ``launch_include``); the
+workspace model then extracts the included file again with ``extract(arguments=...)``,
+the values the include hands over, to get its nodes as this includer starts them.
 """
 
 from __future__ import annotations
@@ -37,6 +41,7 @@ from roslint_names.extract.launch_common import (
     join_namespace,
     node_path,
 )
+from roslint_names.extract.launch_include import UNKNOWN, handed_over, locate
 from roslint_names.extract.substitution import (
     ARG,
     Assignment,
@@ -61,6 +66,7 @@ from roslint_names.model import (
     FileFacts,
     Generation,
     Language,
+    LaunchInclude,
     LaunchNode,
     NameUse,
     ParseError,
@@ -142,26 +148,44 @@ def absolute_namespace(value: Value) -> str | None:
     return join_namespace("/", value)
 
 
+def is_absolute(value: Value) -> bool:
+    """A namespace written absolute; a dynamic one only if its raw text starts with '/'."""
+    return value.text.startswith("/")
+
+
 @dataclass
 class Scope:
     """What a launch action sees: its namespace, the remaps in force and the variables.
 
     ROS 1 arguments are file-global (``lookup`` reads one ``Bindings``); ROS 2 ``<let>``
     and ``<arg>`` are visible after their declaration and ``<group>`` scopes them, so each
-    ROS 2 scope has its own ``variables``.
+    ROS 2 scope has its own ``variables``. ``anchored``: this file made ``namespace``
+    absolute, so the namespace an includer pushes does not prefix it.
     """
 
     namespace: str | None
     remaps: list[Remap] = field(default_factory=list)
     variables: dict[str, Value] = field(default_factory=dict)
     global_lookup: Lookup | None = None
+    anchored: bool = False
 
     @property
     def lookup(self) -> Lookup:
         return self.global_lookup or mapping_lookup(self.variables)
 
     def copy(self) -> Scope:
-        return Scope(self.namespace, list(self.remaps), dict(self.variables), self.global_lookup)
+        return Scope(
+            self.namespace,
+            list(self.remaps),
+            dict(self.variables),
+            self.global_lookup,
+            self.anchored,
+        )
+
+    def enter(self, value: Value) -> None:
+        """Push a namespace (ROS 1 group ns, ROS 2 push-ros-namespace) onto this scope."""
+        self.namespace = join_namespace(self.namespace, value)
+        self.anchored = self.anchored or is_absolute(value)
 
 
 @dataclass(frozen=True)
@@ -192,6 +216,7 @@ class LaunchWalker(ABC):
     def __init__(self) -> None:
         self.names: list[NameUse] = []
         self.nodes: list[LaunchNode] = []
+        self.includes: list[LaunchInclude] = []
 
     # -- values and facts ---------------------------------------------------------------
 
@@ -284,22 +309,24 @@ class LaunchWalker(ABC):
 
     def node(self, entity: Entity, scope: Scope, spec: NodeSpec) -> None:
         """A node: its names, then one ``LaunchNode`` with its scope."""
-        namespace = scope.namespace
+        inner = Scope(scope.namespace, anchored=scope.anchored)  # the node's own namespace
         namespace_value = self.attribute(
-            entity, spec.namespace_attribute, scope, NAMESPACE, namespace
+            entity, spec.namespace_attribute, scope, NAMESPACE, inner.namespace
         )
         if namespace_value is not None:
-            namespace = join_namespace(namespace, namespace_value)
+            inner.enter(namespace_value)
         arguments = self.command_line(entity, scope)
         for argument in arguments:
             if argument.meaning is Meaning.NAMESPACE:
-                namespace = absolute_namespace(argument.value)
+                inner.namespace, inner.anchored = absolute_namespace(argument.value), True
+        namespace = inner.namespace
         name_attribute = entity.get("name")
         name_value = self.attribute(entity, "name", scope, NODE, namespace)
         name = _node_name(name_value, arguments)
         path = node_path(namespace, name)
-        remaps, parameters = self.command_line_names(arguments, namespace, path)
-        own_remaps, own_parameters = self.node_contents(entity, scope, namespace, path)
+        line_remaps, line_parameters = self.command_line_names(arguments, namespace, path)
+        child_remaps, child_parameters = self.node_contents(entity, scope, namespace, path)
+        own_remaps = child_remaps + line_remaps
         self.nodes.append(
             LaunchNode(
                 package=self.static(entity, "pkg", scope),
@@ -307,10 +334,62 @@ class LaunchWalker(ABC):
                 name=name,
                 namespace="" if namespace is None else namespace,
                 span=entity.span() if name_attribute is None else name_attribute.span,
-                remaps=tuple(scope.remaps + own_remaps + remaps),
-                parameters=tuple(own_parameters + parameters),
+                remaps=tuple(scope.remaps + own_remaps),
+                parameters=tuple(child_parameters + line_parameters),
+                own_remaps=len(own_remaps),
+                anchored=inner.anchored,
             )
         )
+
+    # -- includes -----------------------------------------------------------------------
+
+    @abstractmethod
+    def include_arguments(self, entity: Entity, scope: Scope) -> tuple[tuple[str, str], ...]:
+        """The statically known values the include hands over (per generation)."""
+
+    def include(self, entity: Entity, scope: Scope, namespace_attribute: str | None) -> None:
+        """An include: where the file is, the namespace and remaps it gets, its arguments.
+
+        Emitted even when the file is not statically known: its namespace and arguments
+        still tell the workspace model something, and a later resolver may know more.
+        """
+        inner = Scope(scope.namespace, anchored=scope.anchored)
+        if namespace_attribute is not None:
+            value = self.attribute(entity, namespace_attribute, scope, NAMESPACE, inner.namespace)
+            if value is not None:
+                inner.enter(value)
+        located = entity.get("file")
+        target = UNKNOWN
+        if located is not None and not located.opaque:  # opaque: unexpanded entities
+            target = locate(located.text, self.dialect, scope.lookup)
+        self.includes.append(
+            LaunchInclude(
+                package=target.package,
+                path=target.path,
+                namespace="" if inner.namespace is None else inner.namespace,
+                span=entity.span() if located is None else located.span,
+                arguments=self.include_arguments(entity, scope),
+                remaps=tuple(scope.remaps),
+                anchored=inner.anchored,
+            )
+        )
+
+    def explicit_arguments(
+        self, entity: Entity, scope: Scope, attributes: Sequence[str]
+    ) -> dict[str, str | None]:
+        """An include's ``<arg name value>`` children: name to static value (None: unknown).
+
+        ``attributes`` are where the value may be, first found wins.
+        """
+        found: dict[str, str | None] = {}
+        for child in entity.nested("arg"):
+            name = child.get("name")
+            given = next((v for v in map(child.get, attributes) if v is not None), None)
+            if name is None or given is None or self.skipped(child, scope):
+                continue
+            value = self.value(given, scope)
+            found[name.text] = None if value.dynamic else value.text
+        return found
 
     def command_line_names(
         self, arguments: Sequence[CommandLineName], namespace: str | None, path: str | None
@@ -385,14 +464,21 @@ _ROS1_IGNORED = frozenset({"arg", "machine", "env", "master"})
 
 
 class Ros1Launch(LaunchWalker):
-    """roslaunch's tags: node, test, group ns, remap, param, rosparam, include, arg."""
+    """roslaunch's tags: node, test, group ns, remap, param, rosparam, include, arg.
+
+    ``arguments`` are the values an including file passes: they take the place of the
+    defaults of the arguments this file declares (``_declare_arguments``).
+    """
 
     dialect = Dialect.ROS1
 
-    def __init__(self, root: Entity) -> None:
+    def __init__(self, root: Entity, arguments: Sequence[tuple[str, str]] = ()) -> None:
         super().__init__()
         self.bindings = Bindings(Dialect.ROS1)
-        _declare_arguments(root.children(), self.bindings, ())
+        self.declared: dict[str, None] = {}  # the file's argument names, in order
+        _declare_arguments(
+            root.children(), _Declaring(self.bindings, dict(arguments), self.declared), ()
+        )
 
     def run(self, root: Entity) -> None:
         self.walk(root.children(), Scope("/", global_lookup=self.bindings.lookup))
@@ -415,7 +501,7 @@ class Ros1Launch(LaunchWalker):
             elif kind == "rosparam":
                 self.rosparam(entity, scope, scope.namespace)
             elif kind == "include":
-                self.attribute(entity, "ns", scope, NAMESPACE, scope.namespace)
+                self.include(entity, scope, "ns")
             elif kind not in _ROS1_IGNORED:
                 self.walk(entity.children(), scope)
 
@@ -423,8 +509,22 @@ class Ros1Launch(LaunchWalker):
         inner = scope.copy()
         value = self.attribute(entity, "ns", scope, NAMESPACE, scope.namespace)
         if value is not None:
-            inner.namespace = join_namespace(scope.namespace, value)
+            inner.enter(value)
         self.walk(entity.children(), inner)
+
+    def include_arguments(self, entity: Entity, scope: Scope) -> tuple[tuple[str, str], ...]:
+        """``<arg>`` children (roslaunch passes a ``default`` there too) and, with
+        ``pass_all_args``, every argument of this file; the children win."""
+        explicit = self.explicit_arguments(entity, scope, ("value", "default"))
+        pass_all = entity.get("pass_all_args")
+        if pass_all is None or truth(self.value(pass_all, scope)) is not True:
+            return handed_over({}, explicit)
+        inherited = {name: self._static_argument(name) for name in self.declared}
+        return handed_over(inherited, explicit)
+
+    def _static_argument(self, name: str) -> str | None:
+        value = self.bindings.lookup(ARG, name)
+        return None if value is None or value.dynamic else value.text
 
     def param(self, entity: Entity, scope: Scope, namespace: str | None) -> str | None:
         """``<param name value>``: the name, and the value when the name is frame-like."""
@@ -469,8 +569,17 @@ class Ros1Launch(LaunchWalker):
         return remaps, parameters
 
 
+@dataclass(frozen=True)
+class _Declaring:
+    """Where ``_declare_arguments`` puts what it finds, and the values passed in."""
+
+    bindings: Bindings
+    passed: dict[str, str]  # from the including file: they replace defaults
+    declared: dict[str, None]  # every declared name, in order (for pass_all_args)
+
+
 def _declare_arguments(
-    entities: Sequence[Entity], bindings: Bindings, conditions: tuple[Condition, ...]
+    entities: Sequence[Entity], into: _Declaring, conditions: tuple[Condition, ...]
 ) -> None:
     """Collect every ``<arg>`` of the file with the conditions guarding it.
 
@@ -487,13 +596,28 @@ def _declare_arguments(
             )
             guarded = (*conditions, condition)
         if entity.kind == "arg":
-            name = entity.get("name")
-            given = entity.get("value") or entity.get("default")
-            if name is not None:
-                raw = None if given is None else given.text
-                bindings.declare(ARG, name.text, Declaration(raw, guarded))
+            _declare_argument(entity, into, guarded)
         elif entity.kind not in ("include", "node", "test"):
-            _declare_arguments(entity.children(), bindings, guarded)
+            _declare_arguments(entity.children(), into, guarded)
+
+
+def _declare_argument(entity: Entity, into: _Declaring, guarded: tuple[Condition, ...]) -> None:
+    """``<arg name value>`` is fixed; a passed value replaces ``default`` (or its absence).
+
+    roslaunch refuses to override a ``value``; the linter keeps the file's own value.
+    """
+    name = entity.get("name")
+    if name is None:
+        return
+    fixed, default = entity.get("value"), entity.get("default")
+    if fixed is not None:
+        raw: str | None = fixed.text
+    elif name.text in into.passed:
+        raw = into.passed[name.text]
+    else:
+        raw = None if default is None else default.text
+    into.bindings.declare(ARG, name.text, Declaration(raw, guarded))
+    into.declared[name.text] = None
 
 
 # ---------------------------------------------------------------------------------------
@@ -504,18 +628,24 @@ _ROS2_NODE = NodeSpec(namespace_attribute="namespace", executable_attribute="exe
 _ROS2_COMPOSABLE = NodeSpec(namespace_attribute="namespace", executable_attribute="plugin")
 _ROS2_NODES = frozenset({"node", "node_container", "lifecycle_node"})
 _ROS2_PUSH = frozenset({"push-ros-namespace", "push_ros_namespace"})
-_ROS2_LEAVES = frozenset(
-    {"include", "executable", "set_env", "unset_env", "append_env", "log", "shutdown"}
-)
+_ROS2_LEAVES = frozenset({"executable", "set_env", "unset_env", "append_env", "log", "shutdown"})
 
 
 class Ros2Launch(LaunchWalker):
-    """launch/launch_ros frontend actions, from XML or YAML entities."""
+    """launch/launch_ros frontend actions, from XML or YAML entities.
+
+    ``arguments`` are the launch configurations an including file set before this one
+    runs: an ``<arg default>`` does not override them, a ``<let>`` does.
+    """
 
     dialect = Dialect.ROS2
 
+    def __init__(self, arguments: Sequence[tuple[str, str]] = ()) -> None:
+        super().__init__()
+        self.arguments = {name: Value(value) for name, value in arguments}
+
     def run(self, root: Entity) -> None:
-        self.walk(root.children(), Scope("/"))
+        self.walk(root.children(), Scope("/", variables=dict(self.arguments)))
 
     def walk(self, entities: Sequence[Entity], scope: Scope) -> None:
         for entity in entities:
@@ -538,7 +668,9 @@ class Ros2Launch(LaunchWalker):
                 self.composable_nodes(entity, scope)
             elif kind == "load_composable_node":
                 self.composable_nodes(entity, scope)
-            elif kind not in _ROS2_LEAVES:  # <include> args go to another file
+            elif kind == "include":
+                self.include(entity, scope, None)  # its <arg>s go to another file
+            elif kind not in _ROS2_LEAVES:
                 self.walk(entity.children(), scope)
 
     def variable(self, entity: Entity, scope: Scope) -> None:
@@ -562,7 +694,15 @@ class Ros2Launch(LaunchWalker):
     def push_namespace(self, entity: Entity, scope: Scope) -> None:
         value = self.attribute(entity, "namespace", scope, NAMESPACE, scope.namespace)
         if value is not None:
-            scope.namespace = join_namespace(scope.namespace, value)
+            scope.enter(value)
+
+    def include_arguments(self, entity: Entity, scope: Scope) -> tuple[tuple[str, str], ...]:
+        """``<arg name value>`` children over every configuration in scope: an included
+        file sees the configurations of the context that includes it."""
+        inherited = {
+            name: None if value.dynamic else value.text for name, value in scope.variables.items()
+        }
+        return handed_over(inherited, self.explicit_arguments(entity, scope, ("value",)))
 
     def composable_nodes(self, entity: Entity, scope: Scope) -> None:
         """Composable nodes get the pushed namespace, not their container's."""
@@ -635,6 +775,7 @@ def facts_from(
         generation=generation,
         names=tuple(sorted(walker.names, key=lambda use: (use.span.line, use.span.column))),
         launch_nodes=tuple(walker.nodes),
+        includes=tuple(walker.includes),
     )
 
 
@@ -649,8 +790,15 @@ def extract(
     data: bytes,
     package_generation: Generation | None,
     fallback_generation: Generation,
+    *,
+    arguments: tuple[tuple[str, str], ...] = (),
 ) -> FileFacts:
-    """Names, namespaces and launch nodes of a ROS 1 or ROS 2 launch XML file."""
+    """Names, namespaces, launch nodes and includes of a ROS 1 or ROS 2 launch XML file.
+
+    ``arguments`` are the values an including file hands over (``LaunchInclude``): the
+    workspace model extracts an included file once per distinct set to get its nodes as
+    that includer starts them.
+    """
     default = evidence.extension_generation(path)
     document = xmlsafe.parse(data)
     if isinstance(document, ParseError):
@@ -665,7 +813,10 @@ def extract(
     flavour = evidence.decide(found, package_generation, default, fallback_generation)
     walker: Ros1Launch | Ros2Launch
     try:
-        walker = Ros1Launch(root) if flavour is Generation.ROS1 else Ros2Launch()
+        if flavour is Generation.ROS1:
+            walker = Ros1Launch(root, arguments)
+        else:
+            walker = Ros2Launch(arguments)
         walker.run(root)
     except RecursionError:
         return too_deep(path, Language.LAUNCH_XML, generation)

@@ -184,11 +184,14 @@ def extract(
     data: bytes,
     package_generation: Generation | None,
     fallback_generation: Generation,
+    *,
+    arguments: tuple[tuple[str, str], ...] = (),
 ) -> FileFacts:
-    """Names, namespaces and launch nodes of a ROS 2 launch YAML file.
+    """Names, namespaces, launch nodes and includes of a ROS 2 launch YAML file.
 
     A file that is valid YAML but no launch file (empty, or without ``launch:``) yields
     nothing: it is not a parse error, and rules have nothing to check in it.
+    ``arguments`` are launch configurations set by an including file, as for launch XML.
     """
     default = evidence.extension_generation(path) or Generation.ROS2
     generation = evidence.decide(package_generation, None, default, fallback_generation)
@@ -199,7 +202,7 @@ def extract(
     if isinstance(composed, ParseError):
         return FileFacts(path, Language.LAUNCH_YAML, generation, parse_errors=(composed,))
     root = _launch_root(_Document(Source(text)), composed)
-    walker = Ros2Launch()
+    walker = Ros2Launch(arguments)
     if root is not None:
         try:
             walker.run(root)
