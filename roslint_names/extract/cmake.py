@@ -1,0 +1,222 @@
+"""CMakeLists.txt: the programs and component plugins a package builds, and their sources.
+
+Build files are context for the workspace model, not linted: a file that stops lexing
+yields what was found before the error, and no parse error.
+
+Programs come from ``add_executable`` (and ``cuda_add_executable``,
+``ament_auto_add_executable``, ``rosbuild_add_executable``, and the test executables a
+rostest file starts by name), with the sources ``target_sources`` adds and those of the
+library targets of this file they link (``cmake_targets``). An ``ament_auto`` target
+links every ``ament_auto`` library added before it, as ament_cmake_auto does.
+``rclcpp_components_register_node`` makes a program named by ``EXECUTABLE`` and a plugin
+named by ``PLUGIN``, ``rclcpp_components_register_nodes`` plugins only. Scripts installed
+with ``catkin_install_python(PROGRAMS)``/``install(PROGRAMS)`` are programs named by
+their file name (or ``RENAME``). ``set_target_properties(... OUTPUT_NAME x)`` renames a
+program: launch files name the file, not the target.
+
+A target whose name this file does not determine is skipped, and unknown sources are
+dropped; ``cmake_eval`` says how far variables are followed.
+"""
+
+from __future__ import annotations
+
+import codecs
+import itertools
+import posixpath
+
+from roslint_names.extract.cmake_eval import DYNAMIC, FOLLOWED, SOURCE_DIR, Value, Variables, clean
+from roslint_names.extract.cmake_lexer import Command, lex
+from roslint_names.extract.cmake_sources import code_paths, normalise
+from roslint_names.extract.cmake_targets import Named, Registration, Targets
+from roslint_names.extract.substitution import Source
+from roslint_names.model import FileFacts, Generation, Language
+
+_PROGRAM_COMMANDS = frozenset(
+    {
+        "add_executable",
+        "cuda_add_executable",
+        "ament_auto_add_executable",
+        "rosbuild_add_executable",
+        "add_rostest_gtest",  # (name test_file sources...): the .test file starts it by name
+        "catkin_add_executable_with_gtest",  # built for a rostest file to start
+    }
+)
+_LIBRARY_COMMANDS = frozenset(
+    {"add_library", "cuda_add_library", "ament_auto_add_library", "rosbuild_add_library"}
+)
+_INSTALLERS = frozenset({"catkin_install_python", "install"})
+_INSTALL_KEYWORDS = frozenset(
+    {
+        "DESTINATION",
+        "TYPE",
+        "PERMISSIONS",
+        "CONFIGURATIONS",
+        "COMPONENT",
+        "RENAME",
+        "OPTIONAL",
+        "EXCLUDE_FROM_ALL",
+    }
+)
+_REGISTER_KEYWORDS = frozenset({"PLUGIN", "EXECUTABLE", "EXECUTOR", "RESOURCE_INDEX"})
+_OUTPUT_NAMES = frozenset({"OUTPUT_NAME", "RUNTIME_OUTPUT_NAME"})
+
+
+def _known(text: str) -> bool:
+    """The file determines this name: no unknown part, no directory, no generator."""
+    return DYNAMIC not in text and SOURCE_DIR not in text and "$<" not in text
+
+
+class _Build:
+    """Follows one file's commands in order, into a ``Targets`` table."""
+
+    def __init__(self, source: Source) -> None:
+        self.source = source
+        self.variables = Variables()
+        self.targets = Targets()
+        self.auto_libraries: list[str] = []  # what ament_auto links its next targets to
+        self._handlers = {
+            "target_sources": self._target_sources,
+            "target_link_libraries": self._link,
+            "set_target_properties": self._properties,
+            "rclcpp_components_register_node": self._register_node,
+            "rclcpp_components_register_nodes": self._register_nodes,
+        }
+
+    def named(self, value: Value) -> Named:
+        span = self.source.span(value.start, value.end)
+        return Named(value.text, span, _known(value.text))
+
+    def run(self, command: Command) -> None:
+        name = command.name
+        handler = self._handlers.get(name)
+        targets = name in _PROGRAM_COMMANDS or name in _LIBRARY_COMMANDS
+        if name not in FOLLOWED and handler is None and not targets and name not in _INSTALLERS:
+            return  # its arguments need no evaluation
+        values = self.variables.values(command.arguments)
+        self.variables.apply(name, values)
+        if handler is not None:
+            handler(values)
+        elif targets and values:
+            self._add_target(name, values[0], values[1:])
+        elif name in _INSTALLERS and values[:1] and values[0].text == "PROGRAMS":
+            self._install_programs(values[1:])
+
+    # -----------------------------------------------------------------------------------
+    # Targets
+
+    def _add_target(self, command: str, name: Value, rest: list[Value]) -> None:
+        kinds = [value.text for value in rest[:2]]  # add_library(name SHARED IMPORTED)
+        if "ALIAS" in kinds:
+            aliased = rest[kinds.index("ALIAS") + 1 : kinds.index("ALIAS") + 2]
+            for aliased_target in aliased:
+                self.targets.alias(name.text, aliased_target.text)
+            return
+        named = self.named(name)
+        if "IMPORTED" in kinds or not named.known:
+            return  # an imported target is built elsewhere
+        target = self.targets.add(named, library=command in _LIBRARY_COMMANDS)
+        target.sources.extend(code_paths(value.text for value in rest))
+        if command.startswith("ament_auto_"):
+            if all(value.text != "NO_TARGET_LINK_LIBRARIES" for value in rest):
+                target.links.extend(self.auto_libraries)
+            if target.library:
+                self.auto_libraries.append(name.text)
+
+    def _target_sources(self, values: list[Value]) -> None:
+        target = self.targets.find(values[0].text) if values else None
+        if target is not None:
+            target.sources.extend(code_paths(value.text for value in values[1:]))
+
+    def _link(self, values: list[Value]) -> None:
+        target = self.targets.find(values[0].text) if values else None
+        if target is not None:
+            target.links.extend(value.text for value in values[1:] if not value.dynamic)
+
+    def _properties(self, values: list[Value]) -> None:
+        texts = [value.text for value in values]
+        if "PROPERTIES" not in texts:
+            return
+        split = texts.index("PROPERTIES")
+        pairs = values[split + 1 :]
+        for key, value in zip(pairs[::2], pairs[1::2], strict=False):
+            if key.text in _OUTPUT_NAMES:
+                for named in values[:split]:
+                    target = self.targets.find(named.text)
+                    if target is not None and not target.library:
+                        target.output = self.named(value)
+
+    # -----------------------------------------------------------------------------------
+    # Components and installed scripts
+
+    def _register_node(self, values: list[Value]) -> None:
+        if not values:
+            return
+        options: dict[str, Named] = {}
+        for keyword, value in itertools.pairwise(values[1:]):
+            if keyword.text in _REGISTER_KEYWORDS and keyword.text not in options:
+                options[keyword.text] = self.named(value)
+        plugin, program = options.get("PLUGIN"), options.get("EXECUTABLE")
+        self.targets.register(
+            Registration(
+                values[0].text if _known(values[0].text) else None,
+                plugin if plugin is not None and plugin.known else None,
+                program if program is not None and program.known else None,
+            )
+        )
+
+    def _register_nodes(self, values: list[Value]) -> None:
+        library = values[0].text if values and _known(values[0].text) else None
+        skip = False
+        for value in values[1:]:
+            if skip or value.text == "RESOURCE_INDEX":
+                skip = not skip  # the keyword, then its value
+                continue
+            named = self.named(value)
+            if named.known:
+                self.targets.register(Registration(library, named, None))
+
+    def _install_programs(self, values: list[Value]) -> None:
+        texts = [value.text for value in values]
+        end = next((i for i, text in enumerate(texts) if text in _INSTALL_KEYWORDS), len(texts))
+        rename = None
+        if "RENAME" in texts[end:] and texts.index("RENAME", end) + 1 < len(values):
+            rename = self.named(values[texts.index("RENAME", end) + 1])
+        for file in values[:end]:
+            self._script(file, rename if end == 1 else None)  # RENAME takes one file only
+
+    def _script(self, file: Value, rename: Named | None) -> None:
+        if "$<" in file.text:
+            return
+        if rename is None:
+            # The installed name is the file's: known even when its directory is not.
+            named = self.named(file)
+            basename = posixpath.basename(file.text.rstrip("/"))
+            rename = Named(basename, named.span, bool(basename) and _known(basename))
+        if rename.known:
+            self.targets.script(rename, normalise(file.text))
+
+
+def _decode(data: bytes) -> str:
+    """CMake reads its files as UTF-8; a BOM is not part of the first line."""
+    if data.startswith(codecs.BOM_UTF8):
+        data = data[len(codecs.BOM_UTF8) :]
+    return clean(data.decode("utf-8", errors="replace"))
+
+
+def extract(
+    path: str,
+    data: bytes,
+    package_generation: Generation | None,
+    fallback_generation: Generation,
+) -> FileFacts:
+    """The programs and component plugins ``path`` builds or installs."""
+    text = _decode(data)
+    build = _Build(Source(text))
+    for command in lex(text).commands:  # a lexing error only ends the list
+        build.run(command)
+    return FileFacts(
+        path,
+        Language.CMAKE,
+        package_generation or fallback_generation,
+        executables=build.targets.executables(),
+    )
