@@ -49,12 +49,21 @@ def extract(
     data: bytes,
     package_generation: Generation | None,
     fallback_generation: Generation,
+    *,
+    arguments: tuple[tuple[str, str], ...] = (),
 ) -> FileFacts:
-    """Names, events and launch nodes of a Python file; never raises on any bytes."""
+    """Names, events, launch nodes and includes of a Python file; never raises on any bytes.
+
+    ``arguments`` are launch configurations set before a launch file's description runs:
+    what an including file hands over, winning over ``DeclareLaunchArgument`` defaults.
+    Code that is not a launch file has no use for them.
+    """
     launch_path = is_launch_path(path)
     if not may_hold_names(data):
         language = Language.LAUNCH_PYTHON if launch_path else Language.PYTHON
         return FileFacts(path, language, package_generation or fallback_generation)
     from roslint_names.extract.python_extract import extract_parsed
 
-    return extract_parsed(path, data, package_generation, fallback_generation, launch_path)
+    return extract_parsed(
+        path, data, package_generation, fallback_generation, launch_path, arguments=arguments
+    )

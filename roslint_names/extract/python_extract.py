@@ -40,6 +40,8 @@ def extract_parsed(
     package_generation: Generation | None,
     fallback_generation: Generation,
     launch_path: bool,
+    *,
+    arguments: tuple[tuple[str, str], ...] = (),
 ) -> FileFacts:
     default_language = Language.LAUNCH_PYTHON if launch_path else Language.PYTHON
     text = decode(data)
@@ -62,7 +64,8 @@ def extract_parsed(
     locator = Locator(module, text)
     code = CodeExtractor(walk, locator, generation)
     code.run()
-    launch = LaunchExtractor(walk, locator)
+    file_name = path.replace("\\", "/").rpartition("/")[2]
+    launch = LaunchExtractor(walk, locator, file_name, arguments)
     launch.run()
     defines_root = any(function.name.value in _ROOTS for function in walk.functions)
     launch_module = launch.found_actions and not (walk.packages & _NODE_PACKAGES)
@@ -77,4 +80,5 @@ def extract_parsed(
         names=tuple(names),
         launch_nodes=tuple(launch.nodes),
         events=tuple(code.events),
+        includes=tuple(launch.includes),
     )

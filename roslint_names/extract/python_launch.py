@@ -9,6 +9,9 @@ relative namespace is prefixed with the pushed one; composable nodes get the pus
 namespace, not their container's; a statically false ``IfCondition`` skips its action.
 Namespaces on the facts follow ``launch_xml``: a node's ``namespace=`` carries the
 enclosing namespace, its name and remaps the node's, its parameters the node's full name.
+``IncludeLaunchDescription`` gives a ``LaunchInclude``: the file (``python_launch_paths``),
+the namespace, remaps and launch configurations in force, so that the workspace model can
+extract the included file again with those arguments (``arguments=``).
 
 Actions no walk reaches (built in a loop, a comprehension, or a helper this file does not
 call) still get their names checked, in an unknown namespace.
@@ -32,6 +35,7 @@ from roslint_names.extract.launch_common import (
     join_namespace,
     node_path,
 )
+from roslint_names.extract.python_launch_paths import IncludePaths
 from roslint_names.extract.python_launch_values import (
     Action,
     ActionCall,
@@ -41,12 +45,13 @@ from roslint_names.extract.python_launch_values import (
     call_argument,
     class_key,
     defined_function,
+    frames_key,
 )
 from roslint_names.extract.python_scope import Scope, argument_context
 from roslint_names.extract.python_spans import Locator, Where
 from roslint_names.extract.python_walk import Walk
 from roslint_names.extract.substitution import Value, skipped
-from roslint_names.model import LaunchNode, NameUse, Remap
+from roslint_names.model import LaunchInclude, LaunchNode, NameUse, Remap, Span
 
 _IF = ("launch", "IfCondition")
 _UNLESS = ("launch", "UnlessCondition")
@@ -59,24 +64,37 @@ _NAMESPACE = ":namespace|node_namespace"
 class LaunchExtractor(LaunchValues):
     """Walks a module's launch actions like ``launch_xml.Ros2Launch``, emitting facts."""
 
-    def __init__(self, walk: Walk, locator: Locator) -> None:
+    def __init__(
+        self,
+        walk: Walk,
+        locator: Locator,
+        file_name: str = "",
+        arguments: tuple[tuple[str, str], ...] = (),
+    ) -> None:
+        """``arguments``: launch configurations set before the description runs (what an
+        including file hands over); ``file_name`` is what ``__file__`` ends with."""
         super().__init__(walk, locator)
+        self.paths = IncludePaths(self, file_name)
+        self.arguments = {name: Value(value) for name, value in arguments}
         self.names: list[NameUse] = []
         self.nodes: list[LaunchNode] = []
+        self.includes: list[LaunchInclude] = []
         self.found_actions = False
-        self._visited: set[int] = set()
+        self._visited: set[tuple[int, tuple[int, ...]]] = set()  # (call, frames)
+        self._reached: set[int] = set()  # calls visited in any frames
         self._emitted: set[tuple[int, Fact]] = set()
 
     # -- entry --------------------------------------------------------------------------
 
     def run(self) -> None:
         for root in self.roots():
-            self.visit_all(root, LaunchScope("/"))
+            self.visit_all(root, LaunchScope("/", variables=dict(self.arguments)))
         for site in self.walk.calls:  # what no description reaches: unknown namespace
             kind = self.action_kind(site.call, site.context.scope)
-            if kind is not None:
+            if kind is not None and id(site.call) not in self._reached:
                 self.found_actions = True
-                self.visit(ActionCall(kind, site.call, site.context), LaunchScope(None))
+                unknown = LaunchScope(None, variables=dict(self.arguments))
+                self.visit(ActionCall(kind, site.call, site.context), unknown)
 
     def roots(self) -> Iterator[list[ActionCall]]:
         for function in self.walk.functions:
@@ -91,12 +109,22 @@ class LaunchExtractor(LaunchValues):
             self.visit(action, scope)
 
     def visit(self, action: ActionCall, scope: LaunchScope) -> None:
-        if id(action.call) in self._visited:
+        """Once per call and helper frames: ``robot('a'), robot('b')`` visit the helper's
+        actions twice, with its parameters bound to each call's arguments."""
+        key = (id(action.call), frames_key(action.frames))
+        if key in self._visited or (not action.frames and id(action.call) in self._reached):
             return
-        self._visited.add(id(action.call))
+        self._visited.add(key)
+        self._reached.add(id(action.call))
         self.found_actions = True
-        if self.excluded(action, scope):
-            return
+        saved, self.frames = self.frames, action.frames
+        try:
+            if not self.excluded(action, scope):
+                self.visit_kind(action, scope)
+        finally:
+            self.frames = saved
+
+    def visit_kind(self, action: ActionCall, scope: LaunchScope) -> None:
         kind = action.kind
         if kind is Action.DESCRIPTION:
             self.visit_all(self.children(action, "0:initial_entities"), scope)
@@ -199,6 +227,7 @@ class LaunchExtractor(LaunchValues):
                 NAMESPACE, "PushRosNamespace(namespace=)", located, scope, scope.namespace
             )
             scope.namespace = join_namespace(scope.namespace, value)
+            scope.anchored = scope.anchored or _is_absolute(value)
 
     def let(self, action: ActionCall, scope: LaunchScope) -> None:
         """``SetLaunchConfiguration``, launch XML's ``<let>``."""
@@ -218,31 +247,74 @@ class LaunchExtractor(LaunchValues):
         if frame is not None and not value.dynamic and is_frame_parameter(value.text):
             self.frame(frame, scope, scope.namespace, "SetParameter(value=)")
 
+    # -- includes -----------------------------------------------------------------------
+
     def include(self, action: ActionCall, scope: LaunchScope) -> None:
-        """``launch_arguments``: a namespace or a frame handed to the included file."""
-        arguments = action.get(":launch_arguments")
-        if arguments is None:
+        """One ``LaunchInclude``, or the actions of an inline description walked here.
+
+        launch runs an include as ``SetLaunchConfiguration`` of each argument followed by
+        the included description, unscoped: the arguments stay set in the including scope
+        (a group around the include is what keeps them in).
+        """
+        explicit = self.launch_arguments(action, scope)
+        located = action.get("0:launch_description_source")
+        source = None if located is None else self.paths.source(located)
+        if source is not None and source.inline is not None:
+            scope.variables.update(explicit)
+            self.visit_all(self.actions(source.inline), scope)
             return
-        for key, value in self.pairs(arguments):
+        span = self.locator.span(located.where() if located else _callee(action))
+        self.add_include(None if source is None else source.path, span, scope, explicit)
+        scope.variables.update(explicit)
+
+    def add_include(
+        self, path: Written | None, span: Span, scope: LaunchScope, explicit: dict[str, Value]
+    ) -> None:
+        """The included file sees every configuration of the including scope (ROS 2
+        configurations are not per file), then the explicit arguments over them."""
+        package, where = (None, None) if path is None else self.paths.locate(path, scope)
+        handed = self.configurations(scope) | explicit
+        self.includes.append(
+            LaunchInclude(
+                package=package,
+                path=where,
+                namespace="" if scope.namespace is None else scope.namespace,
+                span=span,
+                arguments=tuple(sorted((k, v.text) for k, v in handed.items() if not v.dynamic)),
+                remaps=tuple(scope.remaps),
+                anchored=scope.anchored,
+            )
+        )
+
+    def launch_arguments(self, action: ActionCall, scope: LaunchScope) -> dict[str, Value]:
+        """``launch_arguments`` by name (dynamic values kept: they hide what the scope
+        knows); a namespace or a frame handed over is a name of this file."""
+        arguments = action.get("1:launch_arguments")
+        found: dict[str, Value] = {}
+        for key, value in [] if arguments is None else self.pairs(arguments):
             name = self.value(key, scope)
             if name.dynamic:
                 continue
             api = f"IncludeLaunchDescription(launch_arguments={name.text!r})"
             if _is_namespace_argument(name.text):
-                self.emit(NAMESPACE, api, value, scope, scope.namespace)
-            elif is_frame_parameter(name.text):
+                found[name.text] = self.emit(NAMESPACE, api, value, scope, scope.namespace)
+                continue
+            found[name.text] = self.value(value, scope)
+            if is_frame_parameter(name.text):
                 self.frame(value, scope, scope.namespace, api)
+        return found
 
     # -- nodes --------------------------------------------------------------------------
 
     def node(self, action: ActionCall, scope: LaunchScope) -> None:
         """A node or composable node: its names, then one ``LaunchNode``."""
         label = action.kind.value
-        namespace = scope.namespace
+        namespace, anchored = scope.namespace, scope.anchored
         located = action.get(_NAMESPACE)
         if located is not None:
             value = self.emit(NAMESPACE, f"{label}(namespace=)", located, scope, namespace)
             namespace = join_namespace(namespace, value)
+            anchored = anchored or _is_absolute(value)
         name_at = action.get(_NAME)
         name = None
         if name_at is not None:
@@ -261,6 +333,8 @@ class LaunchExtractor(LaunchValues):
                 span=self.locator.span(name_at.where() if name_at else _callee(action)),
                 remaps=tuple(scope.remaps + remaps),
                 parameters=tuple(parameters),
+                own_remaps=len(remaps),
+                anchored=anchored,
             )
         )
 
@@ -382,6 +456,10 @@ def _callee(action: ActionCall) -> Where:
 
 def _is_false(expr: cst.BaseExpression) -> bool:
     return isinstance(expr, cst.Name) and expr.value == "False"
+
+
+def _is_absolute(value: Value) -> bool:
+    return not value.dynamic and value.text.startswith("/")
 
 
 def _is_namespace_argument(name: str) -> bool:

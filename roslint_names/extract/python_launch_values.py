@@ -3,7 +3,8 @@
 Action constructors are recognised through the imports (``launch_ros.actions.Node``,
 ``launch.actions.GroupAction``...). Lists of actions are followed through literals, ``+``,
 ``*starred`` elements, variables assigned once, ``ld.add_action(x)`` /
-``actions.append(x)`` in statement order, and calls of the file's own functions. Values
+``actions.append(x)`` in statement order, and calls of the file's own functions (whose
+parameters are bound to each call's arguments, see ``CallFrame``). Values
 are what launch's ``perform_substitutions`` would give without running anything: a
 string, a constant, a list of parts (concatenated), a ``TextSubstitution``, or a
 ``LaunchConfiguration`` known from a ``DeclareLaunchArgument`` default of the file (all
@@ -88,10 +89,31 @@ class Written:
 
 
 @dataclass(frozen=True)
+class CallFrame:
+    """A call of one of the file's own functions: what its parameters are bound to.
+
+    ``robot('robot1')`` and ``robot('robot2')`` build the same ``GroupAction`` call twice,
+    once per frame: an action carries the frames it was built in.
+    """
+
+    scope: Scope  # the called function's scope
+    call: cst.Call
+    parameters: dict[str, Written]
+
+
+Frames = tuple[CallFrame, ...]
+
+
+def frames_key(frames: Frames) -> tuple[int, ...]:
+    return tuple(id(frame.call) for frame in frames)
+
+
+@dataclass(frozen=True)
 class ActionCall:
     kind: Action
     call: cst.Call
     context: Context  # where the call is written
+    frames: Frames = ()  # the helper calls it was built in, outermost first
 
     def get(self, spec: str) -> Written | None:
         return call_argument(self.call, self.context, spec)
@@ -107,14 +129,19 @@ def call_argument(call: cst.Call, context: Context, spec: str) -> Written | None
 
 @dataclass
 class LaunchScope:
-    """What an action sees: pushed namespace, remaps, launch configurations set so far."""
+    """What an action sees: pushed namespace, remaps, launch configurations set so far.
+
+    ``anchored``: an absolute namespace was pushed in this file, so the namespace of a
+    file including this one does not prefix ``namespace`` (see ``LaunchNode.anchored``).
+    """
 
     namespace: str | None
     remaps: list[Remap] = field(default_factory=list)
     variables: dict[str, Value] = field(default_factory=dict)
+    anchored: bool = False
 
     def copy(self) -> LaunchScope:
-        return LaunchScope(self.namespace, list(self.remaps), dict(self.variables))
+        return LaunchScope(self.namespace, list(self.remaps), dict(self.variables), self.anchored)
 
 
 class LaunchValues:
@@ -127,6 +154,7 @@ class LaunchValues:
         self.adders = _adder_calls(walk)
         self._declarations = _declarations(walk)
         self._resolving: set[str] = set()
+        self.frames: Frames = ()  # of the action being evaluated
 
     # -- evaluating lists of actions ----------------------------------------------------
 
@@ -159,7 +187,8 @@ class LaunchValues:
         """A variable assigned once, then whatever ``.append``/``.add_action`` adds to it."""
         binding = context.scope.constant(expr.value)
         if binding is None or binding.value is None or binding.context is None:
-            return []
+            argument = self.parameter(Written(expr, context))  # def group(actions): ...
+            return [] if argument is None else self.actions(argument, depth + 1)
         found = self.actions(Written(binding.value, binding.context), depth + 1)
         only = found[0] if len(found) == 1 else None
         if only is not None and only.call is binding.value and only.kind is Action.DESCRIPTION:
@@ -171,14 +200,59 @@ class LaunchValues:
     def call_actions(self, call: cst.Call, context: Context, depth: int) -> list[ActionCall]:
         kind = self.action_kind(call, context.scope)
         if kind is not None:
-            return [ActionCall(kind, call, context)]
+            return [ActionCall(kind, call, context, self.frames)]
         function = defined_function(call.func, context.scope)
         if function is None:
             return []  # another module's helper: what it builds is walked as unreached
-        found: list[ActionCall] = []
-        for value, returned in self.walk.returns.get(function, []):
-            found += self.actions(Written(value, returned), depth + 1)
+        frame = self.call_frame(function, call, context)
+        saved = self.frames
+        self.frames = saved if frame is None else (*saved, frame)
+        try:
+            found: list[ActionCall] = []
+            for value, returned in self.walk.returns.get(function, []):
+                found += self.actions(Written(value, returned), depth + 1)
+        finally:
+            self.frames = saved
         return found
+
+    def call_frame(
+        self, function: cst.FunctionDef, call: cst.Call, context: Context
+    ) -> CallFrame | None:
+        """The arguments of a call of the file's function, by parameter; defaults for the
+        rest. None for a function without parameters: nothing differs between calls."""
+        scope = self.walk.function_scopes.get(function)
+        params = function.params
+        positional = [*params.posonly_params, *params.params]
+        if scope is None or not (positional or params.kwonly_params):
+            return None
+        found: dict[str, Written] = {}
+        index = 0
+        for item in call.args:
+            if item.star:
+                break  # positions after *args (and what **kwargs holds) are unknown
+            written = Written(item.value, argument_context(call, context, item.value))
+            if item.keyword is not None:
+                found[item.keyword.value] = written
+            elif index < len(positional):
+                found[positional[index].name.value] = written
+                index += 1
+        outside = Context(scope.parent or scope)  # defaults run where the def is
+        for param in (*positional, *params.kwonly_params):
+            if param.name.value not in found and param.default is not None:
+                found[param.name.value] = Written(param.default, outside)
+        return CallFrame(scope, call, found)
+
+    def parameter(self, located: Written) -> Written | None:
+        """What a parameter of a function being called is bound to, when it is one."""
+        if not isinstance(located.expr, cst.Name):
+            return None
+        bindings = located.scope.lookup(located.expr.value)
+        if len(bindings) != 1 or bindings[0].value is not None:
+            return None
+        for frame in reversed(self.frames):
+            if frame.scope is bindings[0].scope:
+                return frame.parameters.get(located.expr.value)
+        return None
 
     def children(self, action: ActionCall, where: str) -> list[ActionCall]:
         located = action.get(where)
@@ -247,12 +321,13 @@ class LaunchValues:
         return found
 
     def bound(self, located: Written) -> Written | None:
-        """What a variable assigned once holds, where it is written."""
+        """What a variable assigned once holds, where it is written; what a parameter of
+        a function being called is given."""
         if not isinstance(located.expr, cst.Name):
             return None
         binding = located.scope.constant(located.expr.value)
         if binding is None or binding.value is None or binding.context is None:
-            return None
+            return self.parameter(located)
         return Written(binding.value, binding.context)
 
     def is_text(self, located: Written) -> bool:
@@ -285,6 +360,10 @@ class LaunchValues:
             return None if any(part is None for part in parts) else "".join(p for p in parts if p)
         if isinstance(expr, cst.Call):
             return self.substitution(Written(expr, located.context), scope, depth)
+        pieces = string_parts(located)  # what the folder could not: a parameter inside
+        if pieces is not None:
+            texts = [p if isinstance(p, str) else self.text(p, scope, depth + 1) for p in pieces]
+            return None if any(text is None for text in texts) else "".join(map(str, texts))
         bound = self.bound(located)
         return None if bound is None else self.text(bound, scope, depth + 1)
 
@@ -311,6 +390,22 @@ class LaunchValues:
         default = call_argument(call, located.context, "1:default")
         return None if default is None else self.text(default, scope, depth + 1)
 
+    def declarations(self, name: str) -> list[Written | None]:
+        """The default of every ``DeclareLaunchArgument`` of ``name`` (None: no default)."""
+        return self._declarations.get(name, [])
+
+    def configurations(self, scope: LaunchScope) -> dict[str, Value]:
+        """Every launch configuration ``scope`` sees: declared defaults, then what the
+        scope set (a group's ``launch_configurations``, ``SetLaunchConfiguration``, an
+        include's arguments), which wins; dynamic values included, as they hide defaults."""
+        found: dict[str, Value] = {}
+        for name in self._declarations:
+            declared = self.declared(name, scope, 0)
+            if declared is not None:
+                found[name] = Value(declared)
+        found.update(scope.variables)
+        return found
+
     def declared(self, name: str, scope: LaunchScope, depth: int) -> str | None:
         """The default every ``DeclareLaunchArgument(name, default_value=...)`` agrees on."""
         declarations = self._declarations.get(name, [])
@@ -322,6 +417,29 @@ class LaunchValues:
         finally:
             self._resolving.discard(name)
         return values.pop() if len(values) == 1 else None
+
+
+def string_parts(located: Written) -> list[Written | str] | None:
+    """The parts of ``a + b`` or of an f-string, in order; None for anything else, or for
+    f-string formatting (a format spec, a conversion, escapes, braces) not reproduced."""
+    expr = located.expr
+    if isinstance(expr, cst.BinaryOperation) and isinstance(expr.operator, cst.Add):
+        return [Written(expr.left, located.context), Written(expr.right, located.context)]
+    if not isinstance(expr, cst.FormattedString):
+        return None
+    parts: list[Written | str] = []
+    for part in expr.parts:
+        if isinstance(part, cst.FormattedStringText):
+            if any(mark in part.value for mark in "\\{}"):
+                return None
+            parts.append(part.value)
+        elif not isinstance(part, cst.FormattedStringExpression) or (
+            part.format_spec or part.equal or part.conversion not in (None, "s")
+        ):
+            return None
+        else:
+            parts.append(Written(part.expression, located.context))
+    return parts
 
 
 def class_key(name: str) -> tuple[str, str]:
