@@ -88,7 +88,7 @@ class WorkspaceIndex:
     def sources_of(self, package: str | None, executable: str | None) -> tuple[str, ...]:
         """The code a launch ``<node pkg type|exec>`` or ``plugin`` runs, as far as the
         workspace holds it: the build files' targets, else (rosrun's rule) the package's
-        code files of that name, ``talker.py`` or ``talker`` for ``talker.py``."""
+        scripts of that name, else its one source file of that stem."""
         if executable is None:
             return ()
         if "::" in executable:
@@ -98,12 +98,23 @@ class WorkspaceIndex:
         built = self._programs.get((package, executable))
         if built:
             return tuple(built)
-        return tuple(
+        named = [
             path
             for path in self.files_of(package)
             if self.facts[path].language in CODE_LANGUAGES
             and posixpath.basename(path) in (executable, f"{executable}.py")
-        )
+        ]
+        if named:
+            return tuple(named)
+        # A target the build files hide (made by a macro or a loop, as roscpp_tutorials'
+        # `rostutorial(talker)`): the package's one code file named after it, if any.
+        stems = [
+            path
+            for path in self.files_of(package)
+            if self.facts[path].language in CODE_LANGUAGES
+            and posixpath.basename(path).rpartition(".")[0] == executable
+        ]
+        return tuple(stems) if len(stems) == 1 else ()
 
     def built_sources(self) -> dict[tuple[str, str], list[str]]:
         """(package, executable) -> sources, for grouping code no launch file starts."""
