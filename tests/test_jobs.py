@@ -69,7 +69,7 @@ def test_output_bytes_do_not_depend_on_jobs_or_cache(
 
 
 def test_few_files_start_no_worker(run_cli: Any, tmp_path: Path) -> None:
-    shutil.copytree(EXAMPLES, tmp_path / "ws")
+    shutil.copytree(EXAMPLES / "src" / "turtle_bringup", tmp_path / "ws")
     result = run_cli(["check", "--jobs", "2", "--verbose", "--no-cache", "."], tmp_path / "ws")
     assert " extracted by this process" in result.stderr
 

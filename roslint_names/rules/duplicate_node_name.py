@@ -32,25 +32,31 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
     for node in graph.nodes:
         if node.launched_at:
             started[(node.root, node.name)].append(node)
-    reported: set[Location] = set()
+    # One finding per launch site: a copied include duplicates every node it starts.
+    at: dict[Location, dict[str, list[Location]]] = defaultdict(dict)
+    roots: dict[Location, str] = {}
     for (root, name), nodes in sorted(started.items()):
-        if len(nodes) < 2:
-            continue
-        for node in nodes:
+        for node in nodes if len(nodes) > 1 else ():
             others = [other for other in nodes if other is not node]
             location = _blame(node, others[0])
-            if location in reported:
-                continue  # an included file's duplicate, seen from another root already
-            reported.add(location)
-            related = [
-                (_blame(other, node), f"node '{name}' also started here") for other in others
-            ]
-            times = "twice" if len(nodes) == 2 else f"{len(nodes)} times"
-            message = (
-                f"node '{name}' is started {times} when {root} is launched "
-                f"(also at {where(related[0][0])}); node names must be unique"
-            )
-            yield finding(location, message, related)
+            roots.setdefault(location, root)
+            at[location].setdefault(name, [_blame(other, node) for other in others])
+    for location, names in sorted(at.items()):
+        related = sorted({(o, "also started here") for others in names.values() for o in others})
+        listed = _listed(sorted(names))
+        verb = "is" if len(names) == 1 else "are"
+        message = (
+            f"{listed} {verb} started twice when {roots[location]} is launched "
+            f"(also at {where(related[0][0])}); node names must be unique"
+        )
+        yield finding(location, message, related)
+
+
+def _listed(names: list[str]) -> str:
+    quoted = [f"'{name}'" for name in names]
+    if len(quoted) == 1:
+        return f"node {quoted[0]}"
+    return f"nodes {', '.join(quoted[:-1])} and {quoted[-1]}"
 
 
 RULE = Rule(

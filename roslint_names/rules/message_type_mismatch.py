@@ -12,7 +12,7 @@ from __future__ import annotations
 from collections import defaultdict
 from collections.abc import Iterator
 
-from ..model import Kind, Severity
+from ..model import Generation, Kind, Severity
 from ..rule import Rule, RuleContext, WorkspaceFinding
 from ..workspace.graph import EdgeKind, Endpoint, Graph, Location
 from .graph_common import finding, where
@@ -43,12 +43,16 @@ _DONE = {
 
 def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFinding]:
     del context
-    by_resource: dict[tuple[Kind, str], list[Endpoint]] = defaultdict(list)
+    # ROS 1 and ROS 2 endpoints never meet (a bridge maps types itself): compare within one.
+    generations = {(node.root, node.name): node.generation for node in graph.nodes}
+    by_resource: dict[tuple[Kind, str, Generation], list[Endpoint]] = defaultdict(list)
     for endpoint in graph.endpoints:
+        generation = generations.get((endpoint.root, endpoint.node), Generation.ROS2)
         if endpoint.type_name:
-            by_resource[(endpoint.resource_kind, endpoint.resource)].append(endpoint)
-    reported: set[tuple[Location, str]] = set()
-    for (kind, resource), endpoints in sorted(by_resource.items()):
+            key = (endpoint.resource_kind, endpoint.resource, generation)
+            by_resource[key].append(endpoint)
+    reported: set[Location] = set()
+    for (kind, resource, _), endpoints in sorted(by_resource.items()):
         if not _mismatches(endpoints):
             continue
         for endpoint in sorted(endpoints, key=Endpoint.sort_key):
@@ -57,9 +61,10 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
                 {o for o in endpoints if o.type_name and not _compatible(o.type_name, mine)},
                 key=lambda o: (o.location, o.edge.value),
             )
-            if not conflicting or (endpoint.location, resource) in reported:
+            # One finding per place in the code, not one per namespace it is launched in.
+            if not conflicting or endpoint.location in reported:
                 continue
-            reported.add((endpoint.location, resource))
+            reported.add(endpoint.location)
             first = conflicting[0]
             more = f" and {len(conflicting) - 1} more" if len(conflicting) > 1 else ""
             message = (

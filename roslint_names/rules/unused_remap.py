@@ -6,7 +6,9 @@ the code later, or written relative when the code uses a private name. Only a no
 remaps are judged (a group's remap is meant for whichever of its nodes uses the name),
 only when the node's code is in the workspace and every name it uses is known statically.
 A remap of a name's parent or child counts as used: actions and image_transport derive
-sub-topics (``move_base/goal``, ``image/compressed``) from the name the code gives.
+sub-topics (``move_base/goal``, ``image/compressed``) from the name the code gives. So does
+a remap of a name the client library uses for the node (``/tf``, ``/tf_static``,
+``/clock``...): no code of the node spells it.
 """
 
 from __future__ import annotations
@@ -18,16 +20,27 @@ from ..model import Severity
 from ..rule import Rule, RuleContext, WorkspaceFinding
 from ..workspace.graph import Graph, Location, NodeInstance, NodeRemap
 from .graph_common import finding
+from .hard_coded_absolute_name import GLOBAL_BY_DESIGN
 
 _MAX_LISTED = 5
 
 
+# Names the client libraries use on the node's behalf (tf listeners, the clock, logging,
+# parameter events): remapping them is the classic multi-robot pattern, never unused.
+_LIBRARY_NAMES = frozenset(name.rpartition("/")[2] for name in GLOBAL_BY_DESIGN)
+
+
 def _used(remap: NodeRemap, node: NodeInstance) -> bool:
     source = remap.source.rstrip("/")
-    return any(
+    if source.rpartition("/")[2] in _LIBRARY_NAMES:
+        return True
+    if any(
         use == source or use.startswith(source + "/") or source.startswith(use + "/")
         for use in node.uses
-    )
+    ):
+        return True
+    # Through a handle whose namespace the code does not show, a name may sit anywhere.
+    return any(f"/{written.strip('/~')}/" in f"{source}/" for written in node.uses_relative)
 
 
 def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFinding]:

@@ -107,7 +107,9 @@ def _launched_instance(
         )
         for remap, path, own in launched.remaps
     ]
-    endpoints, uses, complete = _resolve_code(code, instance, remaps, launched.root, full_name)
+    endpoints, uses, relative, complete = _resolve_code(
+        code, instance, remaps, launched.root, full_name
+    )
     node = NodeInstance(
         name=full_name,
         generation=generation,
@@ -120,6 +122,7 @@ def _launched_instance(
         launch_namespaces=launched.site_namespaces,
         uses=uses,
         uses_complete=complete and bool(sources),
+        uses_relative=relative,
     )
     return node, endpoints
 
@@ -152,7 +155,7 @@ def _unlaunched_instance(
     name = _code_node_name(code) or _stem(sources[0])
     instance = _Instance(name, "/", _generation(code, None))
     full_name = _full_name(instance)
-    endpoints, uses, complete = _resolve_code(code, instance, [], "", full_name)
+    endpoints, uses, relative, complete = _resolve_code(code, instance, [], "", full_name)
     package = index.package_of(sources[0])
     node = NodeInstance(
         name=full_name,
@@ -164,6 +167,7 @@ def _unlaunched_instance(
         sources=sources,
         uses=uses,
         uses_complete=complete,
+        uses_relative=relative,
     )
     return node, endpoints
 
@@ -212,21 +216,25 @@ def _resolve_code(
     remaps: Sequence[NodeRemap],
     root: str,
     full_name: str,
-) -> tuple[list[Endpoint], tuple[str, ...], bool]:
+) -> tuple[list[Endpoint], tuple[str, ...], tuple[str, ...], bool]:
     """The node's endpoints after remapping; every remappable name it uses before
-    remapping; whether that list is complete."""
+    remapping, resolved, and as written when its namespace is unknown; whether the names
+    are all known."""
     endpoints: list[Endpoint] = []
     uses: set[str] = set()
+    relative: set[str] = set()
     complete = True
     for facts in code:
         for use in facts.names:
             if use.kind not in _REMAPPABLE_KINDS or use.role not in _REMAPPABLE_ROLES:
                 continue
             resolved, certain = _resolve_use(use, facts.language, instance)
-            complete = complete and certain
             if resolved is None:
+                complete = False
                 continue
             uses.add(resolved)
+            if not certain:
+                relative.add(use.value)
             edge = _EDGES.get(use.role)
             if edge is None or use.kind not in _RESOURCE_KINDS:
                 continue
@@ -242,7 +250,7 @@ def _resolve_code(
                     written=use.value,
                 )
             )
-    return endpoints, tuple(sorted(uses)), complete
+    return endpoints, tuple(sorted(uses)), tuple(sorted(relative)), complete
 
 
 def _resolve_use(use: NameUse, language: Language, instance: _Instance) -> tuple[str | None, bool]:

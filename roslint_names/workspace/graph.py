@@ -66,10 +66,12 @@ class NodeInstance:
     # site that pushes a name over the depth limit).
     launch_namespaces: tuple[str, ...] = ()
     # Every name the node's code uses, fully qualified but before remapping (RN404), and
-    # whether that list is complete: false when some name is dynamic or resolved through a
-    # handle whose namespace the code does not show.
+    # whether that list is complete (false when some name is dynamic). Names used through
+    # a handle whose namespace the code does not show are in ``uses_relative`` as written:
+    # they may sit in any namespace.
     uses: tuple[str, ...] = ()
     uses_complete: bool = False
+    uses_relative: tuple[str, ...] = ()
 
     def sort_key(self) -> tuple[str, str, tuple[Location, ...], tuple[str, ...]]:
         return (self.name, self.root, self.launched_at, self.sources)
