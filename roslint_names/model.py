@@ -142,6 +142,9 @@ class LaunchNode:
     parameters: tuple[str, ...] = ()
     own_remaps: int = 0
     anchored: bool = False
+    # Under an if/unless (or IfCondition) the linter cannot decide: it may not run, and
+    # two such nodes of one name are usually alternatives (composed or not), not twins.
+    conditional: bool = False
 
 
 @dataclass(frozen=True)
@@ -167,6 +170,7 @@ class LaunchInclude:
     arguments: tuple[tuple[str, str], ...] = ()
     remaps: tuple[Remap, ...] = ()
     anchored: bool = False
+    conditional: bool = False  # as LaunchNode.conditional: everything it starts is too
 
 
 class ExecutableKind(str, Enum):

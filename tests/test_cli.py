@@ -198,7 +198,7 @@ def test_readme_rule_table_is_current() -> None:
 
 
 def test_no_traceback_on_internal_error(run_cli: Any, tmp_path: Path, monkeypatch: Any) -> None:
-    def explode(*arguments: object) -> None:
+    def explode(*arguments: object, **keywords: object) -> None:
         raise RuntimeError("boom")
 
     monkeypatch.setattr(cli, "lint", explode)

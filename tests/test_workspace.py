@@ -469,3 +469,97 @@ def test_the_example_workspace_graph_renders_with_graphviz(run_cli: Any) -> None
     assert rendered.returncode == 0, rendered.stderr
     assert rendered.stderr == ""
     assert "/robot1/" in rendered.stdout
+
+
+# ---------------------------------------------------------------------------------------
+# False positives found on navigation2, turtlebot3 and ros_tutorials (each failed first)
+
+
+def test_nodes_under_undecided_conditions_are_alternatives_not_duplicates(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    # nav2's launch files start map_server composed or standalone, on a run-time argument.
+    write(tmp_path, "src/bringup/package.xml", CATKIN_PACKAGE.format(name="bringup"))
+    write(
+        tmp_path,
+        "src/bringup/launch/map.launch",
+        "<launch>\n"
+        '  <node name="map_server" pkg="map_server" type="map_server"'
+        ' if="$(optenv USE_COMPOSITION false)"/>\n'
+        '  <node name="map_server" pkg="map_server" type="map_server"'
+        ' unless="$(optenv USE_COMPOSITION false)"/>\n'
+        "</launch>\n",
+    )
+    assert findings(run_cli, tmp_path, ".") == []
+
+
+def test_aliases_and_run_time_choices_of_one_node_are_not_type_mismatches(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    write(tmp_path, "src/teleop/package.xml", AMENT_PACKAGE.format(name="teleop"))
+    # turtlebot3's teleop publishes TwistStamped or Twist depending on ROS_DISTRO.
+    write(
+        tmp_path,
+        "src/teleop/teleop/keyboard.py",
+        "import os\n"
+        "import rclpy\n"
+        "from geometry_msgs.msg import Twist, TwistStamped\n\n\n"
+        "def main():\n"
+        "    rclpy.init()\n"
+        '    node = rclpy.create_node("teleop_keyboard")\n'
+        '    if os.environ["ROS_DISTRO"] == "humble":\n'
+        '        pub = node.create_publisher(Twist, "cmd_vel", 10)\n'
+        "    else:\n"
+        '        pub = node.create_publisher(TwistStamped, "cmd_vel", 10)\n',
+    )
+    write(
+        tmp_path,
+        "src/teleop/teleop/patrol.py",
+        "import rclpy\n"
+        "from geometry_msgs.msg import Twist\n\n\n"
+        "def main():\n"
+        "    rclpy.init()\n"
+        '    node = rclpy.create_node("patrol")\n'
+        '    node.create_publisher(Twist, "cmd_vel", 10)\n',
+    )
+    # nav2's servers name their action type through an alias declared in a header.
+    write(
+        tmp_path,
+        "src/teleop/src/follow_server.cpp",
+        "#include <rclcpp/rclcpp.hpp>\n"
+        "#include <rclcpp_action/rclcpp_action.hpp>\n"
+        "class FollowServer : public rclcpp::Node {\n"
+        " public:\n"
+        '  FollowServer() : Node("follow_server") {\n'
+        '    server_ = rclcpp_action::create_server<Action>(this, "follow_path",\n'
+        "        nullptr, nullptr, nullptr);\n"
+        "  }\n"
+        "  rclcpp_action::Server<Action>::SharedPtr server_;\n"
+        "};\n",
+    )
+    write(
+        tmp_path,
+        "src/teleop/teleop/commander.py",
+        "import rclpy\n"
+        "from nav2_msgs.action import FollowPath\n"
+        "from rclpy.action import ActionClient\n\n\n"
+        "def main():\n"
+        "    rclpy.init()\n"
+        '    node = rclpy.create_node("commander")\n'
+        '    ActionClient(node, FollowPath, "follow_path")\n',
+    )
+    assert findings(run_cli, tmp_path, ".", select="RN403") == []
+
+
+def test_remapping_tf_is_never_an_unused_remap(run_cli: Any, tmp_path: Path) -> None:
+    # The multi-robot pattern of every nav2 launch file: the tf listener uses /tf.
+    ros2_workspace(tmp_path)
+    write(
+        tmp_path,
+        "src/fleet_nodes/launch/robot.launch.py",
+        ROBOT_LAUNCH_PY.replace(
+            'name="battery")',
+            'name="battery", remappings=[("/tf", "tf"), ("/tf_static", "tf_static")])',
+        ),
+    )
+    assert findings(run_cli, tmp_path, ".", select="RN404") == []

@@ -168,6 +168,7 @@ class Scope:
     variables: dict[str, Value] = field(default_factory=dict)
     global_lookup: Lookup | None = None
     anchored: bool = False
+    conditional: bool = False  # inside a group whose condition is not statically known
 
     @property
     def lookup(self) -> Lookup:
@@ -180,6 +181,7 @@ class Scope:
             dict(self.variables),
             self.global_lookup,
             self.anchored,
+            self.conditional,
         )
 
     def enter(self, value: Value) -> None:
@@ -267,6 +269,13 @@ class LaunchWalker(ABC):
         value = None if located is None else self.value(located, scope)
         return None if value is None or value.dynamic else value.text
 
+    def undecided(self, entity: Entity, scope: Scope) -> bool:
+        """An ``if``/``unless`` whose outcome is not statically known."""
+        if_attr, unless_attr = entity.get("if"), entity.get("unless")
+        return (if_attr is not None and truth(self.value(if_attr, scope)) is not True) or (
+            unless_attr is not None and truth(self.value(unless_attr, scope)) is not False
+        )
+
     def skipped(self, entity: Entity, scope: Scope) -> bool:
         if_attr, unless_attr = entity.get("if"), entity.get("unless")
         return skipped(
@@ -338,6 +347,7 @@ class LaunchWalker(ABC):
                 parameters=tuple(child_parameters + line_parameters),
                 own_remaps=len(own_remaps),
                 anchored=inner.anchored,
+                conditional=scope.conditional or self.undecided(entity, scope),
             )
         )
 
@@ -371,6 +381,7 @@ class LaunchWalker(ABC):
                 arguments=self.include_arguments(entity, scope),
                 remaps=tuple(scope.remaps),
                 anchored=inner.anchored,
+                conditional=scope.conditional or self.undecided(entity, scope),
             )
         )
 
@@ -507,6 +518,7 @@ class Ros1Launch(LaunchWalker):
 
     def group(self, entity: Entity, scope: Scope) -> None:
         inner = scope.copy()
+        inner.conditional = scope.conditional or self.undecided(entity, scope)
         value = self.attribute(entity, "ns", scope, NAMESPACE, scope.namespace)
         if value is not None:
             inner.enter(value)
@@ -689,7 +701,11 @@ class Ros2Launch(LaunchWalker):
         """A group scopes variables, pushed namespaces and remaps unless scoped="false"."""
         scoped = entity.get("scoped")
         leaks = scoped is not None and truth(self.value(scoped, scope)) is False
-        self.walk(entity.children(), scope if leaks else scope.copy())
+        inner = scope if leaks else scope.copy()
+        if self.undecided(entity, scope):
+            inner = scope.copy()  # a conditional group marks its own nodes only
+            inner.conditional = True
+        self.walk(entity.children(), inner)
 
     def push_namespace(self, entity: Entity, scope: Scope) -> None:
         value = self.attribute(entity, "namespace", scope, NAMESPACE, scope.namespace)

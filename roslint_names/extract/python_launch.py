@@ -50,7 +50,7 @@ from roslint_names.extract.python_launch_values import (
 from roslint_names.extract.python_scope import Scope, argument_context
 from roslint_names.extract.python_spans import Locator, Where
 from roslint_names.extract.python_walk import Walk
-from roslint_names.extract.substitution import Value, skipped
+from roslint_names.extract.substitution import Value, skipped, truth
 from roslint_names.model import LaunchInclude, LaunchNode, NameUse, Remap, Span
 
 _IF = ("launch", "IfCondition")
@@ -80,6 +80,7 @@ class LaunchExtractor(LaunchValues):
         self.nodes: list[LaunchNode] = []
         self.includes: list[LaunchInclude] = []
         self.found_actions = False
+        self.undecided_depth = 0  # conditions of enclosing actions not statically known
         self._visited: set[tuple[int, tuple[int, ...]]] = set()  # (call, frames)
         self._reached: set[int] = set()  # calls visited in any frames
         self._emitted: set[tuple[int, Fact]] = set()
@@ -120,7 +121,12 @@ class LaunchExtractor(LaunchValues):
         saved, self.frames = self.frames, action.frames
         try:
             if not self.excluded(action, scope):
-                self.visit_kind(action, scope)
+                undecided = self.undecided(action, scope)
+                self.undecided_depth += undecided
+                try:
+                    self.visit_kind(action, scope)
+                finally:
+                    self.undecided_depth -= undecided
         finally:
             self.frames = saved
 
@@ -163,6 +169,19 @@ class LaunchExtractor(LaunchValues):
         for binding_scope, name in _bound_to(action.call, action.context.scope):
             for added in self.adders.get((id(binding_scope), name), []):
                 self.visit_all(self.actions(added), scope)
+
+    def undecided(self, action: ActionCall, scope: LaunchScope) -> bool:
+        """A ``condition=`` whose outcome is not statically known (not excluded either)."""
+        condition = action.get(":condition")
+        if condition is None:
+            return False
+        if not isinstance(condition.expr, cst.Call):
+            return True
+        inner = call_argument(condition.expr, condition.context, "0:predicate_expression")
+        tests = {class_key(name) for name in condition.scope.qualified(condition.expr.func)}
+        if inner is None or not tests & {_IF, _UNLESS}:
+            return True
+        return truth(self.value(inner, scope)) is None
 
     def excluded(self, action: ActionCall, scope: LaunchScope) -> bool:
         """A ``condition=IfCondition(x)`` that is statically false (as launch XML's if=)."""
@@ -283,6 +302,7 @@ class LaunchExtractor(LaunchValues):
                 arguments=tuple(sorted((k, v.text) for k, v in handed.items() if not v.dynamic)),
                 remaps=tuple(scope.remaps),
                 anchored=scope.anchored,
+                conditional=self.undecided_depth > 0,
             )
         )
 
@@ -335,6 +355,7 @@ class LaunchExtractor(LaunchValues):
                 parameters=tuple(parameters),
                 own_remaps=len(remaps),
                 anchored=anchored,
+                conditional=self.undecided_depth > 0,
             )
         )
 

@@ -30,7 +30,9 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
     del context
     started: dict[tuple[str, str], list[NodeInstance]] = defaultdict(list)
     for node in graph.nodes:
-        if node.launched_at:
+        # Two starts under conditions we cannot decide are usually alternatives (composed
+        # or standalone, simulation or hardware): only unconditional starts count.
+        if node.launched_at and not node.conditional:
             started[(node.root, node.name)].append(node)
     # One finding per launch site: a copied include duplicates every node it starts.
     at: dict[Location, dict[str, list[Location]]] = defaultdict(dict)

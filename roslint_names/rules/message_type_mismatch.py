@@ -18,6 +18,33 @@ from ..workspace.graph import EdgeKind, Endpoint, Graph, Location
 from .graph_common import finding, where
 
 
+def _comparable(endpoint: Endpoint, generation: Generation) -> bool:
+    """A type we can hold against another.
+
+    Not one the code names without its package: in C++ that is nearly always an alias or
+    a template parameter (``using Action = nav2_msgs::action::FollowPath``, ``ActionT``)
+    declared where we do not look. Not a ROS 1 service: rosservice connects on the md5 of
+    the definition alone, and tutorials serve one definition under two names
+    (``roscpp_tutorials/TwoInts``, ``rospy_tutorials/AddTwoInts``).
+    """
+    if endpoint.type_name is None or "/" not in endpoint.type_name:
+        return False
+    return not (generation is Generation.ROS1 and endpoint.resource_kind is Kind.SERVICE)
+
+
+def _alternatives(endpoints: list[Endpoint]) -> set[tuple[str, str, str]]:
+    """(root, node, file) of code that uses the name with two types itself: code that
+    picks one at run time (``TwistStamped`` on Jazzy, ``Twist`` before), not a mismatch."""
+    types: dict[tuple[str, str, str], set[str]] = defaultdict(set)
+    for endpoint in endpoints:
+        types[_code_of(endpoint)].add(endpoint.type_name or "")
+    return {code for code, found in types.items() if len(found) > 1}
+
+
+def _code_of(endpoint: Endpoint) -> tuple[str, str, str]:
+    return (endpoint.root, endpoint.node, endpoint.location.path)
+
+
 def _compatible(one: str, other: str) -> bool:
     if one == other:
         return True
@@ -48,11 +75,13 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
     by_resource: dict[tuple[Kind, str, Generation], list[Endpoint]] = defaultdict(list)
     for endpoint in graph.endpoints:
         generation = generations.get((endpoint.root, endpoint.node), Generation.ROS2)
-        if endpoint.type_name:
+        if _comparable(endpoint, generation):
             key = (endpoint.resource_kind, endpoint.resource, generation)
             by_resource[key].append(endpoint)
     reported: set[Location] = set()
-    for (kind, resource, _), endpoints in sorted(by_resource.items()):
+    for (kind, resource, _), found in sorted(by_resource.items()):
+        switching = _alternatives(found)
+        endpoints = [e for e in found if _code_of(e) not in switching]
         if not _mismatches(endpoints):
             continue
         for endpoint in sorted(endpoints, key=Endpoint.sort_key):

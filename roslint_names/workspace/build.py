@@ -123,6 +123,7 @@ def _launched_instance(
         uses=uses,
         uses_complete=complete and bool(sources),
         uses_relative=relative,
+        conditional=launched.conditional,
     )
     return node, endpoints
 

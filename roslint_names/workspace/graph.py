@@ -72,6 +72,7 @@ class NodeInstance:
     uses: tuple[str, ...] = ()
     uses_complete: bool = False
     uses_relative: tuple[str, ...] = ()
+    conditional: bool = False  # started under a condition the linter cannot decide
 
     def sort_key(self) -> tuple[str, str, tuple[Location, ...], tuple[str, ...]]:
         return (self.name, self.root, self.launched_at, self.sources)

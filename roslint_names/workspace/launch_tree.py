@@ -36,6 +36,7 @@ class Launched:
     remaps: tuple[tuple[Remap, str, bool], ...]  # (remap, file it is written in, own)
     sites: tuple[Location, ...]  # includes from the root, then the node
     site_namespaces: tuple[str, ...]  # namespace in force after each site
+    conditional: bool  # the node, or an include on its way, may not run
 
 
 @dataclass(frozen=True)
@@ -49,6 +50,7 @@ class _Frame:
     sites: tuple[Location, ...]
     site_namespaces: tuple[str, ...]
     visiting: frozenset[str]
+    conditional: bool = False
 
 
 class LaunchTrees:
@@ -109,6 +111,7 @@ class LaunchTrees:
                 sites=(*frame.sites, site),
                 site_namespaces=(*frame.site_namespaces, namespace),
                 visiting=frame.visiting | {target},
+                conditional=frame.conditional or include.conditional,
             )
             yield from self._walk(root, inner)
 
@@ -138,6 +141,7 @@ class LaunchTrees:
             remaps=remaps,
             sites=(*frame.sites, site),
             site_namespaces=(*frame.site_namespaces, namespace),
+            conditional=frame.conditional or node.conditional,
         )
 
 
