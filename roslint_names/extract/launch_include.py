@@ -16,7 +16,7 @@ import posixpath
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from roslint_names.extract.substitution import ARG, Dialect, Lookup
+from roslint_names.extract.substitution import ARG, Dialect, Lookup, closing_bracket
 
 
 @dataclass(frozen=True)
@@ -51,7 +51,7 @@ def locate(raw: str, dialect: Dialect, lookup: Lookup) -> Target:
     if not text.startswith("$("):
         absolute = "$(" not in text and text.startswith("/")
         return Target(None, normalise(text) if absolute else None)
-    end = _closing(text, 2)
+    end = closing_bracket(text, 2)
     if end is None:
         return UNKNOWN
     command, _, argument = text[2:end].strip().partition(" ")
@@ -142,7 +142,7 @@ class _Unfolder:
                 out.append(raw[i])
                 i += 1
                 continue
-            end = _closing(raw, i + 2)
+            end = closing_bracket(raw, i + 2)
             replaced = None if end is None else self.replace(raw[i + 2 : end], depth)
             if end is None or replaced is None:
                 return None
@@ -171,24 +171,6 @@ class _Unfolder:
         if value is None or "$(" not in value.text or depth >= _MAX_DEPTH:
             return kept
         return self.unfold(value.text, depth + 1)
-
-
-def _closing(raw: str, start: int) -> int | None:
-    """Index of the ``)`` closing the ``$(`` just before ``start``; quotes hide brackets."""
-    depth, quote = 1, ""
-    for i in range(start, len(raw)):
-        char = raw[i]
-        if quote:
-            quote = "" if char == quote else quote
-        elif char in "'\"":
-            quote = char
-        elif char == "(":
-            depth += 1
-        elif char == ")":
-            depth -= 1
-            if depth == 0:
-                return i
-    return None
 
 
 def _unquote(text: str) -> str:

@@ -171,7 +171,15 @@ def _expand(raw: str, dialect: Dialect, lookup: Lookup) -> str:
 
 
 def _closing(raw: str, start: int, opening: str, closing: str) -> int:
-    """Index of the bracket closing the one just before ``start``; quotes hide brackets."""
+    end = closing_bracket(raw, start, opening, closing)
+    if end is None:
+        raise _NotStaticError  # unbalanced: the launch system would fail, we just do not know
+    return end
+
+
+def closing_bracket(raw: str, start: int, opening: str = "(", closing: str = ")") -> int | None:
+    """Index of the bracket closing the one just before ``start``; quotes hide brackets.
+    None when it is never closed."""
     depth, quote = 1, ""
     for i in range(start, len(raw)):
         char = raw[i]
@@ -185,7 +193,7 @@ def _closing(raw: str, start: int, opening: str, closing: str) -> int:
             depth -= 1
             if depth == 0:
                 return i
-    raise _NotStaticError  # unbalanced: the launch system would fail, we just do not know
+    return None
 
 
 def _command(body: str, dialect: Dialect, lookup: Lookup) -> str:
