@@ -521,6 +521,10 @@ def test_undecodable_and_declared_encodings() -> None:
     bom = b"\xef\xbb\xbfimport rospy\nrospy.init_node('bom')\n"
     (use,) = facts_of(bom).names
     assert (use.value, use.span.column) == ("bom", 17)
+    # CPython refuses a UTF-8 BOM before a declaration of another encoding; so do we.
+    contradiction = b"\xef\xbb\xbf# -*- coding: latin-1 -*-\nimport rospy\n"
+    (error,) = facts_of(contradiction).parse_errors
+    assert "UTF-8 BOM contradicts the coding declaration 'latin-1'" in error.message
 
 
 def test_prefilter_skips_files_without_ros() -> None:

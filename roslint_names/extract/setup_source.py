@@ -1,63 +1,18 @@
-"""setup.py text and tree with the standard library only: decoding and ``ast`` parsing.
+"""setup.py trees with the standard library's ``ast``.
 
 Failures come back as ``ParseError`` with the Python extractor's messages; that extractor
-imports libcst, which a build file must not pay for.
+parses with libcst, which a build file must not pay for.
 """
 
 from __future__ import annotations
 
 import ast
-import codecs
-import re
 import warnings
 
-from roslint_names.extract.substitution import Source
-from roslint_names.model import ParseError, Span
+from roslint_names.extract.python_text import decode, source_error
+from roslint_names.model import ParseError
 
-# PEP 263: a coding declaration in a comment on line 1, or on line 2 after a comment or a
-# blank line 1 (the pattern CPython's tokenizer uses).
-_CODING = re.compile(rb"^[ \t\f]*#.*?coding[:=][ \t]*([-\w.]+)")
-_BLANK_OR_COMMENT = re.compile(rb"^[ \t\f]*(?:[#\r\n]|$)")
-
-
-def _declared_encoding(data: bytes) -> str | None:
-    for index, line in enumerate(data.split(b"\n", 2)[:2]):
-        match = _CODING.match(line)
-        if match:
-            return match.group(1).decode("ascii", errors="replace")
-        if index == 0 and not _BLANK_OR_COMMENT.match(line):
-            return None
-    return None
-
-
-def decode(data: bytes) -> str | ParseError:
-    """The text Python would read: BOM, else the PEP 263 declaration, else UTF-8 (with
-    the Python extractor's messages when that fails)."""
-    bom = data.startswith(codecs.BOM_UTF8)
-    declared = _declared_encoding(data[len(codecs.BOM_UTF8) :] if bom else data)
-    if bom:
-        if declared is not None and _codec(declared) != "utf-8":
-            return _error(f"UTF-8 BOM contradicts the coding declaration '{declared}'", 1, 1)
-        encoding, data = "utf-8", data[len(codecs.BOM_UTF8) :]
-    else:
-        encoding = declared or "utf-8"
-    if _codec(encoding) is None:
-        return _error(f"unknown source encoding '{encoding}'", 1, 1)
-    try:
-        return data.decode(encoding)
-    except UnicodeDecodeError as error:
-        before = Source(data[: error.start].decode(encoding, errors="replace"))
-        line, column = before.position(len(before.text))
-        return _error(f"cannot decode Python source as {encoding}: {error.reason}", line, column)
-    except Exception as error:  # a codec's own failure (e.g. an incomplete utf-7 shift)
-        return _error(f"cannot decode Python source as {encoding}: {error}", 1, 1)
-
-
-def _codec(encoding: str) -> str | None:
-    try:
-        return codecs.lookup(encoding).name
-    except LookupError:
-        return None
+__all__ = ["decode", "parse"]
 
 
 def parse(text: str) -> ast.Module | ParseError:
@@ -68,12 +23,10 @@ def parse(text: str) -> ast.Module | ParseError:
             warnings.simplefilter("ignore")
             return ast.parse(text)
     except SyntaxError as error:
-        return _error(f"not valid Python 3: {error.msg}", error.lineno or 1, error.offset or 1)
+        return source_error(
+            f"not valid Python 3: {error.msg}", error.lineno or 1, error.offset or 1
+        )
     except ValueError as error:  # null bytes, before Python 3.12
-        return _error(f"not valid Python 3: {error}", 1, 1)
+        return source_error(f"not valid Python 3: {error}", 1, 1)
     except (RecursionError, MemoryError):
-        return _error("not valid Python 3: nested too deeply", 1, 1)
-
-
-def _error(message: str, line: int, column: int) -> ParseError:
-    return ParseError(message, Span(line, column, line, column + 1))
+        return source_error("not valid Python 3: nested too deeply", 1, 1)
