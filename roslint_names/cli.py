@@ -175,19 +175,15 @@ def _jobs(text: str) -> int:
 def _run_check(options: argparse.Namespace) -> int:
     # Started now, so "the run lasts more than a second" counts discovery too.
     bar = ProgressBar(sys.stderr, enabled=progress_wanted(sys.stderr, os.environ))
-    registry = load_registry()
-    cwd = Path.cwd()
     overrides = Overrides(
-        ros=None if options.ros in (None, "auto") else Generation(int(options.ros)),
+        ros=_generation(options.ros),
         select=options.select,
         extend_select=options.extend_select,
         ignore=options.ignore,
         max_depth=options.max_depth,
     )
-    start = config_search_start(options.paths, cwd)
-    settings = apply_overrides(load_settings(options.config, start, registry), overrides, registry)
-    sources = discover(options.paths, settings.exclude, settings.root, cwd)
-    workspace = _workspace_context(options.paths, settings, registry, cwd)
+    registry, settings, sources, workspace = _prepare(options, overrides)
+    cwd = Path.cwd()
     cache = _facts_cache(options)
     try:
         run = RunOptions(jobs=options.jobs, cache=cache, progress=bar)
@@ -221,6 +217,23 @@ def _run_check(options: argparse.Namespace) -> int:
     return EXIT_FINDINGS if has_findings and not options.exit_zero else EXIT_CLEAN
 
 
+def _generation(option: str | None) -> Generation | None:
+    return None if option in (None, "auto") else Generation(int(option))
+
+
+def _prepare(
+    options: argparse.Namespace, overrides: Overrides, *, for_graph: bool = False
+) -> tuple[Registry, Settings, list[SourceFile], list[SourceFile]]:
+    """The rules, the settings, the files named and the rest of their workspace."""
+    registry = load_registry()
+    cwd = Path.cwd()
+    start = config_search_start(options.paths, cwd)
+    settings = apply_overrides(load_settings(options.config, start, registry), overrides, registry)
+    sources = discover(options.paths, settings.exclude, settings.root, cwd)
+    workspace = _workspace_context(options.paths, settings, registry, cwd, for_graph=for_graph)
+    return registry, settings, sources, workspace
+
+
 def _workspace_context(
     paths: Sequence[Path],
     settings: Settings,
@@ -244,17 +257,10 @@ def _workspace_context(
 def _run_graph(options: argparse.Namespace) -> int:
     from .render import RENDERERS  # only this command draws graphs
 
-    registry = load_registry()
-    cwd = Path.cwd()
-    overrides = Overrides(
-        ros=None if options.ros in (None, "auto") else Generation(int(options.ros))
-    )
-    start = config_search_start(options.paths, cwd)
-    settings = apply_overrides(load_settings(options.config, start, registry), overrides, registry)
-    sources = discover(options.paths, settings.exclude, settings.root, cwd)
-    context = _workspace_context(options.paths, settings, registry, cwd, for_graph=True)
+    overrides = Overrides(ros=_generation(options.ros))
+    registry, settings, sources, workspace = _prepare(options, overrides, for_graph=True)
     run = RunOptions(jobs=options.jobs, cache=_facts_cache(options))
-    result = lint(sources, settings, registry, run, context=context, want_graph=True)
+    result = lint(sources, settings, registry, run, context=workspace, want_graph=True)
     assert result.graph is not None
     _write(RENDERERS[options.format](result.graph), options.output)
     return EXIT_CLEAN

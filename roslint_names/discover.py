@@ -38,6 +38,14 @@ class SourceFile:
     language: Language
 
 
+# Build files: not linted, but they map launch files' executables to their sources.
+_BUILD_FILES = {
+    "cmakelists.txt": Language.CMAKE,
+    "setup.py": Language.SETUP_PY,
+    "setup.cfg": Language.SETUP_CFG,
+}
+
+
 def classify(path: Path) -> Language | None:
     """The language of a file, sniffing the content only for ambiguous suffixes."""
     name = path.name.lower()
@@ -50,12 +58,8 @@ def classify(path: Path) -> Language | None:
         return Language.URDF
     if suffix in _CPP_SUFFIXES:
         return Language.CPP
-    if name == "cmakelists.txt":
-        return Language.CMAKE
-    if name == "setup.py":
-        return Language.SETUP_PY
-    if name == "setup.cfg":
-        return Language.SETUP_CFG
+    if name in _BUILD_FILES:
+        return _BUILD_FILES[name]
     if suffix == ".py":
         return Language.PYTHON
     if suffix == ".srv":

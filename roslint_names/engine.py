@@ -14,7 +14,8 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 from functools import partial
 from pathlib import Path
-from typing import TYPE_CHECKING
+from types import ModuleType
+from typing import TYPE_CHECKING, Protocol
 
 from .config import Settings, enabled_codes, ignored_for_path
 from .discover import SourceFile
@@ -89,9 +90,26 @@ def lintable(sources: Iterable[SourceFile]) -> list[SourceFile]:
 
 
 def extractor_for(language: Language) -> Extract:
-    module = importlib.import_module(f"roslint_names.extract.{EXTRACTOR_MODULES[language]}")
-    extract: Extract = module.extract
+    extract: Extract = _extractor_module(language).extract
     return extract
+
+
+def _extractor_module(language: Language) -> ModuleType:
+    return importlib.import_module(f"roslint_names.extract.{EXTRACTOR_MODULES[language]}")
+
+
+class _ExtractWithArguments(Protocol):
+    """A launch extractor's ``extract``: also takes the arguments an includer hands over."""
+
+    def __call__(
+        self,
+        path: str,
+        data: bytes,
+        package_generation: Generation | None,
+        fallback_generation: Generation,
+        *,
+        arguments: tuple[tuple[str, str], ...],
+    ) -> FileFacts: ...
 
 
 def lint(
@@ -123,7 +141,8 @@ def lint(
     cache, progress = run.cache, run.progress
     checked = lintable(sources)
     reported = len(checked)
-    if graph_rules or want_graph:
+    keep_facts = bool(graph_rules) or want_graph
+    if keep_facts:
         given = {source.path for source in checked}
         checked += [source for source in lintable(context) if source.path not in given]
     else:
@@ -131,7 +150,6 @@ def lint(
     per_file: list[list[Diagnostic]] = [[] for _ in range(reported)]
     suppressions_of: dict[int, list[Suppression]] = {}
     all_facts: list[FileFacts | None] = [None] * len(checked)
-    keep_facts = bool(graph_rules) or want_graph
     extracting: dict[int, bytes] = {}  # files sent to extraction: their bytes, to check them
     # RN204 compares a service's name with every service type of the run (of the file's own
     # generation), known only once every file is extracted: files that serve or call a typed
@@ -272,12 +290,8 @@ class _Specialiser:
             found = self._cache.load(cache_key, display)
             if found is not None:
                 return found
-        module = importlib.import_module(
-            f"roslint_names.extract.{EXTRACTOR_MODULES[source.language]}"
-        )
-        facts: FileFacts = module.extract(
-            display, data, package, self._fallback, arguments=arguments
-        )
+        extract: _ExtractWithArguments = _extractor_module(source.language).extract
+        facts = extract(display, data, package, self._fallback, arguments=arguments)
         if self._cache is not None and cache_key is not None:
             self._cache.store(cache_key, facts)
         return facts

@@ -6,7 +6,7 @@ from collections.abc import Iterable
 
 from ..model import Finding, RelatedLocation
 from ..rule import WorkspaceFinding
-from ..workspace.graph import Endpoint, Graph, Location, NodeInstance
+from ..workspace.graph import Graph, Location, NodeInstance
 
 MAX_RELATED = 20  # a finding lists at most this many other places; the message counts all
 
@@ -38,7 +38,3 @@ def finding(
         if other != location
     )
     return WorkspaceFinding(location.path, Finding(location.span, message, related))
-
-
-def kind_label(endpoint: Endpoint) -> str:
-    return endpoint.resource_kind.value

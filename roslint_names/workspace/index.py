@@ -7,7 +7,7 @@ so the index needs nothing but the facts and the list of package manifests.
 from __future__ import annotations
 
 import posixpath
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 from roslint_names.model import ExecutableKind, FileFacts, Language
@@ -149,8 +149,3 @@ class WorkspaceIndex:
                 if package_init in self.facts:
                     found.append(package_init)
         return found
-
-
-def packages_from(manifests: Mapping[str, str]) -> list[Package]:
-    """``{package.xml display path: package name}`` as packages."""
-    return [Package(name, parent(path)) for path, name in manifests.items()]

@@ -60,11 +60,6 @@ class LaunchTrees:
         self.launch_files = sorted(
             path for path, facts in index.facts.items() if facts.language in LAUNCH_LANGUAGES
         )
-        self.targets: dict[tuple[str, LaunchInclude], str | None] = {
-            (path, include): self.target(path, include)
-            for path in self.launch_files
-            for include in index.facts[path].includes
-        }
 
     def target(self, path: str, include: LaunchInclude) -> str | None:
         """The display path of the file an include names, when the workspace holds it."""
@@ -78,7 +73,11 @@ class LaunchTrees:
         return candidate if candidate in self.index.facts else None
 
     def roots(self) -> list[str]:
-        included = {target for target in self.targets.values() if target is not None}
+        included = {
+            self.target(path, include)
+            for path in self.launch_files
+            for include in self.index.facts[path].includes
+        }
         return [path for path in self.launch_files if path not in included]
 
     def launched(self) -> Iterator[Launched]:
@@ -96,7 +95,7 @@ class LaunchTrees:
         if len(frame.sites) >= MAX_INCLUDE_DEPTH:
             return
         for include in facts.includes:
-            target = self._target(frame.path, include)
+            target = self.target(frame.path, include)
             if target is None or target in frame.visiting:
                 continue
             namespace = _nest(frame.namespace, include.namespace, include.anchored)
@@ -114,10 +113,6 @@ class LaunchTrees:
                 conditional=frame.conditional or include.conditional,
             )
             yield from self._walk(root, inner)
-
-    def _target(self, path: str, include: LaunchInclude) -> str | None:
-        known = self.targets.get((path, include), "")
-        return self.target(path, include) if known == "" else known
 
     def _facts(self, path: str, arguments: tuple[tuple[str, str], ...]) -> FileFacts | None:
         if not arguments:
