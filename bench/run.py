@@ -67,6 +67,11 @@ GROUPS = {
     Language.LAUNCH_XML: "launch/URDF",
     Language.LAUNCH_YAML: "launch/URDF",
     Language.URDF: "launch/URDF",
+    # Build files map launch files' executables to their sources (the graph rules); the
+    # project reads them with its own lexer and `ast`, none of the three parsers.
+    Language.CMAKE: "build",
+    Language.SETUP_PY: "build",
+    Language.SETUP_CFG: "build",
 }
 PARSERS = ("tree_sitter", "tree_sitter_cpp", "libcst", "lxml", "yaml")
 NEEDED = {
@@ -275,6 +280,8 @@ def parse_floor(files: list[list[str]]) -> dict[str, Any]:
                 libcst.parse_module(data.decode("utf-8", errors="replace"))
             elif language is Language.LAUNCH_YAML:
                 yaml.compose(data.decode("utf-8", errors="replace"), Loader=yaml.SafeLoader)
+            elif GROUPS[language] == "build":
+                pass  # read, not parsed: no parser of the floor reads build files
             else:
                 etree.fromstring(data, xml)
         except Exception:  # a file a parser rejects still cost its time
