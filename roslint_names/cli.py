@@ -280,8 +280,9 @@ def _print_run_details(
     if cache is None and directory is None:
         where = "off (no home directory)"
     print(
-        f"roslint-names: cache {where}; {result.files_cached} of {result.files_checked} files "
-        "from the cache, "
+        # Files read: those checked plus, in a per-file run, the rest of their workspace.
+        f"roslint-names: cache {where}; {result.files_cached} of "
+        f"{result.files_cached + result.files_extracted} files from the cache, "
         f"{result.files_extracted} extracted by "
         + (f"{result.workers} worker processes" if result.workers else "this process"),
         file=sys.stderr,

@@ -563,3 +563,14 @@ def test_remapping_tf_is_never_an_unused_remap(run_cli: Any, tmp_path: Path) -> 
         ),
     )
     assert findings(run_cli, tmp_path, ".", select="RN404") == []
+
+
+def test_verbose_counts_the_workspace_files_a_per_file_run_reads(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    # Found by hand: "5 of 1 files from the cache" in a per-file run.
+    ros1_workspace(tmp_path)
+    launch = "src/turtle_base/launch/base.launch"
+    run_cli(["check", launch], tmp_path)
+    result = run_cli(["check", "--verbose", launch], tmp_path)
+    assert "; 5 of 5 files from the cache, 0 extracted" in result.stderr  # 4 + CMake
