@@ -162,14 +162,8 @@ class FactsCache:
         """Keep ``facts``; call ``flush`` before the process ends."""
         if not self.writable():
             return
-        if not (
-            facts.names
-            or facts.launch_nodes
-            or facts.events
-            or facts.parse_errors
-            or facts.includes
-            or facts.executables
-        ):
+        # Facts with nothing but a language and a generation (most files) are one log line.
+        if facts == FileFacts(facts.path, facts.language, facts.generation):
             self._pending.append(_log_line(key, facts.language, facts.generation))
             if len(self._pending) >= _LOG_BATCH:
                 self.flush()

@@ -206,7 +206,7 @@ def _repository_ancestors(directory: Path) -> list[Path]:
 
 def _add(found: dict[Path, SourceFile], path: Path, cwd: Path) -> None:
     language = classify(path)
-    if language is not None and language is not Language.PACKAGE_XML:
+    if language is not None:  # package.xml too: the workspace model needs every package
         found[path] = SourceFile(path, display_path(path, cwd), language)
 
 

@@ -221,7 +221,7 @@ def lint(
     if keep_facts:
         known_facts = [facts for facts in all_facts if facts is not None]
         specialise = _Specialiser(checked, packages, fallback, cache)
-        graph = build(known_facts, _packages(checked, packages), specialise)
+        graph = build(known_facts, _packages([*sources, *context], packages), specialise)
         _report_graph(
             graph,
             graph_rules,
@@ -239,15 +239,15 @@ def lint(
 
 def _packages(sources: Sequence[SourceFile], packages: PackageGenerations) -> list[Package]:
     """Every package holding a file of the run, by name and display directory."""
-    found: dict[str, Package] = {}
+    found: dict[Path, Package] = {}
     for source in sources:
         name = packages.package_name(source.path)
         directory = packages.package_directory(source.path)
-        if name is None or directory is None or name in found:
+        if name is None or directory is None or directory in found:
             continue
         relative = source.path.relative_to(directory).as_posix()
         display = source.display[: -len(relative)].rstrip("/")
-        found[name] = Package(name, display)
+        found[directory] = Package(name, display, packages.package_depends(source.path))
     return list(found.values())
 
 

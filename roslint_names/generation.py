@@ -26,6 +26,10 @@ _DEPEND = re.compile(
     r"<(buildtool_depend|build_type)(\s[^>]*)?>\s*([A-Za-z0-9_]+)\s*</\1>", re.DOTALL
 )
 _NAME = re.compile(r"<name>\s*([A-Za-z0-9_]+)\s*</name>")
+# Every dependency that says "runs with" or "builds with": not buildtool or doc ones.
+_REQUIRES = re.compile(
+    r"<((?:build_|build_export_|exec_|run_|test_)?depend)(\s[^>]*)?>\s*([A-Za-z0-9_]+)\s*</\1>"
+)
 _CONDITION = re.compile(r"""condition\s*=\s*["']([^"']*)["']""")
 
 
@@ -43,6 +47,11 @@ def package_xml_generation(text: str) -> Generation | None:
     return found.pop() if len(found) == 1 else None
 
 
+def package_xml_depends(text: str) -> frozenset[str]:
+    """The packages a package.xml depends on (any format, any condition)."""
+    return frozenset(match.group(3) for match in _REQUIRES.finditer(_COMMENT.sub("", text)))
+
+
 def package_xml_name(text: str) -> str | None:
     match = _NAME.search(_COMMENT.sub("", text))
     return match.group(1) if match else None
@@ -53,6 +62,7 @@ class _Package:
     name: str | None
     generation: Generation | None
     directory: Path | None = None  # where its package.xml is
+    depends: frozenset[str] = frozenset()
 
 
 _NO_PACKAGE = _Package(None, None)
@@ -74,6 +84,9 @@ class PackageGenerations:
         """The directory of the package.xml nearest above ``path``."""
         return self._for_directory(path.parent).directory
 
+    def package_depends(self, path: Path) -> frozenset[str]:
+        return self._for_directory(path.parent).depends
+
     def _for_directory(self, directory: Path) -> _Package:
         if directory in self._by_directory:
             return self._by_directory[directory]
@@ -84,7 +97,12 @@ class PackageGenerations:
                 text = manifest.read_text(encoding="utf-8", errors="replace")
             except OSError:
                 text = ""
-            package = _Package(package_xml_name(text), package_xml_generation(text), directory)
+            package = _Package(
+                package_xml_name(text),
+                package_xml_generation(text),
+                directory,
+                package_xml_depends(text),
+            )
         elif directory.parent == directory:
             package = _NO_PACKAGE
         else:

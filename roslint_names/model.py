@@ -145,6 +145,12 @@ class LaunchNode:
     # Under an if/unless (or IfCondition) the linter cannot decide: it may not run, and
     # two such nodes of one name are usually alternatives (composed or not), not twins.
     conditional: bool = False
+    # The file names the node, but not statically (``$(anon x)``, an argument the linter
+    # cannot know): its name is unknown, not the one its code gives itself.
+    dynamic_name: bool = False
+    # A rostest ``<test>``: rostest runs its tests one at a time once the nodes are up, so
+    # two tests of one name never run together.
+    test: bool = False
 
 
 @dataclass(frozen=True)
@@ -242,6 +248,9 @@ class FileFacts:
     parse_errors: tuple[ParseError, ...] = ()
     includes: tuple[LaunchInclude, ...] = ()
     executables: tuple[Executable, ...] = ()
+    # Name-shaped string literals of code (``extract.literals``): evidence of names used
+    # through APIs the linter does not know.
+    literals: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -117,7 +117,8 @@ def test_service_definitions_are_found_with_their_package(tmp_path: Path) -> Non
     write(tmp_path, "src/docking_msgs/srv/README.md", "")
     found = discover([Path("src")], [], tmp_path, tmp_path)
     assert [(source.display, source.language) for source in found] == [
-        ("src/docking_msgs/srv/StartDocking.srv", Language.SERVICE_DEFINITION)
+        ("src/docking_msgs/package.xml", Language.PACKAGE_XML),  # the workspace model's
+        ("src/docking_msgs/srv/StartDocking.srv", Language.SERVICE_DEFINITION),
     ]
     assert service_types(found, PackageGenerations()) == frozenset(
         {(None, "docking_msgs/StartDocking")}  # that package.xml names no build tool

@@ -44,6 +44,7 @@ from .cpp_sites import Sites
 from .cpp_source import Source, trie_regex, word_pattern
 from .cpp_types import Types
 from .cpp_values import Declarations, Folder
+from .literals import name_literals
 
 _PARSER = tree_sitter.Parser(tree_sitter.Language(tree_sitter_cpp.language()))
 
@@ -127,6 +128,7 @@ def extract(
         names=tuple(sorted(names, key=lambda use: (use.span, use.kind.value, use.role.value))),
         events=tuple(sorted(events, key=lambda event: (event.scope, event.order))),
         parse_errors=_errors(error),
+        literals=name_literals(text),
     )
 
 

@@ -348,6 +348,8 @@ class LaunchWalker(ABC):
                 own_remaps=len(own_remaps),
                 anchored=inner.anchored,
                 conditional=scope.conditional or self.undecided(entity, scope),
+                dynamic_name=name is None and _names_node(name_value, arguments),
+                test=entity.kind == "test",
             )
         )
 
@@ -453,6 +455,11 @@ def _node_name(attribute: Value | None, arguments: Sequence[CommandLineName]) ->
         if argument.meaning is Meaning.NODE and not argument.value.dynamic:
             return argument.value.text
     return None
+
+
+def _names_node(attribute: Value | None, arguments: Sequence[CommandLineName]) -> bool:
+    """Whether the file gives the node a name (static or not)."""
+    return attribute is not None or any(a.meaning is Meaning.NODE for a in arguments)
 
 
 def _static_remap(

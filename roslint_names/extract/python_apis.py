@@ -103,6 +103,8 @@ ROSPY = _table(
      _HANDLE),
     ("ServiceProxy", "rospy.ServiceProxy", _SERVICE, Role.CALL, "0:name", "1:service_class",
      None, _HANDLE),
+    ("wait_for_message", "rospy.wait_for_message", _TOPIC, Role.SUBSCRIBE, "0:topic",
+     "1:topic_type", None, _PRIVATE),
     ("wait_for_service", "rospy.wait_for_service", _SERVICE, Role.CALL, "0:service", None,
      None, None),
     ("get_param", "rospy.get_param", _PARAM, Role.PARAMETER, "0:param_name", None, "1:default",
@@ -143,6 +145,8 @@ RCLPY = _table(
      "2:action_name", "1:action_type", None, None),
     ("rclpy.parameter.Parameter", "rclpy.parameter.Parameter", _PARAM, Role.PARAMETER,
      "0:name", None, "2:value", None),
+    ("rclpy.wait_for_message.wait_for_message", "rclpy.wait_for_message.wait_for_message",
+     _TOPIC, Role.SUBSCRIBE, "2:topic", "0:msg_type", None, None),
 )
 # rclpy.node.Node's methods, matched on any receiver in rclpy code.
 RCLPY_METHODS = _table(

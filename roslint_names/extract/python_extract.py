@@ -6,6 +6,7 @@ Imported by ``python.py`` only after its prefilter passed, because it imports li
 from __future__ import annotations
 
 from roslint_names.extract import evidence
+from roslint_names.extract.literals import name_literals
 from roslint_names.extract.python_code import CodeExtractor
 from roslint_names.extract.python_launch import LaunchExtractor
 from roslint_names.extract.python_source import decode, parse
@@ -81,4 +82,5 @@ def extract_parsed(
         launch_nodes=tuple(launch.nodes),
         events=tuple(code.events),
         includes=tuple(launch.includes),
+        literals=() if language is Language.LAUNCH_PYTHON else name_literals(text),
     )

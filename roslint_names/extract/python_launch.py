@@ -336,10 +336,10 @@ class LaunchExtractor(LaunchValues):
             namespace = join_namespace(namespace, value)
             anchored = anchored or _is_absolute(value)
         name_at = action.get(_NAME)
-        name = None
+        name, dynamic_name = None, False
         if name_at is not None:
             name_value = self.emit(NODE, f"{label}(name=)", name_at, scope, namespace)
-            name = None if name_value.dynamic else name_value.text
+            name, dynamic_name = (None, True) if name_value.dynamic else (name_value.text, False)
         remaps = self.remappings(action, scope, namespace, label)
         parameters = self.parameters(action, scope, node_path(namespace, name), label)
         composable = action.kind is Action.COMPOSABLE
@@ -356,6 +356,7 @@ class LaunchExtractor(LaunchValues):
                 own_remaps=len(remaps),
                 anchored=anchored,
                 conditional=self.undecided_depth > 0,
+                dynamic_name=dynamic_name,
             )
         )
 

@@ -2,7 +2,8 @@
 
 ``/cmd_vel`` published in C++ and ``/Cmd_Vel`` subscribed in Python never meet: ROS names
 are case-sensitive. Names are compared after resolution (namespaces, private names,
-remaps), grouped by their lower-case form, so two robots whose identical names sit in
+remaps), grouped by their lower-case form, between nodes that can meet (``Graph.can_meet``),
+so two robots whose identical names sit in
 different namespaces never collide. A collision that comes from the namespaces (one code
 launched under ``robot1`` and ``Robot1``) is blamed on the launch sites, not the code.
 """
@@ -14,31 +15,33 @@ from collections.abc import Iterator
 
 from ..model import Severity
 from ..rule import Rule, RuleContext, WorkspaceFinding
-from ..workspace.graph import Graph, Location
+from ..workspace.graph import Graph, Location, Placed
 from .graph_common import finding, instances, launch_site, where
 
-# (what, resolved name) -> places that use it
-_Uses = dict[tuple[str, str], set[Location]]
+# (what, resolved name) -> places that use it, each with the node (or endpoint) using it
+_Uses = dict[tuple[str, str], set[tuple[Location, Placed]]]
 
 
 def _uses(graph: Graph) -> _Uses:
     nodes = instances(graph)
-    spellings: dict[tuple[str, str], set[Location]] = defaultdict(set)
+    spellings: _Uses = defaultdict(set)
     by_code: dict[Location, set[str]] = defaultdict(set)
     for endpoint in graph.endpoints:
         by_code[endpoint.location].add(endpoint.resource)
     for endpoint in graph.endpoints:
+        if not endpoint.certain:
+            continue  # placed in the node's namespace by guess
         location = endpoint.location
         node = nodes.get((endpoint.root, endpoint.node))
         # One code location under two spellings: the namespaces differ in case.
         site = None if node is None else launch_site(node)
         if site is not None and _spelled_twice(by_code[location], endpoint.resource):
             location = site
-        spellings[(endpoint.resource_kind.value, endpoint.resource)].add(location)
+        spellings[(endpoint.resource_kind.value, endpoint.resource)].add((location, endpoint))
     for node in graph.nodes:
         site = launch_site(node)
         if site is not None:
-            spellings[("node", node.name)].add(site)
+            spellings[("node", node.name)].add((site, node))
     return spellings
 
 
@@ -54,18 +57,28 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
     for key in sorted(uses):
         groups[key[1].lower()].append(key)
     for keys in groups.values():
-        spellings = sorted({name for _, name in keys})
-        if len(spellings) < 2:
+        if len({name for _, name in keys}) < 2:
             continue
         for what, name in keys:
-            others = [(w, n) for w, n in keys if n != name]
-            related = [(loc, f"{w} '{n}'") for w, n in others for loc in uses[(w, n)]]
-            first_other = sorted(related)[0][0]
-            count = len(related)
-            also = f" and {count - 1} more" if count > 1 else ""
-            for location in sorted(uses[(what, name)]):
+            # Every place, each with the places of other spellings its node can meet.
+            meeting: dict[Location, set[tuple[Location, str]]] = defaultdict(set)
+            for location, user in uses[(what, name)]:
+                for other_what, other_name in keys:
+                    if other_name == name:
+                        continue
+                    meeting[location].update(
+                        (other, f"{other_what} '{other_name}'")
+                        for other, other_user in uses[(other_what, other_name)]
+                        if graph.can_meet(user, other_user)
+                    )
+            for location, related in sorted(meeting.items()):
+                if not related:
+                    continue
+                first_other, first_note = sorted(related)[0]
+                also = f" and {len(related) - 1} more" if len(related) > 1 else ""
+                spelled = first_note.partition(" ")[2]
                 message = (
-                    f"{what} '{name}' differs only in case from '{others[0][1]}' "
+                    f"{what} '{name}' differs only in case from {spelled} "
                     f"at {where(first_other)}{also}; ROS names are case-sensitive, "
                     f"so the two never meet"
                 )

@@ -3,7 +3,8 @@
 roslaunch refuses to start a file with two nodes of one name; in ROS 2 both run, and
 parameters, services and logging then reach one of them at random. Counted over the whole
 tree a root launch file starts, includes followed, after every namespace is applied: the
-same file included twice in two ``<group ns>`` is two robots, not a duplicate.
+same file included twice in two ``<group ns>`` is two robots, not a duplicate. Two rostest
+``<test>``s of one name are not either: rostest runs them one after the other.
 """
 
 from __future__ import annotations
@@ -38,8 +39,11 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
     at: dict[Location, dict[str, list[Location]]] = defaultdict(dict)
     roots: dict[Location, str] = {}
     for (root, name), nodes in sorted(started.items()):
-        for node in nodes if len(nodes) > 1 else ():
-            others = [other for other in nodes if other is not node]
+        for node in nodes:
+            # rostest runs its <test>s one at a time: two of one name never meet.
+            others = [o for o in nodes if o is not node and not (o.test and node.test)]
+            if not others:
+                continue
             location = _blame(node, others[0])
             roots.setdefault(location, root)
             at[location].setdefault(name, [_blame(other, node) for other in others])

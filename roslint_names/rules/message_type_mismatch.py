@@ -2,9 +2,11 @@
 
 A publisher and a subscriber of one topic with different message types never exchange a
 message (ROS 1 refuses the connection on the md5sum, ROS 2 on the type name), and nothing
-fails loudly. Types are compared in one canonical spelling (``std_msgs::msg::String``,
-``std_msgs/String`` and ``std_msgs.msg.String`` are one type); a type the code names
-without its package matches any package's type of that name.
+fails loudly. Only endpoints that can be in one ROS graph are compared (``Graph.can_meet``:
+one launch tree, or packages meant to run together), and only names the linter knows.
+Types are compared in one canonical spelling (``std_msgs::msg::String``, ``std_msgs/String``
+and ``std_msgs.msg.String`` are one type); a type the code names without its package
+matches any package's type of that name.
 """
 
 from __future__ import annotations
@@ -18,8 +20,8 @@ from ..workspace.graph import EdgeKind, Endpoint, Graph, Location
 from .graph_common import finding, where
 
 
-def _comparable(endpoint: Endpoint, generation: Generation) -> bool:
-    """A type we can hold against another.
+def _comparable(endpoint: Endpoint) -> bool:
+    """A type we can hold against another, on a name we know.
 
     Not one the code names without its package: in C++ that is nearly always an alias or
     a template parameter (``using Action = nav2_msgs::action::FollowPath``, ``ActionT``)
@@ -27,9 +29,10 @@ def _comparable(endpoint: Endpoint, generation: Generation) -> bool:
     the definition alone, and tutorials serve one definition under two names
     (``roscpp_tutorials/TwoInts``, ``rospy_tutorials/AddTwoInts``).
     """
-    if endpoint.type_name is None or "/" not in endpoint.type_name:
+    if not endpoint.certain or endpoint.type_name is None or "/" not in endpoint.type_name:
         return False
-    return not (generation is Generation.ROS1 and endpoint.resource_kind is Kind.SERVICE)
+    ros1 = endpoint.reach.generation is Generation.ROS1
+    return not (ros1 and endpoint.resource_kind is Kind.SERVICE)
 
 
 def _alternatives(endpoints: list[Endpoint]) -> set[tuple[str, str, str]]:
@@ -70,16 +73,12 @@ _DONE = {
 
 def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFinding]:
     del context
-    # ROS 1 and ROS 2 endpoints never meet (a bridge maps types itself): compare within one.
-    generations = {(node.root, node.name): node.generation for node in graph.nodes}
-    by_resource: dict[tuple[Kind, str, Generation], list[Endpoint]] = defaultdict(list)
+    by_resource: dict[tuple[Kind, str], list[Endpoint]] = defaultdict(list)
     for endpoint in graph.endpoints:
-        generation = generations.get((endpoint.root, endpoint.node), Generation.ROS2)
-        if _comparable(endpoint, generation):
-            key = (endpoint.resource_kind, endpoint.resource, generation)
-            by_resource[key].append(endpoint)
+        if _comparable(endpoint):
+            by_resource[(endpoint.resource_kind, endpoint.resource)].append(endpoint)
     reported: set[Location] = set()
-    for (kind, resource, _), found in sorted(by_resource.items()):
+    for (kind, resource), found in sorted(by_resource.items()):
         switching = _alternatives(found)
         endpoints = [e for e in found if _code_of(e) not in switching]
         if not _mismatches(endpoints):
@@ -87,7 +86,13 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
         for endpoint in sorted(endpoints, key=Endpoint.sort_key):
             mine = endpoint.type_name or ""
             conflicting = sorted(
-                {o for o in endpoints if o.type_name and not _compatible(o.type_name, mine)},
+                {
+                    other
+                    for other in endpoints
+                    if other.type_name
+                    and not _compatible(other.type_name, mine)
+                    and graph.can_meet(endpoint, other)
+                },
                 key=lambda o: (o.location, o.edge.value),
             )
             # One finding per place in the code, not one per namespace it is launched in.

@@ -8,7 +8,9 @@ only when the node's code is in the workspace and every name it uses is known st
 A remap of a name's parent or child counts as used: actions and image_transport derive
 sub-topics (``move_base/goal``, ``image/compressed``) from the name the code gives. So does
 a remap of a name the client library uses for the node (``/tf``, ``/tf_static``,
-``/clock``...): no code of the node spells it.
+``/clock``...): no code of the node spells it. And so does a name that a string literal of
+the node's package spells (a header, a wrapper the linter does not know): that is evidence
+the code uses it somehow.
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ _MAX_LISTED = 5
 _LIBRARY_NAMES = frozenset(name.rpartition("/")[2] for name in GLOBAL_BY_DESIGN)
 
 
-def _used(remap: NodeRemap, node: NodeInstance) -> bool:
+def _used(remap: NodeRemap, node: NodeInstance, mentions: frozenset[str]) -> bool:
     source = remap.source.rstrip("/")
     if source.rpartition("/")[2] in _LIBRARY_NAMES:
         return True
@@ -40,7 +42,21 @@ def _used(remap: NodeRemap, node: NodeInstance) -> bool:
     ):
         return True
     # Through a handle whose namespace the code does not show, a name may sit anywhere.
-    return any(f"/{written.strip('/~')}/" in f"{source}/" for written in node.uses_relative)
+    if any(f"/{written.strip('/~')}/" in f"{source}/" for written in node.uses_relative):
+        return True
+    # A name-shaped literal of the package's code, passed to an API we do not know,
+    # resolves to the name when it is the name, a private or relative ending of it.
+    return source in mentions or any(
+        spelled in mentions
+        for tail in _endings(source)
+        for spelled in (tail, f"~{tail}", f"~/{tail}")
+    )
+
+
+def _endings(name: str) -> list[str]:
+    """Every ending of a name in whole tokens: ``/a/b/c`` gives ``c``, ``b/c``, ``a/b/c``."""
+    tokens = name.strip("/").split("/")
+    return ["/".join(tokens[start:]) for start in range(len(tokens))]
 
 
 def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFinding]:
@@ -55,7 +71,8 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
         for remap in node.remaps:
             if remap.own:
                 location = Location(remap.path, remap.span)
-                verdicts[location].append((_used(remap, node), remap, node))
+                mentions = graph.mentions.get(node.package or "", frozenset())
+                verdicts[location].append((_used(remap, node, mentions), remap, node))
     for location, seen in sorted(verdicts.items()):
         if any(used for used, _, _ in seen):
             continue  # used by one start of the node: the remap does its job there

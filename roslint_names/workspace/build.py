@@ -31,6 +31,7 @@ from roslint_names.workspace.graph import (
     Location,
     NodeInstance,
     NodeRemap,
+    Reach,
 )
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
 from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Specialise
@@ -79,7 +80,21 @@ def build(facts: Iterable[FileFacts], packages: Sequence[Package], specialise: S
     return Graph(
         tuple(sorted(set(nodes), key=NodeInstance.sort_key)),
         tuple(sorted(set(endpoints), key=Endpoint.sort_key)),
+        index.companions(),
+        _mentions(index, nodes),
     )
+
+
+def _mentions(index: WorkspaceIndex, nodes: Iterable[NodeInstance]) -> dict[str, frozenset[str]]:
+    """The string literals of every code file (headers too) of each package whose node
+    has remaps of its own."""
+    packages = {node.package for node in nodes if node.package and any(r.own for r in node.remaps)}
+    return {
+        package: frozenset(
+            literal for path in index.files_of(package) for literal in index.facts[path].literals
+        )
+        for package in sorted(packages)
+    }
 
 
 # ---------------------------------------------------------------------------------------
@@ -90,6 +105,8 @@ def _launched_instance(
     index: WorkspaceIndex, launched: Launched, sources: tuple[str, ...]
 ) -> tuple[NodeInstance, list[Endpoint]] | None:
     code = [index.facts[path] for path in sources]
+    if launched.node.dynamic_name:
+        return None  # the launch file names it, but not statically: its name is unknown
     name = launched.node.name or _code_node_name(code)
     if name is None:
         return None
@@ -97,6 +114,14 @@ def _launched_instance(
     generation = _generation(code, launch_facts)
     instance = _Instance(name, launched.namespace, generation)
     full_name = _full_name(instance)
+    packages = {launched.node.package} | {
+        _package_name(index, path) for path in (launched.root, *(s.path for s in launched.sites))
+    }
+    reach = Reach(
+        generation,
+        _is_test_launch(launched.root),
+        tuple(sorted(p for p in packages if p)),
+    )
     remaps = [
         NodeRemap(
             _resolve_quietly(remap.source, instance) or remap.source,
@@ -108,7 +133,7 @@ def _launched_instance(
         for remap, path, own in launched.remaps
     ]
     endpoints, uses, relative, complete = _resolve_code(
-        code, instance, remaps, launched.root, full_name
+        code, instance, remaps, launched.root, reach
     )
     node = NodeInstance(
         name=full_name,
@@ -124,6 +149,8 @@ def _launched_instance(
         uses_complete=complete and bool(sources),
         uses_relative=relative,
         conditional=launched.conditional,
+        test=launched.node.test,
+        reach=reach,
     )
     return node, endpoints
 
@@ -156,8 +183,9 @@ def _unlaunched_instance(
     name = _code_node_name(code) or _stem(sources[0])
     instance = _Instance(name, "/", _generation(code, None))
     full_name = _full_name(instance)
-    endpoints, uses, relative, complete = _resolve_code(code, instance, [], "", full_name)
     package = index.package_of(sources[0])
+    reach = Reach(instance.generation, False, () if package is None else (package.name,))
+    endpoints, uses, relative, complete = _resolve_code(code, instance, [], "", reach)
     node = NodeInstance(
         name=full_name,
         generation=instance.generation,
@@ -169,8 +197,14 @@ def _unlaunched_instance(
         uses=uses,
         uses_complete=complete,
         uses_relative=relative,
+        reach=reach,
     )
     return node, endpoints
+
+
+def _package_name(index: WorkspaceIndex, path: str) -> str | None:
+    package = index.package_of(path)
+    return None if package is None else package.name
 
 
 def _code_node_name(code: Sequence[FileFacts]) -> str | None:
@@ -200,7 +234,18 @@ def _stem(path: str) -> str:
 
 
 def _is_test(path: str) -> bool:
-    return any(part in _TEST_DIRECTORIES for part in path.split("/")[:-1])
+    """Under a test directory or in a test package (``nav2_system_tests``, ``test_rospy``)."""
+    return any(
+        part in _TEST_DIRECTORIES or part.startswith("test_") or part.endswith(("_test", "_tests"))
+        for part in path.split("/")[:-1]
+    )
+
+
+def _is_test_launch(path: str) -> bool:
+    """rostest's ``.test`` files, launch tests named for pytest (``test_*.py``), and any
+    launch file under a test directory."""
+    name = posixpath.basename(path)
+    return name.endswith(".test") or name.startswith("test_") or _is_test(path)
 
 
 def _has_endpoints(facts: FileFacts) -> bool:
@@ -216,7 +261,7 @@ def _resolve_code(
     instance: _Instance,
     remaps: Sequence[NodeRemap],
     root: str,
-    full_name: str,
+    reach: Reach,
 ) -> tuple[list[Endpoint], tuple[str, ...], tuple[str, ...], bool]:
     """The node's endpoints after remapping; every remappable name it uses before
     remapping, resolved, and as written when its namespace is unknown; whether the names
@@ -244,11 +289,13 @@ def _resolve_code(
                     resource=_remapped(resolved, remaps, instance.generation),
                     resource_kind=use.kind,
                     edge=edge,
-                    node=full_name,
+                    node=_full_name(instance),
                     root=root,
                     type_name=_canonical_type(use.type_name),
                     location=Location(facts.path, use.span),
                     written=use.value,
+                    reach=reach,
+                    certain=certain,
                 )
             )
     return endpoints, tuple(sorted(uses)), tuple(sorted(relative)), complete

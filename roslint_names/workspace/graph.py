@@ -7,8 +7,10 @@ runs over one tree give equal graphs.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from enum import Enum
+from typing import Protocol
 
 from roslint_names.model import Generation, Kind, Remap, Span
 
@@ -30,6 +32,33 @@ class EdgeKind(str, Enum):
     CALL = "call"
     ACTION_SERVE = "action-serve"
     ACTION_CALL = "action-call"
+
+
+@dataclass(frozen=True, order=True)
+class Reach:
+    """What decides which other nodes a node can exchange messages with.
+
+    Two nodes can meet when one launch tree starts both, or when nothing keeps them apart
+    and the workspace says their packages run together (``Graph.can_meet``). A tree a test
+    starts (rostest's ``.test``, a ``test_*`` launch test, a file under ``test/``) is
+    ``isolated``: rostest gives each its own master and launch tests their own domain.
+    ``packages`` are the node's code's package and the packages of the launch files that
+    start it.
+    """
+
+    generation: Generation
+    isolated: bool = False
+    packages: tuple[str, ...] = ()
+
+
+class Placed(Protocol):
+    """A node or an endpoint: something with a launch tree and a reach."""
+
+    @property
+    def root(self) -> str: ...
+
+    @property
+    def reach(self) -> Reach: ...
 
 
 @dataclass(frozen=True, order=True)
@@ -73,6 +102,8 @@ class NodeInstance:
     uses_complete: bool = False
     uses_relative: tuple[str, ...] = ()
     conditional: bool = False  # started under a condition the linter cannot decide
+    test: bool = False  # a rostest ``<test>``: run alone, after the nodes are up
+    reach: Reach = Reach(Generation.ROS2)
 
     def sort_key(self) -> tuple[str, str, tuple[Location, ...], tuple[str, ...]]:
         return (self.name, self.root, self.launched_at, self.sources)
@@ -96,6 +127,11 @@ class Endpoint:
     type_name: str | None
     location: Location
     written: str
+    reach: Reach = Reach(Generation.ROS2)  # the node's
+    # False when the code uses the name through a handle whose namespace it does not show
+    # (``NodeHandle nh("~/" + name)``): ``resource`` is then a guess, in the node's
+    # namespace. The graph shows it; the rules do not judge it.
+    certain: bool = True
 
     def sort_key(self) -> tuple[str, str, str, str, str, Location, str]:
         return (
@@ -113,6 +149,32 @@ class Endpoint:
 class Graph:
     nodes: tuple[NodeInstance, ...]
     endpoints: tuple[Endpoint, ...]
+    # package -> the packages it is meant to run with (``WorkspaceIndex.companions``)
+    companions: Mapping[str, frozenset[str]] = field(default_factory=dict)
+    # package -> name-shaped string literals of its code, for the packages of nodes with
+    # remaps of their own: evidence of names used through APIs the linter does not know
+    mentions: Mapping[str, frozenset[str]] = field(default_factory=dict)
+
+    def can_meet(self, one: Placed, other: Placed) -> bool:
+        """Whether two nodes (or their endpoints) can be in one ROS graph at run time.
+
+        A workspace holds many systems never run together (tutorials, demos, tests of other
+        packages): a name shared by two of them is no conflict. One launch tree is one
+        system; a test's tree meets nothing else; ROS 1 and ROS 2 never meet; otherwise
+        the packages decide, and code outside any package meets only such code.
+        """
+        if one.reach.generation is not other.reach.generation:
+            return False
+        if one.root and one.root == other.root:
+            return True
+        if one.reach.isolated or other.reach.isolated:
+            return False
+        mine, theirs = one.reach.packages, other.reach.packages
+        if not mine or not theirs:
+            return not mine and not theirs
+        return any(
+            package in self.companions.get(own, (own,)) for own in mine for package in theirs
+        )
 
     def resources(self, kind: Kind) -> list[str]:
         """Every resolved name of one kind, sorted."""

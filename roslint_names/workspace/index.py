@@ -7,6 +7,7 @@ so the index needs nothing but the facts and the list of package manifests.
 from __future__ import annotations
 
 import posixpath
+from collections import Counter
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
@@ -19,6 +20,7 @@ CODE_LANGUAGES = frozenset({Language.CPP, Language.PYTHON})
 class Package:
     name: str
     directory: str  # display path of the directory holding package.xml; "" for "."
+    depends: frozenset[str] = frozenset()  # package names its package.xml depends on
 
 
 def parent(path: str) -> str:
@@ -37,9 +39,13 @@ class WorkspaceIndex:
 
     def __init__(self, facts: Iterable[FileFacts], packages: Sequence[Package]) -> None:
         self.facts: dict[str, FileFacts] = {f.path: f for f in facts}
-        self.packages: dict[str, Package] = {}
-        for package in sorted(packages, key=lambda p: (p.directory, p.name)):
-            self.packages.setdefault(package.name, package)  # a duplicate name: the first
+        # A name two directories claim (a ROS 1 and a ROS 2 copy) is no package we can
+        # find things in: colcon and catkin refuse such a workspace, and which copy a
+        # launch file means is unknown.
+        claims = Counter(package.name for package in packages)
+        self.packages: dict[str, Package] = {
+            package.name: package for package in packages if claims[package.name] == 1
+        }
         self._package_by_directory = {p.directory: p for p in packages}
         self._files_by_package: dict[str, list[str]] = {}
         for path in sorted(self.facts):
@@ -64,6 +70,18 @@ class WorkspaceIndex:
             if up == directory:
                 return None
             directory = up
+
+    def companions(self) -> dict[str, frozenset[str]]:
+        """package -> the workspace packages it is meant to run with: itself, those it
+        depends on, those depending on it, and those sharing a dependent with it (the
+        packages a metapackage or a bringup package gathers)."""
+        known = set(self.packages)
+        found: dict[str, set[str]] = {name: {name} for name in known}
+        for name, package in self.packages.items():
+            gathered = (package.depends & known) | {name}
+            for one in gathered:
+                found[one] |= gathered
+        return {name: frozenset(companions) for name, companions in found.items()}
 
     def files_of(self, package: str) -> list[str]:
         return self._files_by_package.get(package, [])
@@ -93,7 +111,7 @@ class WorkspaceIndex:
             return ()
         if "::" in executable:
             return tuple(self._plugins.get(executable, ()))
-        if package is None:
+        if package not in self.packages:
             return ()
         built = self._programs.get((package, executable))
         if built:

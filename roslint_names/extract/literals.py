@@ -1,0 +1,24 @@
+"""String literals of code that are shaped like ROS names.
+
+Not facts about what the code does with them: they are evidence that a name may be used
+through an API the linter does not know (``InterProcessPollingSubscriber{this,
+"~/input/accel"}``, ``rospy.wait_for_message("input", ...)`` through a helper), which keeps
+RN404 from calling a remap of such a name unused. Found by a regular expression over the
+text, so they cost no parse; a name-shaped string in a comment is harmless evidence too.
+"""
+
+from __future__ import annotations
+
+import re
+
+# A quoted relative, private (``~``, ``~/``) or absolute name of at most nine tokens.
+_NAME = r"""["']((?:~/?|/)?[A-Za-z_][A-Za-z0-9_]{0,63}(?:/[A-Za-z0-9_]{1,64}){0,8}/?)["']"""
+_QUOTED = re.compile(_NAME)
+_QUOTED_BYTES = re.compile(_NAME.encode("ascii"))
+
+
+def name_literals(text: str | bytes) -> tuple[str, ...]:
+    """Every distinct name-shaped string literal of ``text`` (UTF-8 if bytes), sorted."""
+    if isinstance(text, bytes):
+        return tuple(sorted({found.decode("ascii") for found in _QUOTED_BYTES.findall(text)}))
+    return tuple(sorted(set(_QUOTED.findall(text))))
