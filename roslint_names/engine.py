@@ -28,6 +28,7 @@ from .model import (
     Generation,
     Kind,
     Language,
+    LaunchArguments,
     ParseError,
     RelatedLocation,
     Span,
@@ -108,7 +109,7 @@ class _ExtractWithArguments(Protocol):
         package_generation: Generation | None,
         fallback_generation: Generation,
         *,
-        arguments: tuple[tuple[str, str], ...],
+        arguments: LaunchArguments,
     ) -> FileFacts: ...
 
 
@@ -266,15 +267,15 @@ class _Specialiser:
         self._packages = packages
         self._fallback = fallback
         self._cache = cache
-        self._memo: dict[tuple[str, tuple[tuple[str, str], ...]], FileFacts | None] = {}
+        self._memo: dict[tuple[str, LaunchArguments], FileFacts | None] = {}
 
-    def __call__(self, display: str, arguments: tuple[tuple[str, str], ...]) -> FileFacts | None:
+    def __call__(self, display: str, arguments: LaunchArguments) -> FileFacts | None:
         key = (display, arguments)
         if key not in self._memo:
             self._memo[key] = self._extract(display, arguments)
         return self._memo[key]
 
-    def _extract(self, display: str, arguments: tuple[tuple[str, str], ...]) -> FileFacts | None:
+    def _extract(self, display: str, arguments: LaunchArguments) -> FileFacts | None:
         source = self._sources.get(display)
         if source is None or source.language not in SPECIALISABLE:
             return None

@@ -153,6 +153,12 @@ class LaunchNode:
     test: bool = False
 
 
+# What an include hands the included file, sorted by name: each argument's value, None
+# when the includer sets it to something the linter cannot know (the included file must
+# then not fall back to its default).
+LaunchArguments = tuple[tuple[str, "str | None"], ...]
+
+
 @dataclass(frozen=True)
 class LaunchInclude:
     """A launch file including another: where the included file is and the scope it gets.
@@ -173,7 +179,7 @@ class LaunchInclude:
     path: str | None
     namespace: str
     span: Span
-    arguments: tuple[tuple[str, str], ...] = ()
+    arguments: LaunchArguments = ()
     remaps: tuple[Remap, ...] = ()
     anchored: bool = False
     conditional: bool = False  # as LaunchNode.conditional: everything it starts is too

@@ -81,12 +81,19 @@ def test_group_and_file_level_remaps_reach_the_include_in_order() -> None:
     assert first.remaps[1].span == Span(15, 18, 15, 22)
 
 
-def test_pass_all_args_hands_over_every_static_argument_children_win() -> None:
+def test_pass_all_args_hands_over_every_argument_children_win() -> None:
     gazebo = fixture("fleet.launch").includes[2]
     assert where(gazebo) == ("gazebo_ros", "launch/empty_world.launch")
     # model: the child's value is dynamic ($(env)), so the inherited "burger" is not what
-    # the included file gets; robot_model and launch_dir are not static at all.
-    assert gazebo.arguments == (("use_sim", "true"), ("world", "empty.world"))
+    # the included file gets; robot_model and launch_dir are not static at all. Unknown
+    # values are handed over as unknown: the included file must not take its defaults.
+    assert gazebo.arguments == (
+        ("launch_dir", None),
+        ("model", None),
+        ("robot_model", None),
+        ("use_sim", "true"),
+        ("world", "empty.world"),
+    )
 
 
 def test_dirname_path_is_relative_to_the_including_file_and_normalised() -> None:
@@ -250,9 +257,10 @@ def test_ros2_include_in_group_with_pushed_namespace_and_set_remap() -> None:
     assert (navigation.namespace, navigation.anchored) == ("/robot1", False)
     assert [(r.source, r.target) for r in navigation.remaps] == [("/tf", "tf")]
     # Explicit <arg>s win over the configurations in scope (use_sim_time), a <let> in the
-    # group is seen, and the dynamic `map` is left out.
+    # group is seen, and the dynamic `map` is handed over as unknown.
     assert navigation.arguments == (
         ("autostart", "true"),
+        ("map", None),
         ("namespace", "robot1"),
         ("params_file", "nav2_params.yaml"),
         ("use_sim_time", "false"),
@@ -263,7 +271,7 @@ def test_ros2_group_scope_ends_for_later_includes() -> None:
     lidar = fixture("fleet_bringup.launch.xml").includes[1]
     assert where(lidar) == ("fleet_sensors", "launch/lidar.launch.xml")  # find-pkg-prefix
     assert (lidar.namespace, lidar.remaps) == ("/", ())
-    assert lidar.arguments == (("namespace", "robot1"), ("use_sim_time", "true"))
+    assert lidar.arguments == (("map", None), ("namespace", "robot1"), ("use_sim_time", "true"))
 
 
 def test_ros2_dirname_include_and_anchored_push() -> None:
@@ -280,7 +288,8 @@ def test_ros2_include_args_use_the_including_scope() -> None:
         '<launch><let name="x" value="1"/><include file="$(find-pkg-share p)/a.launch.xml">'
         '<arg name="y" value="$(var x)"/><arg name="x" value="$(env X)"/></include></launch>'
     )
-    assert include(facts).arguments == (("y", "1"),)  # x: the explicit, unknown value wins
+    # x: the explicit, unknown value wins over the 1 in scope
+    assert include(facts).arguments == (("x", None), ("y", "1"))
 
 
 def test_ros2_node_anchoring_and_own_remaps() -> None:
@@ -422,6 +431,8 @@ def test_handed_over_explicit_unknown_hides_inherited() -> None:
     inherited = {"a": "1", "b": "2", "c": None}
     assert launch_include.handed_over(inherited, {"b": None, "d": "4"}) == (
         ("a", "1"),
+        ("b", None),
+        ("c", None),
         ("d", "4"),
     )
 

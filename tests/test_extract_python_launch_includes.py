@@ -82,12 +82,14 @@ def test_nav2_humble_bringup_includes_in_their_group() -> None:
     ]
     localization = facts.includes[0]
     assert localization.span == Span(85, 17, 85, 98)  # the source argument
-    # The explicit arguments and every configuration the includer knows, sorted; 'map' has
-    # no default and params_file is a package path built at run time: not handed over.
+    # The explicit arguments and every configuration of the includer, sorted; 'map' has
+    # no default and params_file is a package path built at run time: handed over unknown.
     assert localization.arguments == (
         ("autostart", "true"),
         ("container_name", "nav2_container"),
+        ("map", None),
         ("namespace", ""),
+        ("params_file", None),
         ("slam", "False"),
         ("use_composition", "True"),
         ("use_namespace", "false"),
@@ -141,8 +143,8 @@ def test_turtlebot3_world_directory_variables_fstrings_and_plus() -> None:
         ("turtlebot3_gazebo", "launch/spawn_turtlebot3.launch.py"),  # dir + "/name"
         ("turtlebot3_gazebo", "launch/robot_state_publisher.launch.py"),
     ]
-    # gz_args of the first include holds a package path: unknown, so not handed over.
-    assert facts.includes[0].arguments == (("on_exit_shutdown", "true"),)
+    # gz_args of the first include holds a package path: handed over as unknown.
+    assert facts.includes[0].arguments == (("gz_args", None), ("on_exit_shutdown", "true"))
     spawn = dict(facts.includes[2].arguments)
     assert (spawn["x_pose"], spawn["y_pose"]) == ("-2.0", "-0.5")
 
@@ -193,7 +195,7 @@ def generate_launch_description():
     assert [(include.namespace, dict(include.arguments)) for include in facts.includes] == [
         ("/robot1", {"robot_name": "robot1_bot", "x_pose": "0.0"}),
         ("/robot2", {"robot_name": "robot2_bot", "x_pose": "1.5"}),
-        ("", {"x_pose": "0.0"}),
+        ("", {"robot_name": None, "x_pose": "0.0"}),
     ]
     assert [(node.name, node.namespace) for node in facts.launch_nodes] == [
         ("robot1_driver", "/robot1"),
@@ -429,10 +431,17 @@ def generate_launch_description():
     )
     first, second, third = (dict(include.arguments) for include in facts.includes)
     # 'map' is handed over unknown: the declared default no longer holds; 'rate' likewise.
-    assert first == {"level": "2", "robot": "tb3", "world": "warehouse"}
+    assert first == {"level": "2", "map": None, "rate": None, "robot": "tb3", "world": "warehouse"}
     assert list(facts.includes[0].arguments) == sorted(facts.includes[0].arguments)
     # launch sets an include's arguments in the including scope: 'level' stays set.
-    assert second == {"level": "2", "robot": "tb3", "use_sim_time": "true", "world": "warehouse"}
+    assert second == {
+        "level": "2",
+        "map": None,
+        "rate": None,
+        "robot": "tb3",
+        "use_sim_time": "true",
+        "world": "warehouse",
+    }
     assert third["robot"] == "burger"
 
 

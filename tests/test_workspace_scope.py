@@ -461,3 +461,34 @@ def test_a_package_name_two_directories_claim_is_not_guessed(run_cli: Any, tmp_p
         f"def generate_launch_description():\n    return LaunchDescription([\n{node}{node}    ])\n",
     )
     assert findings(run_cli, tmp_path, ".") == []
+
+
+def test_an_include_argument_of_unknown_value_is_not_its_default(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """Each robot's driver is named from an environment variable: the included file's
+    default name is not what either include starts, so there is no duplicate."""
+    write(tmp_path, "src/fleet/package.xml", catkin_package("fleet"))
+    write(tmp_path, "src/fleet/scripts/talker.py", TALKER_PY)
+    write(
+        tmp_path,
+        "src/fleet/launch/driver.launch",
+        "<launch>\n"
+        '  <arg name="driver_name" default="driver"/>\n'
+        '  <node name="$(arg driver_name)" pkg="fleet" type="talker.py"/>\n'
+        "</launch>\n",
+    )
+    write(
+        tmp_path,
+        "src/fleet/launch/fleet.launch",
+        "<launch>\n"
+        '  <include file="$(find fleet)/launch/driver.launch">\n'
+        '    <arg name="driver_name" value="$(env FIRST_DRIVER)"/>\n'
+        "  </include>\n"
+        '  <include file="$(find fleet)/launch/driver.launch">\n'
+        '    <arg name="driver_name" value="$(env SECOND_DRIVER)"/>\n'
+        "  </include>\n"
+        "</launch>\n",
+    )
+    assert findings(run_cli, tmp_path, ".") == []
+    assert graph_of(run_cli, tmp_path)["nodes"] == []  # their names are unknown

@@ -16,7 +16,8 @@ import posixpath
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from roslint_names.extract.substitution import ARG, Dialect, Lookup, closing_bracket
+from roslint_names.extract.substitution import ARG, Dialect, Lookup, Value, closing_bracket
+from roslint_names.model import LaunchArguments
 
 
 @dataclass(frozen=True)
@@ -99,16 +100,24 @@ def normalise(path: str) -> str | None:
 
 def handed_over(
     inherited: Mapping[str, str | None], explicit: Mapping[str, str | None]
-) -> tuple[tuple[str, str], ...]:
-    """The statically known arguments an include passes, sorted by name.
+) -> LaunchArguments:
+    """The arguments an include passes, sorted by name, None for an unknown value.
 
     ``inherited`` are the values passed wholesale (ROS 1 ``pass_all_args``, the ROS 2
     launch configurations in scope); ``explicit`` the include's own ``<arg>``s, which win
-    even when their value is unknown (None): the inherited value is then not the one the
-    included file gets.
+    even when their value is unknown. An unknown value is handed over as such: the
+    included file must not take its default for it.
     """
-    merged = {**inherited, **explicit}
-    return tuple(sorted((name, value) for name, value in merged.items() if value is not None))
+    return tuple(sorted({**inherited, **explicit}.items()))
+
+
+def passed_values(arguments: LaunchArguments) -> dict[str, Value]:
+    """What an included ROS 2 file sees of the arguments handed to it: a launch
+    configuration per argument, dynamic when its value is unknown."""
+    return {
+        name: Value(f"$(var {name})", dynamic=True) if value is None else Value(value)
+        for name, value in arguments
+    }
 
 
 # ---------------------------------------------------------------------------------------

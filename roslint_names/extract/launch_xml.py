@@ -41,7 +41,7 @@ from roslint_names.extract.launch_common import (
     join_namespace,
     node_path,
 )
-from roslint_names.extract.launch_include import UNKNOWN, handed_over, locate
+from roslint_names.extract.launch_include import UNKNOWN, handed_over, locate, passed_values
 from roslint_names.extract.substitution import (
     ARG,
     Assignment,
@@ -66,6 +66,7 @@ from roslint_names.model import (
     FileFacts,
     Generation,
     Language,
+    LaunchArguments,
     LaunchInclude,
     LaunchNode,
     NameUse,
@@ -356,7 +357,7 @@ class LaunchWalker(ABC):
     # -- includes -----------------------------------------------------------------------
 
     @abstractmethod
-    def include_arguments(self, entity: Entity, scope: Scope) -> tuple[tuple[str, str], ...]:
+    def include_arguments(self, entity: Entity, scope: Scope) -> LaunchArguments:
         """The statically known values the include hands over (per generation)."""
 
     def include(self, entity: Entity, scope: Scope, namespace_attribute: str | None) -> None:
@@ -490,7 +491,7 @@ class Ros1Launch(LaunchWalker):
 
     dialect = Dialect.ROS1
 
-    def __init__(self, root: Entity, arguments: Sequence[tuple[str, str]] = ()) -> None:
+    def __init__(self, root: Entity, arguments: LaunchArguments = ()) -> None:
         super().__init__()
         self.bindings = Bindings(Dialect.ROS1)
         self.declared: dict[str, None] = {}  # the file's argument names, in order
@@ -531,7 +532,7 @@ class Ros1Launch(LaunchWalker):
             inner.enter(value)
         self.walk(entity.children(), inner)
 
-    def include_arguments(self, entity: Entity, scope: Scope) -> tuple[tuple[str, str], ...]:
+    def include_arguments(self, entity: Entity, scope: Scope) -> LaunchArguments:
         """``<arg>`` children (roslaunch passes a ``default`` there too) and, with
         ``pass_all_args``, every argument of this file; the children win."""
         explicit = self.explicit_arguments(entity, scope, ("value", "default"))
@@ -593,7 +594,7 @@ class _Declaring:
     """Where ``_declare_arguments`` puts what it finds, and the values passed in."""
 
     bindings: Bindings
-    passed: dict[str, str]  # from the including file: they replace defaults
+    passed: dict[str, str | None]  # from the including file, replacing defaults; None: unknown
     declared: dict[str, None]  # every declared name, in order (for pass_all_args)
 
 
@@ -659,9 +660,9 @@ class Ros2Launch(LaunchWalker):
 
     dialect = Dialect.ROS2
 
-    def __init__(self, arguments: Sequence[tuple[str, str]] = ()) -> None:
+    def __init__(self, arguments: LaunchArguments = ()) -> None:
         super().__init__()
-        self.arguments = {name: Value(value) for name, value in arguments}
+        self.arguments = passed_values(arguments)
 
     def run(self, root: Entity) -> None:
         self.walk(root.children(), Scope("/", variables=dict(self.arguments)))
@@ -719,7 +720,7 @@ class Ros2Launch(LaunchWalker):
         if value is not None:
             scope.enter(value)
 
-    def include_arguments(self, entity: Entity, scope: Scope) -> tuple[tuple[str, str], ...]:
+    def include_arguments(self, entity: Entity, scope: Scope) -> LaunchArguments:
         """``<arg name value>`` children over every configuration in scope: an included
         file sees the configurations of the context that includes it."""
         inherited = {
@@ -814,7 +815,7 @@ def extract(
     package_generation: Generation | None,
     fallback_generation: Generation,
     *,
-    arguments: tuple[tuple[str, str], ...] = (),
+    arguments: LaunchArguments = (),
 ) -> FileFacts:
     """Names, namespaces, launch nodes and includes of a ROS 1 or ROS 2 launch XML file.
 

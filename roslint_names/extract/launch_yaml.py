@@ -26,7 +26,14 @@ import yaml
 from roslint_names.extract import evidence
 from roslint_names.extract.launch_xml import Entity, Ros2Launch, facts_from, too_deep
 from roslint_names.extract.substitution import Located, Source
-from roslint_names.model import FileFacts, Generation, Language, ParseError, Span
+from roslint_names.model import (
+    FileFacts,
+    Generation,
+    Language,
+    LaunchArguments,
+    ParseError,
+    Span,
+)
 
 
 class _Document:
@@ -185,7 +192,7 @@ def extract(
     package_generation: Generation | None,
     fallback_generation: Generation,
     *,
-    arguments: tuple[tuple[str, str], ...] = (),
+    arguments: LaunchArguments = (),
 ) -> FileFacts:
     """Names, namespaces, launch nodes and includes of a ROS 2 launch YAML file.
 

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import re
 
-from roslint_names.model import FileFacts, Generation, Language
+from roslint_names.model import FileFacts, Generation, Language, LaunchArguments
 
 # A ROS import (rospy, rclpy, actionlib, tf/tf2, launch_ros, message_filters, any
 # *_msgs/*_srvs package) or a launch description. ``import os, rospy`` counts too.
@@ -50,7 +50,7 @@ def extract(
     package_generation: Generation | None,
     fallback_generation: Generation,
     *,
-    arguments: tuple[tuple[str, str], ...] = (),
+    arguments: LaunchArguments = (),
 ) -> FileFacts:
     """Names, events, launch nodes and includes of a Python file; never raises on any bytes.
 

@@ -12,7 +12,14 @@ from roslint_names.extract.python_launch import LaunchExtractor
 from roslint_names.extract.python_source import decode, parse
 from roslint_names.extract.python_spans import Locator
 from roslint_names.extract.python_walk import Walk
-from roslint_names.model import FileFacts, Generation, Language, ParseError, Span
+from roslint_names.model import (
+    FileFacts,
+    Generation,
+    Language,
+    LaunchArguments,
+    ParseError,
+    Span,
+)
 
 # Imports that only exist in one generation (tf2_ros, message_filters and the message
 # packages exist in both).
@@ -42,7 +49,7 @@ def extract_parsed(
     fallback_generation: Generation,
     launch_path: bool,
     *,
-    arguments: tuple[tuple[str, str], ...] = (),
+    arguments: LaunchArguments = (),
 ) -> FileFacts:
     default_language = Language.LAUNCH_PYTHON if launch_path else Language.PYTHON
     text = decode(data)

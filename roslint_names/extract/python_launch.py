@@ -35,6 +35,7 @@ from roslint_names.extract.launch_common import (
     join_namespace,
     node_path,
 )
+from roslint_names.extract.launch_include import passed_values
 from roslint_names.extract.python_launch_paths import IncludePaths
 from roslint_names.extract.python_launch_values import (
     Action,
@@ -51,7 +52,14 @@ from roslint_names.extract.python_scope import Scope, argument_context
 from roslint_names.extract.python_spans import Locator, Where
 from roslint_names.extract.python_walk import Walk
 from roslint_names.extract.substitution import Value, skipped, truth
-from roslint_names.model import LaunchInclude, LaunchNode, NameUse, Remap, Span
+from roslint_names.model import (
+    LaunchArguments,
+    LaunchInclude,
+    LaunchNode,
+    NameUse,
+    Remap,
+    Span,
+)
 
 _IF = ("launch", "IfCondition")
 _UNLESS = ("launch", "UnlessCondition")
@@ -69,13 +77,13 @@ class LaunchExtractor(LaunchValues):
         walk: Walk,
         locator: Locator,
         file_name: str = "",
-        arguments: tuple[tuple[str, str], ...] = (),
+        arguments: LaunchArguments = (),
     ) -> None:
         """``arguments``: launch configurations set before the description runs (what an
         including file hands over); ``file_name`` is what ``__file__`` ends with."""
         super().__init__(walk, locator)
         self.paths = IncludePaths(self, file_name)
-        self.arguments = {name: Value(value) for name, value in arguments}
+        self.arguments = passed_values(arguments)
         self.names: list[NameUse] = []
         self.nodes: list[LaunchNode] = []
         self.includes: list[LaunchInclude] = []
@@ -299,7 +307,9 @@ class LaunchExtractor(LaunchValues):
                 path=where,
                 namespace="" if scope.namespace is None else scope.namespace,
                 span=span,
-                arguments=tuple(sorted((k, v.text) for k, v in handed.items() if not v.dynamic)),
+                arguments=tuple(
+                    sorted((k, None if v.dynamic else v.text) for k, v in handed.items())
+                ),
                 remaps=tuple(scope.remaps),
                 anchored=scope.anchored,
                 conditional=self.undecided_depth > 0,

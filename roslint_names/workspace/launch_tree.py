@@ -13,7 +13,15 @@ from __future__ import annotations
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
-from roslint_names.model import FileFacts, Generation, Language, LaunchInclude, LaunchNode, Remap
+from roslint_names.model import (
+    FileFacts,
+    Generation,
+    Language,
+    LaunchArguments,
+    LaunchInclude,
+    LaunchNode,
+    Remap,
+)
 from roslint_names.names import join_namespace
 from roslint_names.workspace.graph import Location
 from roslint_names.workspace.index import WorkspaceIndex, join, parent
@@ -22,7 +30,7 @@ LAUNCH_LANGUAGES = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Languag
 MAX_INCLUDE_DEPTH = 16  # deeper than any real bringup; stops include cycles and blow-ups
 
 # (display path, arguments) -> the file's facts extracted with those arguments, or None
-Specialise = Callable[[str, tuple[tuple[str, str], ...]], "FileFacts | None"]
+Specialise = Callable[[str, LaunchArguments], "FileFacts | None"]
 
 
 @dataclass(frozen=True)
@@ -44,7 +52,7 @@ class _Frame:
     """Where the walk is: the file, and what its includers give it."""
 
     path: str
-    arguments: tuple[tuple[str, str], ...]
+    arguments: LaunchArguments
     namespace: str  # prefix for the file's relative namespaces
     remaps: tuple[tuple[Remap, str], ...]
     sites: tuple[Location, ...]
@@ -114,7 +122,7 @@ class LaunchTrees:
             )
             yield from self._walk(root, inner)
 
-    def _facts(self, path: str, arguments: tuple[tuple[str, str], ...]) -> FileFacts | None:
+    def _facts(self, path: str, arguments: LaunchArguments) -> FileFacts | None:
         if not arguments:
             return self.index.facts.get(path)
         return self.specialise(path, arguments)
