@@ -471,12 +471,14 @@ def by_name(entries: list[dict[str, Any]], name: str) -> dict[str, Any]:
     return entry
 
 
-def test_json_layout_sorted_keys_two_space_indent_utf8() -> None:
+def test_json_layout_version_first_two_space_indent_utf8() -> None:
     text = json_render.render(two_robots())
     loaded = json.loads(text)
-    assert text == json.dumps(loaded, indent=2, ensure_ascii=False, sort_keys=True) + "\n"
+    assert text == json.dumps(loaded, indent=2, ensure_ascii=False) + "\n"
     assert "crème" in text and "\\u" not in text  # readable, not \u-escaped
-    assert list(loaded) == ["actions", "edges", "nodes", "services", "topics", "version"]
+    # The order the module documents, version first as in `check --format json`.
+    assert list(loaded) == ["version", "nodes", "edges", "topics", "services", "actions"]
+    assert list(loaded["edges"][0])[:3] == ["node", "root", "resource"]
     assert loaded["version"] == 1
 
 

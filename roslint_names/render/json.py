@@ -1,30 +1,31 @@
 """The ``graph`` command's JSON output (``--format json``), version 1.
 
-One UTF-8 JSON object, keys sorted, indented by two spaces, ending with a line break. Every
-list is sorted, so the same graph always gives the same bytes::
+One UTF-8 JSON object, indented by two spaces, ending with a line break. Keys come in the
+fixed order shown, ``version`` first as in ``check --format json``; every list is sorted,
+so the same graph always gives the same bytes::
 
     {
-      "actions": [],
+      "version": 1,
+      "nodes": [...],
       "edges": [
         {
-          "column": 5,
-          "edge": "publish",
-          "end_column": 14,
-          "end_line": 12,
-          "kind": "topic",
-          "line": 12,
           "node": "/talker",
-          "path": "src/demo/src/talker.cpp",
-          "resource": "/chatter",
           "root": "src/demo/launch/demo.launch",
+          "resource": "/chatter",
+          "kind": "topic",
+          "edge": "publish",
           "type": "std_msgs/String",
-          "written": "chatter"
+          "written": "chatter",
+          "path": "src/demo/src/talker.cpp",
+          "line": 12,
+          "column": 5,
+          "end_line": 12,
+          "end_column": 14
         }
       ],
-      "nodes": [...],
-      "services": [],
       "topics": [...],
-      "version": 1
+      "services": [],
+      "actions": []
     }
 
 Fields:
@@ -96,7 +97,7 @@ def render(graph: Graph) -> str:
     }
     for key, kind, roles in _RESOURCE_LISTS:
         document[key] = _resources([e for e in graph.endpoints if e.resource_kind is kind], roles)
-    return json.dumps(document, indent=2, ensure_ascii=False, sort_keys=True) + "\n"
+    return json.dumps(document, indent=2, ensure_ascii=False) + "\n"
 
 
 def _location(location: Location) -> dict[str, Any]:
