@@ -12,6 +12,7 @@ by default.
 from __future__ import annotations
 
 from collections.abc import Iterator
+from functools import lru_cache
 
 from ..model import FileFacts, Finding, Generation, Kind, NameUse, Role, Severity
 from ..names import is_valid, snake_case, tokens
@@ -83,6 +84,8 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
         and use.role in _SERVICE_ROLES
         and is_valid(use.value, use.kind, facts.generation)
     ]
+    if not services:
+        return  # nearly every file: do not even gather the types of the run
     known = _known_types(services, facts.generation, context.known_service_types)
     for use in services:
         name_tokens = tokens(use.value, use.kind)
@@ -116,9 +119,15 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
 def _known_types(
     services: list[NameUse], generation: Generation, of_the_run: frozenset[str]
 ) -> list[InterfaceType]:
-    spellings = [use.type_name for use in services if use.type_name] + sorted(of_the_run)
-    seen = {parsed for spelling in spellings if (parsed := parse_type(spelling))}
-    return sorted(seen | set(WELL_KNOWN_SERVICE_TYPES[generation]), key=str)
+    own = {parsed for use in services if use.type_name and (parsed := parse_type(use.type_name))}
+    return sorted(own | _run_types(generation, of_the_run), key=str)
+
+
+@lru_cache(maxsize=4)
+def _run_types(generation: Generation, of_the_run: frozenset[str]) -> frozenset[InterfaceType]:
+    """The run's service types and the well-known ones, parsed once per run, not per file."""
+    parsed = {found for spelling in of_the_run if (found := parse_type(spelling))}
+    return frozenset(parsed | set(WELL_KNOWN_SERVICE_TYPES[generation]))
 
 
 def _wrong_type_message(use: NameUse, own: InterfaceType, other: InterfaceType) -> str:
