@@ -287,6 +287,8 @@ def _print_run_details(
         + (f"{result.workers} worker processes" if result.workers else "this process"),
         file=sys.stderr,
     )
+    for path, reason in result.skipped:
+        print(f"roslint-names: skipped {path}: {reason}", file=sys.stderr)
     for problem in cache.problems if cache is not None else []:
         print(f"roslint-names: warning: {problem}", file=sys.stderr)
 

@@ -31,6 +31,8 @@ else:  # pragma: no cover - exercised on Python 3.10 only
 
 CONFIG_FILENAMES = ("roslint-names.toml", ".roslint-names.toml", "pyproject.toml")
 DEFAULT_MAX_DEPTH = 4
+# Larger files are generated or vendored, not written by hand: skipped (said with --verbose).
+DEFAULT_MAX_FILE_SIZE = 5 * 1024 * 1024
 _TEMPLATE_FIELD = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
 
 
@@ -49,6 +51,7 @@ class Settings:
     per_file_ignores: tuple[tuple[str, tuple[str, ...]], ...] = ()
     exclude: tuple[str, ...] = ()
     max_depth: int = DEFAULT_MAX_DEPTH
+    max_file_size: int = DEFAULT_MAX_FILE_SIZE  # bytes
     severity: Mapping[str, Severity] = field(default_factory=dict)  # code -> severity
     rule_options: Mapping[str, Mapping[str, OptionValue]] = field(default_factory=dict)
     policies: tuple[NamingPolicy, ...] = ()
@@ -85,6 +88,7 @@ def parse_settings(table: Mapping[str, Any], source: Path, registry: Registry) -
         "per-file-ignores",
         "exclude",
         "max-depth",
+        "max-file-size",
         "severity",
         "rules",
         "naming",
@@ -103,6 +107,9 @@ def parse_settings(table: Mapping[str, Any], source: Path, registry: Registry) -
         per_file_ignores=reader.per_file_ignores(table.get("per-file-ignores", {})),
         exclude=reader.strings("exclude", table.get("exclude", [])),
         max_depth=reader.max_depth("max-depth", table.get("max-depth", DEFAULT_MAX_DEPTH)),
+        max_file_size=reader.positive(
+            "max-file-size", table.get("max-file-size", DEFAULT_MAX_FILE_SIZE), "bytes"
+        ),
         severity=reader.severities(table.get("severity", {})),
         rule_options=reader.rule_options(table.get("rules", {})),
         policies=reader.policies(table.get("naming", {})),
@@ -253,8 +260,11 @@ class _Reader:
         return selectors
 
     def max_depth(self, key: str, value: object) -> int:
+        return self.positive(key, value, "tokens")
+
+    def positive(self, key: str, value: object, unit: str) -> int:
         if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-            raise self.error(key, f"must be a whole number of at least 1, got {value!r}")
+            raise self.error(key, f"must be a whole number of {unit}, at least 1, got {value!r}")
         return value
 
     def per_file_ignores(self, value: object) -> tuple[tuple[str, tuple[str, ...]], ...]:

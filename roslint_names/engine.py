@@ -72,6 +72,7 @@ class LintResult:
     files_cached: int = 0  # facts served by the cache
     workers: int = 0  # worker processes started; 0 when everything ran in-process
     graph: Graph | None = None  # the workspace graph, when a graph rule or the caller wants it
+    skipped: tuple[tuple[str, str], ...] = ()  # (display path, why): too large or binary
 
 
 Progress = Callable[[int, int], None]  # (files done, files in total)
@@ -189,10 +190,15 @@ def lint(
     if cache is not None:
         cache.writable()  # create the directory now, not racing in every worker
     extracted = cached = 0
+    skipped: list[tuple[str, str]] = []
     extract = partial(_extract_batch, cache)
     with Dispatcher(extract, run.jobs, expected_items=len(checked)) as dispatcher:
         for index, source in enumerate(checked):
-            data, read_error = _read(source.path)
+            data, read_error, skip = _read(source.path, settings.max_file_size)
+            if skip is not None:
+                skipped.append((source.display, skip))
+                check(index, FileFacts(source.display, source.language, fallback), b"")
+                continue
             if data is None:
                 check(index, _unreadable(source, read_error), b"")
                 continue
@@ -221,7 +227,7 @@ def lint(
     graph: Graph | None = None
     if keep_facts:
         known_facts = [facts for facts in all_facts if facts is not None]
-        specialise = _Specialiser(checked, packages, fallback, cache)
+        specialise = _Specialiser(checked, packages, fallback, cache, settings.max_file_size)
         graph = build(known_facts, _packages([*sources, *context], packages), specialise)
         _report_graph(
             graph,
@@ -235,7 +241,11 @@ def lint(
         )
     diagnostics = [diagnostic for found in per_file for diagnostic in found]
     diagnostics.sort(key=Diagnostic.sort_key)
-    return LintResult(tuple(diagnostics), reported, extracted, cached, workers, graph)
+    skipped_paths = {path for path, _ in skipped}
+    checked_count = sum(1 for source in checked[:reported] if source.display not in skipped_paths)
+    return LintResult(
+        tuple(diagnostics), checked_count, extracted, cached, workers, graph, tuple(skipped)
+    )
 
 
 def _packages(sources: Sequence[SourceFile], packages: PackageGenerations) -> list[Package]:
@@ -262,11 +272,13 @@ class _Specialiser:
         packages: PackageGenerations,
         fallback: Generation,
         cache: FactsCache | None,
+        max_file_size: int,
     ) -> None:
         self._sources = {source.display: source for source in sources}
         self._packages = packages
         self._fallback = fallback
         self._cache = cache
+        self._max_file_size = max_file_size
         self._memo: dict[tuple[str, LaunchArguments], FileFacts | None] = {}
 
     def __call__(self, display: str, arguments: LaunchArguments) -> FileFacts | None:
@@ -279,7 +291,7 @@ class _Specialiser:
         source = self._sources.get(display)
         if source is None or source.language not in SPECIALISABLE:
             return None
-        data, _ = _read(source.path)
+        data, _, _ = _read(source.path, self._max_file_size)
         if data is None:
             return None
         package = self._packages.for_file(source.path)
@@ -324,7 +336,7 @@ def _report_graph(
         source = reported[index]
         file_facts = facts_of[source.display]
         ignored = ignored_for_path(settings, _relative_to_root(source.display, settings), registry)
-        data, _ = _read(source.path)
+        data, _, _ = _read(source.path, settings.max_file_size)
         to_diagnostic = _DiagnosticFactory(file_facts, settings, decode_for_display(data or b""))
         fresh = [
             to_diagnostic(rule, item.finding.span, item.finding.message, item.finding.related)
@@ -497,11 +509,31 @@ class _DiagnosticFactory:
         )
 
 
-def _read(path: Path) -> tuple[bytes | None, str]:
+def _read(path: Path, max_size: int) -> tuple[bytes | None, str, str | None]:
+    """The file's bytes, else why it cannot be read; and why it is skipped, if it is.
+
+    Files above ``max_size`` bytes are generated or vendored: skipped before they are read.
+    So are binary files, by git's test (a NUL in the first 8,000 bytes) unless a UTF-16
+    or UTF-32 byte order mark says the NULs are text.
+    """
     try:
-        return path.read_bytes(), ""
+        size = path.stat().st_size
+        if size > max_size:
+            return None, "", f"{_megabytes(size)}, above max-file-size ({_megabytes(max_size)})"
+        data = path.read_bytes()
     except OSError as error:
-        return None, error.strerror or str(error)
+        return None, error.strerror or str(error), None
+    if b"\0" in data[:_BINARY_SNIFF] and not data.startswith(_WIDE_BOMS):
+        return None, "", "binary (NUL bytes)"
+    return data, "", None
+
+
+_BINARY_SNIFF = 8000
+_WIDE_BOMS = (b"\xff\xfe", b"\xfe\xff")  # UTF-16 LE and BE (UTF-32 LE starts like LE)
+
+
+def _megabytes(size: int) -> str:
+    return f"{size / (1024 * 1024):.1f} MiB"
 
 
 def _unreadable(source: SourceFile, reason: str) -> FileFacts:
