@@ -106,30 +106,37 @@ def display_path(path: Path, cwd: Path) -> str:
 
 
 class _IgnoreRules:
-    """``.gitignore`` files and ``exclude`` patterns, each relative to its own directory."""
+    """``.gitignore`` files and ``exclude`` patterns, each relative to its own directory.
+
+    Paths are plain strings here: the walk meets every file of the tree, and building a
+    ``Path`` for each costs more than the matching.
+    """
 
     def __init__(self, exclude: Sequence[str], exclude_root: Path) -> None:
-        self._specs: list[tuple[Path, Any]] = []
+        self._specs: list[tuple[str, Any]] = []
         if exclude:
-            self._specs.append((exclude_root, _spec(exclude)))
+            self._specs.append((os.fspath(exclude_root), _spec(exclude)))
         self._exclude_count = len(self._specs)
 
     def excluded_by_config(self, path: Path, is_dir: bool) -> bool:
         return any(
-            _matches(spec, base, path, is_dir) for base, spec in self._specs[: self._exclude_count]
+            _matches(spec, base, os.fspath(path), is_dir)
+            for base, spec in self._specs[: self._exclude_count]
         )
 
-    def ignored(self, path: Path, is_dir: bool) -> bool:
+    def ignored(self, path: str, is_dir: bool) -> bool:
         return any(_matches(spec, base, path, is_dir) for base, spec in self._specs)
 
-    def enter(self, directory: Path) -> int:
+    def enter(self, directory: str | Path) -> int:
         """Read ``directory/.gitignore``; returns how many rules to pop on leaving it."""
-        gitignore = directory / ".gitignore"
         try:
-            lines = gitignore.read_text(encoding="utf-8", errors="replace").splitlines()
+            with open(
+                os.path.join(directory, ".gitignore"), encoding="utf-8", errors="replace"
+            ) as f:
+                lines = f.read().splitlines()
         except OSError:
             return 0
-        self._specs.append((directory, _spec(lines)))
+        self._specs.append((os.fspath(directory), _spec(lines)))
         return 1
 
     def leave(self, count: int) -> None:
@@ -142,11 +149,11 @@ def _spec(lines: Sequence[str]) -> Any:
     return pathspec.GitIgnoreSpec.from_lines(lines)
 
 
-def _matches(spec: Any, base: Path, path: Path, is_dir: bool) -> bool:
-    try:
-        relative = path.relative_to(base).as_posix()
-    except ValueError:
+def _matches(spec: Any, base: str, path: str, is_dir: bool) -> bool:
+    prefix = base.rstrip(os.sep) + os.sep
+    if not path.startswith(prefix):
         return False
+    relative = path[len(prefix) :].replace(os.sep, "/")
     return bool(spec.match_file(relative + "/" if is_dir else relative))
 
 
@@ -162,8 +169,8 @@ def discover(
             raise DiscoveryError(f"{given}: no such file or directory")
         if absolute.is_dir():
             pushed = sum(rules.enter(ancestor) for ancestor in _repository_ancestors(absolute))
-            for path in _walk(absolute, rules):
-                _add(found, path, cwd)
+            for path in _walk(os.fspath(absolute), rules):
+                _add(found, Path(path), cwd)
             rules.leave(pushed)
         elif not rules.excluded_by_config(absolute, is_dir=False):
             _add(found, absolute, cwd)
@@ -210,20 +217,34 @@ def _add(found: dict[Path, SourceFile], path: Path, cwd: Path) -> None:
         found[path] = SourceFile(path, display_path(path, cwd), language)
 
 
-def _walk(top: Path, rules: _IgnoreRules) -> Iterator[Path]:
-    if any((top / marker).exists() for marker in IGNORE_MARKERS):
-        return
-    pushed = rules.enter(top)
+def _walk(top: str, rules: _IgnoreRules) -> Iterator[str]:
     try:
         entries = sorted(os.scandir(top), key=lambda entry: entry.name)
     except OSError:
-        entries = []  # an unreadable directory holds nothing we can lint
+        return  # an unreadable directory holds nothing we can lint
+    if any(entry.name in IGNORE_MARKERS for entry in entries):
+        return
+    pushed = rules.enter(top)
     for entry in entries:
-        path = Path(entry.path)
         if entry.is_dir(follow_symlinks=False):
-            if entry.name in SKIPPED_DIRECTORIES or rules.ignored(path, is_dir=True):
+            if entry.name in SKIPPED_DIRECTORIES or rules.ignored(entry.path, is_dir=True):
                 continue
-            yield from _walk(path, rules)
-        elif entry.is_file() and not rules.ignored(path, is_dir=False):
-            yield path
+            yield from _walk(entry.path, rules)
+        elif (
+            _may_be_lintable(entry.name)
+            and entry.is_file()
+            and not rules.ignored(entry.path, is_dir=False)
+        ):
+            yield entry.path
     rules.leave(pushed)
+
+
+_LINTABLE_SUFFIXES = frozenset(
+    {".launch", ".test", ".xml", ".yaml", ".yml", ".urdf", ".xacro", ".py", ".srv", ".txt", ".cfg"}
+    | _CPP_SUFFIXES
+)
+
+
+def _may_be_lintable(name: str) -> bool:
+    """A cheap look at the name before ``classify`` (most files of a tree are not code)."""
+    return os.path.splitext(name)[1].lower() in _LINTABLE_SUFFIXES
