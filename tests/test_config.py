@@ -44,6 +44,7 @@ extend-select = ["RN002"]
 ignore = ["not-snake-case"]
 exclude = ["third_party/"]
 max-depth = 6
+max-file-size = 1048576
 per-file-ignores = { "test/**" = ["RN101"] }
 [severity]
 RN203 = "error"
@@ -59,6 +60,7 @@ node = '[a-z_]+'
     assert settings.ignore == ("not-snake-case",)
     assert settings.exclude == ("third_party/",)
     assert settings.max_depth == 6
+    assert settings.max_file_size == 1024 * 1024
     assert settings.per_file_ignores == (("test/**", ("RN101",)),)
     assert settings.severity == {"RN203": Severity.ERROR}
     assert [(policy.kind, policy.description) for policy in settings.policies] == [
@@ -98,6 +100,8 @@ def test_default_selection_leaves_off_by_default_rules_out(tmp_path: Path) -> No
         ("colour = true\n", "colour"),
         ("max-depth = 0\n", "max-depth"),
         ('max-depth = "4"\n', "max-depth"),
+        ('max-file-size = "5MB"\n', "max-file-size"),
+        ("max-file-size = -1\n", "max-file-size"),
         ("ros = 3\n", "ros"),
         ('select = ["RN999"]\n', "select"),
         ('select = "RN1"\n', "select"),
