@@ -19,6 +19,7 @@ import re
 import string
 import unicodedata
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 from .model import Generation, Kind
 
@@ -189,6 +190,13 @@ def resolve(
     root. Raises NameResolutionError when the name, namespace or node name is illegal, when
     a '~' (or '{node}') name has no node, or when the result is not a legal full name.
     """
+    return _resolve(name, generation, namespace, node_name)
+
+
+# The workspace graph resolves the same names for every launch of the same code: memoised
+# (an illegal name raises each time; exceptions are not cached).
+@lru_cache(maxsize=1 << 16)
+def _resolve(name: str, generation: Generation, namespace: str, node_name: str | None) -> str:
     if generation is Generation.ROS1:
         return _resolve_ros1(name, namespace, node_name)
     return _resolve_ros2(name, namespace, node_name)
