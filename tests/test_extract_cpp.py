@@ -747,3 +747,16 @@ def test_events_are_values() -> None:
     facts = fixture("handles_before_init.cpp")
     assert all(isinstance(event, RuntimeEvent) for event in facts.events)
     assert len(set(facts.events)) == len(facts.events)
+
+
+@pytest.mark.parametrize("escape", ["\\ud800", "\\udc80", "\\U0000dfff", "\\xd800"])
+def test_surrogate_escape_stands_for_a_replacement_character(escape: str) -> None:
+    """A surrogate is no character (C++ rejects ``\\ud800``): like an escape above U+10FFFF
+    it stands for U+FFFD, which every report can print (a lone surrogate made the CLI exit
+    2 with a UnicodeEncodeError); the name stays illegal."""
+    facts = extract(
+        "#include <ros/ros.h>\n"
+        f'int main(int c, char** v) {{ ros::init(c, v, "talker"); ros::NodeHandle nh;\n'
+        f'  nh.advertise<std_msgs::String>("chat{escape}ter", 1); }}\n'
+    )
+    assert uses(facts)[1:] == [(TOPIC, Role.PUBLISH, "chat\ufffdter", "std_msgs::String")]

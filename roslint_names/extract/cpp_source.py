@@ -331,7 +331,8 @@ def unescape(text: str) -> str:
 
 
 def _character(code: int) -> str:
-    return chr(code) if code <= 0x10FFFF else "\ufffd"
+    # No character above U+10FFFF, nor a UTF-16 surrogate (which no report could print).
+    return chr(code) if code <= 0x10FFFF and not 0xD800 <= code <= 0xDFFF else "\ufffd"
 
 
 def literal_value(source: Source, node: Node) -> str | None:
