@@ -242,3 +242,11 @@ def test_talker_listener_fixture() -> None:
     ]
     [frame] = [use for use in facts.names if use.kind is Kind.FRAME]
     assert frame.span == Span(33, 14, 33, 28)  # with its quotes
+
+
+def test_surrogate_escape_stands_for_a_replacement_character() -> None:
+    """PyYAML turns ``"\\ud800"`` into a lone surrogate, which no report (all UTF-8) can
+    print: the CLI exited 2 with a UnicodeEncodeError. It stands for U+FFFD instead."""
+    facts = extract('launch:\n- node: {pkg: p, exec: e, name: "a\\ud800b\\udc80"}\n')
+    assert values(facts) == [(Kind.NODE, "a\ufffdb\ufffd")]
+    assert spans(facts) == [("a\ufffdb\ufffd", Span(2, 33, 2, 49))]

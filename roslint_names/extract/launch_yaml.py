@@ -25,7 +25,7 @@ import yaml
 
 from roslint_names.extract import evidence
 from roslint_names.extract.launch_xml import Entity, Ros2Launch, facts_from, too_deep
-from roslint_names.extract.substitution import Located, Source
+from roslint_names.extract.substitution import Located, Source, without_surrogates
 from roslint_names.model import (
     FileFacts,
     Generation,
@@ -53,7 +53,7 @@ class _Document:
         elif node.style in ("'", '"') and raw[1:-1] == node.value and len(raw) >= 2:
             first = start + 1  # quoted without escapes: the value sits inside the quotes
         else:
-            return Located(node.value, span)
+            return Located(without_surrogates(node.value), span)  # "\ud800" is an escape
         return Located(node.value, span, self.source, first)
 
     def entities(

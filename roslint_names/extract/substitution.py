@@ -51,6 +51,19 @@ class Source:
         return Span(line, column, end_line, end_column)
 
 
+_SURROGATE = re.compile("[\ud800-\udfff]")
+
+
+def without_surrogates(value: str) -> str:
+    """``value`` with U+FFFD for each lone surrogate.
+
+    An escape (``"\\ud800"`` in Python, or in a YAML double-quoted scalar) puts a UTF-16
+    surrogate into a string: it is no character, no ROS runtime accepts it, and no report
+    (all UTF-8) could print it. The C++ extractor decodes such escapes the same way.
+    """
+    return value if value.isascii() else _SURROGATE.sub("\ufffd", value)
+
+
 @dataclass(frozen=True)
 class Located:
     """A value as the parser delivered it, and where its raw text sits in the file.
