@@ -293,6 +293,22 @@ def test_folded(snippet: str, expected: str) -> None:
 @pytest.mark.parametrize(
     "snippet",
     [
+        'rospy.Publisher("cmd\\ud800vel", Twist)',
+        'rospy.Publisher(f"cmd\\udc80vel", Twist)',
+        'NS = "cmd"\nrospy.Publisher(f"{NS}\\U0000dfffvel", Twist)',
+    ],
+)
+def test_surrogate_escape_stands_for_a_replacement_character(snippet: str) -> None:
+    """A lone surrogate is no character, and no report (all UTF-8) can print it: the CLI
+    exited 2 with a UnicodeEncodeError. It stands for U+FFFD; the name stays illegal."""
+    source = f"import rospy\nfrom geometry_msgs.msg import Twist\n{snippet}\n"
+    facts = facts_of(source)
+    assert [(use.value, use.dynamic) for use in facts.names] == [("cmd\ufffdvel", False)]
+
+
+@pytest.mark.parametrize(
+    "snippet",
+    [
         'TOPIC = "a"\nTOPIC = "b"\nrospy.Publisher(TOPIC, Twist)',  # assigned twice
         'TOPIC = "a"\nTOPIC += "b"\nrospy.Publisher(TOPIC, Twist)',
         "def f(topic='cmd'):\n    rospy.Publisher(topic, Twist)",  # a parameter

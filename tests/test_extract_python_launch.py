@@ -364,3 +364,13 @@ def generate_launch_description():
 """
     )
     assert isinstance(facts, FileFacts)
+
+
+def test_undecodable_escape_in_an_argument_name_does_not_raise() -> None:
+    """libcst parses ``"\\N{bogus}"``; evaluating it raises, which escaped the extractor."""
+    facts = launch(
+        "def generate_launch_description():\n"
+        '    return LaunchDescription([DeclareLaunchArgument("\\N{bogus}", default_value="r"),\n'
+        '        Node(package="p", executable="e", name="n")])\n'
+    )
+    assert nodes(facts) == [("p", "e", "n", "/", (), ())]

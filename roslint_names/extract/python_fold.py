@@ -8,7 +8,7 @@ import libcst as cst
 
 from roslint_names.extract.python_scope import Scope
 from roslint_names.extract.python_spans import Locator
-from roslint_names.extract.substitution import Value
+from roslint_names.extract.substitution import Value, without_surrogates
 
 _MAX_DEPTH = 16  # constants defined through constants; deeper (or cyclic) is dynamic
 
@@ -34,8 +34,7 @@ class Folder:
         if depth > _MAX_DEPTH:
             return None
         if isinstance(expr, cst.SimpleString):
-            value = _literal(expr)
-            return value if isinstance(value, str) else None
+            return string_literal(expr)
         if isinstance(expr, cst.ConcatenatedString):
             return _join(
                 self.static(expr.left, scope, depth), self.static(expr.right, scope, depth)
@@ -90,11 +89,13 @@ class Folder:
             return None  # a %d or a mismatch: Python would raise, we do not guess
 
 
-def _literal(node: cst.SimpleString) -> str | bytes | None:
+def string_literal(node: cst.SimpleString) -> str | None:
+    """The literal's value; None for bytes, or escapes Python rejects (libcst does not)."""
     try:
-        return node.evaluated_value
+        value = node.evaluated_value
     except (SyntaxError, ValueError, MemoryError, RecursionError):
         return None
+    return without_surrogates(value) if isinstance(value, str) else None
 
 
 def _join(left: str | None, right: str | None) -> str | None:
@@ -113,4 +114,4 @@ def _fstring_text(expr: cst.FormattedString, raw: str) -> str | None:
         )
     except (SyntaxError, ValueError, MemoryError, RecursionError):
         return None
-    return value if isinstance(value, str) else None
+    return without_surrogates(value) if isinstance(value, str) else None

@@ -20,7 +20,7 @@ from enum import Enum
 import libcst as cst
 
 from roslint_names.extract.python_apis import arg, argument
-from roslint_names.extract.python_fold import Folder
+from roslint_names.extract.python_fold import Folder, string_literal
 from roslint_names.extract.python_scope import Context, Scope, argument_context
 from roslint_names.extract.python_spans import Locator, Where
 from roslint_names.extract.python_walk import Walk
@@ -484,8 +484,8 @@ def _declarations(walk: Walk) -> dict[str, list[Written | None]]:
         name = call_argument(site.call, site.context, "0:name")
         if name is None or not isinstance(name.expr, cst.SimpleString):
             continue
-        literal = name.expr.evaluated_value
-        if isinstance(literal, str):
+        literal = string_literal(name.expr)
+        if literal is not None:
             default = call_argument(site.call, site.context, "1:default_value")
             found.setdefault(literal, []).append(default)
     return found
