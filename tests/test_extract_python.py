@@ -543,6 +543,21 @@ def test_undecodable_and_declared_encodings() -> None:
     assert "UTF-8 BOM contradicts the coding declaration 'latin-1'" in error.message
 
 
+def test_encoding_that_decodes_to_a_lone_surrogate_is_one_parse_error() -> None:
+    """``unicode_escape`` turns ``\\ud800`` in the code into a lone surrogate, which libcst's
+    parser cannot encode (a UnicodeEncodeError escaped the extractor); CPython refuses such
+    a file too."""
+    source = b"# coding: unicode_escape\nimport rospy\nx = 1\nnode\\ud800 = rospy.init_node('n')\n"
+    facts = facts_of(source)
+    (error,) = facts.parse_errors
+    assert error.message == (
+        "cannot decode Python source as unicode_escape: "
+        "it gives a lone surrogate (U+D800), which is no character"
+    )
+    assert (error.span.line, error.span.column) == (4, 5)
+    assert facts.names == ()
+
+
 def test_prefilter_skips_files_without_ros() -> None:
     assert not may_hold_names(b"import os\nprint('/cmd_vel')\n")
     assert may_hold_names(b"import os, rospy\n")

@@ -16,6 +16,7 @@ from roslint_names.model import ParseError, Span
 # blank line 1 (the pattern CPython's tokenizer uses).
 _CODING = re.compile(rb"^[ \t\f]*#.*?coding[:=][ \t]*([-\w.]+)")
 _BLANK_OR_COMMENT = re.compile(rb"^[ \t\f]*(?:[#\r\n]|$)")
+_SURROGATE = re.compile("[\ud800-\udfff]")
 
 
 def _declared_encoding(data: bytes) -> str | None:
@@ -42,7 +43,7 @@ def decode(data: bytes) -> str | ParseError:
     if _codec(encoding) is None:
         return source_error(f"unknown source encoding '{encoding}'", 1, 1)
     try:
-        return data.decode(encoding)
+        text = data.decode(encoding)
     except UnicodeDecodeError as error:
         before = Source(data[: error.start].decode(encoding, errors="replace"))
         line, column = before.position(len(before.text))
@@ -51,6 +52,18 @@ def decode(data: bytes) -> str | ParseError:
         )
     except Exception as error:  # a codec's own failure (e.g. an incomplete utf-7 shift)
         return source_error(f"cannot decode Python source as {encoding}: {error}", 1, 1)
+    # unicode_escape turns "\\ud800" into a lone surrogate, which CPython refuses and
+    # libcst cannot even encode.
+    surrogate = None if text.isascii() else _SURROGATE.search(text)
+    if surrogate is not None:
+        line, column = Source(text).position(surrogate.start())
+        return source_error(
+            f"cannot decode Python source as {encoding}: it gives a lone surrogate "
+            f"(U+{ord(surrogate.group()):04X}), which is no character",
+            line,
+            column,
+        )
+    return text
 
 
 def _codec(encoding: str) -> str | None:
