@@ -114,6 +114,8 @@ def test_register_node_makes_a_program_and_a_plugin() -> None:
         "include/demo_nodes_cpp/visibility_control.h",
     )
     assert rows(facts) == [
+        # made by the file's own function: custom_executable(parameters list_parameters_async)
+        ("program", "list_parameters_async", ("src/parameters/list_parameters_async.cpp",)),
         ("plugin", "demo_nodes_cpp::Talker", ("src/topics/talker.cpp",)),
         ("program", "talker", library),
         ("plugin", "demo_nodes_cpp::ListenerBestEffort", ("src/topics/listener_best_effort.cpp",)),
@@ -132,6 +134,11 @@ def test_register_node_makes_a_program_and_a_plugin() -> None:
 def test_catkin_package_programs_scripts_and_renames() -> None:
     facts = fixture("roscpp_tutorials/CMakeLists.txt")
     assert rows(facts) == [
+        # rostutorial(${dir}) in a foreach: the macro's add_executable(${T} ${T}/${T}.cpp)
+        # per item; listener_single_message is commented out. The installed script
+        # nodes/listener has the same name.
+        ("program", "listener", ("listener/listener.cpp", "nodes/listener")),
+        ("program", "talker", ("talker/talker.cpp",)),
         ("program", "time_api_sleep", ("time_api/sleep/sleep.cpp",)),
         # OUTPUT_NAME node: launch files say type="node"; ${GENERATED_SOURCES} is unknown
         (
@@ -146,7 +153,6 @@ def test_catkin_package_programs_scripts_and_renames() -> None:
         ),
         ("program", "add_two_ints_server", ("add_two_ints_server/add_two_ints_server.cpp",)),
         ("program", "talker.py", ("scripts/talker.py",)),
-        ("program", "listener", ("nodes/listener",)),
         ("program", "teleop", ("scripts/teleop_key.py",)),
     ]
 
@@ -162,8 +168,7 @@ def test_catkin_package_spans() -> None:
 def test_macro_and_foreach_bodies_give_no_target_with_a_parameter_name() -> None:
     facts = fixture("roscpp_tutorials/CMakeLists.txt")
     assert not {"T", "dir", "listener_single_message"} & set(names(facts))
-    assert "listener" in names(facts)  # only the installed script of that name
-    assert sources(facts, "listener") == ("nodes/listener",)
+    assert sources(facts, "talker") == ("talker/talker.cpp",)  # rostutorial(talker)
 
 
 def test_nav2_executable_gets_its_core_library_sources() -> None:
@@ -417,7 +422,7 @@ def test_function_parameters_hide_globals_and_its_variables_stay_inside() -> Non
     ]
 
 
-def test_foreach_variable_is_unknown_inside_the_loop_only() -> None:
+def test_foreach_runs_per_item_and_its_variable_is_restored_after() -> None:
     facts = of_cmake(
         "set(name before)\n"
         "foreach(name talker listener)\n"
@@ -426,7 +431,59 @@ def test_foreach_variable_is_unknown_inside_the_loop_only() -> None:
         "endforeach()\n"
         "add_executable(${name} ${seen})\n"
     )
-    assert rows(facts) == [("program", "before", ("src/seen.cpp",))]
+    # Both come from one place in the file: in name order there.
+    assert rows(facts) == [
+        ("program", "listener", ("src/listener.cpp",)),
+        ("program", "talker", ("src/talker.cpp",)),
+        ("program", "before", ("src/seen.cpp",)),
+    ]
+
+
+def test_foreach_over_what_the_file_does_not_tell_runs_once_unknown() -> None:
+    facts = of_cmake(
+        "file(GLOB demos src/*.cpp)\n"
+        "foreach(demo ${demos})\n"
+        "  add_executable(${demo} ${demo})\n"
+        "endforeach()\n"
+        "foreach(i RANGE 3)\n"
+        "  add_executable(node_${i} src/node.cpp)\n"
+        "endforeach()\n"
+        "set(NODES a b)\n"
+        "foreach(node IN LISTS NODES ITEMS c)\n"
+        "  add_executable(${node}_node src/${node}.cpp)\n"
+        "endforeach()\n"
+    )
+    assert rows(facts) == [
+        ("program", "a_node", ("src/a.cpp",)),
+        ("program", "b_node", ("src/b.cpp",)),
+        ("program", "c_node", ("src/c.cpp",)),
+    ]
+
+
+def test_functions_and_macros_run_at_each_call_with_their_arguments() -> None:
+    facts = of_cmake(
+        "project(demo_nodes)\n"
+        "macro(demo_program name)\n"
+        "  set(last ${name})\n"  # a macro's variables are its caller's
+        "  add_executable(${name} src/${name}.cpp ${ARGN})\n"
+        "endmacro()\n"
+        "function(demo_pair first second)\n"
+        "  demo_program(${first})\n"  # a helper calling a helper
+        "  demo_program(${second} src/common.cpp)\n"
+        "endfunction()\n"
+        "function(recurse)\n"
+        "  recurse()\n"
+        "endfunction()\n"
+        "DEMO_PAIR(talker listener)\n"  # command names ignore case
+        "recurse()\n"
+        "add_executable(${PROJECT_NAME}_last src/${last}.cpp)\n"
+    )
+    assert rows(facts) == [
+        ("program", "listener", ("src/listener.cpp", "src/common.cpp")),
+        ("program", "talker", ("src/talker.cpp",)),
+        # set in the macro, inside a function: the function's, not the file's
+        ("program", "demo_nodes_last", ()),
+    ]
 
 
 # ---------------------------------------------------------------------------------------
@@ -860,3 +917,11 @@ def test_setup_py_compiler_warnings_are_not_printed(recwarn: pytest.WarningsReco
     )
     assert names(facts) == ["a"]
     assert [str(warning.message) for warning in recwarn] == []
+
+
+def test_nested_loops_and_calls_stop_rather_than_hang() -> None:
+    items = " ".join(f"i{index}" for index in range(200))
+    loops = "".join(f"foreach(v{depth} {items})\n" for depth in range(5))
+    ends = "endforeach()\n" * 5
+    facts = of_cmake(f"{loops}  add_executable(fixed src/fixed.cpp)\n{ends}")
+    assert rows(facts) == [("program", "fixed", ("src/fixed.cpp",))]

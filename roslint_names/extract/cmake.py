@@ -14,8 +14,11 @@ with ``catkin_install_python(PROGRAMS)``/``install(PROGRAMS)`` are programs name
 their file name (or ``RENAME``). ``set_target_properties(... OUTPUT_NAME x)`` renames a
 program: launch files name the file, not the target.
 
-A target whose name this file does not determine is skipped, and unknown sources are
-dropped; ``cmake_eval`` says how far variables are followed.
+Functions and macros defined in the file run at each call with the arguments bound
+(``rostutorial(talker)``, demos' ``custom_executable(topics talker)``), and a ``foreach``
+over known items once per item: targets made by such helpers get their names. A target
+whose name this file does not determine is skipped, and unknown sources are dropped;
+``cmake_eval`` says how far variables are followed.
 """
 
 from __future__ import annotations
@@ -23,8 +26,18 @@ from __future__ import annotations
 import codecs
 import itertools
 import posixpath
+from collections.abc import Sequence
+from dataclasses import dataclass, field
 
-from roslint_names.extract.cmake_eval import DYNAMIC, FOLLOWED, SOURCE_DIR, Value, Variables, clean
+from roslint_names.extract.cmake_eval import (
+    DYNAMIC,
+    FOLLOWED,
+    SOURCE_DIR,
+    Value,
+    Variables,
+    clean,
+    split_list,
+)
 from roslint_names.extract.cmake_lexer import Command, lex
 from roslint_names.extract.cmake_sources import code_paths, normalise
 from roslint_names.extract.cmake_targets import Named, Registration, Targets
@@ -61,6 +74,30 @@ _REGISTER_KEYWORDS = frozenset({"PLUGIN", "EXECUTABLE", "EXECUTOR", "RESOURCE_IN
 _OUTPUT_NAMES = frozenset({"OUTPUT_NAME", "RUNTIME_OUTPUT_NAME"})
 
 
+# Commands that open a body, and the command that closes each.
+_BODY_ENDS = {"function": "endfunction", "macro": "endmacro", "foreach": "endforeach"}
+_MAX_CALL_DEPTH = 8  # helpers calling helpers; deeper (or recursive) calls are not followed
+_MAX_ITEMS = 256  # a longer foreach list is read once, its variable unknown
+# Commands run again from bodies, per file: nested loops and calls stop there, not hang.
+_MAX_REPLAYED = 50_000
+
+
+@dataclass
+class _Body:
+    """The commands between an opening command and its end, nested ones included."""
+
+    opening: Command
+    commands: list[Command] = field(default_factory=list)
+    depth: int = 0  # openings of the same command inside
+
+
+@dataclass(frozen=True)
+class _Definition:
+    parameters: tuple[str, ...]
+    commands: tuple[Command, ...]
+    macro: bool  # a macro's variables are its caller's
+
+
 def _known(text: str) -> bool:
     """The file determines this name: no unknown part, no directory, no generator."""
     return DYNAMIC not in text and SOURCE_DIR not in text and "$<" not in text
@@ -74,6 +111,10 @@ class _Build:
         self.variables = Variables()
         self.targets = Targets()
         self.auto_libraries: list[str] = []  # what ament_auto links its next targets to
+        self._body: _Body | None = None  # the body being collected, if any
+        self._definitions: dict[str, _Definition] = {}
+        self._calls = 0  # how deep in function and macro calls
+        self._replayed = 0
         self._handlers = {
             "target_sources": self._target_sources,
             "target_link_libraries": self._link,
@@ -87,7 +128,17 @@ class _Build:
         return Named(value.text, span, _known(value.text))
 
     def run(self, command: Command) -> None:
+        if self._body is not None:
+            self._collect(self._body, command)
+            return
         name = command.name
+        if name in _BODY_ENDS:
+            self._body = _Body(command)
+            return
+        definition = self._definitions.get(name)
+        if definition is not None:
+            self._call(definition, command)
+            return
         handler = self._handlers.get(name)
         targets = name in _PROGRAM_COMMANDS or name in _LIBRARY_COMMANDS
         if name not in FOLLOWED and handler is None and not targets and name not in _INSTALLERS:
@@ -100,6 +151,71 @@ class _Build:
             self._add_target(name, values[0], values[1:])
         elif name in _INSTALLERS and values[:1] and values[0].text == "PROGRAMS":
             self._install_programs(values[1:])
+
+    # -----------------------------------------------------------------------------------
+    # Bodies: functions, macros, loops
+
+    def _collect(self, body: _Body, command: Command) -> None:
+        if command.name == body.opening.name:
+            body.depth += 1
+        elif command.name == _BODY_ENDS[body.opening.name]:
+            if body.depth == 0:
+                self._body = None
+                self._finish(body, command)
+                return
+            body.depth -= 1
+        body.commands.append(command)
+
+    def _finish(self, body: _Body, end: Command) -> None:
+        opening = body.opening
+        values = self.variables.values(opening.arguments)
+        if opening.name == "foreach":
+            items = _loop_items(values, self.variables)
+            if items is not None:
+                for item in items:
+                    self.variables.enter("foreach", {values[0].text: item})
+                    self._run_all(body.commands)
+                    self.variables.leave()
+                return
+        elif values and not values[0].dynamic:
+            self._definitions[values[0].text.lower()] = _Definition(
+                tuple(value.text for value in values[1:]),
+                tuple(body.commands),
+                macro=opening.name == "macro",
+            )
+        # Read once where it stands, what is not known unknown: a definition's parameters
+        # (it may be called from another directory), a loop's variable.
+        self.variables.apply(opening.name, values)
+        self._run_all(body.commands)
+        self.variables.apply(end.name, [])
+
+    def _call(self, definition: _Definition, command: Command) -> None:
+        if self._calls >= _MAX_CALL_DEPTH:
+            return
+        texts = [value.text for value in self.variables.values(command.arguments)]
+        count = len(definition.parameters)
+        bindings = {
+            parameter: texts[index] if index < len(texts) else ""
+            for index, parameter in enumerate(definition.parameters)
+        }
+        bindings |= {f"ARGV{index}": text for index, text in enumerate(texts)}
+        bindings |= {"ARGN": ";".join(texts[count:]), "ARGV": ";".join(texts)}
+        bindings["ARGC"] = str(len(texts))
+        self.variables.enter("macro" if definition.macro else "function", bindings)
+        self._calls += 1
+        self._run_all(definition.commands)
+        self._calls -= 1
+        self.variables.leave()
+
+    def _run_all(self, commands: Sequence[Command]) -> None:
+        """Run a body's commands; a body left open inside (a broken file) ends with it."""
+        outer, self._body = self._body, None
+        for command in commands:
+            self._replayed += 1
+            if self._replayed > _MAX_REPLAYED:
+                break
+            self.run(command)
+        self._body = outer
 
     # -----------------------------------------------------------------------------------
     # Targets
@@ -194,6 +310,33 @@ class _Build:
             rename = Named(basename, named.span, bool(basename) and _known(basename))
         if rename.known:
             self.targets.script(rename, normalise(file.text))
+
+
+def _loop_items(values: Sequence[Value], variables: Variables) -> list[str] | None:
+    """The items ``foreach(var ...)`` runs over, None when the file does not tell them
+    (``RANGE``, ``ZIP_LISTS``, a list too long or unknown as a whole)."""
+    if not values or values[0].dynamic:
+        return None
+    rest = [value.text for value in values[1:]]
+    items: list[str] = []
+    if rest[:1] == ["IN"]:
+        mode = None
+        for word in rest[1:]:
+            if word in ("LISTS", "ITEMS"):
+                mode = word
+            elif mode == "LISTS":
+                items.extend(split_list(variables.get(word)) if variables.is_set(word) else [])
+            elif mode == "ITEMS":
+                items.append(word)
+            else:
+                return None  # ZIP_LISTS, or a form we do not know
+    elif rest[:1] == ["RANGE"]:
+        return None
+    else:
+        items = rest
+    if len(items) > _MAX_ITEMS or any(item == DYNAMIC for item in items):
+        return None
+    return items
 
 
 def _decode(data: bytes) -> str:

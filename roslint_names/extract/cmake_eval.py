@@ -13,8 +13,9 @@ Only the commands that give variables values this module can follow are evaluate
 compute a variable (``file(GLOB)``, ``string``, ``list(GET)``...) make it unknown. There is
 no control flow: both branches of an ``if`` are read, in order, so the last ``set`` wins.
 Function and macro bodies are read where they are defined, with their parameters unknown
-and the variables they set kept to themselves (they run only when called); a ``foreach``
-loop variable is unknown inside its loop.
+and the variables they set kept to themselves, and again at each call with the arguments
+bound (``cmake.py`` holds the bodies); a ``foreach`` over a list the file determines runs
+once per item, and over anything else once, with its variable unknown.
 """
 
 from __future__ import annotations
@@ -96,7 +97,7 @@ FOLLOWED = frozenset(
 
 @dataclass
 class _Layer:
-    kind: str  # "file", "function", "block" or "foreach"
+    kind: str  # "file", "function", "macro", "block" or "foreach"
     values: dict[str, str]
 
 
@@ -116,11 +117,18 @@ class Variables:
         return any(name in layer.values for layer in self._layers)
 
     def set(self, name: str, text: str) -> None:
-        # A foreach loop opens no CMake scope: what its body sets outlives it.
+        # A foreach loop or a macro call opens no CMake scope: what its body sets outlives it.
         for layer in reversed(self._layers):
-            if layer.kind != "foreach":
+            if layer.kind not in ("foreach", "macro"):
                 layer.values[name] = text
                 return
+
+    def enter(self, kind: str, bindings: dict[str, str]) -> None:
+        """Open a layer holding ``bindings``: a call's arguments, a loop's item."""
+        self._layers.append(_Layer(kind, bindings))
+
+    def leave(self) -> None:
+        del self._layers[-1]
 
     def evaluate(self, argument: Argument) -> list[Value]:
         """The values an argument stands for: one, or one per list element if unquoted."""
