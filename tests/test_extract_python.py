@@ -558,6 +558,16 @@ def test_encoding_that_decodes_to_a_lone_surrogate_is_one_parse_error() -> None:
     assert facts.names == ()
 
 
+def test_null_byte_is_one_parse_error_where_it_is() -> None:
+    """libcst parses a NUL in a string (the name was then silently dynamic); CPython
+    refuses the whole file."""
+    facts = facts_of("import rospy\nrospy.init_node('talker')\nrospy.Publisher('a\0b', X)\n")
+    (error,) = facts.parse_errors
+    assert error.message == "not valid Python 3: source code cannot contain null bytes"
+    assert (error.span.line, error.span.column) == (3, 19)
+    assert facts.names == ()
+
+
 def test_prefilter_skips_files_without_ros() -> None:
     assert not may_hold_names(b"import os\nprint('/cmd_vel')\n")
     assert may_hold_names(b"import os, rospy\n")

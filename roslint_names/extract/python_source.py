@@ -13,6 +13,7 @@ import re
 import libcst as cst
 
 from roslint_names.extract.python_text import decode, source_error
+from roslint_names.extract.substitution import Source
 from roslint_names.model import ParseError
 
 __all__ = ["decode", "parse"]
@@ -28,6 +29,12 @@ def parse(text: str) -> cst.Module | ParseError:
     parser (cheap, and only on this path) where and why; Python 2 files get its
     "Missing parentheses in call to 'print'".
     """
+    null = text.find("\0")
+    if null >= 0:  # libcst parses it (a string holding it is then "dynamic"); CPython refuses
+        line, column = Source(text).position(null)
+        return source_error(
+            "not valid Python 3: source code cannot contain null bytes", line, column
+        )
     if _may_be_too_deep(text):
         # libcst's parser overflows its stack (a segfault, not an exception) on nesting
         # far past what CPython accepts; CPython's parser refuses such files cleanly.
