@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -566,6 +567,23 @@ def test_null_byte_is_one_parse_error_where_it_is() -> None:
     assert error.message == "not valid Python 3: source code cannot contain null bytes"
     assert (error.span.line, error.span.column) == (3, 19)
     assert facts.names == ()
+
+
+@pytest.mark.parametrize(
+    "source",
+    [
+        "import rospy\nok = 1 if 1else 2\ny = )\n",  # broken: CPython is asked where
+        'import rospy\nBANNER = "' + "(" * 201 + '"\nok = 1 if 1else 2\n',  # deep-looking
+    ],
+)
+def test_cpython_syntax_warnings_are_not_printed(source: str) -> None:
+    """CPython's tokenizer warns ("invalid decimal literal") on its way; asked by the
+    extractor (where a file breaks, or first when it looks too deep for libcst), it printed
+    the warning on the user's terminal."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        facts_of(source)
+    assert [str(warning.message) for warning in caught] == []
 
 
 def test_prefilter_skips_files_without_ros() -> None:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import ast
 import re
+import warnings
 
 import libcst as cst
 
@@ -39,7 +40,7 @@ def parse(text: str) -> cst.Module | ParseError:
         # libcst's parser overflows its stack (a segfault, not an exception) on nesting
         # far past what CPython accepts; CPython's parser refuses such files cleanly.
         try:
-            ast.parse(text)
+            _cpython_parse(text)
         except SyntaxError as error:
             return source_error(
                 f"not valid Python 3: {error.msg}", error.lineno or 1, error.offset or 1
@@ -72,9 +73,17 @@ def _may_be_too_deep(text: str) -> bool:
     return _LONG_PREFIX_RUN.search(text) is not None
 
 
+def _cpython_parse(text: str) -> None:
+    """``ast.parse``, without the warnings CPython's tokenizer prints on its way ("invalid
+    decimal literal"): they are no finding of ours, and a linter must not print them."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        ast.parse(text)
+
+
 def _syntax_error(text: str, line: int, message: str) -> ParseError:
     try:
-        ast.parse(text)
+        _cpython_parse(text)
     except SyntaxError as error:
         reason = error.msg or message
         return source_error(
