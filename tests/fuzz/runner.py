@@ -154,6 +154,8 @@ def _record(stats: Stats, crashes: Path, error: Exception, data: bytes, descript
         return
     digest = hashlib.sha1(data).hexdigest()[:12]
     path = crashes / f"{_file_stem(stats.target)}-{digest}.bin"
+    if path in failure.saved:  # hypothesis tried the same input again
+        return
     path.write_bytes(data)
     details = "".join(traceback.format_exception(error))
     path.with_suffix(".txt").write_text(f"{description}\n\n{details}", encoding="utf-8")

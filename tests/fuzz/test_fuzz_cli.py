@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import io
 import json
+import os
 import re
 import shutil
 import warnings
@@ -130,6 +131,16 @@ def check_outcome(sample: CliSample, outcome: Outcome) -> None:
         assert len(parse_errors) <= 1, parse_errors
 
 
+def _raise_internal_error(arguments: list[str], cwd: Path) -> None:
+    """Run again with ROSLINT_NAMES_DEBUG, so that the failure is the exception itself, with
+    its traceback and where it was raised, not just the CLI's one-line message."""
+    os.environ["ROSLINT_NAMES_DEBUG"] = "1"
+    try:
+        invoke(arguments, cwd)
+    finally:
+        del os.environ["ROSLINT_NAMES_DEBUG"]
+
+
 def _without_verbose(stderr: str) -> str:
     return "\n".join(line for line in stderr.splitlines() if not _VERBOSE.fullmatch(line))
 
@@ -145,6 +156,8 @@ def test_fuzz_cli(tmp_path: Path) -> None:
         try:
             arguments = [*sample.arguments, "--cache-dir", str(cache)]
             first = invoke(arguments, workspace)
+            if first.exit_code == 2 and "internal error" in first.stderr:
+                _raise_internal_error(arguments, workspace)
             check_outcome(sample, first)
             again = invoke(arguments, workspace)  # the damaged file's facts from the cache
             assert (again.exit_code, again.stdout) == (first.exit_code, first.stdout)
