@@ -586,6 +586,16 @@ def test_cpython_syntax_warnings_are_not_printed(source: str) -> None:
     assert [str(warning.message) for warning in caught] == []
 
 
+def test_invalid_escape_warnings_are_not_printed() -> None:
+    """Folding ``"a\\d"`` evaluates it: Python 3.12 printed "SyntaxWarning: invalid escape
+    sequence '\\d'" on the user's terminal (3.11 warns too, hidden by default)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        found = values('import rospy\nrospy.Publisher("a\\d", X)\nrospy.Publisher(f"b\\d", X)\n')
+    assert found == ["a\\d", "b\\d"]
+    assert [str(warning.message) for warning in caught] == []
+
+
 def test_prefilter_skips_files_without_ros() -> None:
     assert not may_hold_names(b"import os\nprint('/cmd_vel')\n")
     assert may_hold_names(b"import os, rospy\n")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import ast
+import warnings
 
 import libcst as cst
 
@@ -92,7 +93,9 @@ class Folder:
 def string_literal(node: cst.SimpleString) -> str | None:
     """The literal's value; None for bytes, or escapes Python rejects (libcst does not)."""
     try:
-        value = node.evaluated_value
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # "invalid escape sequence '\\d'": not ours to say
+            value = node.evaluated_value
     except (SyntaxError, ValueError, MemoryError, RecursionError):
         return None
     return without_surrogates(value) if isinstance(value, str) else None
@@ -109,9 +112,11 @@ def _fstring_text(expr: cst.FormattedString, raw: str) -> str | None:
     if "\\" not in raw and "{" not in raw and "}" not in raw:
         return raw
     try:
-        value = ast.literal_eval(
-            f"{prefix}{quote}{raw.replace('{{', '{').replace('}}', '}')}{quote}"
-        )
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # as in string_literal
+            value = ast.literal_eval(
+                f"{prefix}{quote}{raw.replace('{{', '{').replace('}}', '}')}{quote}"
+            )
     except (SyntaxError, ValueError, MemoryError, RecursionError):
         return None
     return without_surrogates(value) if isinstance(value, str) else None
