@@ -56,6 +56,8 @@ def test_directory_symlinked_into_itself_is_not_followed(run_cli: Any, tmp_path:
     result = check(run_cli, tmp_path, ".")
     assert result.exit_code == 1
     assert found(result) == [("launch/robot.launch", 2, 63, "RN101")]
+    named = check(run_cli, tmp_path, "self")  # named, it is followed, once
+    assert found(named) == [("self/launch/robot.launch", 2, 63, "RN101")]
 
 
 def test_file_symlinked_to_itself_named_on_the_command_line_is_one_parse_error(
