@@ -2,13 +2,19 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from fuzz import runner
 
 
+@pytest.hookimpl(trylast=True)  # after -k and -m have deselected what they deselect
 def pytest_collection_modifyitems(config: pytest.Config, items: list[pytest.Item]) -> None:
-    runner.SELECTED[0] = sum(1 for item in items if item.name.startswith("test_fuzz_"))
+    here = Path(__file__).parent
+    runner.SELECTED[0] = sum(
+        1 for item in items if item.path.parent == here and item.name.startswith("test_fuzz_")
+    )
     try:
         runner.minutes()
     except runner.FuzzUsageError as error:
