@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import signal
 from pathlib import Path
 from typing import Any
 
@@ -760,3 +761,26 @@ def test_surrogate_escape_stands_for_a_replacement_character(escape: str) -> Non
         f'  nh.advertise<std_msgs::String>("chat{escape}ter", 1); }}\n'
     )
     assert uses(facts)[1:] == [(TOPIC, Role.PUBLISH, "chat\ufffdter", "std_msgs::String")]
+
+
+class _StillRunningError(Exception):
+    pass
+
+
+def _hang_guard(signum: int, frame: object) -> None:
+    raise _StillRunningError("still extracting after a minute: the extractor hangs")
+
+
+@pytest.mark.skipif(not hasattr(signal, "SIGALRM"), reason="needs SIGALRM")
+def test_member_written_without_its_type_does_not_hang() -> None:
+    """``nh_ = ros::NodeHandle();`` in a class body (its type forgotten) is a member that
+    tree-sitter names with a MISSING, empty identifier; looking for the occurrences of ""
+    looped forever (found by atheris). The alarm turns a hang into a failure."""
+    previous = signal.signal(signal.SIGALRM, _hang_guard)
+    signal.alarm(60)
+    try:
+        facts = extract("#include <ros/ros.h>\nclass Relay {\n  nh_ = ros::NodeHandle();\n};\n")
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, previous)
+    assert facts.parse_errors == ()

@@ -89,7 +89,8 @@ class Source:
             # literal search and made this the slowest step of the extractor.
             found = []
             encoded = word.encode("utf-8")
-            start = self.data.find(encoded)
+            # "" (a MISSING identifier of broken code) is found at every offset, forever.
+            start = self.data.find(encoded) if encoded else -1
             while start >= 0:
                 end = start + len(encoded)
                 if self._bounded(start, end):
