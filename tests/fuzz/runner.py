@@ -9,17 +9,25 @@ one file per distinct failure, with its traceback) and the run goes on, so one b
 not hide the next; the test fails at the end, listing them. Before each input of a long
 run its bytes are written to ``TARGET-current.bin`` there: if a parser kills the process
 (a segfault is no exception), that file holds the input that did it.
+
+An input still running after ``ROSLINT_FUZZ_HANG_SECONDS`` (default 30) is a failure too
+(``HangError``, raised by an alarm); one stuck in C code, which the alarm cannot
+interrupt, ends the process after twice that, with faulthandler's traceback of it.
 """
 
 from __future__ import annotations
 
+import faulthandler
 import hashlib
 import os
+import signal
 import tempfile
+import threading
 import time
 import traceback
 from collections import Counter
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TypeVar
@@ -29,6 +37,7 @@ from hypothesis import strategies as st
 
 MINUTES_VARIABLE = "ROSLINT_FUZZ_MINUTES"
 CRASHES_VARIABLE = "ROSLINT_FUZZ_CRASHES"
+HANG_VARIABLE = "ROSLINT_FUZZ_HANG_SECONDS"
 QUICK_EXAMPLES = 20
 ROUND_EXAMPLES = 200  # examples per hypothesis run in a long session
 MAX_SAVED_PER_FAILURE = 3
@@ -38,6 +47,10 @@ T = TypeVar("T")
 
 class FuzzUsageError(Exception):
     pass
+
+
+class HangError(Exception):
+    """An input the code under test has not finished with in time."""
 
 
 def minutes() -> float | None:
@@ -84,6 +97,38 @@ def share_seconds() -> float | None:
     return total * 60 / max(SELECTED[0], 1)
 
 
+def hang_seconds() -> float:
+    text = os.environ.get(HANG_VARIABLE, "").strip()
+    try:
+        return float(text) if text else 30.0
+    except ValueError:
+        raise FuzzUsageError(f"{HANG_VARIABLE}={text!r} is not a number of seconds") from None
+
+
+@contextmanager
+def watchdog(seconds: float) -> Iterator[None]:
+    """Raise ``HangError`` in the body after ``seconds``; end the process after twice that."""
+    if (
+        not hasattr(signal, "setitimer")
+        or threading.current_thread() is not threading.main_thread()
+    ):
+        yield
+        return
+
+    def expire(signum: int, frame: object) -> None:
+        raise HangError(f"no result after {seconds:g} s: it hangs")
+
+    previous = signal.signal(signal.SIGALRM, expire)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    faulthandler.dump_traceback_later(2 * seconds, exit=True)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        faulthandler.cancel_dump_traceback_later()
+        signal.signal(signal.SIGALRM, previous)
+
+
 def crash_directory() -> Path:
     default = Path(tempfile.gettempdir()) / "roslint-fuzz-crashes"
     return Path(os.environ.get(CRASHES_VARIABLE) or default)
@@ -105,6 +150,7 @@ def fuzz(
     started = time.monotonic()
     deadline = None if budget is None else started + budget
     keep_going = budget is not None
+    hang = hang_seconds()
     crashes = crash_directory()
     current = crashes / f"{_file_stem(target)}-current.bin"
     if keep_going:
@@ -124,12 +170,14 @@ def fuzz(
         stats.inputs += 1
         stats.kinds[kind_of(sample)] += 1
         if not keep_going:
-            check(sample)
+            with watchdog(hang):
+                check(sample)
             return
         data = data_of(sample)
         current.write_bytes(data)
         try:
-            check(sample)
+            with watchdog(hang):
+                check(sample)
         except Exception as error:
             _record(stats, crashes, error, data, describe(sample))
 
@@ -145,6 +193,8 @@ def fuzz(
 
 def _record(stats: Stats, crashes: Path, error: Exception, data: bytes, description: str) -> None:
     frames = traceback.extract_tb(error.__traceback__)
+    if isinstance(error, HangError):
+        frames = frames[:-1]  # where the alarm interrupted the code, not the alarm itself
     where = f"{frames[-1].filename}:{frames[-1].lineno}" if frames else "?"
     signature = f"{type(error).__name__} at {where}"
     message = f"{type(error).__name__}: {error}"[:2000]
