@@ -271,6 +271,8 @@ TOKENS: tuple[bytes, ...] = (
 
 
 _QUOTES = re.compile(rb"[\"'>]")  # where a string literal, or an attribute or element text, starts
+_WORDS = re.compile(rb"[\w:]+")  # an identifier, qualified or not
+_LINES = re.compile(rb"[^\n]*\n?")
 
 
 @dataclass(frozen=True)
@@ -279,10 +281,12 @@ class Mutation:
 
     ``in_string`` inserts after the position-th quote or ``>`` (modulo their number): at
     the start of a string literal or an XML value, where names are, and where a random
-    position seldom falls.
+    position seldom falls. ``delete_word`` and ``delete_line`` remove the position-th word
+    (a type, a keyword, a name) or line: broken code as people write it.
     """
 
-    kind: str  # flip, set, insert, in_string, delete, duplicate, splice, truncate
+    kind: str  # flip, set, insert, in_string, delete, delete_word, delete_line, duplicate,
+    # splice, truncate
     position: int
     value: int = 0  # the bit to flip, the byte to set, a length
     payload: bytes = b""
@@ -298,6 +302,15 @@ class Mutation:
             return data[:at] + self.payload + data[at:]
         if self.kind in {"insert", "splice"}:
             return data[:at] + self.payload + data[at:]
+        if self.kind in {"delete_word", "delete_line"}:
+            pattern = _WORDS if self.kind == "delete_word" else _LINES
+            spans = [
+                match.span() for match in pattern.finditer(data) if match.end() > match.start()
+            ]
+            if not spans:
+                return data
+            start, end = spans[self.position % len(spans)]
+            return data[:start] + data[end:]
         if size == 0:
             return data
         at = self.position % size

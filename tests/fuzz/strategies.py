@@ -25,7 +25,18 @@ MAX_RANDOM_BYTES = 4096
 def mutations(draw: st.DrawFn) -> Mutation:
     kind = draw(
         st.sampled_from(
-            ("flip", "set", "insert", "in_string", "delete", "duplicate", "splice", "truncate")
+            (
+                "flip",
+                "set",
+                "insert",
+                "in_string",
+                "delete",
+                "delete_word",
+                "delete_line",
+                "duplicate",
+                "splice",
+                "truncate",
+            )
         )
     )
     position = draw(st.just(0) | st.integers(0, 1 << 20))  # the start matters most
