@@ -9,6 +9,8 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from roslint_names.extract.python import extract
 from roslint_names.model import FileFacts, Generation, Language, LaunchNode
 
@@ -374,3 +376,20 @@ def test_undecodable_escape_in_an_argument_name_does_not_raise() -> None:
         '        Node(package="p", executable="e", name="n")])\n'
     )
     assert nodes(facts) == [("p", "e", "n", "/", (), ())]
+
+
+@pytest.mark.parametrize(
+    "action",
+    [
+        "IncludeLaunchDescription(())",
+        'Node(package="p", executable="e", name=())',
+        'Node(package="p", executable="e", remappings=[((), "b")])',
+    ],
+)
+def test_empty_tuple_argument_does_not_raise(action: str) -> None:
+    """A span starts inside an expression's own parentheses, but ``()`` cannot lose them:
+    libcst's CSTValidationError escaped the extractor (found by atheris)."""
+    facts = launch(
+        f"def generate_launch_description():\n    return LaunchDescription([{action}])\n"
+    )
+    assert facts.parse_errors == ()

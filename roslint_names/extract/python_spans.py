@@ -137,8 +137,11 @@ def _parens(node: cst.CSTNode) -> Sequence[cst.LeftParen]:
 
 
 def _bare(node: cst.CSTNode) -> cst.CSTNode:
-    """The node without its own parentheses: a span starts at the literal's quote."""
-    if _parens(node):
+    """The node without its own parentheses: a span starts at the literal's quote.
+
+    An empty tuple keeps them: they are all there is of it (libcst refuses ``()`` without).
+    """
+    if _parens(node) and not (isinstance(node, cst.Tuple) and not node.elements):
         return node.with_changes(lpar=[], rpar=[])
     return node
 
