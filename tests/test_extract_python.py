@@ -596,6 +596,15 @@ def test_invalid_escape_warnings_are_not_printed() -> None:
     assert [str(warning.message) for warning in caught] == []
 
 
+def test_string_joined_to_a_template_string_is_one_parse_error() -> None:
+    """libcst reads t-strings (PEP 750) but raises CSTLogicError on ``"a" t"b"``, which
+    escaped the extractor (found by atheris); CPython refuses it too."""
+    facts = facts_of('import rospy\nrospy.init_node("a" t"b")\n')
+    (error,) = facts.parse_errors
+    assert error.message.startswith("not valid Python 3: ")
+    assert error.span.line == 2
+
+
 def test_prefilter_skips_files_without_ros() -> None:
     assert not may_hold_names(b"import os\nprint('/cmd_vel')\n")
     assert may_hold_names(b"import os, rospy\n")

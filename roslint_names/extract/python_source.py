@@ -51,6 +51,8 @@ def parse(text: str) -> cst.Module | ParseError:
         return cst.parse_module(text)
     except cst.ParserSyntaxError as error:
         return _syntax_error(text, error.raw_line, str(error.message))
+    except cst.CSTLogicError as error:  # a node libcst builds, then rejects: '"a" t"b"'
+        return _syntax_error(text, 1, f"libcst cannot read it ({error})")
     except RecursionError:
         return source_error("cannot parse Python: nested too deeply", 1, 1)
 
