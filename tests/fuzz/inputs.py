@@ -222,6 +222,11 @@ TOKENS: tuple[bytes, ...] = (
     b')x"',
     b'"""',
     b"'''",
+    b' t"',  # string prefixes: a t-string joined to a string broke libcst
+    b' f"',
+    b' b"',
+    b' rb"',
+    b' u"',
     b":",
     b"::",
     b"- ",
