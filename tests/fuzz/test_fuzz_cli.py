@@ -124,8 +124,8 @@ def check_outcome(sample: CliSample, outcome: Outcome) -> None:
     assert not outcome.warnings, outcome.warnings
     for line in outcome.stderr.splitlines():
         assert _SUMMARY.fullmatch(line) or _VERBOSE.fullmatch(line), f"stderr: {line!r}"
-    check, report = sample.arguments[0], sample.arguments[3]
-    if check == "check" and report == "json" and "--statistics" not in sample.arguments:
+    command, report = sample.arguments[0], sample.arguments[3]
+    if command == "check" and report == "json" and "--statistics" not in sample.arguments:
         findings = json.loads(outcome.stdout)["findings"]
         parse_errors = [f for f in findings if f["code"] == "RN001" and f["path"] == sample.file]
         assert len(parse_errors) <= 1, parse_errors
@@ -134,11 +134,15 @@ def check_outcome(sample: CliSample, outcome: Outcome) -> None:
 def _raise_internal_error(arguments: list[str], cwd: Path) -> None:
     """Run again with ROSLINT_NAMES_DEBUG, so that the failure is the exception itself, with
     its traceback and where it was raised, not just the CLI's one-line message."""
+    previous = os.environ.get("ROSLINT_NAMES_DEBUG")
     os.environ["ROSLINT_NAMES_DEBUG"] = "1"
     try:
         invoke(arguments, cwd)
     finally:
-        del os.environ["ROSLINT_NAMES_DEBUG"]
+        if previous is None:
+            del os.environ["ROSLINT_NAMES_DEBUG"]
+        else:
+            os.environ["ROSLINT_NAMES_DEBUG"] = previous
 
 
 def _without_verbose(stderr: str) -> str:
