@@ -492,3 +492,13 @@ def test_an_include_argument_of_unknown_value_is_not_its_default(
     )
     assert findings(run_cli, tmp_path, ".") == []
     assert graph_of(run_cli, tmp_path)["nodes"] == []  # their names are unknown
+
+
+def test_a_workspace_named_like_a_test_is_not_one(run_cli: Any, tmp_path: Path) -> None:
+    """Only a package's own directories say "test": ~/test_ws/src/... is a workspace."""
+    workspace = tmp_path / "test_ws"
+    two_tutorial_packages(workspace, "talker_tutorial")
+    found = findings(run_cli, tmp_path, "test_ws")
+    assert [f["code"] for f in found] == ["RN403", "RN403"]
+    write(workspace, "src/counter_tutorial/test/counter_test.py", COUNTER_PY)
+    assert len(findings(run_cli, tmp_path, "test_ws")) == 2  # test/ of a package: left out

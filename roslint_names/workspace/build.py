@@ -119,7 +119,7 @@ def _launched_instance(
     }
     reach = Reach(
         generation,
-        _is_test_launch(launched.root),
+        _is_test_launch(index, launched.root),
         tuple(sorted(p for p in packages if p)),
     )
     remaps = [
@@ -161,7 +161,7 @@ def _unlaunched_programs(index: WorkspaceIndex, launched: set[str]) -> list[tupl
     grouped: list[tuple[str, ...]] = []
     seen: set[str] = set(launched)
     for _, sources in sorted(index.built_sources().items()):
-        fresh = tuple(path for path in sources if path not in seen and not _is_test(path))
+        fresh = tuple(path for path in sources if path not in seen and not _is_test(index, path))
         seen.update(sources)
         if fresh and any(_has_endpoints(index.facts[path]) for path in fresh):
             grouped.append(fresh)
@@ -169,7 +169,7 @@ def _unlaunched_programs(index: WorkspaceIndex, launched: set[str]) -> list[tupl
         if (
             path not in seen
             and facts.language in CODE_LANGUAGES
-            and not _is_test(path)
+            and not _is_test(index, path)
             and _has_endpoints(facts)
         ):
             grouped.append((path,))
@@ -233,19 +233,31 @@ def _stem(path: str) -> str:
     return posixpath.basename(path).split(".", 1)[0]
 
 
-def _is_test(path: str) -> bool:
-    """Under a test directory or in a test package (``nav2_system_tests``, ``test_rospy``)."""
-    return any(
-        part in _TEST_DIRECTORIES or part.startswith("test_") or part.endswith(("_test", "_tests"))
-        for part in path.split("/")[:-1]
+def _is_test(index: WorkspaceIndex, path: str) -> bool:
+    """Under a test directory of its package, or in a test package (``nav2_system_tests``,
+    ``test_rospy``). Only the package's own directories count: a workspace checked out
+    as ``~/test_ws`` or ``/ci/tests/`` is not a test."""
+    package = index.package_of(path)
+    if package is None:
+        return False
+    inside = path[len(package.directory) :].lstrip("/") if package.directory else path
+    name = posixpath.basename(package.directory)
+    return (
+        _is_test_package(package.name)
+        or _is_test_package(name)
+        or any(part in _TEST_DIRECTORIES for part in inside.split("/")[:-1])
     )
 
 
-def _is_test_launch(path: str) -> bool:
+def _is_test_package(name: str) -> bool:
+    return name.startswith("test_") or name.endswith(("_test", "_tests"))
+
+
+def _is_test_launch(index: WorkspaceIndex, path: str) -> bool:
     """rostest's ``.test`` files, launch tests named for pytest (``test_*.py``), and any
-    launch file under a test directory."""
+    launch file of a test package or under a test directory of its package."""
     name = posixpath.basename(path)
-    return name.endswith(".test") or name.startswith("test_") or _is_test(path)
+    return name.endswith(".test") or name.startswith("test_") or _is_test(index, path)
 
 
 def _has_endpoints(facts: FileFacts) -> bool:
