@@ -232,11 +232,20 @@ def _walk(top: str, rules: _IgnoreRules) -> Iterator[str]:
             yield from _walk(entry.path, rules)
         elif (
             _may_be_lintable(entry.name)
-            and entry.is_file()
+            and _is_file(entry)
             and not rules.ignored(entry.path, is_dir=False)
         ):
             yield entry.path
     rules.leave(pushed)
+
+
+def _is_file(entry: os.DirEntry[str]) -> bool:
+    """A file, or a link that cannot be followed (to itself, in a loop): reading it then
+    says why, as one finding, rather than the walk stopping."""
+    try:
+        return entry.is_file()
+    except OSError:
+        return True
 
 
 _LINTABLE_SUFFIXES = frozenset(

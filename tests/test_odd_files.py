@@ -71,19 +71,19 @@ def test_file_symlinked_to_itself_named_on_the_command_line_is_one_parse_error(
     assert message == f"cannot read file: {os.strerror(errno.ELOOP)}"
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="discover._walk calls DirEntry.is_file(), which raises OSError(ELOOP) for a "
-    "symbolic link to itself: the run stops with exit code 2 (roslint_names/discover.py)",
-)
 def test_file_symlinked_to_itself_inside_the_tree_does_not_stop_the_run(
     run_cli: Any, tmp_path: Path
 ) -> None:
+    """DirEntry.is_file() raised OSError(ELOOP) for the link and stopped the walk (exit 2);
+    now the link is one 'cannot read' finding, as when it is named on the command line."""
     write(tmp_path, "launch/robot.launch", BAD_LAUNCH)
     (tmp_path / "launch" / "loop.launch").symlink_to("loop.launch")
     result = check(run_cli, tmp_path, ".")
     assert result.exit_code == 1
     assert ("launch/robot.launch", 2, 63, "RN101") in found(result)
+    assert [f["code"] for f in result.findings() if f["path"] == "launch/loop.launch"] == [
+        "RN001"
+    ]
 
 
 def _readable_despite_mode_000(path: Path) -> bool:
