@@ -81,9 +81,7 @@ def test_file_symlinked_to_itself_inside_the_tree_does_not_stop_the_run(
     result = check(run_cli, tmp_path, ".")
     assert result.exit_code == 1
     assert ("launch/robot.launch", 2, 63, "RN101") in found(result)
-    assert [f["code"] for f in result.findings() if f["path"] == "launch/loop.launch"] == [
-        "RN001"
-    ]
+    assert [f["code"] for f in result.findings() if f["path"] == "launch/loop.launch"] == ["RN001"]
 
 
 def _readable_despite_mode_000(path: Path) -> bool:
