@@ -14,6 +14,7 @@ import os
 import re
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from enum import Enum
 from pathlib import Path
 from typing import Any
 
@@ -46,10 +47,29 @@ _BUILD_FILES = {
 }
 
 
+class _Sniff(Enum):
+    """A suffix the name alone does not decide: the content says (``classify``)."""
+
+    XML = "xml"
+    YAML = "yaml"
+
+
 def classify(path: Path) -> Language | None:
     """The language of a file, sniffing the content only for ambiguous suffixes."""
-    name = path.name.lower()
-    suffix = path.suffix.lower()
+    by_name = _by_name(path.name)
+    if by_name is _Sniff.XML:
+        return _sniff_xml(path)
+    if by_name is _Sniff.YAML:
+        return Language.LAUNCH_YAML if _YAML_LAUNCH_KEY.search(_head(path)) else None
+    return by_name
+
+
+def _by_name(file_name: str) -> Language | _Sniff | None:
+    """What the name says: a language, that the content must say, or nothing to lint. The
+    walk asks this of every file, before any ignore rule, so it reads no file and builds
+    no ``Path``."""
+    name = file_name.lower()
+    suffix = os.path.splitext(name)[1]
     if suffix in (".launch", ".test") or name.endswith(("_launch.xml", ".launch.xml")):
         return Language.LAUNCH_XML
     if name.endswith((".launch.yaml", "_launch.yaml", ".launch.yml", "_launch.yml")):
@@ -67,9 +87,9 @@ def classify(path: Path) -> Language | None:
     if name == "package.xml":
         return Language.PACKAGE_XML
     if suffix == ".xml":
-        return _sniff_xml(path)
+        return _Sniff.XML
     if suffix in (".yaml", ".yml"):
-        return Language.LAUNCH_YAML if _YAML_LAUNCH_KEY.search(_head(path)) else None
+        return _Sniff.YAML
     return None
 
 
@@ -231,7 +251,7 @@ def _walk(top: str, rules: _IgnoreRules) -> Iterator[str]:
                 continue
             yield from _walk(entry.path, rules)
         elif (
-            _may_be_lintable(entry.name)
+            _by_name(entry.name) is not None
             and _is_file(entry)
             and not rules.ignored(entry.path, is_dir=False)
         ):
@@ -246,14 +266,3 @@ def _is_file(entry: os.DirEntry[str]) -> bool:
         return entry.is_file()
     except OSError:
         return True
-
-
-_LINTABLE_SUFFIXES = frozenset(
-    {".launch", ".test", ".xml", ".yaml", ".yml", ".urdf", ".xacro", ".py", ".srv", ".txt", ".cfg"}
-    | _CPP_SUFFIXES
-)
-
-
-def _may_be_lintable(name: str) -> bool:
-    """A cheap look at the name before ``classify`` (most files of a tree are not code)."""
-    return os.path.splitext(name)[1].lower() in _LINTABLE_SUFFIXES
