@@ -124,8 +124,9 @@ class WorkspaceIndex:
         ]
         if named:
             return tuple(named)
-        # A target the build files hide (made by a macro or a loop, as roscpp_tutorials'
-        # `rostutorial(talker)`): the package's one code file named after it, if any.
+        # A target the build files hide (made by a function of a .cmake module the
+        # workspace does not hold, or named by a variable the file does not set): the
+        # package's one code file named after it, if any.
         stems = [
             path
             for path in self.files_of(package)
