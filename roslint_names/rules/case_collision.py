@@ -3,9 +3,9 @@
 ``/cmd_vel`` published in C++ and ``/Cmd_Vel`` subscribed in Python never meet: ROS names
 are case-sensitive. Names are compared after resolution (namespaces, private names,
 remaps), grouped by their lower-case form, between nodes that can meet (``Graph.can_meet``),
-so two robots whose identical names sit in
-different namespaces never collide. A collision that comes from the namespaces (one code
-launched under ``robot1`` and ``Robot1``) is blamed on the launch sites, not the code.
+so two robots whose identical names sit in different namespaces never collide. A
+collision that comes from the namespaces (one code launched under ``robot1`` and
+``Robot1``) is blamed on the launch sites, not the code.
 """
 
 from __future__ import annotations
@@ -60,28 +60,28 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
         if len({name for _, name in keys}) < 2:
             continue
         for what, name in keys:
-            # Every place, each with the places of other spellings its node can meet.
-            meeting: dict[Location, set[tuple[Location, str]]] = defaultdict(set)
+            # Every place, each with the places (and spellings) its node can meet.
+            meeting: dict[Location, set[tuple[Location, str, str]]] = defaultdict(set)
             for location, user in uses[(what, name)]:
                 for other_what, other_name in keys:
                     if other_name == name:
                         continue
                     meeting[location].update(
-                        (other, f"{other_what} '{other_name}'")
+                        (other, other_what, other_name)
                         for other, other_user in uses[(other_what, other_name)]
                         if graph.can_meet(user, other_user)
                     )
-            for location, related in sorted(meeting.items()):
-                if not related:
+            for location, others in sorted(meeting.items()):
+                if not others:
                     continue
-                first_other, first_note = sorted(related)[0]
-                also = f" and {len(related) - 1} more" if len(related) > 1 else ""
-                spelled = first_note.partition(" ")[2]
+                first_other, _, first_name = min(others)
+                also = f" and {len(others) - 1} more" if len(others) > 1 else ""
                 message = (
-                    f"{what} '{name}' differs only in case from {spelled} "
+                    f"{what} '{name}' differs only in case from '{first_name}' "
                     f"at {where(first_other)}{also}; ROS names are case-sensitive, "
                     f"so the two never meet"
                 )
+                related = [(other, f"{w} '{n}'") for other, w, n in others]
                 yield finding(location, message, related)
 
 
