@@ -16,7 +16,6 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from enum import Enum
 from pathlib import Path
-from typing import Any
 
 from .model import Language
 
@@ -56,7 +55,10 @@ class _Sniff(Enum):
 
 def classify(path: Path) -> Language | None:
     """The language of a file, sniffing the content only for ambiguous suffixes."""
-    by_name = _by_name(path.name)
+    return _decide(path, _by_name(path.name))
+
+
+def _decide(path: Path, by_name: Language | _Sniff | None) -> Language | None:
     if by_name is _Sniff.XML:
         return _sniff_xml(path)
     if by_name is _Sniff.YAML:
@@ -118,10 +120,12 @@ def display_path(path: Path, cwd: Path) -> str:
     A file name that is not UTF-8 (``caf\\xe9.launch`` from a Latin-1 system) shows its
     undecodable bytes as ``\\xe9`` escapes: every report format must stay valid UTF-8.
     """
-    try:
-        text = path.relative_to(cwd).as_posix()
-    except ValueError:
-        text = path.as_posix()
+    # String operations, not ``relative_to``: this runs for every file of the workspace.
+    text, prefix = os.fspath(path), os.path.join(os.fspath(cwd), "")
+    if text.startswith(prefix):
+        text = text[len(prefix) :]
+    if os.sep != "/":
+        text = text.replace(os.sep, "/")
     return os.fsencode(text).decode("utf-8", errors="backslashreplace")
 
 
@@ -133,7 +137,7 @@ class _IgnoreRules:
     """
 
     def __init__(self, exclude: Sequence[str], exclude_root: Path) -> None:
-        self._specs: list[tuple[str, Any]] = []
+        self._specs: list[tuple[str, _Spec]] = []
         if exclude:
             self._specs.append((os.fspath(exclude_root), _spec(exclude)))
         self._exclude_count = len(self._specs)
@@ -163,18 +167,47 @@ class _IgnoreRules:
         del self._specs[len(self._specs) - count :]
 
 
-def _spec(lines: Sequence[str]) -> Any:
-    import pathspec
+class _Spec:
+    """A ``.gitignore``'s patterns, with one regular expression that matches where any of
+    them does: most paths match none, and one search then answers instead of one search
+    per pattern (pathspec's way, which keeps the last match: a ``!`` may undo an earlier
+    one). A path it matches is handed to pathspec for the exact answer."""
 
-    return pathspec.GitIgnoreSpec.from_lines(lines)
+    def __init__(self, lines: Sequence[str]) -> None:
+        import pathspec
+
+        self.spec = pathspec.GitIgnoreSpec.from_lines(lines)
+        expressions = [
+            _NAMED_GROUP.sub("(?:", regex.pattern)
+            for pattern in self.spec.patterns
+            if pattern.include is not None and (regex := getattr(pattern, "regex", None))
+        ]
+        try:
+            self.any_pattern: re.Pattern[str] | None = re.compile(
+                "|".join(f"(?:{expression})" for expression in expressions) or "(?!)"
+            )
+        except re.error:  # a pattern form we did not foresee: pathspec alone decides
+            self.any_pattern = None
+
+    def match_file(self, relative: str) -> bool:
+        if self.any_pattern is not None and self.any_pattern.match(relative) is None:
+            return False
+        return bool(self.spec.match_file(relative))
 
 
-def _matches(spec: Any, base: str, path: str, is_dir: bool) -> bool:
+_NAMED_GROUP = re.compile(r"\(\?P<\w+>")
+
+
+def _spec(lines: Sequence[str]) -> _Spec:
+    return _Spec(lines)
+
+
+def _matches(spec: _Spec, base: str, path: str, is_dir: bool) -> bool:
     prefix = base.rstrip(os.sep) + os.sep
     if not path.startswith(prefix):
         return False
     relative = path[len(prefix) :].replace(os.sep, "/")
-    return bool(spec.match_file(relative + "/" if is_dir else relative))
+    return spec.match_file(relative + "/" if is_dir else relative)
 
 
 def discover(
@@ -182,18 +215,18 @@ def discover(
 ) -> list[SourceFile]:
     """Every lintable file under ``paths``, sorted by display path, each once."""
     rules = _IgnoreRules(exclude, exclude_root)
-    found: dict[Path, SourceFile] = {}
+    found: dict[str, SourceFile] = {}
     for given in paths:
         absolute = (cwd / given).absolute()
         if not os.path.lexists(absolute):
             raise DiscoveryError(f"{given}: no such file or directory")
         if absolute.is_dir():
             pushed = sum(rules.enter(ancestor) for ancestor in _repository_ancestors(absolute))
-            for path in _walk(os.fspath(absolute), rules):
-                _add(found, Path(path), cwd)
+            for path, by_name in _walk(os.fspath(absolute), rules):
+                _add(found, Path(path), by_name, cwd)
             rules.leave(pushed)
         elif not rules.excluded_by_config(absolute, is_dir=False):
-            _add(found, absolute, cwd)
+            _add(found, absolute, _by_name(absolute.name), cwd)
     return sorted(found.values(), key=lambda source: source.display)
 
 
@@ -231,13 +264,15 @@ def _repository_ancestors(directory: Path) -> list[Path]:
     return []
 
 
-def _add(found: dict[Path, SourceFile], path: Path, cwd: Path) -> None:
-    language = classify(path)
+def _add(
+    found: dict[str, SourceFile], path: Path, by_name: Language | _Sniff | None, cwd: Path
+) -> None:
+    language = _decide(path, by_name)
     if language is not None:  # package.xml too: the workspace model needs every package
-        found[path] = SourceFile(path, display_path(path, cwd), language)
+        found[os.fspath(path)] = SourceFile(path, display_path(path, cwd), language)
 
 
-def _walk(top: str, rules: _IgnoreRules) -> Iterator[str]:
+def _walk(top: str, rules: _IgnoreRules) -> Iterator[tuple[str, Language | _Sniff]]:
     try:
         entries = sorted(os.scandir(top), key=lambda entry: entry.name)
     except OSError:
@@ -251,11 +286,11 @@ def _walk(top: str, rules: _IgnoreRules) -> Iterator[str]:
                 continue
             yield from _walk(entry.path, rules)
         elif (
-            _by_name(entry.name) is not None
+            (by_name := _by_name(entry.name)) is not None
             and _is_file(entry)
             and not rules.ignored(entry.path, is_dir=False)
         ):
-            yield entry.path
+            yield entry.path, by_name
     rules.leave(pushed)
 
 
