@@ -1,7 +1,9 @@
-"""The facts cache: what an extractor returned for one file, kept between runs.
+"""The facts cache: what an extractor returned for one file, kept between runs; and the
+result of a whole run, for the next run over the same inputs.
 
-Only facts are cached, never diagnostics: rules, configuration and suppressions may change
-between runs, and applying them to cached facts is cheap. An entry is found by a key over
+Facts are cached per file, never with diagnostics: rules, configuration and suppressions
+may change between runs, and applying them to cached facts is cheap next to parsing. An
+entry is found by a key over
 everything an extractor's result depends on: the file's bytes, the path it is reported
 under (it is part of the facts, and the Python extractor reads the file name), the
 language, the package's generation and the fallback generation. Everything that is the
@@ -32,6 +34,12 @@ but the fact classes and enums of ``roslint_names.model``. Unpickling can then o
 those values; it cannot import a module or call anything else, so a tampered entry can at
 worst yield wrong findings. The directory is created private to the user (0700), like the
 rest of ``~/.cache``.
+
+A run over inputs a recent run had (every file's bytes, the package manifests read, the
+settings, all of the tool's code: the engine makes the key, ``load_run``/``store_run`` keep
+the value) is served whole from ``runs/``: applying the rules again is cheap next to
+parsing, but not next to the 0.05x-the-parse-floor budget of a re-run (DESIGN.md, section
+6). Only the ``RUNS_KEPT`` most recently used results are kept.
 """
 
 from __future__ import annotations
@@ -44,7 +52,7 @@ import pickle
 import re
 import sys
 import time
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -56,6 +64,8 @@ _MAGIC = b"RNFACTS\x01"
 _CHECKSUM_BYTES = 16
 _PREFIX = "facts-v"
 _EMPTY_LOG = "empty.log"
+_RUNS = "runs"
+RUNS_KEPT = 64  # whole-run results: one per recent (file set, settings) of each checkout
 _LOG_BATCH = 512  # lines buffered before an append; and every batch of extraction ends one
 _CACHEDIR_TAG = (
     "Signature: 8a477f597d28d172789f06886806bc55\n"
@@ -150,7 +160,8 @@ class FactsCache:
         except OSError:  # absent (the usual miss), or unreadable: either way, extract
             self.stats.misses += 1
             return None
-        facts = _decode(blob)
+        decoded = _decode(blob)
+        facts = decoded if isinstance(decoded, FileFacts) else None
         if facts is None:
             self.stats.corrupt += 1
             self.stats.misses += 1
@@ -168,9 +179,31 @@ class FactsCache:
             if len(self._pending) >= _LOG_BATCH:
                 self.flush()
             return
-        payload = pickle.dumps(facts, protocol=pickle.HIGHEST_PROTOCOL)
-        blob = _MAGIC + hashlib.blake2b(payload, digest_size=_CHECKSUM_BYTES).digest() + payload
-        entry = self._entry(key)
+        if self._write(self._entry(key), _encode(facts)):
+            self.stats.written += 1
+
+    def load_run(self, key: str) -> object | None:
+        """The value ``store_run`` kept under ``key``, or None (absent or corrupt)."""
+        entry = os.path.join(self.directory, _RUNS, key)
+        try:
+            with open(entry, "rb") as stream:
+                blob = stream.read()
+        except OSError:
+            return None
+        value = _decode(blob)
+        if value is not None:
+            with contextlib.suppress(OSError):  # "recently used": kept by the pruning
+                os.utime(entry)
+        return value
+
+    def store_run(self, key: str, value: object) -> None:
+        """Keep a run's result (fact classes, enums and builtins only); forget the least
+        recently used beyond ``RUNS_KEPT``."""
+        if self.writable() and self._write(self.directory / _RUNS / key, _encode(value)):
+            _keep_newest(self.directory / _RUNS, RUNS_KEPT)
+
+    def _write(self, entry: Path, blob: bytes) -> bool:
+        """Write ``blob`` as ``entry`` atomically; False (and a problem noted) on failure."""
         # A unique temporary name in the entry's own directory: the rename stays on one
         # file system (so it is atomic) and two writers never share a temporary file.
         temporary = entry.with_name(f".{entry.name}.{os.getpid()}.{os.urandom(4).hex()}.tmp")
@@ -186,8 +219,8 @@ class FactsCache:
                 raise
         except OSError as error:
             self._cannot_write(error)
-            return
-        self.stats.written += 1
+            return False
+        return True
 
     def flush(self) -> None:
         """Append the buffered lines of empty facts to the log, in one write."""
@@ -284,7 +317,13 @@ def _read_log(path: str) -> dict[str, tuple[Language, Generation]]:
     return found
 
 
-def _decode(blob: bytes) -> FileFacts | None:
+def _encode(value: object) -> bytes:
+    payload = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+    return _MAGIC + hashlib.blake2b(payload, digest_size=_CHECKSUM_BYTES).digest() + payload
+
+
+def _decode(blob: bytes) -> object | None:
+    """What ``_encode`` wrote; None for a blob that is truncated, corrupt or foreign."""
     header = len(_MAGIC) + _CHECKSUM_BYTES
     if len(blob) < header or not blob.startswith(_MAGIC):
         return None
@@ -292,10 +331,10 @@ def _decode(blob: bytes) -> FileFacts | None:
     if hashlib.blake2b(payload, digest_size=_CHECKSUM_BYTES).digest() != blob[len(_MAGIC) : header]:
         return None
     try:
-        facts = _FactsUnpickler(io.BytesIO(payload)).load()
+        value: object = _FactsUnpickler(io.BytesIO(payload)).load()
     except Exception:  # any malformed pickle: a miss, never a crash
         return None
-    return facts if isinstance(facts, FileFacts) else None
+    return value
 
 
 _MODEL_CLASSES = frozenset(
@@ -331,6 +370,32 @@ def run_fingerprint() -> str:
         digest.update(_parser_stamp())
         _FINGERPRINT = digest.hexdigest()
     return _FINGERPRINT
+
+
+_CODE_FINGERPRINTS: dict[tuple[str, ...], str] = {}
+
+
+def code_fingerprint(modules: Iterable[str] = ()) -> str:
+    """A hash of all of the tool's code, of ``modules`` (plugin rules' modules, by name)
+    and of the parsers: what a whole run's result depends on besides its inputs."""
+    memo_key = tuple(sorted(modules))
+    if memo_key not in _CODE_FINGERPRINTS:
+        digest = hashlib.blake2b(digest_size=16)
+        digest.update(run_fingerprint().encode())  # the format, the parsers, Python
+        package = Path(__file__).parent
+        sources = {*package.rglob("*.py")}
+        for name in memo_key:
+            origin = getattr(sys.modules.get(name), "__file__", None)
+            if origin:
+                sources.add(Path(origin))
+        for source in sorted(sources):
+            try:
+                content = source.read_bytes()
+            except OSError:
+                content = b"\xff"
+            digest.update(b"%s\0%d\0" % (os.fsencode(source), len(content)) + content)
+        _CODE_FINGERPRINTS[memo_key] = digest.hexdigest()
+    return _CODE_FINGERPRINTS[memo_key]
 
 
 def _extractor_sources(package: Path) -> dict[Path, bytes]:
@@ -409,6 +474,24 @@ def _prune(root: Path, keep: str) -> None:
 
         for path in stale:
             shutil.rmtree(path, ignore_errors=True)
+
+
+def _keep_newest(directory: Path, count: int) -> None:
+    """Delete all but the ``count`` most recently modified entries of ``directory``."""
+    try:
+        # Not the dot-named temporary files: a writer may be about to rename its own.
+        entries = [
+            entry
+            for entry in os.scandir(directory)
+            if not entry.name.startswith(".") and entry.is_file()
+        ]
+        if len(entries) <= count:
+            return
+        entries.sort(key=lambda entry: entry.stat().st_mtime_ns, reverse=True)
+    except OSError:
+        return
+    for entry in entries[count:]:
+        _remove(Path(entry.path))
 
 
 def _remove(path: Path) -> None:

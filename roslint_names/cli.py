@@ -279,14 +279,17 @@ def _print_run_details(
     where = "off" if cache is None else str(cache.directory)
     if cache is None and directory is None:
         where = "off (no home directory)"
-    print(
-        # Files read: those checked plus, in a per-file run, the rest of their workspace.
-        f"roslint-names: cache {where}; {result.files_cached} of "
-        f"{result.files_cached + result.files_extracted} files from the cache, "
-        f"{result.files_extracted} extracted by "
-        + (f"{result.workers} worker processes" if result.workers else "this process"),
-        file=sys.stderr,
-    )
+    # Files read: those checked plus, in a per-file run, the rest of their workspace.
+    files = result.files_cached + result.files_extracted
+    if result.reused:
+        done = f"no file changed since a run over the same {files} files: its result reused"
+    else:
+        done = (
+            f"{result.files_cached} of {files} files from the cache, "
+            f"{result.files_extracted} extracted by "
+            + (f"{result.workers} worker processes" if result.workers else "this process")
+        )
+    print(f"roslint-names: cache {where}; {done}", file=sys.stderr)
     for path, reason in result.skipped:
         print(f"roslint-names: skipped {path}: {reason}", file=sys.stderr)
     for problem in cache.problems if cache is not None else []:

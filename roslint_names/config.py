@@ -16,7 +16,7 @@ from __future__ import annotations
 import re
 import sys
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
@@ -55,6 +55,20 @@ class Settings:
     severity: Mapping[str, Severity] = field(default_factory=dict)  # code -> severity
     rule_options: Mapping[str, Mapping[str, OptionValue]] = field(default_factory=dict)
     policies: tuple[NamingPolicy, ...] = ()
+
+
+def settings_fingerprint(settings: Settings) -> str:
+    """The settings as text, the same for equal settings whatever order the configuration
+    listed its tables in: part of the key of a cached run."""
+    return repr(
+        tuple((item.name, _canonical(getattr(settings, item.name))) for item in fields(settings))
+    )
+
+
+def _canonical(value: object) -> object:
+    if isinstance(value, Mapping):
+        return tuple(sorted((repr(key), _canonical(item)) for key, item in value.items()))
+    return value
 
 
 def find_config(start: Path) -> Path | None:

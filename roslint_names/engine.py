@@ -9,6 +9,7 @@ either.
 
 from __future__ import annotations
 
+import hashlib
 import importlib
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
@@ -73,6 +74,7 @@ class LintResult:
     workers: int = 0  # worker processes started; 0 when everything ran in-process
     graph: Graph | None = None  # the workspace graph, when a graph rule or the caller wants it
     skipped: tuple[tuple[str, str], ...] = ()  # (display path, why): too large or binary
+    reused: bool = False  # the stored result of an earlier run over the same inputs
 
 
 Progress = Callable[[int, int], None]  # (files done, files in total)
@@ -187,14 +189,46 @@ def lint(
         for index, facts in results:
             check(index, facts, extracting.pop(index))
 
+    # A run over the same inputs as a recent one (nothing edited since) is its result again.
+    def input_tag(source: SourceFile, read: _Read) -> str:
+        """What one file brings to the run: the key of its facts, or why it is not read."""
+        data, read_error, skip = read
+        if skip is not None:
+            return f"skipped: {skip}"
+        if data is None or cache is None:
+            return f"unreadable: {read_error}"
+        package = packages.for_file(source.path)
+        return cache.key(data, source.display, source.language, package, fallback)
+
+    run_key: str | None = None
+    input_tags: list[str] = []
+    if cache is not None and not want_graph:
+        input_tags = [
+            input_tag(source, _read(source.path, settings.max_file_size)) for source in checked
+        ]
+        run_key = _run_key(
+            zip(checked, input_tags, strict=True),
+            [*sources, *context],
+            reported=reported,
+            settings=settings,
+            registry=registry,
+            packages=packages,
+        )
+        stored = _stored_result(cache.load_run(run_key), len(checked))
+        if stored is not None:
+            return stored
     if cache is not None:
         cache.writable()  # create the directory now, not racing in every worker
     extracted = cached = 0
+    inputs_changed = False  # since they were keyed: then this result is not kept
     skipped: list[tuple[str, str]] = []
     extract = partial(_extract_batch, cache)
     with Dispatcher(extract, run.jobs, expected_items=len(checked)) as dispatcher:
         for index, source in enumerate(checked):
-            data, read_error, skip = _read(source.path, settings.max_file_size)
+            read = _read(source.path, settings.max_file_size)
+            data, read_error, skip = read
+            if input_tags:
+                inputs_changed = inputs_changed or input_tag(source, read) != input_tags[index]
             if skip is not None:
                 skipped.append((source.display, skip))
                 check(index, FileFacts(source.display, source.language, fallback), b"")
@@ -243,9 +277,67 @@ def lint(
     diagnostics.sort(key=Diagnostic.sort_key)
     skipped_paths = {path for path, _ in skipped}
     checked_count = sum(1 for source in checked[:reported] if source.display not in skipped_paths)
+    if cache is not None and run_key is not None and not inputs_changed:
+        cache.store_run(run_key, (tuple(diagnostics), checked_count, tuple(skipped)))
     return LintResult(
         tuple(diagnostics), checked_count, extracted, cached, workers, graph, tuple(skipped)
     )
+
+
+def _run_key(
+    checked: Iterable[tuple[SourceFile, str]],
+    everything: Sequence[SourceFile],
+    *,
+    reported: int,
+    settings: Settings,
+    registry: Registry,
+    packages: PackageGenerations,
+) -> str:
+    """A key over everything a run's result depends on.
+
+    That is every file's bytes (through its facts key), where each file is (per-file
+    ignores are relative paths), which files are reported, the files read without being
+    linted (a ``.srv`` file's name is a service type; every package.xml read), the
+    settings, and the code of the tool and of every rule.
+    """
+    from .cache import code_fingerprint
+    from .config import settings_fingerprint
+
+    modules = {
+        function.__module__
+        for rule in registry.rules
+        for function in (rule.check, rule.check_workspace)
+        if function is not None
+    }
+    digest = hashlib.blake2b(digest_size=20)
+    header = f"{code_fingerprint(modules)}\0{settings_fingerprint(settings)}\0{reported}\0"
+    digest.update(_text_bytes(header))
+    for source, tag in checked:
+        digest.update(_text_bytes(f"{source.path}\0{source.display}\0{source.language}\0{tag}\n"))
+    for source in everything:
+        packages.for_file(source.path)  # so every manifest the run would read is read now
+        if source.language not in EXTRACTOR_MODULES:
+            digest.update(_text_bytes(f"{source.path}\0{source.display}\0{source.language}\n"))
+    for manifest, text in sorted(packages.manifests.items()):
+        digest.update(_text_bytes(f"{manifest}\0{len(text)}\0{text}"))
+    return digest.hexdigest()
+
+
+def _text_bytes(text: str) -> bytes:
+    return text.encode("utf-8", errors="surrogatepass")
+
+
+def _stored_result(value: object, files: int) -> LintResult | None:
+    """A result ``store_run`` kept, if ``value`` is one (anything else: a miss)."""
+    match value:
+        case (tuple() as diagnostics, int() as checked, tuple() as skipped) if all(
+            isinstance(diagnostic, Diagnostic) for diagnostic in diagnostics
+        ) and all(
+            isinstance(item, tuple) and all(isinstance(part, str) for part in item)
+            for item in skipped
+        ):
+            return LintResult(diagnostics, checked, 0, files, 0, None, skipped, reused=True)
+    return None
 
 
 def _packages(sources: Sequence[SourceFile], packages: PackageGenerations) -> list[Package]:
@@ -509,7 +601,10 @@ class _DiagnosticFactory:
         )
 
 
-def _read(path: Path, max_size: int) -> tuple[bytes | None, str, str | None]:
+_Read = tuple["bytes | None", str, "str | None"]  # the bytes, why unreadable, why skipped
+
+
+def _read(path: Path, max_size: int) -> _Read:
     """The file's bytes, else why it cannot be read; and why it is skipped, if it is.
 
     Files above ``max_size`` bytes are generated or vendored: skipped before they are read.

@@ -73,6 +73,8 @@ class PackageGenerations:
 
     def __init__(self) -> None:
         self._by_directory: dict[Path, _Package] = {}
+        # Every package.xml read, with its text: what a cached run's result depends on.
+        self.manifests: dict[Path, str] = {}
 
     def for_file(self, path: Path) -> Generation | None:
         return self._for_directory(path.parent).generation
@@ -97,6 +99,7 @@ class PackageGenerations:
                 text = manifest.read_text(encoding="utf-8", errors="replace")
             except OSError:
                 text = ""
+            self.manifests[manifest] = text
             package = _Package(
                 package_xml_name(text),
                 package_xml_generation(text),

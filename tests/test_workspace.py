@@ -7,6 +7,7 @@ files, launch files and nodes) and runs the real CLI over it.
 from __future__ import annotations
 
 import json
+import shutil
 from pathlib import Path
 from typing import Any
 
@@ -566,11 +567,15 @@ def test_remapping_tf_is_never_an_unused_remap(run_cli: Any, tmp_path: Path) -> 
 
 
 def test_verbose_counts_the_workspace_files_a_per_file_run_reads(
-    run_cli: Any, tmp_path: Path
+    run_cli: Any, tmp_path: Path, private_cache: Path
 ) -> None:
     # Found by hand: "5 of 1 files from the cache" in a per-file run.
     ros1_workspace(tmp_path)
     launch = "src/turtle_base/launch/base.launch"
     run_cli(["check", launch], tmp_path)
     result = run_cli(["check", "--verbose", launch], tmp_path)
-    assert "; 5 of 5 files from the cache, 0 extracted" in result.stderr  # 4 + CMake
+    assert "a run over the same 5 files: its result reused" in result.stderr  # 4 + CMake
+    for runs in private_cache.glob("facts-v*/runs"):
+        shutil.rmtree(runs)  # the next run builds its result from the cached facts
+    result = run_cli(["check", "--verbose", launch], tmp_path)
+    assert "; 5 of 5 files from the cache, 0 extracted" in result.stderr

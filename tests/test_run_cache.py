@@ -1,0 +1,306 @@
+"""Whole-run results: a re-run over unchanged inputs is the stored result, any change to an
+input is a fresh run, and damage or a race never yields a wrong result."""
+
+from __future__ import annotations
+
+import shutil
+import sys
+import time
+import types
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from roslint_names import cache as cache_module
+from roslint_names import engine
+from roslint_names.config import Settings, settings_fingerprint
+from roslint_names.model import Language, Severity
+from tests.conftest import CATKIN_PACKAGE, write
+
+DRIVER = """#include <ros/ros.h>
+#include <geometry_msgs/Twist.h>
+#include <nav_msgs/Odometry.h>
+
+void onTwist(const geometry_msgs::Twist::ConstPtr& twist) {}
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "base_driver");
+  ros::NodeHandle nh;
+  ros::Subscriber twist = nh.subscribe("cmd_vel", 10, onTwist);
+  ros::Publisher odometry = nh.advertise<nav_msgs::Odometry>("/odom", 10);
+  ros::spin();
+  return 0;
+}
+"""
+
+LAUNCH = """<launch>
+  <group ns="robot1">
+    <node pkg="robot_base" type="base_driver" name="base_driver">
+      <remap from="Cmd_Vel" to="teleop/cmd_vel"/>
+    </node>
+  </group>
+</launch>
+"""
+
+CMAKE = """cmake_minimum_required(VERSION 3.0.2)
+project(robot_base)
+find_package(catkin REQUIRED COMPONENTS roscpp)
+catkin_package()
+add_executable(base_driver src/driver.cpp)
+"""
+
+
+@pytest.fixture
+def workspace(tmp_path: Path) -> Path:
+    root = tmp_path / "ws"
+    package = root / "src" / "robot_base"
+    write(package, "package.xml", CATKIN_PACKAGE.format(name="robot_base"))
+    write(package, "CMakeLists.txt", CMAKE)
+    write(package, "src/driver.cpp", DRIVER)
+    write(package, "launch/base.launch", LAUNCH)
+    return root
+
+
+@pytest.fixture
+def extractions(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """The paths the engine extracted (in-process runs only)."""
+    seen: list[str] = []
+    real = engine.extractor_for
+
+    def counting(language: Language) -> engine.Extract:
+        extract = real(language)
+
+        def wrapper(path: str, data: bytes, *generations: Any) -> Any:
+            seen.append(path)
+            return extract(path, data, *generations)
+
+        return wrapper
+
+    monkeypatch.setattr(engine, "extractor_for", counting)
+    return seen
+
+
+@pytest.fixture
+def check(run_cli: Any, workspace: Path) -> Callable[..., Any]:
+    """`check --verbose --format json --jobs 1` over ``workspace`` (or a directory below)."""
+
+    def run(*options: str, cwd: Path = workspace) -> Any:
+        arguments = ["check", "--verbose", "--format", "json", "--jobs", "1", *options, "."]
+        return run_cli(arguments, cwd)
+
+    return run
+
+
+def reused(result: Any) -> bool:
+    return "its result reused" in result.stderr
+
+
+def stored_runs(cache: Path) -> list[Path]:
+    return sorted(path for path in cache.glob("facts-v*/runs/*") if not path.name.startswith("."))
+
+
+def test_a_rerun_over_unchanged_files_is_the_stored_result(
+    check: Callable[..., Any], extractions: list[str], private_cache: Path
+) -> None:
+    cold = check()
+    assert not reused(cold) and len(extractions) == 3  # package.xml is read, not extracted
+    assert sorted(cold.codes()) == ["RN202", "RN404"]
+    extractions.clear()
+    warm = check()
+    assert reused(warm) and extractions == []
+    assert (warm.stdout, warm.exit_code) == (cold.stdout, cold.exit_code)
+    assert len(stored_runs(private_cache)) == 1
+
+
+def _edit_code(workspace: Path) -> None:
+    driver = workspace / "src/robot_base/src/driver.cpp"
+    driver.write_text(driver.read_text().replace('"cmd_vel"', '"Cmd_Vel"'))
+
+
+def _add_file(workspace: Path) -> None:
+    write(workspace, "src/robot_base/launch/two.launch", LAUNCH.replace("robot1", "robot2"))
+
+
+def _delete_file(workspace: Path) -> None:
+    (workspace / "src/robot_base/launch/base.launch").unlink()
+
+
+def _package_depends(workspace: Path) -> None:
+    # Read by the graph rules only: no file's facts change, the manifest's text does.
+    manifest = workspace / "src/robot_base/package.xml"
+    text = manifest.read_text().replace("</package>", "<depend>roscpp</depend>\n</package>")
+    manifest.write_text(text)
+
+
+def _package_generation(workspace: Path) -> None:
+    manifest = workspace / "src/robot_base/package.xml"
+    manifest.write_text(manifest.read_text().replace("catkin", "ament_cmake"))
+
+
+def _config(workspace: Path) -> None:
+    write(workspace, "roslint-names.toml", 'ignore = ["RN202"]\n')
+
+
+def _per_file_ignore(workspace: Path) -> None:
+    write(workspace, "roslint-names.toml", '[per-file-ignores]\n"**/base.launch" = ["RN404"]\n')
+
+
+def _service_definition(workspace: Path) -> None:
+    # A .srv file is read by name only: its name is a service type of the run.
+    write(workspace, "src/robot_base/srv/CmdVel.srv", "---\nbool ok\n")
+
+
+@pytest.mark.parametrize(
+    "change",
+    [
+        _edit_code,
+        _add_file,
+        _delete_file,
+        _package_depends,
+        _package_generation,
+        _config,
+        _per_file_ignore,
+        _service_definition,
+    ],
+)
+def test_a_changed_input_is_a_fresh_run(
+    check: Callable[..., Any], workspace: Path, change: Callable[[Path], None]
+) -> None:
+    check()
+    assert reused(check())
+    change(workspace)
+    after = check()
+    assert not reused(after)
+    fresh = check("--no-cache")
+    assert (after.stdout, after.exit_code) == (fresh.stdout, fresh.exit_code)
+    assert reused(check())
+
+
+def test_a_command_line_option_is_part_of_the_key(check: Callable[..., Any]) -> None:
+    everything = check()
+    fewer = check("--ignore", "RN202")
+    assert not reused(fewer) and fewer.codes() == ["RN404"]
+    assert reused(again := check()) and again.stdout == everything.stdout
+
+
+def test_the_same_bytes_in_another_place_are_another_run(
+    run_cli: Any, tmp_path: Path, private_cache: Path
+) -> None:
+    # Same display paths, same bytes; per-file-ignores (relative to the config) tell the
+    # two directories apart, so the result of one is not the result of the other.
+    root = tmp_path / "robots"
+    write(root, "roslint-names.toml", '[per-file-ignores]\n"one/**" = ["RN202"]\n')
+    for robot in ("one", "two"):
+        write(root, f"{robot}/package.xml", CATKIN_PACKAGE.format(name="robot_base"))
+        write(root, f"{robot}/src/driver.cpp", DRIVER)
+    arguments = ["check", "--format", "json", "--verbose", "."]
+    one = run_cli(arguments, root / "one")
+    two = run_cli(arguments, root / "two")
+    assert not reused(two)
+    assert (one.codes(), two.codes()) == ([], ["RN202"])
+
+
+def test_a_file_changed_while_the_run_reads_it_is_not_kept(
+    check: Callable[..., Any], monkeypatch: pytest.MonkeyPatch, private_cache: Path
+) -> None:
+    # Keyed on its first read, extracted from the second: that result is nobody's key.
+    real = engine._read
+    reads: dict[str, int] = {}
+
+    def racing(path: Path, max_size: int) -> Any:
+        data, error, skip = real(path, max_size)
+        reads[path.name] = reads.get(path.name, 0) + 1
+        if path.name == "base.launch" and reads[path.name] > 1 and data is not None:
+            data = data.replace(b"Cmd_Vel", b"cmd_vel")
+        return data, error, skip
+
+    monkeypatch.setattr(engine, "_read", racing)
+    check()
+    assert stored_runs(private_cache) == []
+
+
+def test_a_damaged_result_is_ignored_and_rewritten(
+    check: Callable[..., Any], private_cache: Path
+) -> None:
+    good = check()
+    [entry] = stored_runs(private_cache)
+    blob = entry.read_bytes()
+    for damage in (blob[: len(blob) // 2], b"", b"garbage", blob[:-1] + bytes([blob[-1] ^ 1])):
+        entry.write_bytes(damage)
+        again = check()
+        assert not reused(again) and again.stdout == good.stdout
+        assert entry.read_bytes() == blob
+
+
+def test_a_stored_value_that_is_not_a_result_is_a_miss(
+    check: Callable[..., Any], private_cache: Path
+) -> None:
+    good = check()
+    [entry] = stored_runs(private_cache)
+    # Well-formed, checksummed, of fact classes only, but not a run's result.
+    entry.write_bytes(cache_module._encode((("not a diagnostic",), 1, ())))
+    again = check()
+    assert not reused(again) and again.stdout == good.stdout
+
+
+def test_only_the_most_recently_used_results_are_kept(
+    check: Callable[..., Any], monkeypatch: pytest.MonkeyPatch, private_cache: Path
+) -> None:
+    monkeypatch.setattr(cache_module, "RUNS_KEPT", 2)
+
+    def later(*options: str) -> Any:
+        time.sleep(0.05)  # file times tick with the kernel's coarse clock, not per call
+        return check(*options)
+
+    later("--ignore", "RN202")
+    later("--ignore", "RN404")
+    assert reused(later("--ignore", "RN202"))  # now the most recently used of the two
+    later("--ignore", "RN203")
+    assert len(stored_runs(private_cache)) == 2
+    assert reused(check("--ignore", "RN202"))
+    assert not reused(check("--ignore", "RN404"))
+
+
+def test_the_graph_command_neither_reads_nor_writes_results(
+    run_cli: Any, workspace: Path, private_cache: Path
+) -> None:
+    run_cli(["graph", "."], workspace)
+    assert stored_runs(private_cache) == []
+
+
+def test_a_plugin_rules_module_is_in_the_code_fingerprint(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    source = write(tmp_path, "site_rules.py", "CODE = 1\n")
+    module = types.ModuleType("site_rules")
+    module.__file__ = str(source)
+    monkeypatch.setitem(sys.modules, "site_rules", module)
+    monkeypatch.setattr(cache_module, "_CODE_FINGERPRINTS", {})
+    before = cache_module.code_fingerprint(["site_rules"])
+    assert before != cache_module.code_fingerprint()
+    source.write_text("CODE = 2\n")
+    monkeypatch.setattr(cache_module, "_CODE_FINGERPRINTS", {})
+    assert cache_module.code_fingerprint(["site_rules"]) != before
+
+
+def test_settings_fingerprint_is_the_same_for_equal_settings(tmp_path: Path) -> None:
+    one = Settings(root=tmp_path, severity={"RN101": Severity.ERROR, "RN105": Severity.WARNING})
+    other = Settings(root=tmp_path, severity={"RN105": Severity.WARNING, "RN101": Severity.ERROR})
+    changed = Settings(root=tmp_path, severity={"RN105": Severity.ERROR, "RN101": Severity.ERROR})
+    assert settings_fingerprint(one) == settings_fingerprint(other)
+    assert settings_fingerprint(one) != settings_fingerprint(changed)
+    moved = Settings(root=tmp_path / "elsewhere", severity=dict(one.severity))
+    assert settings_fingerprint(one) != settings_fingerprint(moved)
+
+
+def test_forgetting_results_falls_back_to_the_facts(
+    check: Callable[..., Any], extractions: list[str], private_cache: Path
+) -> None:
+    cold = check()
+    for runs in private_cache.glob("facts-v*/runs"):
+        shutil.rmtree(runs)
+    extractions.clear()
+    warm = check()
+    assert not reused(warm) and extractions == [] and warm.stdout == cold.stdout
