@@ -123,3 +123,43 @@ def test_service_definitions_are_found_with_their_package(tmp_path: Path) -> Non
     assert service_types(found, PackageGenerations()) == frozenset(
         {(None, "docking_msgs/StartDocking")}  # that package.xml names no build tool
     )
+
+
+GITIGNORES = [
+    ["*.launch", "!keep.launch"],
+    ["build/", "/install", "log/**", "!log/keep/"],
+    ["**/generated/*.py", "docs/**/*.xacro", "a?b[0-9].urdf"],
+    ["*", "!*/", "!*.launch"],  # the "ignore all but" idiom
+    ["\\!important.launch", "#comment", "", "foo\\ bar.launch "],
+]
+PATHS = [
+    "keep.launch",
+    "robot.launch",
+    "pkg/launch/keep.launch",
+    "build/",
+    "build/x.cpp",
+    "src/build/x.cpp",
+    "install/setup.py",
+    "src/install/setup.py",
+    "log/latest/x.launch",
+    "log/keep/",
+    "src/generated/msg.py",
+    "generated/x.py",
+    "docs/a/b/robot.xacro",
+    "axb1.urdf",
+    "pkg/",
+    "!important.launch",
+    "foo bar.launch",
+]
+
+
+@pytest.mark.parametrize("lines", GITIGNORES)
+def test_the_one_regex_per_gitignore_agrees_with_pathspec(lines: list[str]) -> None:
+    import pathspec
+
+    from roslint_names.discover import _Spec
+
+    exact = pathspec.GitIgnoreSpec.from_lines(lines)
+    ours = _Spec(lines)
+    for path in PATHS:
+        assert ours.match_file(path) == exact.match_file(path), path
