@@ -277,9 +277,12 @@ def _walk(top: str, rules: _IgnoreRules) -> Iterator[tuple[str, Language | _Snif
         entries = sorted(os.scandir(top), key=lambda entry: entry.name)
     except OSError:
         return  # an unreadable directory holds nothing we can lint
-    if any(entry.name in IGNORE_MARKERS for entry in entries):
+    names = {entry.name for entry in entries}
+    if not names.isdisjoint(IGNORE_MARKERS):
         return
-    pushed = rules.enter(top)
+    # Only where the listing shows one: trying to open a .gitignore in every directory
+    # costs a failed system call each.
+    pushed = rules.enter(top) if ".gitignore" in names else 0
     for entry in entries:
         if entry.is_dir(follow_symlinks=False):
             if entry.name in SKIPPED_DIRECTORIES or rules.ignored(entry.path, is_dir=True):

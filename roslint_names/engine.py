@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import hashlib
 import importlib
+import os
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 from functools import partial
@@ -611,11 +612,14 @@ def _read(path: Path, max_size: int) -> _Read:
     So are binary files, by git's test (a NUL in the first 8,000 bytes) unless a UTF-16
     or UTF-32 byte order mark says the NULs are text.
     """
+    # One open, then the size of what was opened: this runs for every file of every run.
     try:
-        size = path.stat().st_size
-        if size > max_size:
-            return None, "", f"{_megabytes(size)}, above max-file-size ({_megabytes(max_size)})"
-        data = path.read_bytes()
+        with open(path, "rb") as stream:
+            size = os.fstat(stream.fileno()).st_size
+            if size > max_size:
+                why = f"{_megabytes(size)}, above max-file-size ({_megabytes(max_size)})"
+                return None, "", why
+            data = stream.read()
     except OSError as error:
         return None, error.strerror or str(error), None
     if b"\0" in data[:_BINARY_SNIFF] and not data.startswith(_WIDE_BOMS):
