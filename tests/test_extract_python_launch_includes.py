@@ -599,3 +599,26 @@ def generate_launch_description():
     )
     assert isinstance(facts, FileFacts)
     assert all(include.path is None for include in facts.includes)
+
+
+def test_extractions_of_one_file_under_several_arguments_share_nothing_but_the_parse() -> None:
+    """An includer's arguments re-run only the launch part (the parse, the walk and the
+    code's names are kept per file): each set must give what a fresh extraction gives."""
+    from roslint_names.extract import python_extract
+
+    sets: list[Arguments] = [
+        (),
+        (("namespace", "robot2"), ("robot", "burger"), ("use_lidar", "true")),
+        (("namespace", "robot3"),),
+        (),
+    ]
+    shared = [launch(SPECIALISED, arguments=arguments) for arguments in sets]
+    fresh = []
+    for arguments in sets:
+        python_extract._prepare.cache_clear()
+        fresh.append(launch(SPECIALISED, arguments=arguments))
+    assert shared == fresh
+    assert shared[0] == shared[3] != shared[1] != shared[2]
+    nav2 = [fixture("nav2_style_bringup.launch.py", arguments) for arguments in sets]
+    python_extract._prepare.cache_clear()
+    assert nav2[2] == fixture("nav2_style_bringup.launch.py", sets[2])

@@ -5,6 +5,8 @@ Imported by ``python.py`` only after its prefilter passed, because it imports li
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 from roslint_names.extract import evidence
 from roslint_names.extract.literals import name_literals
 from roslint_names.extract.python_code import CodeExtractor
@@ -52,26 +54,11 @@ def extract_parsed(
     arguments: LaunchArguments = (),
 ) -> FileFacts:
     default_language = Language.LAUNCH_PYTHON if launch_path else Language.PYTHON
-    text = decode(data)
-    module = text if isinstance(text, ParseError) else parse(text)
-    if isinstance(text, ParseError) or isinstance(module, ParseError):
-        error = text if isinstance(text, ParseError) else module
-        assert isinstance(error, ParseError)
+    prepared = _prepare(data, package_generation, fallback_generation)
+    if isinstance(prepared, ParseError):
         generation = package_generation or fallback_generation
-        return FileFacts(path, default_language, generation, parse_errors=(error,))
-    try:
-        walk = Walk(module)
-    except RecursionError:
-        error = ParseError("Python code nested too deeply to analyse", Span(1, 1, 1, 2))
-        return FileFacts(
-            path, default_language, package_generation or fallback_generation, parse_errors=(error,)
-        )
-    generation = evidence.decide(
-        package_generation, import_generation(walk.packages), None, fallback_generation
-    )
-    locator = Locator(module, text)
-    code = CodeExtractor(walk, locator, generation)
-    code.run()
+        return FileFacts(path, default_language, generation, parse_errors=(prepared,))
+    walk, locator, code, generation, text = prepared
     file_name = path.replace("\\", "/").rpartition("/")[2]
     launch = LaunchExtractor(walk, locator, file_name, arguments)
     launch.run()
@@ -91,3 +78,34 @@ def extract_parsed(
         includes=tuple(launch.includes),
         literals=() if language is Language.LAUNCH_PYTHON else name_literals(text),
     )
+
+
+_Prepared = tuple[Walk, Locator, CodeExtractor, Generation, str]
+
+
+@lru_cache(maxsize=16)
+def _prepare(
+    data: bytes, package_generation: Generation | None, fallback_generation: Generation
+) -> _Prepared | ParseError:
+    """Everything of a file that launch arguments do not change: parsed, walked, and its
+    code's names extracted. A launch file that includers hand different arguments is
+    extracted once per set (``extract(arguments=...)``); only its launch part runs again.
+    Nothing here is changed after it is built, so the memo is safe to share.
+    """
+    text = decode(data)
+    if isinstance(text, ParseError):
+        return text
+    module = parse(text)
+    if isinstance(module, ParseError):
+        return module
+    try:
+        walk = Walk(module)
+    except RecursionError:
+        return ParseError("Python code nested too deeply to analyse", Span(1, 1, 1, 2))
+    generation = evidence.decide(
+        package_generation, import_generation(walk.packages), None, fallback_generation
+    )
+    locator = Locator(module, text)
+    code = CodeExtractor(walk, locator, generation)
+    code.run()
+    return walk, locator, code, generation, text
