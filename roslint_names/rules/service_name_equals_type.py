@@ -109,8 +109,7 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             continue
         if last.endswith("_" + own_name):
             continue  # a verb and its own type ('add' + 'two_ints' with TwoInts)
-        for other in known:
-            other_name = snake_case(other.name)
+        for other, other_name in known:
             if other.name != own.name and "_" in other_name and last == other_name:
                 yield Finding(use.span, _wrong_type_message(use, own, other))
                 break
@@ -118,16 +117,32 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
 
 def _known_types(
     services: list[NameUse], generation: Generation, of_the_run: frozenset[str]
-) -> list[InterfaceType]:
+) -> tuple[tuple[InterfaceType, str], ...]:
+    """Every type a service could be named after, with its snake_case name, sorted."""
+    known = _run_types(generation, of_the_run)
     own = {parsed for use in services if use.type_name and (parsed := parse_type(use.type_name))}
-    return sorted(own | _run_types(generation, of_the_run), key=str)
+    extra = own - {known_type for known_type, _ in known}
+    if not extra:  # the usual case: the run's types include the file's own
+        return known
+    return _with_names(*(known_type for known_type, _ in known), *extra)
 
 
 @lru_cache(maxsize=4)
-def _run_types(generation: Generation, of_the_run: frozenset[str]) -> frozenset[InterfaceType]:
-    """The run's service types and the well-known ones, parsed once per run, not per file."""
+def _run_types(
+    generation: Generation, of_the_run: frozenset[str]
+) -> tuple[tuple[InterfaceType, str], ...]:
+    """The run's service types and the well-known ones, parsed, named and sorted once per
+    run, not once per file: a large workspace has a thousand."""
     parsed = {found for spelling in of_the_run if (found := parse_type(spelling))}
-    return frozenset(parsed | set(WELL_KNOWN_SERVICE_TYPES[generation]))
+    return _with_names(*parsed, *WELL_KNOWN_SERVICE_TYPES[generation])
+
+
+def _with_names(*types: InterfaceType) -> tuple[tuple[InterfaceType, str], ...]:
+    return tuple(sorted(((found, snake_case(found.name)) for found in set(types)), key=_by_text))
+
+
+def _by_text(item: tuple[InterfaceType, str]) -> str:
+    return str(item[0])
 
 
 def _wrong_type_message(use: NameUse, own: InterfaceType, other: InterfaceType) -> str:
