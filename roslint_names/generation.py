@@ -10,6 +10,7 @@ pre-commit run over a C++ or Python file must not pay for importing an XML parse
 
 from __future__ import annotations
 
+import os
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -72,44 +73,51 @@ class PackageGenerations:
     """Nearest-package.xml lookup with one read per directory for the whole run."""
 
     def __init__(self) -> None:
-        self._by_directory: dict[Path, _Package] = {}
+        # By directory, as a string: every file of every run is looked up here, and
+        # building ``Path.parent`` for each costs more than the lookup.
+        self._by_directory: dict[str, _Package] = {}
         # Every package.xml read, with its text: what a cached run's result depends on.
         self.manifests: dict[Path, str] = {}
 
     def for_file(self, path: Path) -> Generation | None:
-        return self._for_directory(path.parent).generation
+        return self._for_file(path).generation
 
     def package_name(self, path: Path) -> str | None:
-        return self._for_directory(path.parent).name
+        return self._for_file(path).name
 
     def package_directory(self, path: Path) -> Path | None:
         """The directory of the package.xml nearest above ``path``."""
-        return self._for_directory(path.parent).directory
+        return self._for_file(path).directory
 
     def package_depends(self, path: Path) -> frozenset[str]:
-        return self._for_directory(path.parent).depends
+        return self._for_file(path).depends
 
-    def _for_directory(self, directory: Path) -> _Package:
-        if directory in self._by_directory:
-            return self._by_directory[directory]
-        manifest = directory / "package.xml"
+    def _for_file(self, path: Path) -> _Package:
+        return self._for_directory(os.path.dirname(path))
+
+    def _for_directory(self, directory: str) -> _Package:
+        found = self._by_directory.get(directory)
+        if found is not None:
+            return found
+        manifest = os.path.join(directory, "package.xml")
         package: _Package
-        if manifest.is_file():
+        if os.path.isfile(manifest):
             try:
-                text = manifest.read_text(encoding="utf-8", errors="replace")
+                with open(manifest, encoding="utf-8", errors="replace") as stream:
+                    text = stream.read()
             except OSError:
                 text = ""
-            self.manifests[manifest] = text
+            self.manifests[Path(manifest)] = text
             package = _Package(
                 package_xml_name(text),
                 package_xml_generation(text),
-                directory,
+                Path(directory),
                 package_xml_depends(text),
             )
-        elif directory.parent == directory:
+        elif os.path.dirname(directory) == directory:
             package = _NO_PACKAGE
         else:
-            package = self._for_directory(directory.parent)
+            package = self._for_directory(os.path.dirname(directory))
         self._by_directory[directory] = package
         return package
 
