@@ -321,6 +321,11 @@ def snapshot_package(destination: Path) -> None:
     catalog = package.parent / "rules"
     if catalog.is_dir():
         shutil.copytree(catalog, destination / "rules", ignore=ignore)
+    # Byte-compiled, as pip compiles an installed package: with PYTHONDONTWRITEBYTECODE set
+    # (as in many CI images) every run would otherwise compile the whole package again.
+    import compileall
+
+    compileall.compile_dir(destination / "roslint_names", quiet=1)
     SNAPSHOT = destination
 
 
