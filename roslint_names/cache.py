@@ -58,6 +58,7 @@ from pathlib import Path
 
 from . import __version__, model
 from .model import FileFacts, Generation, Language
+from .reading import BINARY, is_binary, read_file, too_large
 
 FORMAT_VERSION = 1
 _MAGIC = b"RNFACTS\x01"
@@ -65,6 +66,7 @@ _CHECKSUM_BYTES = 16
 _PREFIX = "facts-v"
 _EMPTY_LOG = "empty.log"
 _RUNS = "runs"
+_DIGESTS = "digests"
 RUNS_KEPT = 64  # whole-run results: one per recent (file set, settings) of each checkout
 _LOG_BATCH = 512  # lines buffered before an append; and every batch of extraction ends one
 _CACHEDIR_TAG = (
@@ -138,12 +140,29 @@ class FactsCache:
         package_generation: Generation | None,
         fallback_generation: Generation,
     ) -> str:
+        return self.key_of_digest(
+            content_digest(data), path, language, package_generation, fallback_generation
+        )
+
+    def key_of_digest(
+        self,
+        content: str,
+        path: str,
+        language: Language,
+        package_generation: Generation | None,
+        fallback_generation: Generation,
+    ) -> str:
+        """``key`` of a file whose bytes have ``content_digest`` ``content``."""
         digest = hashlib.blake2b(digest_size=20)
         package = "-" if package_generation is None else str(package_generation.value)
-        header = f"{path}\0{language.value}\0{package}\0{fallback_generation.value}\0"
+        header = f"{path}\0{language.value}\0{package}\0{fallback_generation.value}\0{content}"
         digest.update(header.encode("utf-8", errors="surrogatepass"))
-        digest.update(data)
         return digest.hexdigest()
+
+    def digests(self, root: Path) -> ContentDigests:
+        """The digests remembered for the files under ``root`` (see ``ContentDigests``)."""
+        name = hashlib.blake2b(os.fsencode(root), digest_size=8).hexdigest()
+        return ContentDigests(self.directory / _DIGESTS / name, self)
 
     def load(self, key: str, path: str) -> FileFacts | None:
         """The facts stored under ``key`` (for the file reported as ``path``), or None."""
@@ -279,6 +298,85 @@ class FactsCache:
     def _problem(self, message: str) -> None:
         if message not in self.problems:  # said once, however many entries fail
             self.problems.append(message)
+
+
+def content_digest(data: bytes) -> str:
+    return hashlib.blake2b(data, digest_size=20).hexdigest()
+
+
+# What a file's status says about its bytes: equal status, equal bytes, unless the file
+# was written within the clock's granularity of when the status was taken (see below).
+_Status = tuple[int, int, int, int]  # size, mtime_ns, ctime_ns, inode
+_RACY_NANOSECONDS = 2_000_000_000  # coarser than any file system's time stamps
+
+
+@dataclass
+class ContentDigests:
+    """The content digest of every file of a workspace, remembered with its status.
+
+    A re-run must key every file by its content, and reading and hashing them all is most
+    of what is left of a re-run once its result is stored. As git's index does, a file
+    whose status (size, modification and change times, inode) is what it was when its
+    digest was taken is not read again. A file written in the same clock tick as that
+    status was taken could have changed without its status showing it (git's "racily
+    clean" files): a digest is trusted only for a file last modified more than two
+    seconds before its status was recorded, the others are read again.
+
+    ``summary`` answers for one file; ``save`` keeps what was learned, atomically, in one
+    file per workspace. Nothing here decides a finding: a wrong digest could only make
+    a stored result look current, and the status test rules that out.
+    """
+
+    path: Path
+    cache: FactsCache
+    _known: dict[str, tuple[_Status, str, bool]] = field(default_factory=dict)
+    _seen: dict[str, tuple[_Status, str, bool]] = field(default_factory=dict)
+    _loaded: bool = False
+
+    def summary(self, path: Path, max_size: int) -> tuple[str | None, str, str | None]:
+        """The file's content digest, else why it cannot be read; and why it is skipped
+        (as ``read_file`` says it for the same file)."""
+        if not self._loaded:
+            self._known, self._loaded = self._load(), True
+        name = os.fspath(path)
+        try:
+            status = os.stat(name)
+        except OSError:
+            status = None
+        if status is not None:
+            signature = (status.st_size, status.st_mtime_ns, status.st_ctime_ns, status.st_ino)
+            if signature[0] > max_size:
+                return None, "", too_large(signature[0], max_size)
+            known = self._known.get(name)
+            if known is not None and known[0] == signature:
+                self._seen[name] = known
+                return (None, "", BINARY) if known[2] else (known[1], "", None)
+        data, error, skip = read_file(path, max_size)
+        if data is None:
+            return None, error, skip
+        if status is not None and status.st_mtime_ns + _RACY_NANOSECONDS < time.time_ns():
+            self._seen[name] = (signature, content_digest(data), is_binary(data))
+        return (None, "", skip) if skip is not None else (content_digest(data), "", None)
+
+    def save(self) -> None:
+        """Keep the digests of the files this run saw (only those: deleted files go)."""
+        if self._seen != self._known and self.cache.writable():
+            self.cache._write(self.path, pickle.dumps(self._seen, pickle.HIGHEST_PROTOCOL))
+
+    def _load(self) -> dict[str, tuple[_Status, str, bool]]:
+        try:
+            with open(self.path, "rb") as stream:
+                loaded = _DigestUnpickler(stream).load()
+        except Exception:  # absent, unreadable or damaged: every file is read again
+            return {}
+        return loaded if isinstance(loaded, dict) else {}
+
+
+class _DigestUnpickler(pickle.Unpickler):
+    """Builtins only: dicts, tuples, strings, numbers."""
+
+    def find_class(self, module: str, name: str) -> type:
+        raise pickle.UnpicklingError(f"{module}.{name} is not part of a digest file")
 
 
 def _log_line(key: str, language: Language, generation: Generation) -> str:

@@ -35,6 +35,7 @@ from .model import (
     RelatedLocation,
     Span,
 )
+from .reading import read_file
 from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
 from .suppress import Suppression, find_suppressions, is_our_code
@@ -45,7 +46,7 @@ from .workspace.graph import Graph
 from .workspace.index import Package
 
 if TYPE_CHECKING:
-    from .cache import FactsCache  # imported by the caller that wants a cache
+    from .cache import ContentDigests, FactsCache  # imported by the caller that wants a cache
 
 Extract = Callable[[str, bytes, "Generation | None", Generation], FileFacts]
 
@@ -191,22 +192,24 @@ def lint(
             check(index, facts, extracting.pop(index))
 
     # A run over the same inputs as a recent one (nothing edited since) is its result again.
-    def input_tag(source: SourceFile, read: _Read) -> str:
-        """What one file brings to the run: the key of its facts, or why it is not read."""
-        data, read_error, skip = read
-        if skip is not None:
-            return f"skipped: {skip}"
-        if data is None or cache is None:
-            return f"unreadable: {read_error}"
-        package = packages.for_file(source.path)
-        return cache.key(data, source.display, source.language, package, fallback)
-
     run_key: str | None = None
     input_tags: list[str] = []
-    if cache is not None and not want_graph:
-        input_tags = [
-            input_tag(source, _read(source.path, settings.max_file_size)) for source in checked
-        ]
+    digests: ContentDigests | None = None
+    if cache is not None and checked and not want_graph:
+        digests = cache.digests(_common_directory(checked))
+
+        def input_tag(source: SourceFile) -> str:
+            """What a file brings to the run: the key of its facts, or why it is not read."""
+            assert cache is not None and digests is not None
+            digest, read_error, skip = digests.summary(source.path, settings.max_file_size)
+            if skip is not None:
+                return _skipped_tag(skip)
+            if digest is None:
+                return _unreadable_tag(read_error)
+            package = packages.for_file(source.path)
+            return cache.key_of_digest(digest, source.display, source.language, package, fallback)
+
+        input_tags = [input_tag(source) for source in checked]
         run_key = _run_key(
             zip(checked, input_tags, strict=True),
             [*sources, *context],
@@ -216,6 +219,7 @@ def lint(
             packages=packages,
         )
         stored = _stored_result(cache.load_run(run_key), len(checked))
+        digests.save()
         if stored is not None:
             return stored
     if cache is not None:
@@ -226,15 +230,15 @@ def lint(
     extract = partial(_extract_batch, cache)
     with Dispatcher(extract, run.jobs, expected_items=len(checked)) as dispatcher:
         for index, source in enumerate(checked):
-            read = _read(source.path, settings.max_file_size)
-            data, read_error, skip = read
-            if input_tags:
-                inputs_changed = inputs_changed or input_tag(source, read) != input_tags[index]
+            data, read_error, skip = read_file(source.path, settings.max_file_size)
             if skip is not None:
+                inputs_changed |= bool(input_tags) and input_tags[index] != _skipped_tag(skip)
                 skipped.append((source.display, skip))
                 check(index, FileFacts(source.display, source.language, fallback), b"")
                 continue
             if data is None:
+                unread = _unreadable_tag(read_error)
+                inputs_changed |= bool(input_tags) and input_tags[index] != unread
                 check(index, _unreadable(source, read_error), b"")
                 continue
             package = packages.for_file(source.path)
@@ -242,6 +246,7 @@ def lint(
             key: str | None = None
             if cache is not None:
                 key = cache.key(data, source.display, source.language, package, fallback)
+                inputs_changed |= bool(input_tags) and input_tags[index] != key
                 facts = cache.load(key, source.display)
                 if facts is not None:
                     cached += 1
@@ -283,6 +288,23 @@ def lint(
     return LintResult(
         tuple(diagnostics), checked_count, extracted, cached, workers, graph, tuple(skipped)
     )
+
+
+def _skipped_tag(why: str) -> str:
+    return f"skipped: {why}"
+
+
+def _unreadable_tag(why: str) -> str:
+    return f"unreadable: {why}"
+
+
+def _common_directory(sources: Sequence[SourceFile]) -> Path:
+    """The deepest directory holding every source: what the run's digests are kept for."""
+    # ``os.path.commonpath`` splits every path: too slow for every file of a re-run. The
+    # common string prefix of the directories, each ending in a separator, cut after its
+    # last separator, is the same directory ("a/b-c/" and "a/b/" share "a/", not "a/b").
+    prefix = os.path.commonprefix([os.path.join(os.path.dirname(s.path), "") for s in sources])
+    return Path(prefix[: prefix.rfind(os.sep) + 1] or os.sep)
 
 
 def _run_key(
@@ -384,7 +406,7 @@ class _Specialiser:
         source = self._sources.get(display)
         if source is None or source.language not in SPECIALISABLE:
             return None
-        data, _, _ = _read(source.path, self._max_file_size)
+        data, _, _ = read_file(source.path, self._max_file_size)
         if data is None:
             return None
         package = self._packages.for_file(source.path)
@@ -429,7 +451,7 @@ def _report_graph(
         source = reported[index]
         file_facts = facts_of[source.display]
         ignored = ignored_for_path(settings, _relative_to_root(source.display, settings), registry)
-        data, _, _ = _read(source.path, settings.max_file_size)
+        data, _, _ = read_file(source.path, settings.max_file_size)
         to_diagnostic = _DiagnosticFactory(file_facts, settings, decode_for_display(data or b""))
         fresh = [
             to_diagnostic(rule, item.finding.span, item.finding.message, item.finding.related)
@@ -600,39 +622,6 @@ class _DiagnosticFactory:
             related=related,
             source_line=self._lines[span.line - 1] if in_file else None,
         )
-
-
-_Read = tuple["bytes | None", str, "str | None"]  # the bytes, why unreadable, why skipped
-
-
-def _read(path: Path, max_size: int) -> _Read:
-    """The file's bytes, else why it cannot be read; and why it is skipped, if it is.
-
-    Files above ``max_size`` bytes are generated or vendored: skipped before they are read.
-    So are binary files, by git's test (a NUL in the first 8,000 bytes) unless a UTF-16
-    or UTF-32 byte order mark says the NULs are text.
-    """
-    # One open, then the size of what was opened: this runs for every file of every run.
-    try:
-        with open(path, "rb") as stream:
-            size = os.fstat(stream.fileno()).st_size
-            if size > max_size:
-                why = f"{_megabytes(size)}, above max-file-size ({_megabytes(max_size)})"
-                return None, "", why
-            data = stream.read()
-    except OSError as error:
-        return None, error.strerror or str(error), None
-    if b"\0" in data[:_BINARY_SNIFF] and not data.startswith(_WIDE_BOMS):
-        return None, "", "binary (NUL bytes)"
-    return data, "", None
-
-
-_BINARY_SNIFF = 8000
-_WIDE_BOMS = (b"\xff\xfe", b"\xfe\xff")  # UTF-16 LE and BE (UTF-32 LE starts like LE)
-
-
-def _megabytes(size: int) -> str:
-    return f"{size / (1024 * 1024):.1f} MiB"
 
 
 def _unreadable(source: SourceFile, reason: str) -> FileFacts:

@@ -3,6 +3,8 @@ input is a fresh run, and damage or a race never yields a wrong result."""
 
 from __future__ import annotations
 
+import os
+import pickle
 import shutil
 import sys
 import time
@@ -205,20 +207,22 @@ def test_the_same_bytes_in_another_place_are_another_run(
 def test_a_file_changed_while_the_run_reads_it_is_not_kept(
     check: Callable[..., Any], monkeypatch: pytest.MonkeyPatch, private_cache: Path
 ) -> None:
-    # Keyed on its first read, extracted from the second: that result is nobody's key.
-    real = engine._read
-    reads: dict[str, int] = {}
+    # The run is keyed on what its first pass read (through the digests), and extracted
+    # from what its second pass reads: when they differ, the result is nobody's key.
+    real = engine.read_file
 
-    def racing(path: Path, max_size: int) -> Any:
+    def edited_meanwhile(path: Path, max_size: int) -> Any:
         data, error, skip = real(path, max_size)
-        reads[path.name] = reads.get(path.name, 0) + 1
-        if path.name == "base.launch" and reads[path.name] > 1 and data is not None:
+        if path.name == "base.launch" and data is not None:
             data = data.replace(b"Cmd_Vel", b"cmd_vel")
         return data, error, skip
 
-    monkeypatch.setattr(engine, "_read", racing)
+    monkeypatch.setattr(engine, "read_file", edited_meanwhile)
     check()
     assert stored_runs(private_cache) == []
+    monkeypatch.setattr(engine, "read_file", real)
+    check()
+    assert len(stored_runs(private_cache)) == 1
 
 
 def test_a_damaged_result_is_ignored_and_rewritten(
@@ -304,3 +308,86 @@ def test_forgetting_results_falls_back_to_the_facts(
     extractions.clear()
     warm = check()
     assert not reused(warm) and extractions == [] and warm.stdout == cold.stdout
+
+
+@pytest.fixture
+def reads(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """The files a run's first pass (the digests) read, by name."""
+    seen: list[str] = []
+    real = cache_module.read_file
+
+    def counting(path: Path, max_size: int) -> Any:
+        seen.append(path.name)
+        return real(path, max_size)
+
+    monkeypatch.setattr(cache_module, "read_file", counting)
+    return seen
+
+
+def age(workspace: Path, seconds: float = 60) -> None:
+    """Every file last modified ``seconds`` ago: past the racy window of the digests."""
+    past = time.time() - seconds
+    for path in workspace.rglob("*"):
+        if path.is_file():
+            os.utime(path, (past, past))
+
+
+def test_a_rerun_reads_no_file_whose_status_is_unchanged(
+    check: Callable[..., Any], workspace: Path, reads: list[str]
+) -> None:
+    age(workspace)
+    check()
+    assert sorted(reads) == ["CMakeLists.txt", "base.launch", "driver.cpp"]
+    reads.clear()
+    assert reused(check()) and reads == []
+
+
+def test_an_edit_that_keeps_size_and_time_is_still_seen(
+    check: Callable[..., Any], workspace: Path, reads: list[str]
+) -> None:
+    # Same length, modification time put back: the change time still moves.
+    age(workspace)
+    cold = check()
+    launch = workspace / "src/robot_base/launch/base.launch"
+    before = launch.stat()
+    launch.write_text(launch.read_text().replace("Cmd_Vel", "cmd_vel"))
+    os.utime(launch, ns=(before.st_atime_ns, before.st_mtime_ns))
+    reads.clear()
+    after = check()
+    assert reads == ["base.launch"] and not reused(after)
+    assert after.codes() != cold.codes()
+
+
+def test_a_file_modified_just_now_is_read_again_next_time(
+    check: Callable[..., Any], workspace: Path, reads: list[str]
+) -> None:
+    # Written in the same clock tick as its status could be taken: its status proves
+    # nothing about its bytes yet (git's "racily clean" files).
+    age(workspace)
+    (workspace / "src/robot_base/src/driver.cpp").touch()
+    check()
+    reads.clear()
+    assert reused(check()) and reads == ["driver.cpp"]
+
+
+def test_damaged_digests_are_ignored(
+    check: Callable[..., Any], workspace: Path, reads: list[str], private_cache: Path
+) -> None:
+    age(workspace)
+    good = check()
+    [digests] = private_cache.glob("facts-v*/digests/*")
+    digests.write_bytes(digests.read_bytes()[:20])
+    reads.clear()
+    again = check()
+    assert reused(again) and again.stdout == good.stdout and len(reads) == 3
+
+
+def test_digests_that_name_anything_but_builtins_are_never_unpickled(
+    check: Callable[..., Any], workspace: Path, reads: list[str], private_cache: Path
+) -> None:
+    age(workspace)
+    check()
+    [digests] = private_cache.glob("facts-v*/digests/*")
+    digests.write_bytes(pickle.dumps({"x": os.getcwd}))
+    reads.clear()
+    assert reused(check()) and len(reads) == 3
