@@ -230,6 +230,15 @@ def lint(
     extract = partial(_extract_batch, cache)
     with Dispatcher(extract, run.jobs, expected_items=len(checked)) as dispatcher:
         for index, source in enumerate(checked):
+            # A file of the rest of the workspace is only its facts: when its digest gave
+            # their key and they are cached, it need not be read at all.
+            if index >= reported and input_tags and _is_facts_key(input_tags[index]):
+                assert cache is not None
+                facts = cache.load(input_tags[index], source.display)
+                if facts is not None:
+                    cached += 1
+                    check(index, facts, b"")
+                    continue
             data, read_error, skip = read_file(source.path, settings.max_file_size)
             if skip is not None:
                 inputs_changed |= bool(input_tags) and input_tags[index] != _skipped_tag(skip)
@@ -290,12 +299,19 @@ def lint(
     )
 
 
+_SKIPPED, _UNREADABLE = "skipped: ", "unreadable: "  # input tags that are not facts keys
+
+
 def _skipped_tag(why: str) -> str:
-    return f"skipped: {why}"
+    return _SKIPPED + why
 
 
 def _unreadable_tag(why: str) -> str:
-    return f"unreadable: {why}"
+    return _UNREADABLE + why
+
+
+def _is_facts_key(tag: str) -> bool:
+    return not tag.startswith((_SKIPPED, _UNREADABLE))
 
 
 def _common_directory(sources: Sequence[SourceFile]) -> Path:
@@ -303,7 +319,8 @@ def _common_directory(sources: Sequence[SourceFile]) -> Path:
     # ``os.path.commonpath`` splits every path: too slow for every file of a re-run. The
     # common string prefix of the directories, each ending in a separator, cut after its
     # last separator, is the same directory ("a/b-c/" and "a/b/" share "a/", not "a/b").
-    prefix = os.path.commonprefix([os.path.join(os.path.dirname(s.path), "") for s in sources])
+    directories = [os.path.join(os.path.dirname(source.path), "") for source in sources]
+    prefix = os.path.commonprefix(directories)  # noqa: RUF071 - by character, on purpose
     return Path(prefix[: prefix.rfind(os.sep) + 1] or os.sep)
 
 
