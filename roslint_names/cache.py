@@ -58,7 +58,7 @@ from pathlib import Path
 
 from . import __version__, model
 from .model import FileFacts, Generation, Language
-from .reading import BINARY, is_binary, read_file, too_large
+from .reading import BINARY, Read, read_file, too_large
 
 FORMAT_VERSION = 1
 _MAGIC = b"RNFACTS\x01"
@@ -332,44 +332,73 @@ class ContentDigests:
     _known: dict[str, tuple[_Status, str, bool]] = field(default_factory=dict)
     _seen: dict[str, tuple[_Status, str, bool]] = field(default_factory=dict)
     _loaded: bool = False
+    _present: bool = False  # the file exists (damaged or not)
+
+    def remembered(self) -> bool:
+        """Whether an earlier run of this workspace left its digests, even none (files
+        all modified just then): else no stored result of it can exist."""
+        self._remembered()
+        return self._present
 
     def summary(self, path: Path, max_size: int) -> tuple[str | None, str, str | None]:
         """The file's content digest, else why it cannot be read; and why it is skipped
         (as ``read_file`` says it for the same file)."""
-        if not self._loaded:
-            self._known, self._loaded = self._load(), True
-        name = os.fspath(path)
-        try:
-            status = os.stat(name)
-        except OSError:
-            status = None
-        if status is not None:
-            signature = (status.st_size, status.st_mtime_ns, status.st_ctime_ns, status.st_ino)
+        name, signature = os.fspath(path), _signature(path)
+        if signature is not None:
             if signature[0] > max_size:
                 return None, "", too_large(signature[0], max_size)
-            known = self._known.get(name)
+            known = self._remembered().get(name)
             if known is not None and known[0] == signature:
                 self._seen[name] = known
                 return (None, "", BINARY) if known[2] else (known[1], "", None)
+        (_, error, skip), content = self._read(name, signature, path, max_size)
+        return content, error, skip
+
+    def read(self, path: Path, max_size: int) -> tuple[Read, str | None]:
+        """``read_file``, and the content digest of what it read, remembered for the next
+        run."""
+        return self._read(os.fspath(path), _signature(path), path, max_size)
+
+    def _read(
+        self, name: str, signature: _Status | None, path: Path, max_size: int
+    ) -> tuple[Read, str | None]:
+        # The status is taken before the bytes are read: a change in between shows as
+        # a status the next run does not find here.
         data, error, skip = read_file(path, max_size)
-        if data is None:
-            return None, error, skip
-        if status is not None and status.st_mtime_ns + _RACY_NANOSECONDS < time.time_ns():
-            self._seen[name] = (signature, content_digest(data), is_binary(data))
-        return (None, "", skip) if skip is not None else (content_digest(data), "", None)
+        content = None if data is None else content_digest(data)
+        racy = signature is None or signature[1] + _RACY_NANOSECONDS >= time.time_ns()
+        if signature is not None and not racy and (content is not None or skip == BINARY):
+            self._seen[name] = (signature, content or "", content is None)
+        return (data, error, skip), content
+
+    def _remembered(self) -> dict[str, tuple[_Status, str, bool]]:
+        if not self._loaded:
+            self._known, self._loaded = self._load(), True
+        return self._known
 
     def save(self) -> None:
         """Keep the digests of the files this run saw (only those: deleted files go)."""
-        if self._seen != self._known and self.cache.writable():
+        self._remembered()
+        changed = not self._present or self._seen != self._known
+        if changed and self.cache.writable():
             self.cache._write(self.path, pickle.dumps(self._seen, pickle.HIGHEST_PROTOCOL))
 
     def _load(self) -> dict[str, tuple[_Status, str, bool]]:
         try:
             with open(self.path, "rb") as stream:
+                self._present = True
                 loaded = _DigestUnpickler(stream).load()
         except Exception:  # absent, unreadable or damaged: every file is read again
             return {}
         return loaded if isinstance(loaded, dict) else {}
+
+
+def _signature(path: Path) -> _Status | None:
+    try:
+        status = os.stat(path)
+    except OSError:
+        return None
+    return status.st_size, status.st_mtime_ns, status.st_ctime_ns, status.st_ino
 
 
 class _DigestUnpickler(pickle.Unpickler):

@@ -191,37 +191,39 @@ def lint(
         for index, facts in results:
             check(index, facts, extracting.pop(index))
 
-    # A run over the same inputs as a recent one (nothing edited since) is its result again.
+    def key_of(source: SourceFile, content: str) -> str:
+        """The facts key of a file whose bytes have the content digest ``content``."""
+        assert cache is not None
+        package = packages.for_file(source.path)
+        return cache.key_of_digest(content, source.display, source.language, package, fallback)
+
+    # A run over the same inputs as a recent one (nothing edited since) is its result
+    # again. When this workspace left digests, every file is keyed first (most not read);
+    # else no stored result can match, and the run is keyed as its files are read.
     run_key: str | None = None
     input_tags: list[str] = []
+    keyed_first = False
     digests: ContentDigests | None = None
     if cache is not None and checked and not want_graph:
         digests = cache.digests(_common_directory(checked))
-
-        def input_tag(source: SourceFile) -> str:
-            """What a file brings to the run: the key of its facts, or why it is not read."""
-            assert cache is not None and digests is not None
-            digest, read_error, skip = digests.summary(source.path, settings.max_file_size)
-            if skip is not None:
-                return _skipped_tag(skip)
-            if digest is None:
-                return _unreadable_tag(read_error)
-            package = packages.for_file(source.path)
-            return cache.key_of_digest(digest, source.display, source.language, package, fallback)
-
-        input_tags = [input_tag(source) for source in checked]
-        run_key = _run_key(
-            zip(checked, input_tags, strict=True),
-            [*sources, *context],
-            reported=reported,
-            settings=settings,
-            registry=registry,
-            packages=packages,
-        )
-        stored = _stored_result(cache.load_run(run_key), len(checked))
-        digests.save()
-        if stored is not None:
-            return stored
+        if digests.remembered():
+            input_tags = [
+                _input_tag(digests.summary(source.path, settings.max_file_size), source, key_of)
+                for source in checked
+            ]
+            keyed_first = True
+            run_key = _run_key(
+                zip(checked, input_tags, strict=True),
+                [*sources, *context],
+                reported=reported,
+                settings=settings,
+                registry=registry,
+                packages=packages,
+            )
+            stored = _stored_result(cache.load_run(run_key), len(checked))
+            if stored is not None:
+                digests.save()
+                return stored
     if cache is not None:
         cache.writable()  # create the directory now, not racing in every worker
     extracted = cached = 0
@@ -232,30 +234,43 @@ def lint(
         for index, source in enumerate(checked):
             # A file of the rest of the workspace is only its facts: when its digest gave
             # their key and they are cached, it need not be read at all.
-            if index >= reported and input_tags and _is_facts_key(input_tags[index]):
+            if index >= reported and keyed_first and _is_facts_key(input_tags[index]):
                 assert cache is not None
                 facts = cache.load(input_tags[index], source.display)
                 if facts is not None:
                     cached += 1
                     check(index, facts, b"")
                     continue
-            data, read_error, skip = read_file(source.path, settings.max_file_size)
+            content: str | None = None  # the content digest, when the digests read it
+            if digests is not None and not keyed_first:
+                (data, read_error, skip), content = digests.read(
+                    source.path, settings.max_file_size
+                )
+            else:
+                data, read_error, skip = read_file(source.path, settings.max_file_size)
+            package = packages.for_file(source.path)
+            key: str | None = None
+            if data is not None and cache is not None:
+                key = (
+                    key_of(source, content)
+                    if content
+                    else cache.key(data, source.display, source.language, package, fallback)
+                )
+            if digests is not None:
+                tag = _skipped_tag(skip) if skip is not None else key or _unreadable_tag(read_error)
+                if keyed_first:
+                    inputs_changed |= tag != input_tags[index]
+                else:
+                    input_tags.append(tag)
             if skip is not None:
-                inputs_changed |= bool(input_tags) and input_tags[index] != _skipped_tag(skip)
                 skipped.append((source.display, skip))
                 check(index, FileFacts(source.display, source.language, fallback), b"")
                 continue
             if data is None:
-                unread = _unreadable_tag(read_error)
-                inputs_changed |= bool(input_tags) and input_tags[index] != unread
                 check(index, _unreadable(source, read_error), b"")
                 continue
-            package = packages.for_file(source.path)
             job = _Job(index, source.display, source.language, package, fallback)
-            key: str | None = None
-            if cache is not None:
-                key = cache.key(data, source.display, source.language, package, fallback)
-                inputs_changed |= bool(input_tags) and input_tags[index] != key
+            if cache is not None and key is not None:
                 facts = cache.load(key, source.display)
                 if facts is not None:
                     cached += 1
@@ -266,6 +281,15 @@ def lint(
             check_extracted(dispatcher.put((job, data, key), len(data)))
         check_extracted(dispatcher.finish())
         workers = dispatcher.workers
+    if digests is not None and not keyed_first:
+        run_key = _run_key(
+            zip(checked, input_tags, strict=True),
+            [*sources, *context],
+            reported=reported,
+            settings=settings,
+            registry=registry,
+            packages=packages,
+        )
     for index, facts, data in waiting:
         known = frozenset(
             spelling
@@ -294,12 +318,29 @@ def lint(
     checked_count = sum(1 for source in checked[:reported] if source.display not in skipped_paths)
     if cache is not None and run_key is not None and not inputs_changed:
         cache.store_run(run_key, (tuple(diagnostics), checked_count, tuple(skipped)))
+    if digests is not None:
+        digests.save()
     return LintResult(
         tuple(diagnostics), checked_count, extracted, cached, workers, graph, tuple(skipped)
     )
 
 
 _SKIPPED, _UNREADABLE = "skipped: ", "unreadable: "  # input tags that are not facts keys
+
+
+def _input_tag(
+    summary: tuple[str | None, str, str | None],
+    source: SourceFile,
+    key_of: Callable[[SourceFile, str], str],
+) -> str:
+    """What a file brings to a run: the key of its facts (from its content digest, by
+    ``key_of``), or why it is not read."""
+    content, read_error, skip = summary
+    if skip is not None:
+        return _skipped_tag(skip)
+    if content is None:
+        return _unreadable_tag(read_error)
+    return key_of(source, content)
 
 
 def _skipped_tag(why: str) -> str:

@@ -205,10 +205,17 @@ def test_the_same_bytes_in_another_place_are_another_run(
 
 
 def test_a_file_changed_while_the_run_reads_it_is_not_kept(
-    check: Callable[..., Any], monkeypatch: pytest.MonkeyPatch, private_cache: Path
+    check: Callable[..., Any],
+    workspace: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    private_cache: Path,
 ) -> None:
-    # The run is keyed on what its first pass read (through the digests), and extracted
-    # from what its second pass reads: when they differ, the result is nobody's key.
+    # A run of a workspace with digests is keyed by a first pass (through the digests)
+    # and extracted from what its second pass reads: when they differ, the result is
+    # nobody's key.
+    check()
+    [first] = stored_runs(private_cache)
+    _edit_code(workspace)  # so that the next run is not the stored one
     real = engine.read_file
 
     def edited_meanwhile(path: Path, max_size: int) -> Any:
@@ -219,10 +226,10 @@ def test_a_file_changed_while_the_run_reads_it_is_not_kept(
 
     monkeypatch.setattr(engine, "read_file", edited_meanwhile)
     check()
-    assert stored_runs(private_cache) == []
+    assert stored_runs(private_cache) == [first]
     monkeypatch.setattr(engine, "read_file", real)
     check()
-    assert len(stored_runs(private_cache)) == 1
+    assert len(stored_runs(private_cache)) == 2
 
 
 def test_a_damaged_result_is_ignored_and_rewritten(
@@ -391,3 +398,21 @@ def test_digests_that_name_anything_but_builtins_are_never_unpickled(
     digests.write_bytes(pickle.dumps({"x": os.getcwd}))
     reads.clear()
     assert reused(check()) and len(reads) == 3
+
+
+def test_the_first_run_of_a_workspace_reads_each_file_once(
+    check: Callable[..., Any], monkeypatch: pytest.MonkeyPatch, reads: list[str]
+) -> None:
+    # No digests yet, so no stored result can match: the run is keyed as it reads.
+    direct: list[str] = []
+    real = engine.read_file
+
+    def counting(path: Path, max_size: int) -> Any:
+        direct.append(path.name)
+        return real(path, max_size)
+
+    monkeypatch.setattr(engine, "read_file", counting)
+    check()
+    assert sorted(reads) == ["CMakeLists.txt", "base.launch", "driver.cpp"]
+    assert direct == ["base.launch"]  # again, for the source line of its graph finding
+    assert reused(check())
