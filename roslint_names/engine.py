@@ -316,6 +316,8 @@ def lint(
     diagnostics.sort(key=Diagnostic.sort_key)
     skipped_paths = {path for path, _ in skipped}
     checked_count = sum(1 for source in checked[:reported] if source.display not in skipped_paths)
+    if cache is not None:
+        cache.finish()  # the graph's specialised facts are still buffered
     if cache is not None and run_key is not None and not inputs_changed:
         cache.store_run(run_key, (tuple(diagnostics), checked_count, tuple(skipped)))
     if digests is not None:

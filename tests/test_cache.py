@@ -66,9 +66,15 @@ def check(run_cli: Any, tmp_path: Path) -> Callable[..., Any]:
     return run
 
 
-def entries(root: Path) -> list[Path]:
-    """The facts entries (not the whole-run results: see test_run_cache.py)."""
-    return sorted(path for path in root.glob("facts-v*/[0-9a-f][0-9a-f]/*") if path.is_file())
+def pack(root: Path) -> Path:
+    [found] = root.glob("facts-v*/facts.pack")
+    return found
+
+
+def records(root: Path) -> list[str]:
+    """The keys of the facts records (not the empty log's lines, not whole-run results)."""
+    packs = list(root.glob("facts-v*/facts.pack"))
+    return sorted(cache_module._index(packs[0].read_bytes())) if packs else []
 
 
 def forget_runs(root: Path) -> None:
@@ -91,7 +97,7 @@ def test_a_hit_returns_the_same_facts_without_extracting(
     write(tmp_path / "ws", "launch/clean.launch", "<launch/>\n")
     cold = check()
     assert sorted(extractions) == ["launch/clean.launch", "launch/robot.launch"]
-    assert len(entries(private_cache)) == 1  # robot.launch; clean.launch is a log line
+    assert len(records(private_cache)) == 1  # robot.launch; clean.launch is a log line
     assert len(log_lines(private_cache)) == 1
     extractions.clear()
     forget_runs(private_cache)
@@ -105,8 +111,10 @@ def test_store_then_load_gives_equal_facts(tmp_path: Path) -> None:
     key = cache.key(b"<launch/>", "robot.launch", Language.LAUNCH_XML, None, Generation.ROS2)
     assert cache.load(key, FACTS.path) is None
     cache.store(key, FACTS)
-    assert cache.load(key, FACTS.path) == FACTS
+    assert cache.load(key, FACTS.path) == FACTS  # stored by this process, not yet written
+    cache.flush()
     assert (cache.stats.hits, cache.stats.misses, cache.stats.written) == (1, 1, 1)
+    assert FactsCache(tmp_path / "cache").load(key, FACTS.path) == FACTS  # from the pack
 
 
 def test_empty_facts_are_a_log_line_and_come_back_equal(tmp_path: Path) -> None:
@@ -115,7 +123,7 @@ def test_empty_facts_are_a_log_line_and_come_back_equal(tmp_path: Path) -> None:
     key = writer.key(b"", empty.path, Language.PYTHON, None, Generation.ROS1)
     writer.store(key, empty)
     writer.flush()
-    assert entries(tmp_path) == [] and len(log_lines(tmp_path)) == 1
+    assert records(tmp_path) == [] and len(log_lines(tmp_path)) == 1
     assert FactsCache(tmp_path).load(key, empty.path) == empty
 
 
@@ -173,32 +181,58 @@ def test_a_changed_fallback_generation_misses(
     assert extractions == []
 
 
-def test_a_corrupt_entry_is_ignored_and_rewritten(
+def test_a_corrupt_record_is_skipped_and_written_again(
     check: Callable[..., Any], tmp_path: Path, extractions: list[str], private_cache: Path
 ) -> None:
     write(tmp_path / "ws", "robot.launch", LAUNCH)
     good = check()
-    [entry] = entries(private_cache)
-    blob = entry.read_bytes()
+    blob = pack(private_cache).read_bytes()
     for damage in (blob[: len(blob) // 2], b"", b"garbage", blob[:-1] + bytes([blob[-1] ^ 1])):
-        entry.write_bytes(damage)
+        pack(private_cache).write_bytes(damage)
         extractions.clear()
         forget_runs(private_cache)
         assert check() == good
-        assert extractions == ["robot.launch"]
-        assert entry.read_bytes() == blob  # rewritten whole
+        assert extractions == ["robot.launch"]  # the damaged record is skipped
+        extractions.clear()
+        forget_runs(private_cache)
+        assert check() == good
+        assert extractions == []  # the record appended after the damage is found
 
 
-def test_an_entry_naming_anything_but_facts_is_never_unpickled(tmp_path: Path) -> None:
+def test_a_record_naming_anything_but_facts_is_never_unpickled(tmp_path: Path) -> None:
     cache = FactsCache(tmp_path)
     key = cache.key(b"x", "a.launch", Language.LAUNCH_XML, None, Generation.ROS2)
     cache.store(key, FACTS)
-    [entry] = entries(tmp_path)
-    payload = pickle.dumps(os.getcwd)  # a global outside roslint_names.model
-    checksum = hashlib.blake2b(payload, digest_size=16).digest()
-    entry.write_bytes(b"RNFACTS\x01" + checksum + payload)
-    assert cache.load(key, FACTS.path) is None
-    assert cache.stats.corrupt == 1
+    cache.flush()
+    record = cache_module._record(key, pickle.dumps(os.getcwd))  # a global outside model
+    assert record is not None
+    pack(tmp_path).write_bytes(record)
+    fresh = FactsCache(tmp_path)
+    assert fresh.load(key, FACTS.path) is None
+    assert fresh.stats.corrupt == 1
+
+
+def test_a_pack_past_its_limit_keeps_only_the_records_the_run_used(
+    check: Callable[..., Any],
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    private_cache: Path,
+) -> None:
+    launch = write(tmp_path / "ws", "robot.launch", LAUNCH)
+    check()
+    launch.write_text(LAUNCH.replace("base-driver", "base_driver"))
+    check()
+    assert len(records(private_cache)) == 2  # the file's old version and its new one
+    limit = cache_module.PACK_LIMIT
+    monkeypatch.setattr(cache_module, "PACK_LIMIT", 1)
+    forget_runs(private_cache)
+    check()
+    [kept] = records(private_cache)
+    monkeypatch.setattr(cache_module, "PACK_LIMIT", limit)
+    launch.write_text(LAUNCH)
+    forget_runs(private_cache)
+    assert check().codes()  # the old version's record is gone, so it is extracted again
+    assert kept in records(private_cache)
 
 
 def _store_repeatedly(root: str, key: str, rounds: int) -> None:
@@ -223,13 +257,16 @@ def test_two_writers_racing_leave_a_valid_entry(tmp_path: Path) -> None:
     for writer in writers:
         writer.start()
     while any(writer.is_alive() for writer in writers):
-        assert cache.load(key, FACTS.path) in (None, FACTS)  # absent or whole, never half
+        reader = FactsCache(tmp_path)  # reads the pack as it is now
+        assert reader.load(key, FACTS.path) in (None, FACTS)  # absent or whole, never half
+        assert reader.stats.corrupt == 0
     for writer in writers:
         writer.join()
         assert writer.exitcode == 0
-    assert cache.stats.corrupt == 0
-    assert cache.load(key, FACTS.path) == FACTS
-    assert [path.name for path in entries(tmp_path)] == [key[2:]]  # no temporary file left
+    assert FactsCache(tmp_path).load(key, FACTS.path) == FACTS
+    data = pack(tmp_path).read_bytes()
+    record = cache_module._record(key, pickle.dumps(FACTS, protocol=pickle.HIGHEST_PROTOCOL))
+    assert record is not None and data == record * 400  # every append whole, none lost
     lines = log_lines(tmp_path)
     assert len(lines) == 2 * 200  # every append whole, none lost
     assert len(cache_module._read_log(str(next(tmp_path.glob("facts-v*/empty.log"))))) == 400
@@ -267,7 +304,7 @@ def test_no_cache_neither_creates_nor_reads_the_directory(
 def test_cache_dir_option_is_used(check: Callable[..., Any], tmp_path: Path) -> None:
     write(tmp_path / "ws", "robot.launch", LAUNCH)
     check("--cache-dir", str(tmp_path / "mine"))
-    assert len(entries(tmp_path / "mine")) == 1
+    assert len(records(tmp_path / "mine")) == 1
     assert (tmp_path / "mine" / "CACHEDIR.TAG").is_file()
 
 
@@ -291,7 +328,7 @@ def test_the_cache_never_writes_under_the_linted_tree(
     check()
     check()
     assert tree_digest(workspace) == before
-    assert entries(private_cache)
+    assert records(private_cache)
 
 
 def test_an_unwritable_cache_directory_only_slows_the_run(
