@@ -17,6 +17,7 @@ from . import __version__
 from .cache import FactsCache
 from .cache import default_directory as default_cache_directory
 from .catalog import CatalogError, load_doc, rule_meta
+from .collection import rare_collections
 from .config import (
     ConfigError,
     Overrides,
@@ -51,7 +52,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = _parser()
     options = parser.parse_args(arguments)
     try:
-        return int(options.run(options))
+        with rare_collections():
+            return int(options.run(options))
     except (ConfigError, DiscoveryError, UsageError, RegistryError, CatalogError) as error:
         _fail(str(error))
     except KeyboardInterrupt:

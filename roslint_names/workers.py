@@ -17,12 +17,15 @@ start and every item they take is pickled across a pipe, so:
 
 from __future__ import annotations
 
+import gc
 import os
 import signal
 import sys
 from collections.abc import Callable, Iterator
 from types import TracebackType
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
+
+from .collection import THRESHOLDS
 
 if TYPE_CHECKING:
     from concurrent.futures import Future, ProcessPoolExecutor
@@ -155,6 +158,7 @@ _WORK: Callable[[list[Any]], list[Any]] | None = None
 def _initialize(work: Callable[[list[Any]], list[Any]]) -> None:
     global _WORK  # noqa: PLW0603 - the worker's one piece of state
     _WORK = work
+    gc.set_threshold(*THRESHOLDS)  # inherited when forked, not when spawned
     # Ctrl-C reaches the whole process group; the main process alone decides what to do
     # (cancel and shut down), so workers do not each print a KeyboardInterrupt traceback.
     signal.signal(signal.SIGINT, signal.SIG_IGN)

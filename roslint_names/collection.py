@@ -1,0 +1,28 @@
+"""How often Python's cycle collector runs during a run: rarely.
+
+A run allocates millions of short-lived objects (parse trees and their walks) while it
+keeps every file's facts. At CPython's default thresholds (700, 10, 10) the collector
+walks the kept facts again and again: on realws that was a fifth of a cold run (28.4 s,
+against 22.9 s with ``THRESHOLDS``; peak memory 164 MB against 198 MB). Cycles are still
+collected, only some hundred times less often. The CLI sets them for its run and worker
+processes for their lives; the previous thresholds come back when the run ends, so a
+program that calls the engine keeps its own.
+"""
+
+from __future__ import annotations
+
+import gc
+from collections.abc import Iterator
+from contextlib import contextmanager
+
+THRESHOLDS = (50_000, 20, 100)
+
+
+@contextmanager
+def rare_collections() -> Iterator[None]:
+    previous = gc.get_threshold()
+    gc.set_threshold(*THRESHOLDS)
+    try:
+        yield
+    finally:
+        gc.set_threshold(*previous)
