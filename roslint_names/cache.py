@@ -60,7 +60,7 @@ from pathlib import Path
 
 from . import __version__, model
 from .model import FileFacts, Generation, Language
-from .reading import BINARY, Read, read_file, too_large
+from .reading import BINARY, Read, content_digest, read_file, too_large
 
 FORMAT_VERSION = 1
 _MAGIC = b"RNFACTS\x01"
@@ -403,10 +403,6 @@ def _read_bytes(path: str) -> bytes:
             return stream.read()
     except OSError:  # absent (nothing stored yet) or unreadable: everything misses
         return b""
-
-
-def content_digest(data: bytes) -> str:
-    return hashlib.blake2b(data, digest_size=20).hexdigest()
 
 
 # What a file's status says about its bytes: equal status, equal bytes, unless the file

@@ -9,9 +9,7 @@ either.
 
 from __future__ import annotations
 
-import hashlib
 import importlib
-import os
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 from functools import partial
@@ -38,6 +36,7 @@ from .model import (
 from .reading import read_file
 from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
+from .run_inputs import RunInputs
 from .suppress import Suppression, find_suppressions, is_our_code
 from .types import parse_type
 from .workers import Dispatcher
@@ -46,7 +45,7 @@ from .workspace.graph import Graph
 from .workspace.index import Package
 
 if TYPE_CHECKING:
-    from .cache import ContentDigests, FactsCache  # imported by the caller that wants a cache
+    from .cache import FactsCache  # imported by the caller that wants a cache
 
 Extract = Callable[[str, bytes, "Generation | None", Generation], FileFacts]
 
@@ -129,9 +128,12 @@ def lint(
 ) -> LintResult:
     """Diagnostics of every lintable source; the same bytes whatever the ``run`` options.
 
-    Each file is read once, here. Its facts come from the cache when its key is there;
-    otherwise the file goes to extraction, in-process or in worker processes (see
-    ``workers``), which store what they extract. Rules and suppressions run here, in the
+    With a cache, the run is first keyed by its inputs (``run_inputs``): a run over the
+    same inputs as a recent one returns that run's result. Otherwise each file is read
+    once, here (a file of the rest of the workspace not at all when its facts are
+    cached). Its facts come from the cache when its key is there; otherwise the file goes
+    to extraction, in-process or in worker processes (see ``workers``), which store what
+    they extract. Rules and suppressions run here, in the
     main process, as facts arrive, in whatever order; every file's diagnostics are kept in
     its own slot and joined in discovery order before the final sort, so the order in which
     workers finish never shows in the output.
@@ -191,77 +193,46 @@ def lint(
         for index, facts in results:
             check(index, facts, extracting.pop(index))
 
-    def key_of(source: SourceFile, content: str) -> str:
-        """The facts key of a file whose bytes have the content digest ``content``."""
-        assert cache is not None
-        package = packages.for_file(source.path)
-        return cache.key_of_digest(content, source.display, source.language, package, fallback)
-
-    # A run over the same inputs as a recent one (nothing edited since) is its result
-    # again. When this workspace left digests, every file is keyed first (most not read);
-    # else no stored result can match, and the run is keyed as its files are read.
+    # A run over the same inputs as a recent one (nothing edited since) is its result again.
+    inputs: RunInputs | None = None
     run_key: str | None = None
-    input_tags: list[str] = []
-    keyed_first = False
-    digests: ContentDigests | None = None
-    if cache is not None and checked and not want_graph:
-        digests = cache.digests(_common_directory(checked))
-        if digests.remembered():
-            input_tags = [
-                _input_tag(digests.summary(source.path, settings.max_file_size), source, key_of)
-                for source in checked
-            ]
-            keyed_first = True
-            run_key = _run_key(
-                zip(checked, input_tags, strict=True),
-                [*sources, *context],
-                reported=reported,
-                settings=settings,
-                registry=registry,
-                packages=packages,
-            )
-            stored = _stored_result(cache.load_run(run_key), len(checked))
-            if stored is not None:
-                digests.save()
-                return stored
+    if cache is not None and checked:
+        inputs = RunInputs(
+            cache,
+            checked,
+            [*sources, *context],
+            reported=reported,
+            settings=settings,
+            registry=registry,
+            packages=packages,
+            fallback=fallback,
+        )
+        run_key = None if want_graph else inputs.key_first()
+        stored = None if run_key is None else _stored_result(cache.load_run(run_key), len(checked))
+        if stored is not None:
+            inputs.finish()
+            return stored
     if cache is not None:
         cache.writable()  # create the directory now, not racing in every worker
     extracted = cached = 0
-    inputs_changed = False  # since they were keyed: then this result is not kept
     skipped: list[tuple[str, str]] = []
     extract = partial(_extract_batch, cache)
     with Dispatcher(extract, run.jobs, expected_items=len(checked)) as dispatcher:
         for index, source in enumerate(checked):
-            # A file of the rest of the workspace is only its facts: when its digest gave
-            # their key and they are cached, it need not be read at all.
-            if index >= reported and keyed_first and _is_facts_key(input_tags[index]):
-                assert cache is not None
-                facts = cache.load(input_tags[index], source.display)
+            # A file of the rest of the workspace is only its facts: when they are cached
+            # under the key its digest gave, it is not read at all.
+            cached_key = None if inputs is None or index < reported else inputs.known_key(index)
+            if cached_key is not None and cache is not None:
+                facts = cache.load(cached_key, source.display)
                 if facts is not None:
                     cached += 1
                     check(index, facts, b"")
                     continue
-            content: str | None = None  # the content digest, when the digests read it
-            if digests is not None and not keyed_first:
-                (data, read_error, skip), content = digests.read(
-                    source.path, settings.max_file_size
-                )
+            key: str | None = None
+            if inputs is not None:
+                (data, read_error, skip), key = inputs.read(index, source)
             else:
                 data, read_error, skip = read_file(source.path, settings.max_file_size)
-            package = packages.for_file(source.path)
-            key: str | None = None
-            if data is not None and cache is not None:
-                key = (
-                    key_of(source, content)
-                    if content
-                    else cache.key(data, source.display, source.language, package, fallback)
-                )
-            if digests is not None:
-                tag = _skipped_tag(skip) if skip is not None else key or _unreadable_tag(read_error)
-                if keyed_first:
-                    inputs_changed |= tag != input_tags[index]
-                else:
-                    input_tags.append(tag)
             if skip is not None:
                 skipped.append((source.display, skip))
                 check(index, FileFacts(source.display, source.language, fallback), b"")
@@ -269,6 +240,7 @@ def lint(
             if data is None:
                 check(index, _unreadable(source, read_error), b"")
                 continue
+            package = packages.for_file(source.path)
             job = _Job(index, source.display, source.language, package, fallback)
             if cache is not None and key is not None:
                 facts = cache.load(key, source.display)
@@ -281,15 +253,8 @@ def lint(
             check_extracted(dispatcher.put((job, data, key), len(data)))
         check_extracted(dispatcher.finish())
         workers = dispatcher.workers
-    if digests is not None and not keyed_first:
-        run_key = _run_key(
-            zip(checked, input_tags, strict=True),
-            [*sources, *context],
-            reported=reported,
-            settings=settings,
-            registry=registry,
-            packages=packages,
-        )
+    if inputs is not None and not want_graph and run_key is None:
+        run_key = inputs.key_last()
     for index, facts, data in waiting:
         known = frozenset(
             spelling
@@ -318,96 +283,14 @@ def lint(
     checked_count = sum(1 for source in checked[:reported] if source.display not in skipped_paths)
     if cache is not None:
         cache.finish()  # the graph's specialised facts are still buffered
-    if cache is not None and run_key is not None and not inputs_changed:
-        cache.store_run(run_key, (tuple(diagnostics), checked_count, tuple(skipped)))
-    if digests is not None:
-        digests.save()
+    if inputs is not None:
+        if run_key is not None and not inputs.changed:
+            assert cache is not None
+            cache.store_run(run_key, (tuple(diagnostics), checked_count, tuple(skipped)))
+        inputs.finish()
     return LintResult(
         tuple(diagnostics), checked_count, extracted, cached, workers, graph, tuple(skipped)
     )
-
-
-_SKIPPED, _UNREADABLE = "skipped: ", "unreadable: "  # input tags that are not facts keys
-
-
-def _input_tag(
-    summary: tuple[str | None, str, str | None],
-    source: SourceFile,
-    key_of: Callable[[SourceFile, str], str],
-) -> str:
-    """What a file brings to a run: the key of its facts (from its content digest, by
-    ``key_of``), or why it is not read."""
-    content, read_error, skip = summary
-    if skip is not None:
-        return _skipped_tag(skip)
-    if content is None:
-        return _unreadable_tag(read_error)
-    return key_of(source, content)
-
-
-def _skipped_tag(why: str) -> str:
-    return _SKIPPED + why
-
-
-def _unreadable_tag(why: str) -> str:
-    return _UNREADABLE + why
-
-
-def _is_facts_key(tag: str) -> bool:
-    return not tag.startswith((_SKIPPED, _UNREADABLE))
-
-
-def _common_directory(sources: Sequence[SourceFile]) -> Path:
-    """The deepest directory holding every source: what the run's digests are kept for."""
-    # ``os.path.commonpath`` splits every path: too slow for every file of a re-run. The
-    # common string prefix of the directories, each ending in a separator, cut after its
-    # last separator, is the same directory ("a/b-c/" and "a/b/" share "a/", not "a/b").
-    directories = [os.path.join(os.path.dirname(source.path), "") for source in sources]
-    prefix = os.path.commonprefix(directories)  # noqa: RUF071 - by character, on purpose
-    return Path(prefix[: prefix.rfind(os.sep) + 1] or os.sep)
-
-
-def _run_key(
-    checked: Iterable[tuple[SourceFile, str]],
-    everything: Sequence[SourceFile],
-    *,
-    reported: int,
-    settings: Settings,
-    registry: Registry,
-    packages: PackageGenerations,
-) -> str:
-    """A key over everything a run's result depends on.
-
-    That is every file's bytes (through its facts key), where each file is (per-file
-    ignores are relative paths), which files are reported, the files read without being
-    linted (a ``.srv`` file's name is a service type; every package.xml read), the
-    settings, and the code of the tool and of every rule.
-    """
-    from .cache import code_fingerprint
-    from .config import settings_fingerprint
-
-    modules = {
-        function.__module__
-        for rule in registry.rules
-        for function in (rule.check, rule.check_workspace)
-        if function is not None
-    }
-    digest = hashlib.blake2b(digest_size=20)
-    header = f"{code_fingerprint(modules)}\0{settings_fingerprint(settings)}\0{reported}\0"
-    digest.update(_text_bytes(header))
-    for source, tag in checked:
-        digest.update(_text_bytes(f"{source.path}\0{source.display}\0{source.language}\0{tag}\n"))
-    for source in everything:
-        packages.for_file(source.path)  # so every manifest the run would read is read now
-        if source.language not in EXTRACTOR_MODULES:
-            digest.update(_text_bytes(f"{source.path}\0{source.display}\0{source.language}\n"))
-    for manifest, text in sorted(packages.manifests.items()):
-        digest.update(_text_bytes(f"{manifest}\0{len(text)}\0{text}"))
-    return digest.hexdigest()
-
-
-def _text_bytes(text: str) -> bytes:
-    return text.encode("utf-8", errors="surrogatepass")
 
 
 def _stored_result(value: object, files: int) -> LintResult | None:

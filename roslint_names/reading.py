@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import os
 from pathlib import Path
 
@@ -31,6 +32,11 @@ def read_file(path: Path, max_size: int) -> Read:
     if is_binary(data):
         return None, "", BINARY
     return data, "", None
+
+
+def content_digest(data: bytes) -> str:
+    """What a file's bytes are keyed by."""
+    return hashlib.blake2b(data, digest_size=20).hexdigest()
 
 
 def is_binary(data: bytes) -> bool:

@@ -16,7 +16,7 @@ from typing import Any
 import pytest
 
 from roslint_names import cache as cache_module
-from roslint_names import engine
+from roslint_names import engine, run_inputs
 from roslint_names.config import Settings, settings_fingerprint
 from roslint_names.model import Language, Severity
 from tests.conftest import CATKIN_PACKAGE, write
@@ -216,7 +216,7 @@ def test_a_file_changed_while_the_run_reads_it_is_not_kept(
     check()
     [first] = stored_runs(private_cache)
     _edit_code(workspace)  # so that the next run is not the stored one
-    real = engine.read_file
+    real = run_inputs.read_file
 
     def edited_meanwhile(path: Path, max_size: int) -> Any:
         data, error, skip = real(path, max_size)
@@ -224,10 +224,10 @@ def test_a_file_changed_while_the_run_reads_it_is_not_kept(
             data = data.replace(b"Cmd_Vel", b"cmd_vel")
         return data, error, skip
 
-    monkeypatch.setattr(engine, "read_file", edited_meanwhile)
+    monkeypatch.setattr(run_inputs, "read_file", edited_meanwhile)
     check()
     assert stored_runs(private_cache) == [first]
-    monkeypatch.setattr(engine, "read_file", real)
+    monkeypatch.setattr(run_inputs, "read_file", real)
     check()
     assert len(stored_runs(private_cache)) == 2
 

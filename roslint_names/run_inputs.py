@@ -1,0 +1,160 @@
+"""What a run's result depends on, as one key; and each file's facts key on the way.
+
+A run's result is a function of: every linted file's bytes (through its facts key, which
+also holds its path, language and generations), where each file is (per-file ignores are
+relative paths), which files are reported, the files read without being linted (a
+``.srv`` file's name is a service type; every package.xml read), the settings, and the
+code of the tool and of every rule. ``RunInputs`` keys a run by all of that, so that
+``FactsCache.load_run`` can serve the result of an earlier run over the same inputs.
+
+Files are keyed through the workspace's ``ContentDigests``. When an earlier run of the
+workspace left them, the whole run is keyed before any file is extracted
+(``key_first``): most files are then not read, only looked at. Otherwise no stored
+result can match, and the run is keyed from the reads it makes anyway (``read``, then
+``key_last``). A file whose bytes differ between the two (edited during the run) marks
+the inputs as changed: that result is then nobody's key and is not kept.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+from collections.abc import Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from .config import Settings, settings_fingerprint
+from .discover import SourceFile
+from .generation import PackageGenerations
+from .model import Generation
+from .reading import Read, content_digest, read_file
+from .registry import Registry
+
+if TYPE_CHECKING:
+    from .cache import FactsCache
+
+_SKIPPED, _UNREADABLE = "skipped: ", "unreadable: "  # tags of files that have no facts key
+
+
+class RunInputs:
+    def __init__(
+        self,
+        cache: FactsCache,
+        checked: Sequence[SourceFile],
+        everything: Sequence[SourceFile],
+        *,
+        reported: int,
+        settings: Settings,
+        registry: Registry,
+        packages: PackageGenerations,
+        fallback: Generation,
+    ) -> None:
+        self._cache = cache
+        self._checked = checked
+        self._everything = everything
+        self._reported = reported
+        self._settings = settings
+        self._registry = registry
+        self._packages = packages
+        self._fallback = fallback
+        self._digests = cache.digests(_common_directory(checked))
+        self._tags: list[str] = []  # per checked file: its facts key, or why it has none
+        self._keyed_first = False
+        self.changed = False  # a file read differs from what the run was keyed by
+
+    def key_first(self) -> str | None:
+        """The run's key before anything is extracted, when an earlier run of this
+        workspace left its digests (only then can a stored result match)."""
+        if not self._digests.remembered():
+            return None
+        maximum = self._settings.max_file_size
+        self._tags = [
+            self._tag(source, *self._digests.summary(source.path, maximum))
+            for source in self._checked
+        ]
+        self._keyed_first = True
+        return self._key()
+
+    def known_key(self, index: int) -> str | None:
+        """The facts key of checked file ``index`` as ``key_first`` found it, if any."""
+        if not self._keyed_first:
+            return None
+        tag = self._tags[index]
+        return None if tag.startswith((_SKIPPED, _UNREADABLE)) else tag
+
+    def read(self, index: int, source: SourceFile) -> tuple[Read, str | None]:
+        """The file's bytes (as ``read_file`` gives them) and its facts key."""
+        maximum = self._settings.max_file_size
+        if self._keyed_first:
+            read, content = read_file(source.path, maximum), None
+        else:
+            read, content = self._digests.read(source.path, maximum)
+        data, read_error, skip = read
+        if data is not None and content is None:
+            content = content_digest(data)
+        tag = self._tag(source, content, read_error, skip)
+        if self._keyed_first:
+            self.changed |= tag != self._tags[index]
+        else:
+            self._tags.append(tag)
+        return read, None if data is None else tag
+
+    def key_last(self) -> str | None:
+        """The run's key once every file was read: for a run not keyed first."""
+        return None if self._keyed_first else self._key()
+
+    def finish(self) -> None:
+        self._digests.save()
+
+    def _tag(
+        self, source: SourceFile, content: str | None, read_error: str, skip: str | None
+    ) -> str:
+        if skip is not None:
+            return _SKIPPED + skip
+        if content is None:
+            return _UNREADABLE + read_error
+        package = self._packages.for_file(source.path)
+        return self._cache.key_of_digest(
+            content, source.display, source.language, package, self._fallback
+        )
+
+    def _key(self) -> str:
+        from .cache import code_fingerprint
+
+        modules = {
+            function.__module__
+            for rule in self._registry.rules
+            for function in (rule.check, rule.check_workspace)
+            if function is not None
+        }
+        digest = hashlib.blake2b(digest_size=20)
+        fingerprints = f"{code_fingerprint(modules)}\0{settings_fingerprint(self._settings)}"
+        digest.update(_text_bytes(f"{fingerprints}\0{self._reported}\0"))
+        for source, tag in zip(self._checked, self._tags, strict=True):
+            digest.update(_text_bytes(f"{_where(source)}\0{tag}\n"))
+        linted = {source.path for source in self._checked}
+        for source in self._everything:
+            self._packages.for_file(source.path)  # so every manifest a run reads is read now
+            if source.path not in linted:
+                digest.update(_text_bytes(f"{_where(source)}\n"))
+        for manifest, text in sorted(self._packages.manifests.items()):
+            digest.update(_text_bytes(f"{manifest}\0{len(text)}\0{text}"))
+        return digest.hexdigest()
+
+
+def _where(source: SourceFile) -> str:
+    return f"{source.path}\0{source.display}\0{source.language.value}"
+
+
+def _text_bytes(text: str) -> bytes:
+    return text.encode("utf-8", errors="surrogatepass")
+
+
+def _common_directory(sources: Sequence[SourceFile]) -> Path:
+    """The deepest directory holding every source: what the run's digests are kept for."""
+    # ``os.path.commonpath`` splits every path: too slow for every file of a re-run. The
+    # common string prefix of the directories, each ending in a separator, cut after its
+    # last separator, is the same directory ("a/b-c/" and "a/b/" share "a/", not "a/b").
+    directories = [os.path.join(os.path.dirname(source.path), "") for source in sources]
+    prefix = os.path.commonprefix(directories)  # noqa: RUF071 - by character, on purpose
+    return Path(prefix[: prefix.rfind(os.sep) + 1] or os.sep)
