@@ -47,6 +47,7 @@ class WorkspaceIndex:
             package.name: package for package in packages if claims[package.name] == 1
         }
         self._package_by_directory = {p.directory: p for p in packages}
+        self._package_of: dict[str, Package | None] = {}
         self._files_by_package: dict[str, list[str]] = {}
         for path in sorted(self.facts):
             owner = self.package_of(path)
@@ -59,17 +60,18 @@ class WorkspaceIndex:
     # -- packages -----------------------------------------------------------------------
 
     def package_of(self, path: str) -> Package | None:
-        directory = parent(path)
-        while True:
-            package = self._package_by_directory.get(directory)
-            if package is not None:
-                return package
-            if not directory or directory in ("/", "."):
-                return None
+        return self._package_of_directory(parent(path))
+
+    def _package_of_directory(self, directory: str) -> Package | None:
+        # Memoised: every file of the workspace is asked about, several times each.
+        if directory in self._package_of:
+            return self._package_of[directory]
+        package = self._package_by_directory.get(directory)
+        if package is None and directory and directory not in ("/", "."):
             up = parent(directory)
-            if up == directory:
-                return None
-            directory = up
+            package = None if up == directory else self._package_of_directory(up)
+        self._package_of[directory] = package
+        return package
 
     def companions(self) -> dict[str, frozenset[str]]:
         """package -> the workspace packages it is meant to run with: itself, those it
