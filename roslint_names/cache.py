@@ -62,7 +62,7 @@ from . import __version__, model
 from .model import FileFacts, Generation, Language
 from .reading import BINARY, Read, content_digest, read_file, too_large
 
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2  # 2: facts in one pack; whole-run results; digests
 _MAGIC = b"RNFACTS\x01"
 _CHECKSUM_BYTES = 16
 _PREFIX = "facts-v"
@@ -424,8 +424,8 @@ class ContentDigests:
     seconds before its status was recorded, the others are read again.
 
     ``summary`` answers for one file; ``save`` keeps what was learned, atomically, in one
-    file per workspace. Nothing here decides a finding: a wrong digest could only make
-    a stored result look current, and the status test rules that out.
+    file per workspace (the ``RUNS_KEPT`` most recently saved are kept). A wrong digest
+    would serve a stale result: the status test and the racy window are what rule it out.
     """
 
     path: Path
@@ -482,7 +482,9 @@ class ContentDigests:
         self._remembered()
         changed = not self._present or self._seen != self._known
         if changed and self.cache.writable():
-            self.cache._write(self.path, pickle.dumps(self._seen, pickle.HIGHEST_PROTOCOL))
+            blob = pickle.dumps(self._seen, pickle.HIGHEST_PROTOCOL)
+            if self.cache._write(self.path, blob):
+                _keep_newest(self.path.parent, RUNS_KEPT)
 
     def _load(self) -> dict[str, tuple[_Status, str, bool]]:
         try:

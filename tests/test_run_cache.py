@@ -416,3 +416,16 @@ def test_the_first_run_of_a_workspace_reads_each_file_once(
     assert sorted(reads) == ["CMakeLists.txt", "base.launch", "driver.cpp"]
     assert direct == ["base.launch"]  # again, for the source line of its graph finding
     assert reused(check())
+
+
+def test_only_the_digests_of_the_most_recent_workspaces_are_kept(
+    run_cli: Any, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, private_cache: Path
+) -> None:
+    monkeypatch.setattr(cache_module, "RUNS_KEPT", 2)
+    for robot in ("one", "two", "three"):
+        root = tmp_path / robot
+        write(root, "package.xml", CATKIN_PACKAGE.format(name="robot_base"))
+        write(root, "src/driver.cpp", DRIVER)
+        time.sleep(0.05)  # file times tick with the kernel's coarse clock
+        run_cli(["check", "."], root)
+    assert len(list(private_cache.glob("facts-v*/digests/*"))) == 2
