@@ -10,6 +10,7 @@ either.
 from __future__ import annotations
 
 import importlib
+import os
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 from functools import partial
@@ -589,8 +590,9 @@ def decode_for_display(data: bytes) -> str:
 
 
 def _relative_to_root(display: str, settings: Settings) -> str:
-    path = Path(display).absolute()
-    try:
-        return path.relative_to(settings.root).as_posix()
-    except ValueError:
-        return path.as_posix()
+    """Where per-file ignores look: the file's path below the root, else its absolute
+    path. String operations, not ``Path.relative_to``: this runs for every file."""
+    absolute = display if os.path.isabs(display) else os.path.join(os.getcwd(), display)
+    root = os.path.join(os.fspath(settings.root), "")
+    relative = absolute[len(root) :] if absolute.startswith(root) else absolute
+    return relative.replace(os.sep, "/") if os.sep != "/" else relative

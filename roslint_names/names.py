@@ -113,6 +113,7 @@ class _UnknownSubstitutionError(Exception):
 # --------------------------------------------------------------------------- public API
 
 
+@lru_cache(maxsize=1 << 16)  # five rules ask about each name of a file; answers are frozen
 def check_name(name: str, kind: Kind, generation: Generation) -> Problem | None:
     """Return None when ``name`` is fine for ``kind`` in ``generation``, else its first problem.
 
@@ -128,7 +129,7 @@ def check_name(name: str, kind: Kind, generation: Generation) -> Problem | None:
 
 def is_valid(name: str, kind: Kind, generation: Generation) -> bool:
     """True when the runtime of ``generation`` accepts ``name`` (warnings allowed)."""
-    problem = _find_problem(name, kind, generation)
+    problem = check_name(name, kind, generation)
     return problem is None or not problem.fatal
 
 
