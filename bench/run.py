@@ -11,8 +11,9 @@ Measures, in this order, and prints as a table (and as JSON with ``--json``):
   extraction; parser imports count, interpreter start does not;
 - the real CLI as a subprocess (start-up and imports count), each in a fresh temporary
   cache directory: cold ``--jobs 1``, cold ``--jobs 2``, then warm (unchanged files, the
-  default ``--jobs``), with their ratios to the floor and whether their outputs are
-  byte-identical;
+  default ``--jobs``: the stored result of the run before), then warm from the facts
+  alone (the stored results deleted: where a run after an edit starts), with their
+  ratios to the floor and whether their outputs are byte-identical;
 - peak memory: the largest resident set of any process of a run (``wait4`` rusage, as
   ``RUSAGE_CHILDREN`` reports it), and the peak sum over the run's process tree (sampled
   from /proc, so the workers and the main process together);
