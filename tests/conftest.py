@@ -12,7 +12,9 @@ from typing import Any
 
 import pytest
 
+from roslint_names import engine
 from roslint_names.cli import main
+from roslint_names.model import Generation, Language
 
 CATKIN_PACKAGE = """<?xml version="1.0"?>
 <package format="2">
@@ -115,3 +117,24 @@ def lint_text(run_cli: Any, tmp_path: Path) -> Any:
         return result.codes()
 
     return lint
+
+
+@pytest.fixture
+def extractions(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """The paths the engine extracted, in order (in-process runs only)."""
+    seen: list[str] = []
+    real = engine.extractor_for
+
+    def counting(language: Language) -> engine.Extract:
+        extract = real(language)
+
+        def wrapper(
+            path: str, data: bytes, package: Generation | None, fallback: Generation
+        ) -> Any:
+            seen.append(path)
+            return extract(path, data, package, fallback)
+
+        return wrapper
+
+    monkeypatch.setattr(engine, "extractor_for", counting)
+    return seen

@@ -14,7 +14,6 @@ from typing import Any
 import pytest
 
 from roslint_names import cache as cache_module
-from roslint_names import engine
 from roslint_names.cache import FactsCache, default_directory
 from roslint_names.model import FileFacts, Generation, Kind, Language, NameUse, Role, Span
 from tests.conftest import write, write_package
@@ -31,27 +30,6 @@ FACTS = FileFacts(
     generation=Generation.ROS1,
     names=(NameUse(Kind.TOPIC, "/cmd_vel", Span(3, 18, 3, 27), Role.REMAP_TO, "<remap to>"),),
 )
-
-
-@pytest.fixture
-def extractions(monkeypatch: pytest.MonkeyPatch) -> list[str]:
-    """The paths the engine extracted, in order (in-process runs only)."""
-    seen: list[str] = []
-    real = engine.extractor_for
-
-    def counting(language: Language) -> engine.Extract:
-        extract = real(language)
-
-        def wrapper(
-            path: str, data: bytes, package: Generation | None, fallback: Generation
-        ) -> Any:
-            seen.append(path)
-            return extract(path, data, package, fallback)
-
-        return wrapper
-
-    monkeypatch.setattr(engine, "extractor_for", counting)
-    return seen
 
 
 @pytest.fixture

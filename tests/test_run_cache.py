@@ -18,7 +18,7 @@ import pytest
 from roslint_names import cache as cache_module
 from roslint_names import engine, run_inputs
 from roslint_names.config import Settings, settings_fingerprint
-from roslint_names.model import Language, Severity
+from roslint_names.model import Severity
 from tests.conftest import CATKIN_PACKAGE, write
 
 DRIVER = """#include <ros/ros.h>
@@ -63,25 +63,6 @@ def workspace(tmp_path: Path) -> Path:
     write(package, "src/driver.cpp", DRIVER)
     write(package, "launch/base.launch", LAUNCH)
     return root
-
-
-@pytest.fixture
-def extractions(monkeypatch: pytest.MonkeyPatch) -> list[str]:
-    """The paths the engine extracted (in-process runs only)."""
-    seen: list[str] = []
-    real = engine.extractor_for
-
-    def counting(language: Language) -> engine.Extract:
-        extract = real(language)
-
-        def wrapper(path: str, data: bytes, *generations: Any) -> Any:
-            seen.append(path)
-            return extract(path, data, *generations)
-
-        return wrapper
-
-    monkeypatch.setattr(engine, "extractor_for", counting)
-    return seen
 
 
 @pytest.fixture
@@ -317,18 +298,23 @@ def test_forgetting_results_falls_back_to_the_facts(
     assert not reused(warm) and extractions == [] and warm.stdout == cold.stdout
 
 
-@pytest.fixture
-def reads(monkeypatch: pytest.MonkeyPatch) -> list[str]:
-    """The files a run's first pass (the digests) read, by name."""
+def counting_reads(monkeypatch: pytest.MonkeyPatch, module: Any) -> list[str]:
+    """The names of the files ``module`` reads through ``read_file`` from now on."""
     seen: list[str] = []
-    real = cache_module.read_file
+    real = module.read_file
 
     def counting(path: Path, max_size: int) -> Any:
         seen.append(path.name)
         return real(path, max_size)
 
-    monkeypatch.setattr(cache_module, "read_file", counting)
+    monkeypatch.setattr(module, "read_file", counting)
     return seen
+
+
+@pytest.fixture
+def reads(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """The files the digests read (all of a first run; those whose status changed)."""
+    return counting_reads(monkeypatch, cache_module)
 
 
 def age(workspace: Path, seconds: float = 60) -> None:
@@ -404,14 +390,7 @@ def test_the_first_run_of_a_workspace_reads_each_file_once(
     check: Callable[..., Any], monkeypatch: pytest.MonkeyPatch, reads: list[str]
 ) -> None:
     # No digests yet, so no stored result can match: the run is keyed as it reads.
-    direct: list[str] = []
-    real = engine.read_file
-
-    def counting(path: Path, max_size: int) -> Any:
-        direct.append(path.name)
-        return real(path, max_size)
-
-    monkeypatch.setattr(engine, "read_file", counting)
+    direct = counting_reads(monkeypatch, engine)
     check()
     assert sorted(reads) == ["CMakeLists.txt", "base.launch", "driver.cpp"]
     assert direct == ["base.launch"]  # again, for the source line of its graph finding
