@@ -141,6 +141,16 @@ class FactsCache:
     _stored: dict[str, FileFacts] = field(default_factory=dict, init=False)  # not yet written
     _used: set[str] = field(default_factory=set, init=False)  # keys looked up or stored
 
+    def __getstate__(self) -> dict[str, object]:
+        """What a spawned worker needs: where the cache is, not what this process read
+        (the pack alone is megabytes) or has yet to write."""
+        return {"root": self.root}
+
+    def __setstate__(self, state: dict[str, object]) -> None:
+        root = state["root"]
+        assert isinstance(root, Path)
+        self.__init__(root)  # type: ignore[misc]
+
     @property
     def directory(self) -> Path:
         """This run's entries: the root plus the fingerprint of everything run-constant."""

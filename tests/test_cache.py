@@ -355,3 +355,16 @@ def test_stale_directories_of_other_versions_are_pruned(tmp_path: Path) -> None:
     assert FactsCache(tmp_path).writable()
     assert not old.exists()
     assert recent.exists() and unrelated.exists()
+
+
+def test_a_cache_sent_to_a_worker_carries_where_it_is_not_what_was_read(tmp_path: Path) -> None:
+    cache = FactsCache(tmp_path)
+    key = cache.key(b"x", "a.launch", Language.LAUNCH_XML, None, Generation.ROS2)
+    cache.store(key, FACTS)
+    cache.flush()
+    reader = FactsCache(tmp_path)
+    assert reader.load(key, FACTS.path) == FACTS  # the pack is now in its memory
+    copy = pickle.loads(pickle.dumps(reader))
+    assert copy.root == tmp_path and copy.directory == reader.directory
+    assert len(pickle.dumps(reader)) < 200  # neither the pack nor the keys it looked up
+    assert copy.load(key, FACTS.path) == FACTS
