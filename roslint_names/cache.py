@@ -28,8 +28,9 @@ ever appended to, a batch at a time, by a single ``write`` on an ``O_APPEND``
 descriptor, which concurrent runs cannot interleave on a local file system. Each is read
 once per run. A line or record that is torn, truncated or fails its checksum is skipped
 (the pack is searched for the next marker), its file is extracted again and appended
-again; the last whole record of a key wins. Once the pack outgrows ``PACK_LIMIT``, the
-run that notices rewrites it (atomically, by a rename) with only the records it used.
+again; the last whole record of a key wins. Once the pack or the log outgrows
+``PACK_LIMIT``, the run that notices rewrites it (atomically, by a rename) with only the
+records or lines it used.
 
 Why pickle is safe enough here: entries are read with an unpickler that resolves no global
 but the fact classes and enums of ``roslint_names.model``. Unpickling can then only build
@@ -74,7 +75,7 @@ _RECORD = b"RNREC\x02"  # starts every record of the pack
 _KEY_BYTES = 40  # hex digits of a key
 _LENGTH_BYTES = 4
 _RECORD_HEADER = len(_RECORD) + _KEY_BYTES + _LENGTH_BYTES + _CHECKSUM_BYTES
-PACK_LIMIT = 64 * 1024 * 1024  # bytes: beyond, the next run keeps only the records it used
+PACK_LIMIT = 64 * 1024 * 1024  # bytes of the pack or the log; beyond, a run keeps what it used
 _PACK_BATCH = 1024 * 1024  # bytes of records buffered before an append
 _RUNS = "runs"
 _DIGESTS = "digests"
@@ -307,24 +308,28 @@ class FactsCache:
             return 0
 
     def finish(self) -> None:
-        """End of the run: write what is buffered; and when the pack has outgrown
-        ``PACK_LIMIT``, rewrite it with only the records this run looked up or stored
-        (the others are older versions of files, or other checkouts')."""
+        """End of the run: write what is buffered; and when the pack or the log has
+        outgrown ``PACK_LIMIT``, rewrite it with only what this run looked up or stored
+        (the rest is older versions of files, or other checkouts')."""
         self.flush()
         pack = self.directory / _PACK
-        try:
-            if pack.stat().st_size <= PACK_LIMIT:
-                return
-        except OSError:
-            return
-        data = _read_bytes(os.fspath(pack))
-        records = _index(data)
-        kept = [
-            data[start - _RECORD_HEADER : end]
-            for key, (start, end) in sorted(records.items())
-            if key in self._used
-        ]
-        self._write(pack, b"".join(kept))
+        if _size(pack) > PACK_LIMIT:
+            data = _read_bytes(os.fspath(pack))
+            kept = [
+                data[start - _RECORD_HEADER : end]
+                for key, (start, end) in sorted(_index(data).items())
+                if key in self._used
+            ]
+            self._write(pack, b"".join(kept))
+        log = self.directory / _EMPTY_LOG
+        if _size(log) > PACK_LIMIT:
+            lines = _read_log(os.fspath(log))
+            kept_lines = [
+                _log_line(key, language, generation)
+                for key, (language, generation) in sorted(lines.items())
+                if key in self._used
+            ]
+            self._write(log, "".join(kept_lines).encode("ascii"))
 
     def writable(self) -> bool:
         """Create this run's directory once; False (and a problem noted) when impossible."""
@@ -407,6 +412,13 @@ def _unpickle_facts(payload: bytes) -> FileFacts | None:
     except Exception:  # any malformed pickle: a miss, never a crash
         return None
     return facts if isinstance(facts, FileFacts) else None
+
+
+def _size(path: Path) -> int:
+    try:
+        return path.stat().st_size
+    except OSError:
+        return 0
 
 
 def _read_bytes(path: str) -> bytes:

@@ -195,6 +195,7 @@ def test_a_pack_past_its_limit_keeps_only_the_records_the_run_used(
     tmp_path: Path,
     monkeypatch: pytest.MonkeyPatch,
     private_cache: Path,
+    extractions: list[str],
 ) -> None:
     launch = write(tmp_path / "ws", "robot.launch", LAUNCH)
     check()
@@ -209,8 +210,38 @@ def test_a_pack_past_its_limit_keeps_only_the_records_the_run_used(
     monkeypatch.setattr(cache_module, "PACK_LIMIT", limit)
     launch.write_text(LAUNCH)
     forget_runs(private_cache)
-    assert check().codes()  # the old version's record is gone, so it is extracted again
+    extractions.clear()
+    check()
+    assert extractions == ["robot.launch"]  # the old version's record is gone
     assert kept in records(private_cache)
+
+
+def test_a_log_past_the_limit_keeps_only_the_lines_the_run_used(
+    check: Callable[..., Any],
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    private_cache: Path,
+    extractions: list[str],
+) -> None:
+    empty = write(tmp_path / "ws", "empty.launch", "<launch/>\n")
+    check()
+    empty.write_text("<launch>\n</launch>\n")
+    check()
+    assert len(log_lines(private_cache)) == 2  # the file's old version and its new one
+    limit = cache_module.PACK_LIMIT
+    monkeypatch.setattr(cache_module, "PACK_LIMIT", 1)
+    forget_runs(private_cache)
+    check()
+    [kept] = log_lines(private_cache)
+    monkeypatch.setattr(cache_module, "PACK_LIMIT", limit)
+    forget_runs(private_cache)
+    extractions.clear()
+    check()
+    assert extractions == [] and log_lines(private_cache) == [kept]
+    empty.write_text("<launch/>\n")
+    forget_runs(private_cache)
+    check()
+    assert extractions == ["empty.launch"]  # the old version's line is gone
 
 
 def _store_repeatedly(root: str, key: str, rounds: int) -> None:
