@@ -190,58 +190,43 @@ def test_a_record_naming_anything_but_facts_is_never_unpickled(tmp_path: Path) -
     assert fresh.stats.corrupt == 1
 
 
-def test_a_pack_past_its_limit_keeps_only_the_records_the_run_used(
+@pytest.mark.parametrize(
+    ("name", "first", "second", "stored"),
+    [
+        # Facts with names are records of the pack; facts without are lines of the log.
+        ("robot.launch", LAUNCH, LAUNCH.replace("base-driver", "base_driver"), "records"),
+        ("empty.launch", "<launch/>\n", "<launch>\n</launch>\n", "log_lines"),
+    ],
+)
+def test_past_the_limit_only_what_the_run_used_is_kept(  # noqa: PLR0917 - fixtures
     check: Callable[..., Any],
     tmp_path: Path,
     monkeypatch: pytest.MonkeyPatch,
     private_cache: Path,
     extractions: list[str],
+    name: str,
+    first: str,
+    second: str,
+    stored: str,
 ) -> None:
-    launch = write(tmp_path / "ws", "robot.launch", LAUNCH)
+    kept_in: Callable[[Path], list[str]] = {"records": records, "log_lines": log_lines}[stored]
+    path = write(tmp_path / "ws", name, first)
     check()
-    launch.write_text(LAUNCH.replace("base-driver", "base_driver"))
+    path.write_text(second)
     check()
-    assert len(records(private_cache)) == 2  # the file's old version and its new one
+    assert len(kept_in(private_cache)) == 2  # the file's old version and its new one
     limit = cache_module.PACK_LIMIT
     monkeypatch.setattr(cache_module, "PACK_LIMIT", 1)
     forget_runs(private_cache)
     check()
-    [kept] = records(private_cache)
+    [kept] = kept_in(private_cache)
     monkeypatch.setattr(cache_module, "PACK_LIMIT", limit)
-    launch.write_text(LAUNCH)
+    path.write_text(first)
     forget_runs(private_cache)
     extractions.clear()
     check()
-    assert extractions == ["robot.launch"]  # the old version's record is gone
-    assert kept in records(private_cache)
-
-
-def test_a_log_past_the_limit_keeps_only_the_lines_the_run_used(
-    check: Callable[..., Any],
-    tmp_path: Path,
-    monkeypatch: pytest.MonkeyPatch,
-    private_cache: Path,
-    extractions: list[str],
-) -> None:
-    empty = write(tmp_path / "ws", "empty.launch", "<launch/>\n")
-    check()
-    empty.write_text("<launch>\n</launch>\n")
-    check()
-    assert len(log_lines(private_cache)) == 2  # the file's old version and its new one
-    limit = cache_module.PACK_LIMIT
-    monkeypatch.setattr(cache_module, "PACK_LIMIT", 1)
-    forget_runs(private_cache)
-    check()
-    [kept] = log_lines(private_cache)
-    monkeypatch.setattr(cache_module, "PACK_LIMIT", limit)
-    forget_runs(private_cache)
-    extractions.clear()
-    check()
-    assert extractions == [] and log_lines(private_cache) == [kept]
-    empty.write_text("<launch/>\n")
-    forget_runs(private_cache)
-    check()
-    assert extractions == ["empty.launch"]  # the old version's line is gone
+    assert extractions == [name]  # the old version's entry is gone
+    assert kept in kept_in(private_cache)
 
 
 def _store_repeatedly(root: str, key: str, rounds: int) -> None:
