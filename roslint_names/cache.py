@@ -44,7 +44,7 @@ the value) is served whole from ``runs/``: applying the rules again is cheap nex
 parsing, but not next to the 0.05x-the-parse-floor budget of a re-run (DESIGN.md, section
 6). Only the ``RUNS_KEPT`` most recently used results are kept. ``digests/`` holds, per
 workspace, each file's content digest with its status, so that keying a re-run does not
-mean reading every file (``ContentDigests``).
+mean reading every file (``digests.ContentDigests``).
 """
 
 from __future__ import annotations
@@ -60,10 +60,14 @@ import time
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from . import __version__, model
 from .model import FileFacts, Generation, Language
-from .reading import BINARY, Read, content_digest, read_file, too_large
+from .reading import content_digest
+
+if TYPE_CHECKING:
+    from .digests import ContentDigests
 
 FORMAT_VERSION = 2  # 2: facts in one pack; whole-run results; digests
 _MAGIC = b"RNFACTS\x01"
@@ -189,7 +193,9 @@ class FactsCache:
         return digest.hexdigest()
 
     def digests(self, root: Path) -> ContentDigests:
-        """The digests remembered for the files under ``root`` (see ``ContentDigests``)."""
+        """The digests remembered for the files under ``root`` (see ``digests``)."""
+        from .digests import ContentDigests
+
         name = hashlib.blake2b(os.fsencode(root), digest_size=8).hexdigest()
         return ContentDigests(self.directory / _DIGESTS / name, self)
 
@@ -257,10 +263,10 @@ class FactsCache:
     def store_run(self, key: str, value: object) -> None:
         """Keep a run's result (fact classes, enums and builtins only); forget the least
         recently used beyond ``RUNS_KEPT``."""
-        if self.writable() and self._write(self.directory / _RUNS / key, _encode(value)):
-            _keep_newest(self.directory / _RUNS, RUNS_KEPT)
+        if self.writable() and self.write_atomically(self.directory / _RUNS / key, _encode(value)):
+            keep_newest(self.directory / _RUNS, RUNS_KEPT)
 
-    def _write(self, entry: Path, blob: bytes) -> bool:
+    def write_atomically(self, entry: Path, blob: bytes) -> bool:
         """Write ``blob`` as ``entry`` atomically; False (and a problem noted) on failure."""
         # A unique temporary name in the entry's own directory: the rename stays on one
         # file system (so it is atomic) and two writers never share a temporary file.
@@ -320,7 +326,7 @@ class FactsCache:
                 for key, (start, end) in sorted(_index(data).items())
                 if key in self._used
             ]
-            self._write(pack, b"".join(kept))
+            self.write_atomically(pack, b"".join(kept))
         log = self.directory / _EMPTY_LOG
         if _size(log) > PACK_LIMIT:
             lines = _read_log(os.fspath(log))
@@ -329,7 +335,7 @@ class FactsCache:
                 for key, (language, generation) in sorted(lines.items())
                 if key in self._used
             ]
-            self._write(log, "".join(kept_lines).encode("ascii"))
+            self.write_atomically(log, "".join(kept_lines).encode("ascii"))
 
     def writable(self) -> bool:
         """Create this run's directory once; False (and a problem noted) when impossible."""
@@ -427,112 +433,6 @@ def _read_bytes(path: str) -> bytes:
             return stream.read()
     except OSError:  # absent (nothing stored yet) or unreadable: everything misses
         return b""
-
-
-# What a file's status says about its bytes: equal status, equal bytes, unless the file
-# was written within the clock's granularity of when the status was taken (see below).
-_Status = tuple[int, int, int, int]  # size, mtime_ns, ctime_ns, inode
-_RACY_NANOSECONDS = 2_000_000_000  # coarser than any file system's time stamps
-
-
-@dataclass
-class ContentDigests:
-    """The content digest of every file of a workspace, remembered with its status.
-
-    A re-run must key every file by its content, and reading and hashing them all is most
-    of what is left of a re-run once its result is stored. As git's index does, a file
-    whose status (size, modification and change times, inode) is what it was when its
-    digest was taken is not read again. A file written in the same clock tick as that
-    status was taken could have changed without its status showing it (git's "racily
-    clean" files): a digest is trusted only for a file last modified more than two
-    seconds before its status was recorded, the others are read again.
-
-    ``summary`` answers for one file; ``save`` keeps what was learned, atomically, in one
-    file per workspace (the ``RUNS_KEPT`` most recently saved are kept). A wrong digest
-    would serve a stale result: the status test and the racy window are what rule it out.
-    """
-
-    path: Path
-    cache: FactsCache
-    _known: dict[str, tuple[_Status, str, bool]] = field(default_factory=dict)
-    _seen: dict[str, tuple[_Status, str, bool]] = field(default_factory=dict)
-    _loaded: bool = False
-    _present: bool = False  # the file exists (damaged or not)
-
-    def remembered(self) -> bool:
-        """Whether an earlier run of this workspace left its digests, even none (files
-        all modified just then): else no stored result of it can exist."""
-        self._remembered()
-        return self._present
-
-    def summary(self, path: Path, max_size: int) -> tuple[str | None, str, str | None]:
-        """The file's content digest, else why it cannot be read; and why it is skipped
-        (as ``read_file`` says it for the same file)."""
-        name, signature = os.fspath(path), _signature(path)
-        if signature is not None:
-            if signature[0] > max_size:
-                return None, "", too_large(signature[0], max_size)
-            known = self._remembered().get(name)
-            if known is not None and known[0] == signature:
-                self._seen[name] = known
-                return (None, "", BINARY) if known[2] else (known[1], "", None)
-        (_, error, skip), content = self._read(name, signature, path, max_size)
-        return content, error, skip
-
-    def read(self, path: Path, max_size: int) -> tuple[Read, str | None]:
-        """``read_file``, and the content digest of what it read, remembered for the next
-        run."""
-        return self._read(os.fspath(path), _signature(path), path, max_size)
-
-    def _read(
-        self, name: str, signature: _Status | None, path: Path, max_size: int
-    ) -> tuple[Read, str | None]:
-        # The status is taken before the bytes are read: a change in between shows as
-        # a status the next run does not find here.
-        data, error, skip = read_file(path, max_size)
-        content = None if data is None else content_digest(data)
-        racy = signature is None or signature[1] + _RACY_NANOSECONDS >= time.time_ns()
-        if signature is not None and not racy and (content is not None or skip == BINARY):
-            self._seen[name] = (signature, content or "", content is None)
-        return (data, error, skip), content
-
-    def _remembered(self) -> dict[str, tuple[_Status, str, bool]]:
-        if not self._loaded:
-            self._known, self._loaded = self._load(), True
-        return self._known
-
-    def save(self) -> None:
-        """Keep the digests of the files this run saw (only those: deleted files go)."""
-        self._remembered()
-        changed = not self._present or self._seen != self._known
-        if changed and self.cache.writable():
-            blob = pickle.dumps(self._seen, pickle.HIGHEST_PROTOCOL)
-            if self.cache._write(self.path, blob):
-                _keep_newest(self.path.parent, RUNS_KEPT)
-
-    def _load(self) -> dict[str, tuple[_Status, str, bool]]:
-        try:
-            with open(self.path, "rb") as stream:
-                self._present = True
-                loaded = _DigestUnpickler(stream).load()
-        except Exception:  # absent, unreadable or damaged: every file is read again
-            return {}
-        return loaded if isinstance(loaded, dict) else {}
-
-
-def _signature(path: Path) -> _Status | None:
-    try:
-        status = os.stat(path)
-    except OSError:
-        return None
-    return status.st_size, status.st_mtime_ns, status.st_ctime_ns, status.st_ino
-
-
-class _DigestUnpickler(pickle.Unpickler):
-    """Builtins only: dicts, tuples, strings, numbers."""
-
-    def find_class(self, module: str, name: str) -> type:
-        raise pickle.UnpicklingError(f"{module}.{name} is not part of a digest file")
 
 
 def _log_line(key: str, language: Language, generation: Generation) -> str:
@@ -730,7 +630,7 @@ def _prune(root: Path, keep: str) -> None:
             shutil.rmtree(path, ignore_errors=True)
 
 
-def _keep_newest(directory: Path, count: int) -> None:
+def keep_newest(directory: Path, count: int) -> None:
     """Delete all but the ``count`` most recently modified entries of ``directory``."""
     try:
         # Not the dot-named temporary files: a writer may be about to rename its own.

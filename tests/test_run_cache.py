@@ -16,6 +16,7 @@ from typing import Any
 import pytest
 
 from roslint_names import cache as cache_module
+from roslint_names import digests as digests_module
 from roslint_names import engine, run_inputs
 from roslint_names.config import Settings, settings_fingerprint
 from roslint_names.model import Severity
@@ -314,7 +315,7 @@ def counting_reads(monkeypatch: pytest.MonkeyPatch, module: Any) -> list[str]:
 @pytest.fixture
 def reads(monkeypatch: pytest.MonkeyPatch) -> list[str]:
     """The files the digests read (all of a first run; those whose status changed)."""
-    return counting_reads(monkeypatch, cache_module)
+    return counting_reads(monkeypatch, digests_module)
 
 
 def age(workspace: Path, seconds: float = 60) -> None:
@@ -400,7 +401,7 @@ def test_the_first_run_of_a_workspace_reads_each_file_once(
 def test_only_the_digests_of_the_most_recent_workspaces_are_kept(
     run_cli: Any, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, private_cache: Path
 ) -> None:
-    monkeypatch.setattr(cache_module, "RUNS_KEPT", 2)
+    monkeypatch.setattr(digests_module, "KEPT", 2)
     for robot in ("one", "two", "three"):
         root = tmp_path / robot
         write(root, "package.xml", CATKIN_PACKAGE.format(name="robot_base"))

@@ -1,0 +1,121 @@
+"""Each file's content digest, remembered with its status, so that keying a re-run does
+not mean reading every file (see ``ContentDigests``)."""
+
+from __future__ import annotations
+
+import os
+import pickle
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .cache import FactsCache, keep_newest
+from .reading import BINARY, Read, content_digest, read_file, too_large
+
+KEPT = 64  # digest files: one per recently linted workspace
+
+
+# What a file's status says about its bytes: equal status, equal bytes, unless the file
+# was written within the clock's granularity of when the status was taken (see below).
+_Status = tuple[int, int, int, int]  # size, mtime_ns, ctime_ns, inode
+_RACY_NANOSECONDS = 2_000_000_000  # coarser than any file system's time stamps
+
+
+@dataclass
+class ContentDigests:
+    """The content digest of every file of a workspace, remembered with its status.
+
+    A re-run must key every file by its content, and reading and hashing them all is most
+    of what is left of a re-run once its result is stored. As git's index does, a file
+    whose status (size, modification and change times, inode) is what it was when its
+    digest was taken is not read again. A file written in the same clock tick as that
+    status was taken could have changed without its status showing it (git's "racily
+    clean" files): a digest is trusted only for a file last modified more than two
+    seconds before its status was recorded, the others are read again.
+
+    ``summary`` answers for one file; ``save`` keeps what was learned, atomically, in one
+    file per workspace (the ``KEPT`` most recently saved are kept). A wrong digest
+    would serve a stale result: the status test and the racy window are what rule it out.
+    """
+
+    path: Path
+    cache: FactsCache
+    _known: dict[str, tuple[_Status, str, bool]] = field(default_factory=dict)
+    _seen: dict[str, tuple[_Status, str, bool]] = field(default_factory=dict)
+    _loaded: bool = False
+    _present: bool = False  # the file exists (damaged or not)
+
+    def remembered(self) -> bool:
+        """Whether an earlier run of this workspace left its digests, even none (files
+        all modified just then): else no stored result of it can exist."""
+        self._remembered()
+        return self._present
+
+    def summary(self, path: Path, max_size: int) -> tuple[str | None, str, str | None]:
+        """The file's content digest, else why it cannot be read; and why it is skipped
+        (as ``read_file`` says it for the same file)."""
+        name, signature = os.fspath(path), _signature(path)
+        if signature is not None:
+            if signature[0] > max_size:
+                return None, "", too_large(signature[0], max_size)
+            known = self._remembered().get(name)
+            if known is not None and known[0] == signature:
+                self._seen[name] = known
+                return (None, "", BINARY) if known[2] else (known[1], "", None)
+        (_, error, skip), content = self._read(name, signature, path, max_size)
+        return content, error, skip
+
+    def read(self, path: Path, max_size: int) -> tuple[Read, str | None]:
+        """``read_file``, and the content digest of what it read, remembered for the next
+        run."""
+        return self._read(os.fspath(path), _signature(path), path, max_size)
+
+    def _read(
+        self, name: str, signature: _Status | None, path: Path, max_size: int
+    ) -> tuple[Read, str | None]:
+        # The status is taken before the bytes are read: a change in between shows as
+        # a status the next run does not find here.
+        data, error, skip = read_file(path, max_size)
+        content = None if data is None else content_digest(data)
+        racy = signature is None or signature[1] + _RACY_NANOSECONDS >= time.time_ns()
+        if signature is not None and not racy and (content is not None or skip == BINARY):
+            self._seen[name] = (signature, content or "", content is None)
+        return (data, error, skip), content
+
+    def _remembered(self) -> dict[str, tuple[_Status, str, bool]]:
+        if not self._loaded:
+            self._known, self._loaded = self._load(), True
+        return self._known
+
+    def save(self) -> None:
+        """Keep the digests of the files this run saw (only those: deleted files go)."""
+        self._remembered()
+        changed = not self._present or self._seen != self._known
+        if changed and self.cache.writable():
+            blob = pickle.dumps(self._seen, pickle.HIGHEST_PROTOCOL)
+            if self.cache.write_atomically(self.path, blob):
+                keep_newest(self.path.parent, KEPT)
+
+    def _load(self) -> dict[str, tuple[_Status, str, bool]]:
+        try:
+            with open(self.path, "rb") as stream:
+                self._present = True
+                loaded = _DigestUnpickler(stream).load()
+        except Exception:  # absent, unreadable or damaged: every file is read again
+            return {}
+        return loaded if isinstance(loaded, dict) else {}
+
+
+def _signature(path: Path) -> _Status | None:
+    try:
+        status = os.stat(path)
+    except OSError:
+        return None
+    return status.st_size, status.st_mtime_ns, status.st_ctime_ns, status.st_ino
+
+
+class _DigestUnpickler(pickle.Unpickler):
+    """Builtins only: dicts, tuples, strings, numbers."""
+
+    def find_class(self, module: str, name: str) -> type:
+        raise pickle.UnpicklingError(f"{module}.{name} is not part of a digest file")
