@@ -134,10 +134,10 @@ def lint(
     once, here (a file of the rest of the workspace not at all when its facts are
     cached). Its facts come from the cache when its key is there; otherwise the file goes
     to extraction, in-process or in worker processes (see ``workers``), which store what
-    they extract. Rules and suppressions run here, in the
-    main process, as facts arrive, in whatever order; every file's diagnostics are kept in
-    its own slot and joined in discovery order before the final sort, so the order in which
-    workers finish never shows in the output.
+    they extract. Rules and suppressions run here, in the main process, as facts arrive,
+    in whatever order; every file's diagnostics are kept in its own slot and joined in
+    discovery order before the final sort, so the order in which workers finish never
+    shows in the output.
 
     ``context`` files (the rest of the workspace of a per-file run) are extracted for the
     graph rules only: nothing is reported in them. Once every file is in, the graph rules
