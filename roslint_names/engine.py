@@ -253,31 +253,40 @@ def lint(
             extracting[index] = data
             check_extracted(dispatcher.put((job, data, key), len(data)))
         check_extracted(dispatcher.finish())
+        if inputs is not None and not want_graph and run_key is None:
+            run_key = inputs.key_last()
+        for index, facts, data in waiting:
+            known = frozenset(
+                spelling
+                for generation, spelling in run_service_types
+                if generation in (facts.generation, None)
+            )
+            check_now(index, facts, data, known)
+        graph: Graph | None = None
+        if keep_facts:
+            known_facts = [facts for facts in all_facts if facts is not None]
+            # Launch files extracted again under their includers' arguments go through the
+            # same workers, a depth of the launch trees at a time.
+            specialise = _Specialiser(
+                checked, packages, fallback, cache, settings.max_file_size, dispatcher=dispatcher
+            )
+            graph = build(
+                known_facts,
+                _packages([*sources, *context], packages),
+                specialise,
+                specialise.prepare,
+            )
+            _report_graph(
+                graph,
+                graph_rules,
+                reported=checked[:reported],
+                facts=known_facts,
+                per_file=per_file,
+                suppressions_of=suppressions_of,
+                settings=settings,
+                registry=registry,
+            )
         workers = dispatcher.workers
-    if inputs is not None and not want_graph and run_key is None:
-        run_key = inputs.key_last()
-    for index, facts, data in waiting:
-        known = frozenset(
-            spelling
-            for generation, spelling in run_service_types
-            if generation in (facts.generation, None)
-        )
-        check_now(index, facts, data, known)
-    graph: Graph | None = None
-    if keep_facts:
-        known_facts = [facts for facts in all_facts if facts is not None]
-        specialise = _Specialiser(checked, packages, fallback, cache, settings.max_file_size)
-        graph = build(known_facts, _packages([*sources, *context], packages), specialise)
-        _report_graph(
-            graph,
-            graph_rules,
-            reported=checked[:reported],
-            facts=known_facts,
-            per_file=per_file,
-            suppressions_of=suppressions_of,
-            settings=settings,
-            registry=registry,
-        )
     diagnostics = [diagnostic for found in per_file for diagnostic in found]
     diagnostics.sort(key=Diagnostic.sort_key)
     skipped_paths = {path for path, _ in skipped}
@@ -332,21 +341,48 @@ class _Specialiser:
         fallback: Generation,
         cache: FactsCache | None,
         max_file_size: int,
+        *,
+        dispatcher: Dispatcher[_Item, tuple[int, FileFacts]],
     ) -> None:
         self._sources = {source.display: source for source in sources}
         self._packages = packages
         self._fallback = fallback
         self._cache = cache
         self._max_file_size = max_file_size
+        self._dispatcher = dispatcher
         self._memo: dict[tuple[str, LaunchArguments], FileFacts | None] = {}
 
     def __call__(self, display: str, arguments: LaunchArguments) -> FileFacts | None:
         key = (display, arguments)
         if key not in self._memo:
-            self._memo[key] = self._extract(display, arguments)
+            self.prepare([key])
         return self._memo[key]
 
-    def _extract(self, display: str, arguments: LaunchArguments) -> FileFacts | None:
+    def prepare(self, wanted: Sequence[tuple[str, LaunchArguments]]) -> None:
+        """Extract every specialisation of ``wanted`` not known yet: from the cache, else
+        through the dispatcher, all of them before waiting for any."""
+        asked: list[tuple[str, LaunchArguments]] = []
+        for key in dict.fromkeys(wanted):
+            if key in self._memo:
+                continue
+            found = self._job(len(asked), *key)
+            if isinstance(found, tuple):
+                asked.append(key)
+                self._take(asked, self._dispatcher.put(found, len(found[1])))
+            else:
+                self._memo[key] = found
+        self._take(asked, self._dispatcher.finish())
+
+    def _take(
+        self, asked: list[tuple[str, LaunchArguments]], results: Iterable[tuple[int, FileFacts]]
+    ) -> None:
+        for index, facts in results:
+            self._memo[asked[index]] = facts
+
+    def _job(
+        self, index: int, display: str, arguments: LaunchArguments
+    ) -> FileFacts | _Item | None:
+        """The cached facts (None: nothing to specialise), or the work to extract them."""
         source = self._sources.get(display)
         if source is None or source.language not in SPECIALISABLE:
             return None
@@ -362,11 +398,8 @@ class _Specialiser:
             found = self._cache.load(cache_key, display)
             if found is not None:
                 return found
-        extract: _ExtractWithArguments = _extractor_module(source.language).extract
-        facts = extract(display, data, package, self._fallback, arguments=arguments)
-        if self._cache is not None and cache_key is not None:
-            self._cache.store(cache_key, facts)
-        return facts
+        job = _Job(index, display, source.language, package, self._fallback, arguments)
+        return job, data, cache_key
 
 
 def _report_graph(
@@ -425,11 +458,14 @@ class _Job:
     language: Language
     package_generation: Generation | None
     fallback_generation: Generation
+    arguments: LaunchArguments = ()  # a launch file specialised under its includer's
 
 
-def _extract_batch(
-    cache: FactsCache | None, batch: list[tuple[_Job, bytes, str | None]]
-) -> list[tuple[int, FileFacts]]:
+# A job, the file's bytes, and the key its facts are cached under.
+_Item = tuple[_Job, bytes, str | None]
+
+
+def _extract_batch(cache: FactsCache | None, batch: list[_Item]) -> list[tuple[int, FileFacts]]:
     """Extract and store facts: the work of a worker process, or of the main one.
 
     Module-level so that worker processes can run it; extractor modules are imported on
@@ -437,8 +473,12 @@ def _extract_batch(
     """
     results: list[tuple[int, FileFacts]] = []
     for job, data, key in batch:
-        extract = extractor_for(job.language)
-        facts = extract(job.display, data, job.package_generation, job.fallback_generation)
+        generations = (job.package_generation, job.fallback_generation)
+        if job.arguments:
+            specialise: _ExtractWithArguments = _extractor_module(job.language).extract
+            facts = specialise(job.display, data, *generations, arguments=job.arguments)
+        else:
+            facts = extractor_for(job.language)(job.display, data, *generations)
         if cache is not None and key is not None:
             cache.store(key, facts)
         results.append((job.index, facts))

@@ -22,12 +22,29 @@ from roslint_names.workers import Dispatcher, worker_count
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 
+# Two robots from the example fleet's launch file: the engine extracts fleet.launch.py
+# again under each robot's name (a specialisation), in the workers when there are some.
+TWO_ROBOTS_LAUNCH = """\
+<launch>
+  <include file="$(dirname)/fleet.launch.py">
+    <arg name="robot" value="robot1"/>
+  </include>
+  <include file="$(dirname)/fleet.launch.py">
+    <arg name="robot" value="robot3"/>
+  </include>
+</launch>
+"""
+
+
 @pytest.fixture
 def workspace(tmp_path: Path) -> Path:
-    """The example workspace twice over (C++, Python, launch XML/YAML, XACRO)."""
+    """The example workspace twice over (C++, Python, launch XML/YAML, XACRO), with one
+    launch file that includes another under two sets of arguments."""
     root = tmp_path / "ws"
     shutil.copytree(EXAMPLES, root)
     shutil.copytree(EXAMPLES / "src", root / "src" / "copy")
+    launch = root / "src" / "fleet_bringup" / "launch" / "two_robots.launch.xml"
+    launch.write_text(TWO_ROBOTS_LAUNCH)
     return root
 
 

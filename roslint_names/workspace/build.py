@@ -34,7 +34,7 @@ from roslint_names.workspace.graph import (
     Reach,
 )
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
-from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Specialise
+from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Prepare, Specialise
 
 _EDGES = {
     Role.PUBLISH: EdgeKind.PUBLISH,
@@ -60,12 +60,18 @@ class _Instance:
     generation: Generation
 
 
-def build(facts: Iterable[FileFacts], packages: Sequence[Package], specialise: Specialise) -> Graph:
+def build(
+    facts: Iterable[FileFacts],
+    packages: Sequence[Package],
+    specialise: Specialise,
+    prepare: Prepare | None = None,
+) -> Graph:
+    """The workspace graph; ``prepare`` is told each depth's specialisations first."""
     index = WorkspaceIndex(facts, packages)
     nodes: list[NodeInstance] = []
     endpoints: list[Endpoint] = []
     launched_sources: set[str] = set()
-    for launched in LaunchTrees(index, specialise).launched():
+    for launched in LaunchTrees(index, specialise, prepare).launched():
         sources = index.sources_of(launched.node.package, launched.node.executable)
         launched_sources.update(sources)
         built = _launched_instance(index, launched, sources)

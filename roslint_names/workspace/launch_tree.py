@@ -10,7 +10,7 @@ them (``Specialise``), exactly as the launch system would evaluate it.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 
 from roslint_names.model import (
@@ -31,6 +31,10 @@ MAX_INCLUDE_DEPTH = 16  # deeper than any real bringup; stops include cycles and
 
 # (display path, arguments) -> the file's facts extracted with those arguments, or None
 Specialise = Callable[[str, LaunchArguments], "FileFacts | None"]
+# Every (display path, arguments) one depth of the trees asks ``Specialise`` for, handed
+# over before it asks: the specialisations of a depth can then be extracted together (in
+# worker processes), and the walk's own calls find them done.
+Prepare = Callable[[Sequence[tuple[str, LaunchArguments]]], None]
 
 
 @dataclass(frozen=True)
@@ -62,9 +66,12 @@ class _Frame:
 
 
 class LaunchTrees:
-    def __init__(self, index: WorkspaceIndex, specialise: Specialise) -> None:
+    def __init__(
+        self, index: WorkspaceIndex, specialise: Specialise, prepare: Prepare | None = None
+    ) -> None:
         self.index = index
         self.specialise = specialise
+        self.prepare = prepare
         self.launch_files = sorted(
             path for path, facts in index.facts.items() if facts.language in LAUNCH_LANGUAGES
         )
@@ -89,8 +96,25 @@ class LaunchTrees:
         return [path for path in self.launch_files if path not in included]
 
     def launched(self) -> Iterator[Launched]:
-        for root in self.roots():
-            yield from self._walk(root, _Frame(root, (), "/", (), (), (), frozenset({root})))
+        frames = [_Frame(root, (), "/", (), (), (), frozenset({root})) for root in self.roots()]
+        if self.prepare is not None:
+            self._prepare_depths(self.prepare, frames)
+        for frame in frames:
+            yield from self._walk(frame.path, frame)
+
+    def _prepare_depths(self, prepare: Prepare, frames: list[_Frame]) -> None:
+        """Walk the trees depth by depth, handing each depth's specialisations to
+        ``prepare`` before asking for them; the walk proper then visits the same frames
+        depth first (the order its launched nodes come in)."""
+        while frames:
+            wanted = dict.fromkeys((frame.path, frame.arguments) for frame in frames)
+            prepare([(path, arguments) for path, arguments in wanted if arguments])
+            frames = [
+                inner
+                for frame in frames
+                if (facts := self._facts(frame.path, frame.arguments)) is not None
+                for inner in self._included(frame, facts)
+            ]
 
     def _walk(self, root: str, frame: _Frame) -> Iterator[Launched]:
         facts = self._facts(frame.path, frame.arguments)
@@ -100,6 +124,11 @@ class LaunchTrees:
             launched = self._node(root, frame, node)
             if launched is not None:
                 yield launched
+        for inner in self._included(frame, facts):
+            yield from self._walk(root, inner)
+
+    def _included(self, frame: _Frame, facts: FileFacts) -> Iterator[_Frame]:
+        """The frames of the files ``frame``'s file includes that the walk follows."""
         if len(frame.sites) >= MAX_INCLUDE_DEPTH:
             return
         for include in facts.includes:
@@ -120,7 +149,7 @@ class LaunchTrees:
                 visiting=frame.visiting | {target},
                 conditional=frame.conditional or include.conditional,
             )
-            yield from self._walk(root, inner)
+            yield inner
 
     def _facts(self, path: str, arguments: LaunchArguments) -> FileFacts | None:
         if not arguments:
