@@ -94,11 +94,22 @@ class Locator:
         for index, anchor in enumerate(anchors):
             if found is not None:
                 break
+            self._record(anchor, indents)
             base = self._offset(anchor, anchors[index + 1 :], indents)
             inner = None if base is None else self._start_in(anchor, node, indents)
             found = None if base is None or inner is None else base + inner
         self._offsets[id(node)] = found
         return found
+
+    def _record(self, anchor: cst.CSTNode, indents: tuple[str, ...]) -> None:
+        """An anchor's code and where each node inside it starts, from one codegen: an
+        anchor is placed by its code, then the node inside it by those starts."""
+        if id(anchor) in self._starts or id(anchor) in self._offsets:
+            return  # placed: its code is not needed again, and its starts come on demand
+        own = self._indents(anchor, indents)
+        recorded = _recorded(self._module, _bare(anchor), own)
+        if recorded is not None:
+            self._codes[(id(anchor), own)], self._starts[id(anchor)] = recorded
 
     def _start_in(
         self, anchor: cst.CSTNode, node: cst.CSTNode, indents: tuple[str, ...]
@@ -106,7 +117,8 @@ class Locator:
         """Where ``node``'s code starts in ``anchor``'s, from one codegen of the anchor."""
         if id(anchor) not in self._starts:
             own = self._indents(anchor, indents)
-            self._starts[id(anchor)] = _starts(self._module, _bare(anchor), own)
+            recorded = _recorded(self._module, _bare(anchor), own)
+            self._starts[id(anchor)] = {} if recorded is None else recorded[1]
         starts = self._starts[id(anchor)]
         parens = _parens(node)
         # A parenthesised node starts at its '('; its span starts after the last one.
@@ -163,14 +175,16 @@ def _code(module: cst.Module, node: cst.CSTNode, indents: tuple[str, ...]) -> st
     return "".join(state.tokens)
 
 
-def _starts(module: cst.Module, node: cst.CSTNode, indents: tuple[str, ...]) -> dict[int, int]:
-    """Offsets into ``node``'s code where each node inside it starts (for a '(', where it
-    ends: see ``Locator._start_in``); {} without libcst's codegen state."""
+def _recorded(
+    module: cst.Module, node: cst.CSTNode, indents: tuple[str, ...]
+) -> tuple[str, dict[int, int]] | None:
+    """``node``'s code, and the offsets into it where each node inside it starts (for a
+    '(', where it ends: see ``Locator._start_in``); None without libcst's codegen state."""
     if _RecordingState is None:
-        return {}
+        return None
     state = _RecordingState(module.default_indent, module.default_newline, None, list(indents))
     node._codegen(state)
-    return state.offsets
+    return "".join(state.tokens), state.offsets
 
 
 if _CodegenState is None:  # pragma: no cover - a libcst that moved its internals
