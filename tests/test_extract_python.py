@@ -487,6 +487,38 @@ def test_span_of_repeated_identical_lines_comes_from_libcst() -> None:
     assert [use.span.line for use in facts_of(source).names] == [3, 5]
 
 
+def test_spans_of_identical_lines_in_methods_under_comments() -> None:
+    """The same line in two methods and a nested function, each under a comment: placed
+    inside its own method (written one indentation out), not the whole class."""
+    source = """\
+import rospy
+from std_msgs.msg import String
+
+
+class Relay(object):
+    def start(self):
+        # advertise once the node is up
+        self.pub = rospy.Publisher("chatter", String, queue_size=10)
+
+    def restart(self):
+
+    # a comment left of the block
+        self.pub = rospy.Publisher("chatter", String, queue_size=10)
+
+        def again():
+            # and once more, a level deeper
+            self.pub = rospy.Publisher("chatter", String, queue_size=10)
+
+        again()
+"""
+    facts = facts_of(source, ros=ROS1)
+    assert [(use.value, use.span.line, use.span.column) for use in facts.names] == [
+        ("chatter", 8, 36),
+        ("chatter", 13, 36),
+        ("chatter", 17, 40),
+    ]
+
+
 def test_span_inside_a_parenthesised_with_statement() -> None:
     """Regression: a top-level ``with (...)`` holds one ``LeftParen``, not a list of them,
     and placing a repeated literal inside it raised TypeError."""

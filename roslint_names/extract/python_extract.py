@@ -105,7 +105,7 @@ def _prepare(
     generation = evidence.decide(
         package_generation, import_generation(walk.packages), None, fallback_generation
     )
-    locator = Locator(module, text)
+    locator = Locator(module, text, walk.anchor_indents)
     code = CodeExtractor(walk, locator, generation)
     code.run()
     return walk, locator, code, generation, text

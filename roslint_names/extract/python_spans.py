@@ -55,8 +55,16 @@ class Locator:
     codegen state moved.
     """
 
-    def __init__(self, module: cst.Module, text: str) -> None:
+    def __init__(
+        self,
+        module: cst.Module,
+        text: str,
+        anchor_indents: dict[int, tuple[str, ...]] | None = None,
+    ) -> None:
+        """``anchor_indents``: the indentation of anchors written at another than the
+        nodes inside them (a method, by id), which all others share."""
         self._module = module
+        self._anchor_indents = anchor_indents or {}
         self._source = Source(text)
         self._offsets: dict[int, int | None] = {}
         self._codes: dict[tuple[int, tuple[str, ...]], str] = {}
@@ -120,12 +128,20 @@ class Locator:
             recorded = _recorded(self._module, _bare(anchor), own)
             self._starts[id(anchor)] = {} if recorded is None else recorded[1]
         starts = self._starts[id(anchor)]
+        if isinstance(node, cst.SimpleStatementLine) and node.leading_lines:
+            # Placed without the lines above it (``_bare``): it starts at its indentation,
+            # which its first statement follows.
+            first = starts.get(id(node.body[0]))
+            indentation = len("".join(self._indents(node, indents)))
+            return None if first is None else first - indentation
         parens = _parens(node)
         # A parenthesised node starts at its '('; its span starts after the last one.
         return starts.get(id(parens[-1]) if parens else id(node), None)
 
     def _indents(self, node: cst.CSTNode, indents: tuple[str, ...]) -> tuple[str, ...]:
-        return () if id(node) in self._unindented else indents
+        if id(node) in self._unindented:
+            return ()
+        return self._anchor_indents.get(id(node), indents)
 
     def _provided(self, node: cst.CSTNode) -> Span:
         """libcst's own positions, when its codegen state is not at hand."""
@@ -149,10 +165,14 @@ def _parens(node: cst.CSTNode) -> Sequence[cst.LeftParen]:
 
 
 def _bare(node: cst.CSTNode) -> cst.CSTNode:
-    """The node without its own parentheses: a span starts at the literal's quote.
+    """The node without its own parentheses: a span starts at the literal's quote; a
+    statement line without the comment and blank lines above it, whose indentation is
+    the block's and not always the line's.
 
     An empty tuple keeps them: they are all there is of it (libcst refuses ``()`` without).
     """
+    if isinstance(node, cst.SimpleStatementLine):
+        return node.with_changes(leading_lines=()) if node.leading_lines else node
     if _parens(node) and not (isinstance(node, cst.Tuple) and not node.elements):
         return node.with_changes(lpar=[], rpar=[])
     return node

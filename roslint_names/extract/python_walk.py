@@ -134,6 +134,11 @@ class Walk:
         self.packages: set[str] = set()  # top-level packages imported anywhere
         self._order = 0
         self._top: tuple[cst.CSTNode, ...] = ()  # the module-level statement being walked
+        # The functions around the statement being walked, innermost first (below the top
+        # statement), and the indentation each is written at: anchors for spans between
+        # its line and the whole top-level class.
+        self._functions: tuple[cst.FunctionDef, ...] = ()
+        self.anchor_indents: dict[int, tuple[str, ...]] = {}
         self._keys: dict[str, int] = {}
         self.statements(module.body, Context(self.root))
 
@@ -146,9 +151,9 @@ class Walk:
             if module_level:
                 # Spans are found inside the top-level statement when nothing nearer helps.
                 self._top = (statement,)
-            here = dataclasses.replace(context, anchors=self._top)
+            here = dataclasses.replace(context, anchors=(*self._functions, *self._top))
             if isinstance(statement, cst.SimpleStatementLine):
-                inner = dataclasses.replace(here, anchors=(_bare_line(statement), *self._top))
+                inner = dataclasses.replace(here, anchors=(statement, *here.anchors))
                 for small in statement.body:
                     self.small(small, inner)
             elif isinstance(statement, cst.FunctionDef):
@@ -202,7 +207,16 @@ class Walk:
         inner = Scope(ScopeKind.FUNCTION, name, scope, self._key(name), owner, node)
         self.function_scopes[node] = inner
         _bind_parameters(node.params, inner)
-        self.block(node.body, dataclasses.replace(context, scope=inner, expected_failure=False))
+        body = dataclasses.replace(context, scope=inner, expected_failure=False)
+        if self._top == (node,):
+            self.block(node.body, body)
+            return
+        self.anchor_indents[id(node)] = context.indents
+        outer, self._functions = self._functions, (node, *self._functions)
+        try:
+            self.block(node.body, body)
+        finally:
+            self._functions = outer
 
     def klass(self, node: cst.ClassDef, context: Context) -> None:
         scope = context.scope
@@ -361,11 +375,6 @@ class Walk:
             self.expression(node.value, inner)
         else:
             self.expression(node.elt, inner)
-
-
-def _bare_line(statement: cst.SimpleStatementLine) -> cst.SimpleStatementLine:
-    """A statement line without the comments above it (their indentation is the block's)."""
-    return statement.with_changes(leading_lines=()) if statement.leading_lines else statement
 
 
 def _owner(scope: Scope) -> cst.ClassDef | None:
