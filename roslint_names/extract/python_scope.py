@@ -127,7 +127,11 @@ class Context:
 
     def inside(self, node: cst.CSTNode) -> Context:
         """The context of what ``node`` contains: ``node`` is the innermost anchor."""
-        return Context(self.scope, (node, *self.anchors), self.indents, self.expected_failure)
+        return self.anchored((node, *self.anchors))
+
+    def anchored(self, anchors: tuple[cst.CSTNode, ...]) -> Context:
+        # Not dataclasses.replace: the walk makes one per statement, and replace is slow.
+        return Context(self.scope, anchors, self.indents, self.expected_failure)
 
 
 @dataclass(frozen=True)

@@ -89,14 +89,27 @@ def _fields(node: cst.CSTNode) -> tuple[str, ...]:
     return names
 
 
+# Whether a type is a node type, by type: CSTNode is an ABC, and ``isinstance`` against
+# an ABC costs several times a dict lookup (the walk asks for every field of every node).
+_IS_NODE: dict[type, bool] = {}
+
+
+def _is_node(value: object) -> bool:
+    kind = type(value)
+    known = _IS_NODE.get(kind)
+    if known is None:
+        known = _IS_NODE[kind] = issubclass(kind, cst.CSTNode)
+    return known
+
+
 def _children(node: cst.CSTNode) -> list[cst.CSTNode]:
     found: list[cst.CSTNode] = []
     for name in _fields(node):
         value = getattr(node, name)
-        if isinstance(value, cst.CSTNode):
+        if type(value) is tuple or type(value) is list:
+            found.extend(item for item in value if _is_node(item))
+        elif _is_node(value):
             found.append(value)
-        elif isinstance(value, tuple | list):
-            found.extend(item for item in value if isinstance(item, cst.CSTNode))
     return found
 
 
@@ -151,9 +164,9 @@ class Walk:
             if module_level:
                 # Spans are found inside the top-level statement when nothing nearer helps.
                 self._top = (statement,)
-            here = dataclasses.replace(context, anchors=(*self._functions, *self._top))
+            here = context.anchored((*self._functions, *self._top))
             if isinstance(statement, cst.SimpleStatementLine):
-                inner = dataclasses.replace(here, anchors=(statement, *here.anchors))
+                inner = here.inside(statement)
                 for small in statement.body:
                     self.small(small, inner)
             elif isinstance(statement, cst.FunctionDef):
