@@ -71,7 +71,9 @@ class Scope:
 
     def bind(self, name: str, binding: Binding) -> None:
         target = self.module if name in self.globals else self
-        target.bindings.setdefault(name, []).append(dataclasses.replace(binding, scope=target))
+        if binding.scope is not target:
+            binding = dataclasses.replace(binding, scope=target)
+        target.bindings.setdefault(name, []).append(binding)
 
     def lookup(self, name: str) -> list[Binding]:
         """The bindings ``name`` refers to here, by Python's rules (LEGB, classes skipped)."""
@@ -89,10 +91,14 @@ class Scope:
     def qualified(self, expr: cst.BaseExpression) -> list[str]:
         """What a dotted expression names through the imports: ``rp.Publisher`` ->
         ``rospy.Publisher``. Several candidates only through ``from x import *``."""
-        if isinstance(expr, cst.Attribute):
+        # By type, not isinstance: libcst's node classes are ABCs, slow to isinstance.
+        kind = type(expr)
+        if kind is cst.Attribute:
+            assert isinstance(expr, cst.Attribute)
             return [f"{base}.{expr.attr.value}" for base in self.qualified(expr.value)]
-        if not isinstance(expr, cst.Name):
+        if kind is not cst.Name:
             return []
+        assert isinstance(expr, cst.Name)
         bindings = self.lookup(expr.value)
         imported = {binding.imported for binding in bindings if binding.imported}
         if len(imported) == 1:

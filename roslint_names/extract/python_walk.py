@@ -76,6 +76,9 @@ _LEAVES = frozenset(
 )
 
 
+_COMPREHENSIONS = frozenset({cst.ListComp, cst.SetComp, cst.GeneratorExp, cst.DictComp})
+
+
 def _fields(node: cst.CSTNode) -> tuple[str, ...]:
     kind = type(node)
     names = _FIELDS.get(kind)
@@ -252,6 +255,9 @@ class Walk:
     # -- small statements ---------------------------------------------------------------
 
     def small(self, node: cst.BaseSmallStatement, context: Context) -> None:
+        if type(node) is cst.Expr:  # most lines: a call; skip the checks below
+            self.expression(node, context)
+            return
         scope = context.scope
         if isinstance(node, cst.Assign):
             self.expression(node.value, context)
@@ -351,16 +357,19 @@ class Walk:
             within = context.inside(node)
             for child in _children(node):
                 self.expression(child, within)
-        elif isinstance(node, cst.Lambda):
+        elif kind is cst.Lambda:
+            assert isinstance(node, cst.Lambda)
             self.expression(node.params, context)
             outer = context.scope
             key = self._key(f"{outer.name}.<lambda>")
             scope = Scope(ScopeKind.FUNCTION, "<lambda>", outer, key)
             _bind_parameters(node.params, scope)
             self.expression(node.body, dataclasses.replace(context, scope=scope))
-        elif isinstance(node, cst.ListComp | cst.SetComp | cst.GeneratorExp | cst.DictComp):
+        elif kind in _COMPREHENSIONS:
+            assert isinstance(node, cst.ListComp | cst.SetComp | cst.GeneratorExp | cst.DictComp)
             self.comprehension(node, context)
-        elif isinstance(node, cst.NamedExpr):
+        elif kind is cst.NamedExpr:
+            assert isinstance(node, cst.NamedExpr)
             self.expression(node.value, context)
             self.bind_target(node.target, node.value, _function_scope(context.scope), context)
         else:
