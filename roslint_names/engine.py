@@ -253,6 +253,7 @@ def lint(
             extracting[index] = data
             check_extracted(dispatcher.put((job, data, key), len(data)))
         check_extracted(dispatcher.finish())
+        workers = dispatcher.workers  # that extracted the files (specialisations may start some)
         if inputs is not None and not want_graph and run_key is None:
             run_key = inputs.key_last()
         for index, facts, data in waiting:
@@ -286,7 +287,6 @@ def lint(
                 settings=settings,
                 registry=registry,
             )
-        workers = dispatcher.workers
     diagnostics = [diagnostic for found in per_file for diagnostic in found]
     diagnostics.sort(key=Diagnostic.sort_key)
     skipped_paths = {path for path, _ in skipped}
@@ -360,7 +360,7 @@ class _Specialiser:
 
     def prepare(self, wanted: Sequence[tuple[str, LaunchArguments]]) -> None:
         """Extract every specialisation of ``wanted`` not known yet: from the cache, else
-        through the dispatcher, all of them before waiting for any."""
+        through the dispatcher (in workers when it has them), all handed over together."""
         asked: list[tuple[str, LaunchArguments]] = []
         for key in dict.fromkeys(wanted):
             if key in self._memo:

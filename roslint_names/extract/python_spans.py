@@ -61,8 +61,8 @@ class Locator:
         text: str,
         anchor_indents: dict[int, tuple[str, ...]] | None = None,
     ) -> None:
-        """``anchor_indents``: the indentation of anchors written at another than the
-        nodes inside them (a method, by id), which all others share."""
+        """``anchor_indents``: by id, the indentation of each anchor written at another
+        than the nodes inside it (a function); every other anchor shares its nodes'."""
         self._module = module
         self._anchor_indents = anchor_indents or {}
         self._source = Source(text)

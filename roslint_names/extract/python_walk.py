@@ -224,7 +224,7 @@ class Walk:
         self.function_scopes[node] = inner
         _bind_parameters(node.params, inner)
         body = dataclasses.replace(context, scope=inner, expected_failure=False)
-        if self._top == (node,):
+        if self._top and self._top[0] is node:  # the top statement: an anchor already
             self.block(node.body, body)
             return
         self.anchor_indents[id(node)] = context.indents
