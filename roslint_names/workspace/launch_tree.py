@@ -108,7 +108,10 @@ class LaunchTrees:
         depth first (the order its launched nodes come in)."""
         while frames:
             wanted = dict.fromkeys((frame.path, frame.arguments) for frame in frames)
-            prepare([(path, arguments) for path, arguments in wanted if arguments])
+            # A file's specialisations side by side: a worker that parses it for one
+            # extracts it under the next arguments from the same parse.
+            specialised = [(path, arguments) for path, arguments in wanted if arguments]
+            prepare(sorted(specialised, key=lambda pair: pair[0]))
             frames = [
                 inner
                 for frame in frames
