@@ -102,32 +102,32 @@ class Locator:
         for index, anchor in enumerate(anchors):
             if found is not None:
                 break
-            self._record(anchor, indents)
+            if id(anchor) not in self._offsets:
+                self._starts_in(anchor, indents)  # its code comes with them: one codegen
             base = self._offset(anchor, anchors[index + 1 :], indents)
             inner = None if base is None else self._start_in(anchor, node, indents)
             found = None if base is None or inner is None else base + inner
         self._offsets[id(node)] = found
         return found
 
-    def _record(self, anchor: cst.CSTNode, indents: tuple[str, ...]) -> None:
-        """An anchor's code and where each node inside it starts, from one codegen: an
-        anchor is placed by its code, then the node inside it by those starts."""
-        if id(anchor) in self._starts or id(anchor) in self._offsets:
-            return  # placed: its code is not needed again, and its starts come on demand
-        own = self._indents(anchor, indents)
-        recorded = _recorded(self._module, _bare(anchor), own)
-        if recorded is not None:
-            self._codes[(id(anchor), own)], self._starts[id(anchor)] = recorded
+    def _starts_in(self, anchor: cst.CSTNode, indents: tuple[str, ...]) -> dict[int, int]:
+        """Where each node inside ``anchor`` starts in its code, and that code (an anchor
+        is placed by its code, then the node inside it by these), from one codegen."""
+        starts = self._starts.get(id(anchor))
+        if starts is None:
+            own = self._indents(anchor, indents)
+            recorded = _recorded(self._module, _bare(anchor), own)
+            starts = {}
+            if recorded is not None:
+                self._codes[(id(anchor), own)], starts = recorded
+            self._starts[id(anchor)] = starts
+        return starts
 
     def _start_in(
         self, anchor: cst.CSTNode, node: cst.CSTNode, indents: tuple[str, ...]
     ) -> int | None:
-        """Where ``node``'s code starts in ``anchor``'s, from one codegen of the anchor."""
-        if id(anchor) not in self._starts:
-            own = self._indents(anchor, indents)
-            recorded = _recorded(self._module, _bare(anchor), own)
-            self._starts[id(anchor)] = {} if recorded is None else recorded[1]
-        starts = self._starts[id(anchor)]
+        """Where ``node``'s code starts in ``anchor``'s."""
+        starts = self._starts_in(anchor, indents)
         if isinstance(node, cst.SimpleStatementLine) and node.leading_lines:
             # Placed without the lines above it (``_bare``): it starts at its indentation,
             # which its first statement follows.
