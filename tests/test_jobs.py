@@ -94,6 +94,21 @@ def test_few_files_start_no_worker(run_cli: Any, tmp_path: Path) -> None:
     assert " extracted by this process" in result.stderr
 
 
+@pytest.mark.usefixtures("small_chunks")
+def test_workers_started_for_specialisations_are_not_said_to_extract_the_files(
+    run_cli: Any, workspace: Path, tmp_path: Path
+) -> None:
+    """After an edit to an included launch file, the one file is extracted in-process and
+    its two specialisations start the workers: the files were extracted by this process."""
+    cache = ["--cache-dir", str(tmp_path / "cache")]
+    arguments = ["check", "--jobs", "2", "--verbose", *cache, "."]
+    run_cli(arguments, workspace)
+    included = workspace / "src" / "fleet_bringup" / "launch" / "fleet.launch.py"
+    included.write_text(included.read_text() + "# reviewed\n")
+    result = run_cli(arguments, workspace)
+    assert "files from the cache, 1 extracted by this process" in result.stderr.splitlines()[0]
+
+
 def test_zero_jobs_means_every_core(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(workers, "available_cores", lambda: 6)
     assert (worker_count(0), worker_count(1), worker_count(3)) == (6, 1, 3)
