@@ -34,7 +34,7 @@ from .model import (
     RelatedLocation,
     Span,
 )
-from .reading import read_file
+from .reading import content_digest, read_file
 from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
 from .run_inputs import RunInputs
@@ -351,6 +351,7 @@ class _Specialiser:
         self._max_file_size = max_file_size
         self._dispatcher = dispatcher
         self._memo: dict[tuple[str, LaunchArguments], FileFacts | None] = {}
+        self._files: dict[str, tuple[bytes | None, str]] = {}
 
     def __call__(self, display: str, arguments: LaunchArguments) -> FileFacts | None:
         key = (display, arguments)
@@ -386,7 +387,7 @@ class _Specialiser:
         source = self._sources.get(display)
         if source is None or source.language not in SPECIALISABLE:
             return None
-        data, _, _ = read_file(source.path, self._max_file_size)
+        data, content = self._read(source)
         if data is None:
             return None
         package = self._packages.for_file(source.path)
@@ -394,12 +395,22 @@ class _Specialiser:
         if self._cache is not None:
             # The arguments are part of what the facts depend on: key them with the path.
             keyed = f"{display}\0{arguments!r}"
-            cache_key = self._cache.key(data, keyed, source.language, package, self._fallback)
+            cache_key = self._cache.key_of_digest(
+                content, keyed, source.language, package, self._fallback
+            )
             found = self._cache.load(cache_key, display)
             if found is not None:
                 return found
         job = _Job(index, display, source.language, package, self._fallback, arguments)
         return job, data, cache_key
+
+    def _read(self, source: SourceFile) -> tuple[bytes | None, str]:
+        """A launch file's bytes and content digest, read once however many argument
+        sets it is specialised under (up to 19 on realws)."""
+        if source.display not in self._files:
+            data, _, _ = read_file(source.path, self._max_file_size)
+            self._files[source.display] = data, "" if data is None else content_digest(data)
+        return self._files[source.display]
 
 
 def _report_graph(
