@@ -139,7 +139,7 @@ class _IgnoreRules:
     def __init__(self, exclude: Sequence[str], exclude_root: Path) -> None:
         self._specs: list[tuple[str, _Spec]] = []
         if exclude:
-            self._specs.append((os.fspath(exclude_root), _spec(exclude)))
+            self._specs.append((os.fspath(exclude_root), _Spec(exclude)))
         self._exclude_count = len(self._specs)
 
     def excluded_by_config(self, path: Path, is_dir: bool) -> bool:
@@ -160,7 +160,7 @@ class _IgnoreRules:
                 lines = f.read().splitlines()
         except OSError:
             return 0
-        self._specs.append((os.fspath(directory), _spec(lines)))
+        self._specs.append((os.fspath(directory), _Spec(lines)))
         return 1
 
     def leave(self, count: int) -> None:
@@ -196,10 +196,6 @@ class _Spec:
 
 
 _NAMED_GROUP = re.compile(r"\(\?P<\w+>")
-
-
-def _spec(lines: Sequence[str]) -> _Spec:
-    return _Spec(lines)
 
 
 def _matches(spec: _Spec, base: str, path: str, is_dir: bool) -> bool:
