@@ -413,11 +413,17 @@ def _index(pack: bytes) -> dict[str, tuple[int, int]]:
 
 
 def _unpickle_facts(payload: bytes) -> FileFacts | None:
+    facts = _unpickle(payload)
+    return facts if isinstance(facts, FileFacts) else None
+
+
+def _unpickle(payload: bytes) -> object | None:
+    """The value of a payload, through the unpickler that builds only model values."""
     try:
-        facts = _FactsUnpickler(io.BytesIO(payload)).load()
+        value: object = _FactsUnpickler(io.BytesIO(payload)).load()
     except Exception:  # any malformed pickle: a miss, never a crash
         return None
-    return facts if isinstance(facts, FileFacts) else None
+    return value
 
 
 def _size(path: Path) -> int:
@@ -484,11 +490,7 @@ def _decode(blob: bytes) -> object | None:
     payload = blob[header:]
     if hashlib.blake2b(payload, digest_size=_CHECKSUM_BYTES).digest() != blob[len(_MAGIC) : header]:
         return None
-    try:
-        value: object = _FactsUnpickler(io.BytesIO(payload)).load()
-    except Exception:  # any malformed pickle: a miss, never a crash
-        return None
-    return value
+    return _unpickle(payload)
 
 
 _MODEL_CLASSES = frozenset(
