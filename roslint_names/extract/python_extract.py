@@ -90,7 +90,8 @@ def _prepare(
     """Everything of a file that launch arguments do not change: parsed, walked, and its
     code's names extracted. A launch file that includers hand different arguments is
     extracted once per set (``extract(arguments=...)``); only its launch part runs again.
-    Nothing here is changed after it is built, so the memo is safe to share.
+    Nothing here answers differently after it is built (the locator only fills its own
+    memos of where nodes are), so the memo is safe to share.
     """
     text = decode(data)
     if isinstance(text, ParseError):
