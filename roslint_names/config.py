@@ -15,14 +15,14 @@ from __future__ import annotations
 
 import re
 import sys
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
 from .model import Generation, Kind, Severity
 from .registry import Registry
-from .rule import NamingPolicy, OptionValue
+from .rule import NamingPolicy, OptionValue, Rule
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -41,6 +41,18 @@ class ConfigError(Exception):
 
 
 @dataclass(frozen=True)
+class TestCodeSettings:
+    """``[test-code]``: which rules judge test code, and what is test code besides the
+    ecosystem's conventions (``test_code``). ``select`` None: the rules whose
+    ``judges_test_code`` is true."""
+
+    select: tuple[str, ...] | None = None
+    extend_select: tuple[str, ...] = ()
+    ignore: tuple[str, ...] = ()
+    paths: tuple[str, ...] = ()  # gitignore-style patterns, relative to the settings' root
+
+
+@dataclass(frozen=True)
 class Settings:
     root: Path  # paths in exclude and per-file-ignores are relative to it
     source: Path | None = None  # the file the settings came from
@@ -55,6 +67,7 @@ class Settings:
     severity: Mapping[str, Severity] = field(default_factory=dict)  # code -> severity
     rule_options: Mapping[str, Mapping[str, OptionValue]] = field(default_factory=dict)
     policies: tuple[NamingPolicy, ...] = ()
+    test_code: TestCodeSettings = TestCodeSettings()
 
 
 def settings_fingerprint(settings: Settings) -> str:
@@ -106,6 +119,7 @@ def parse_settings(table: Mapping[str, Any], source: Path, registry: Registry) -
         "severity",
         "rules",
         "naming",
+        "test-code",
     }
     for key in table:
         if key not in known:
@@ -127,6 +141,7 @@ def parse_settings(table: Mapping[str, Any], source: Path, registry: Registry) -
         severity=reader.severities(table.get("severity", {})),
         rule_options=reader.rule_options(table.get("rules", {})),
         policies=reader.policies(table.get("naming", {})),
+        test_code=reader.test_code(table.get("test-code", {})),
     )
 
 
@@ -169,15 +184,46 @@ def enabled_codes(settings: Settings, registry: Registry) -> frozenset[str]:
     ``ignore = ["RN2"]`` and ``extend-select = ["RN203"]`` keeps RN203. A slug is as
     specific as a full code. On a tie, ignore wins.
     """
+    return _selected(
+        registry,
+        settings.select,
+        settings.extend_select,
+        settings.ignore,
+        by_default=lambda rule: rule.enabled_by_default,
+    )
+
+
+def test_code_codes(settings: Settings, registry: Registry) -> frozenset[str]:
+    """The rules that judge test code: those of the run that ``[test-code]`` selects
+    (by default the rules whose findings would break a test, see ``Rule``)."""
+    test_code = settings.test_code
+    selected = _selected(
+        registry,
+        test_code.select,
+        test_code.extend_select,
+        test_code.ignore,
+        by_default=lambda rule: rule.judges_test_code,
+    )
+    return selected & enabled_codes(settings, registry)
+
+
+def _selected(
+    registry: Registry,
+    select: tuple[str, ...] | None,
+    extend_select: tuple[str, ...],
+    ignore: tuple[str, ...],
+    *,
+    by_default: Callable[[Rule], bool],
+) -> frozenset[str]:
     enabled: set[str] = set()
     for rule in registry.rules:
-        if settings.select is None:
+        if select is None:
             # The default selection is the least specific one: any ignore beats it.
-            base = 1 if rule.enabled_by_default else 0
+            base = 1 if by_default(rule) else 0
         else:
-            base = _specificity(rule.code, rule.name, settings.select)
-        on = max(base, _specificity(rule.code, rule.name, settings.extend_select))
-        off = _specificity(rule.code, rule.name, settings.ignore)
+            base = _specificity(rule.code, rule.name, select)
+        on = max(base, _specificity(rule.code, rule.name, extend_select))
+        off = _specificity(rule.code, rule.name, ignore)
         if on > off:
             enabled.add(rule.code)
     return frozenset(enabled)
@@ -287,6 +333,23 @@ class _Reader:
         return tuple(
             (pattern, self.selectors(f"per-file-ignores.{pattern!r}", selectors))
             for pattern, selectors in value.items()
+        )
+
+    def test_code(self, value: object) -> TestCodeSettings:
+        if not isinstance(value, dict):
+            raise self.error("test-code", "must be a table (select, extend-select, ignore, paths)")
+        known = {"select", "extend-select", "ignore", "paths"}
+        for key in value:
+            if key not in known:
+                raise self.error(
+                    f"test-code.{key}", f"unknown key; known keys: {', '.join(sorted(known))}"
+                )
+        select = value.get("select")
+        return TestCodeSettings(
+            select=None if select is None else self.selectors("test-code.select", select),
+            extend_select=self.selectors("test-code.extend-select", value.get("extend-select", [])),
+            ignore=self.selectors("test-code.ignore", value.get("ignore", [])),
+            paths=self.strings("test-code.paths", value.get("paths", [])),
         )
 
     def _rule_key(self, key: str, table_key: str) -> str:

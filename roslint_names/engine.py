@@ -18,7 +18,7 @@ from pathlib import Path
 from types import ModuleType
 from typing import TYPE_CHECKING, Protocol
 
-from .config import Settings, enabled_codes, ignored_for_path
+from .config import Settings, enabled_codes, ignored_for_path, test_code_codes
 from .discover import SourceFile
 from .generation import PackageGenerations, service_types
 from .lines import split_lines
@@ -39,6 +39,7 @@ from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
 from .run_inputs import RunInputs
 from .suppress import Suppression, find_suppressions, is_our_code
+from .test_code import is_test_code
 from .types import parse_type
 from .workers import Dispatcher
 from .workspace.build import build
@@ -144,6 +145,7 @@ def lint(
     run over the workspace graph and report into the files of ``sources``.
     """
     enabled = enabled_codes(settings, registry)
+    test_rules = test_code_codes(settings, registry)
     graph_rules = [r for r in registry.rules if r.check_workspace and r.code in enabled]
     packages = PackageGenerations()
     fallback = settings.ros or DEFAULT_GENERATION
@@ -185,7 +187,13 @@ def lint(
     def check_now(index: int, facts: FileFacts, data: bytes, known: frozenset[str]) -> None:
         text = decode_for_display(data)
         per_file[index], found = check_file(
-            facts, text, settings, registry, enabled, known_service_types=known
+            facts,
+            text,
+            settings,
+            registry,
+            enabled,
+            known_service_types=known,
+            test_rules=test_rules,
         )
         if found:
             suppressions_of[index] = found
@@ -427,6 +435,7 @@ def _report_graph(
     """Graph rules' findings, each into its file's slot with that file's suppressions;
     findings in files outside ``reported`` (a per-file run's context) are dropped."""
     slots = {source.display: index for index, source in enumerate(reported)}
+    test_rules = test_code_codes(settings, registry)
     facts_of = {f.path: f for f in facts}
     found: dict[int, list[tuple[Rule, WorkspaceFinding]]] = {}
     for rule in rules:
@@ -438,13 +447,16 @@ def _report_graph(
     for index, items in sorted(found.items()):
         source = reported[index]
         file_facts = facts_of[source.display]
-        ignored = ignored_for_path(settings, _relative_to_root(source.display, settings), registry)
+        relative = _relative_to_root(source.display, settings)
+        ignored = ignored_for_path(settings, relative, registry)
         data, _, _ = read_file(source.path, settings.max_file_size)
-        to_diagnostic = _DiagnosticFactory(file_facts, settings, decode_for_display(data or b""))
+        text = decode_for_display(data or b"")
+        to_diagnostic = _DiagnosticFactory(file_facts, settings, text)
+        judging = _TestCodeFilter(file_facts, text, relative, settings, test_rules)
         fresh = [
             to_diagnostic(rule, item.finding.span, item.finding.message, item.finding.related)
             for rule, item in items
-            if rule.code not in ignored
+            if rule.code not in ignored and not (judging.spared(rule.code) and judging.is_test())
         ]
         suppressions = suppressions_of.get(index, [])
         fresh, used = _apply_suppressions(fresh, suppressions, registry)
@@ -506,11 +518,15 @@ def check_file(
     enabled: frozenset[str],
     *,
     known_service_types: frozenset[str] = frozenset(),
+    test_rules: frozenset[str] | None = None,
 ) -> tuple[list[Diagnostic], list[Suppression]]:
     """Every diagnostic of one file: rule findings, then suppression bookkeeping; and the
-    file's suppressions, for the graph rules' findings still to come."""
-    ignored = ignored_for_path(settings, _relative_to_root(facts.path, settings), registry)
-    active = enabled - ignored
+    file's suppressions, for the graph rules' findings still to come.
+
+    ``test_rules``: the rules that judge test code (``test_code_codes``), when the caller
+    has them already."""
+    relative = _relative_to_root(facts.path, settings)
+    active = enabled - ignored_for_path(settings, relative, registry)
     to_diagnostic = _DiagnosticFactory(facts, settings, text)
     diagnostics = [
         to_diagnostic(rule, finding.span, finding.message, finding.related)
@@ -519,6 +535,14 @@ def check_file(
         for finding in _run(rule, facts, settings, known_service_types)
     ]
     suppressions = find_suppressions(text, facts.language)
+    # Whether the file is test code is asked only when the answer can change something.
+    if test_rules is None:
+        test_rules = test_code_codes(settings, registry)
+    judging = _TestCodeFilter(facts, text, relative, settings, test_rules)
+    if suppressions or any(judging.spared(d.code) for d in diagnostics):
+        enabled = judging.rules(enabled)
+        active = judging.rules(active)
+        diagnostics = [d for d in diagnostics if d.code in active]
     diagnostics, used = _apply_suppressions(diagnostics, suppressions, registry)
     unused_rule = registry.by_code_or_name(UNUSED_SUPPRESSION)
     invalid_rule = registry.by_code_or_name(INVALID_SUPPRESSION)
@@ -538,6 +562,38 @@ def check_file(
                 message = f"suppression of {rule.code} ({rule.name}) silences nothing here"
                 diagnostics.append(to_diagnostic(unused_rule, suppression.span, message))
     return diagnostics, list(suppressions)
+
+
+class _TestCodeFilter:
+    """The rules that judge one file: all the run's, or in test code those that
+    ``[test-code]`` selects (``test_code``). The file is classified on first need."""
+
+    def __init__(
+        self,
+        facts: FileFacts,
+        text: str,
+        relative: str,
+        settings: Settings,
+        judging: frozenset[str],
+    ) -> None:
+        self._facts, self._text, self._relative = facts, text, relative
+        self._settings = settings
+        self._judging = judging
+        self._test: bool | None = None
+
+    def spared(self, code: str) -> bool:
+        """Whether a finding of ``code`` is dropped if the file is test code."""
+        return code not in self._judging
+
+    def is_test(self) -> bool:
+        if self._test is None:
+            self._test = is_test_code(
+                self._relative, self._facts.language, self._text, self._settings
+            )
+        return self._test
+
+    def rules(self, codes: frozenset[str]) -> frozenset[str]:
+        return codes & self._judging if self.is_test() else codes
 
 
 def _run(

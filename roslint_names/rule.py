@@ -63,6 +63,11 @@ class Rule:
     enabled_by_default: bool = True
     options: Mapping[str, OptionValue] = field(default_factory=dict)  # name -> default
     check_workspace: WorkspaceCheck | None = None  # graph rules: the whole workspace at once
+    # Whether the rule judges test code by default (``test_code``): a rule whose findings
+    # make a test fail or pass for the wrong reason does (an illegal name, an init order,
+    # a type mismatch); a style rule does not (a CamelCase fixture, an absolute name in an
+    # integration test harm no one). ``[test-code]`` in the config changes the selection.
+    judges_test_code: bool = True
 
     def severity_for(self, generation: Generation) -> Severity:
         if generation is Generation.ROS1 and self.ros1_severity is not None:

@@ -98,12 +98,18 @@ class LaunchExtractor(LaunchValues):
     def run(self) -> None:
         for root in self.roots():
             self.visit_all(root, LaunchScope("/", variables=dict(self.arguments)))
-        for site in self.walk.calls:  # what no description reaches: unknown namespace
+        # What no description reaches: an unknown namespace, and no known launch either.
+        # Actions built apart (each test function of a launch test module its own
+        # description, a helper's alternatives) are not one launch that starts them all,
+        # so their nodes are as undecided as a condition's (never RN402 twins).
+        self.undecided_depth += 1
+        for site in self.walk.calls:
             kind = self.action_kind(site.call, site.context.scope)
             if kind is not None and id(site.call) not in self._reached:
                 self.found_actions = True
                 unknown = LaunchScope(None, variables=dict(self.arguments))
                 self.visit(ActionCall(kind, site.call, site.context), unknown)
+        self.undecided_depth -= 1
 
     def roots(self) -> Iterator[list[ActionCall]]:
         for function in self.walk.functions:

@@ -92,4 +92,5 @@ RULE = Rule(
     severity=Severity.WARNING,
     check=None,
     check_workspace=check_workspace,
+    judges_test_code=False,
 )

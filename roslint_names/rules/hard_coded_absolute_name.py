@@ -62,4 +62,5 @@ RULE = Rule(
     severity=Severity.WARNING,
     check=check,
     options={"allow": GLOBAL_BY_DESIGN, "extend-allow": ()},
+    judges_test_code=False,
 )

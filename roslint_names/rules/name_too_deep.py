@@ -81,4 +81,5 @@ RULE = Rule(
     severity=Severity.WARNING,
     check=check,
     check_workspace=check_workspace,
+    judges_test_code=False,
 )

@@ -36,4 +36,5 @@ RULE = Rule(
     summary="A name that does not match the naming policy configured for its kind",
     severity=Severity.WARNING,
     check=check,
+    judges_test_code=False,
 )

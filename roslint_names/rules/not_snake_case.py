@@ -47,4 +47,5 @@ RULE = Rule(
     summary="A name token that is not lower snake_case",
     severity=Severity.WARNING,
     check=check,
+    judges_test_code=False,
 )

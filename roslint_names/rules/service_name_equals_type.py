@@ -160,4 +160,5 @@ RULE = Rule(
     severity=Severity.WARNING,
     check=check,
     options={"strict": False},
+    judges_test_code=False,
 )
