@@ -1,0 +1,198 @@
+"""Test code is judged for what breaks a test, not for style (``test_code``, ``[test-code]``)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import pytest
+from conftest import write, write_package
+
+from roslint_names.config import Settings
+from roslint_names.model import Language
+from roslint_names.test_code import is_test_code
+
+# An rclcpp gtest as ament packages write them: a CamelCase fixture node, an absolute
+# topic the node under test publishes in the root namespace, and one name that really
+# breaks the test (a space: rclcpp throws InvalidTopicNameError at create_publisher).
+GTEST = """#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "rclcpp/rclcpp.hpp"
+#include "std_msgs/msg/string.hpp"
+
+class TestTalker : public ::testing::Test
+{
+protected:
+  static void SetUpTestCase() { rclcpp::init(0, nullptr); }
+  static void TearDownTestCase() { rclcpp::shutdown(); }
+};
+
+TEST_F(TestTalker, publishes_chatter)
+{
+  auto node = std::make_shared<rclcpp::Node>("TalkerTestNode");
+  auto sub = node->create_subscription<std_msgs::msg::String>(
+    "/chatter", 10, [](std_msgs::msg::String::ConstSharedPtr) {});
+  auto pub = node->create_publisher<std_msgs::msg::String>("talker status", 10);
+  EXPECT_EQ(1u, node->count_subscribers("/chatter"));
+}
+"""
+
+# A rostest file: the fixture's node names are the test author's business.
+ROSTEST = """<launch>
+  <node pkg="robot_base" type="base_driver" name="baseDriver"/>
+  <test test-name="base_driver_hztest" pkg="rostest" type="hztest" name="hzTest">
+    <param name="topic" value="/odom"/>
+    <param name="hz" value="50.0"/>
+  </test>
+</launch>
+"""
+
+
+def _workspace(root: Path) -> None:
+    write_package(root / "talker", 2, "talker")
+    write(root, "talker/test/test_talker.cpp", GTEST)
+    write_package(root / "robot_base", 1, "robot_base")
+    write(root, "robot_base/launch/hztest.test", ROSTEST)
+
+
+def _codes_by_path(result: Any) -> list[tuple[str, str]]:
+    return [(finding["path"], finding["code"]) for finding in result.findings()]
+
+
+def test_test_code_is_judged_by_the_rules_that_break_tests(run_cli: Any, tmp_path: Path) -> None:
+    _workspace(tmp_path)
+    result = run_cli(["check", "--format", "json", "."], tmp_path)
+    # RN203 (TalkerTestNode, baseDriver, hzTest) and RN202 (/chatter) are style in a test.
+    assert _codes_by_path(result) == [("talker/test/test_talker.cpp", "RN101")]
+
+
+def test_the_same_code_outside_tests_is_judged_in_full(run_cli: Any, tmp_path: Path) -> None:
+    write_package(tmp_path / "talker", 2, "talker")
+    write(tmp_path, "talker/src/talker_check.cpp", GTEST.replace("<gtest/gtest.h>", "<cstdio>"))
+    result = run_cli(["check", "--format", "json", "."], tmp_path)
+    assert sorted(code for _, code in _codes_by_path(result)) == ["RN101", "RN202", "RN203"]
+
+
+@pytest.mark.parametrize(
+    ("config", "expected"),
+    [
+        # Every rule of the run judges test code too.
+        (
+            '[test-code]\nselect = ["ALL"]\n',
+            [
+                ("robot_base/launch/hztest.test", "RN203"),
+                ("robot_base/launch/hztest.test", "RN203"),
+                ("talker/test/test_talker.cpp", "RN203"),
+                ("talker/test/test_talker.cpp", "RN202"),
+                ("talker/test/test_talker.cpp", "RN101"),
+            ],
+        ),
+        (
+            '[test-code]\nextend-select = ["RN202"]\n',
+            [("talker/test/test_talker.cpp", "RN202"), ("talker/test/test_talker.cpp", "RN101")],
+        ),
+        ('[test-code]\nignore = ["illegal-name"]\n', []),
+        # A rule the run does not check is not brought back by [test-code].
+        ('ignore = ["RN101"]\n[test-code]\nselect = ["ALL"]\n', None),
+    ],
+)
+def test_test_code_selection_is_configurable(
+    run_cli: Any, tmp_path: Path, config: str, expected: list[tuple[str, str]] | None
+) -> None:
+    _workspace(tmp_path)
+    write(tmp_path, "roslint-names.toml", config)
+    result = run_cli(["check", "--format", "json", "."], tmp_path)
+    found = _codes_by_path(result)
+    if expected is None:
+        assert "RN101" not in [code for _, code in found]
+        assert ("talker/test/test_talker.cpp", "RN203") in found
+    else:
+        assert found == expected
+
+
+def test_configured_paths_are_test_code(run_cli: Any, tmp_path: Path) -> None:
+    write_package(tmp_path / "talker", 2, "talker")
+    source = GTEST.replace("<gtest/gtest.h>", "<cstdio>")
+    write(tmp_path, "talker/integration/talker_check.cpp", source)
+    write(tmp_path, "roslint-names.toml", '[test-code]\npaths = ["integration/"]\n')
+    result = run_cli(["check", "--format", "json", "."], tmp_path)
+    assert _codes_by_path(result) == [("talker/integration/talker_check.cpp", "RN101")]
+
+
+def test_a_suppression_of_a_rule_off_in_tests_is_not_unused(run_cli: Any, tmp_path: Path) -> None:
+    write_package(tmp_path / "talker", 2, "talker")
+    source = GTEST.replace('"/chatter", 10,', '"/chatter", 10,  // NOLINT(RN202)')
+    write(tmp_path, "talker/test/test_talker.cpp", source)
+    result = run_cli(["check", "--format", "json", "--extend-select", "RN002", "."], tmp_path)
+    assert _codes_by_path(result) == [("talker/test/test_talker.cpp", "RN101")]
+
+
+def test_graph_rules_spare_test_code_for_style(run_cli: Any, tmp_path: Path) -> None:
+    """RN401 is style: a test's '/Chatter' does not collide with the package's '/chatter'."""
+    write_package(tmp_path / "talker", 1, "talker")
+    node = """#include <ros/ros.h>
+#include <std_msgs/String.h>
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "talker");
+  ros::NodeHandle nh;
+  ros::Publisher pub = nh.advertise<std_msgs::String>("/chatter", 10);
+  ros::spin();
+}
+"""
+    write(tmp_path, "talker/src/talker.cpp", node)
+    test = """#!/usr/bin/env python
+import unittest
+
+import rospy
+import rostest
+from std_msgs.msg import String
+
+
+class TalkerTest(unittest.TestCase):
+    def test_hears_talker(self):
+        rospy.init_node("talker_test")
+        msg = rospy.wait_for_message("/Chatter", String, timeout=5.0)
+        self.assertTrue(msg.data)
+
+
+if __name__ == "__main__":
+    rostest.rosrun("talker", "talker_test", TalkerTest)
+"""
+    write(tmp_path, "talker/scripts/talker_check.py", test)
+    write(tmp_path, "roslint-names.toml", 'extend-select = ["RN401"]\n')
+    result = run_cli(["check", "--format", "json", "."], tmp_path)
+    assert [code for _, code in _codes_by_path(result)].count("RN401") == 1
+    assert all(path == "talker/src/talker.cpp" for path, _ in _codes_by_path(result))
+
+
+@pytest.mark.parametrize(
+    ("path", "language", "content", "expected"),
+    [
+        ("nav2_smoother/test/test_smoother_server.cpp", Language.CPP, "", True),
+        ("rclpy/tests/conftest.py", Language.PYTHON, "", True),
+        ("test_tf2/src/speed_test.cpp", Language.CPP, "", True),  # a test package
+        ("nav2_system_tests/src/planning/planner_tester.cpp", Language.CPP, "", True),
+        ("geometry2/tf2/src/buffer_core_test.cpp", Language.CPP, "", True),
+        ("rospy_tutorials/scripts/test_on_shutdown.py", Language.PYTHON, "", True),
+        ("robot/launch/hztest.test", Language.LAUNCH_XML, "", True),
+        ("moveit_servo/launch/servo_integration.test.py", Language.LAUNCH_PYTHON, "", True),
+        ("talker/src/talker.cpp", Language.CPP, '#include "gtest/gtest.h"\n', True),
+        ("talker/scripts/check.py", Language.PYTHON, "import unittest\n", True),
+        ("talker/scripts/check.py", Language.PYTHON, "from launch_testing import x\n", True),
+        ("bringup/launch/all.launch", Language.LAUNCH_XML, '<launch><test name="t"/>', True),
+        # Not tests: a package that tests nothing, names that only contain "test".
+        ("autoware_test_utils/src/topic_snapshot_saver.cpp", Language.CPP, "", False),
+        ("hardware_interface_testing/src/mock.cpp", Language.CPP, "", False),
+        ("robot/src/latest_scan.cpp", Language.CPP, "", False),
+        ("robot/scripts/contest.py", Language.PYTHON, "# unittest-like\n", False),
+        ("robot/launch/robot.launch", Language.LAUNCH_XML, "<launch><node/></launch>", False),
+    ],
+)
+def test_test_code_conventions(
+    tmp_path: Path, path: str, language: Language, content: str, expected: bool
+) -> None:
+    assert is_test_code(path, language, content, Settings(root=tmp_path)) is expected
