@@ -173,3 +173,66 @@ def test_rn204_run_types_stay_within_their_generation(run_cli: Any, tmp_path: An
     write(tmp_path, "ros1_msgs/srv/EmptySrv.srv", "---\n")
     write_package(tmp_path / "ros1_msgs", 1, name="test_rospy")
     assert run_cli(["check", "--format", "json", "."], tmp_path).codes() == []
+
+
+# navigation2's waypoint follower, reduced: it calls robot_localization's `fromLL` (a name
+# robot_localization chose), reads the parameters of a plugin whose id the parameter file
+# chose, declares its own parameters, and serves its own service.
+WAYPOINT_FOLLOWER = """#include <memory>
+#include <string>
+
+#include "rclcpp/rclcpp.hpp"
+#include "robot_localization/srv/from_ll.hpp"
+#include "nav_msgs/msg/odometry.hpp"
+#include "std_srvs/srv/trigger.hpp"
+
+class WaypointFollower : public rclcpp::Node
+{
+public:
+  WaypointFollower() : Node("waypoint_follower")
+  {
+    declare_parameter("loop_rate", 20);
+    declare_parameter("SmoothPath.w_smooth", 0.3);
+    declare_parameter("DECLARED", 1.0);
+    double lookahead = get_parameter("FollowPath.lookaheadDist").as_double();
+    from_ll_client_ = create_client<robot_localization::srv::FromLL>("fromLL");
+    odom_sub_ = create_subscription<nav_msgs::msg::Odometry>(
+      "odomFiltered", 10, [](nav_msgs::msg::Odometry::ConstSharedPtr) {});
+    stop_service_ = create_service<std_srvs::srv::Trigger>(
+      "SERVED", [](const std::shared_ptr<std_srvs::srv::Trigger::Request>,
+                    std::shared_ptr<std_srvs::srv::Trigger::Response>) {});
+  }
+
+private:
+  rclcpp::Client<robot_localization::srv::FromLL>::SharedPtr from_ll_client_;
+  rclcpp::Subscription<nav_msgs::msg::Odometry>::SharedPtr odom_sub_;
+  rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr stop_service_;
+};
+"""
+
+
+def test_style_rules_judge_names_where_they_are_chosen(lint_text: Any) -> None:
+    """A client, a subscriber and a ROS 2 parameter read use names chosen elsewhere; a
+    parameter's plugin-id prefix is chosen in the parameter file."""
+    source = WAYPOINT_FOLLOWER.replace("DECLARED", "max_retries").replace("SERVED", "stop")
+    assert lint_text(source, "src/waypoint_follower.cpp", 2) == []
+
+
+def test_style_rules_still_judge_what_the_file_chooses(lint_text: Any) -> None:
+    source = WAYPOINT_FOLLOWER.replace("DECLARED", "SmoothPath.wCurve")
+    source = source.replace("SERVED", "StopFollowing")
+    assert lint_text(source, "src/waypoint_follower.cpp", 2) == ["RN203", "RN204"]
+
+
+def test_a_client_of_a_service_spelled_as_a_type_is_not_told_to_rename_it(
+    lint_text: Any,
+) -> None:
+    source = """import rospy
+from gazebo_msgs.srv import SetModelState
+
+rospy.init_node("teleporter")
+rospy.wait_for_service("/gazebo/SetModelState")
+set_state = rospy.ServiceProxy("/gazebo/SetModelState", SetModelState)
+"""
+    # RN202 (absolute) still applies: the client wrote the absolute form itself.
+    assert lint_text(source, "scripts/teleporter.py", 1) == ["RN202", "RN202"]

@@ -95,7 +95,7 @@ def test_rn204_named_after_another_type() -> None:
     )
     assert messages(rn204.check, file_facts) == [
         "service 'dock_robot' is called with std_srvs/Trigger but named after "
-        "docking_msgs/DockRobot; rename it after what it does"
+        "docking_msgs/DockRobot; check that the server serves std_srvs/Trigger"
     ]
 
 

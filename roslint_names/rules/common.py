@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 
-from ..model import FileFacts, Kind, Language, NameUse, Role
+from ..model import FileFacts, Generation, Kind, Language, NameUse, Role
 from ..names import Problem, check_name
 
 GRAPH_KINDS = frozenset({Kind.NODE, Kind.NAMESPACE, Kind.TOPIC, Kind.SERVICE, Kind.ACTION})
@@ -47,16 +47,50 @@ def fix_hint(problem: Problem) -> str:
     return f"; use '{problem.suggestion}'" if problem.suggestion else ""
 
 
+# Uses of a name another node chooses: the publisher chooses a topic, the server a service
+# or action; a subscriber or client spells it as they did (navigation2's waypoint follower
+# calls robot_localization's `fromLL`).
+_USING_ROLES = frozenset({Role.SUBSCRIBE, Role.CALL, Role.ACTION_CALL})
+# ROS 2 parameter APIs that use a parameter declared elsewhere (a `declare_parameter`, or a
+# parameter file under `automatically_declare_parameters_from_overrides`): only a
+# declaration chooses its name. ROS 1 has no declarations: reading one chooses it.
+_ROS2_PARAMETER_USES = frozenset(
+    {
+        "rclcpp::Node::get_parameter",
+        "rclcpp::Node::get_parameter_or",
+        "rclcpp::Node::has_parameter",
+        "rclcpp::Node::undeclare_parameter",
+        "rclcpp::Node::describe_parameter",
+        "rclpy.node.Node.get_parameter",
+        "rclpy.node.Node.get_parameter_or",
+        "rclpy.node.Node.has_parameter",
+        "rclpy.node.Node.undeclare_parameter",
+        "rclpy.node.Node.describe_parameter",
+        "rclpy.parameter.Parameter",
+    }
+)
+
+
 def chosen_here(use: NameUse, facts: FileFacts) -> bool:
     """Whether the author of this file chose the name, so a style finding is actionable.
 
-    A launch file's ``<param name>`` and ``<remap from>`` spell names the node's code
-    defines (gmapping's ``maxUrange``): the launch author cannot rename them, so style
-    rules leave them alone. The same names in code are definitions and are judged.
+    A name is judged for style where it is chosen and left alone where it is only used:
+
+    - a launch file's ``<param name>`` and ``<remap from>`` spell names the node's code
+      defines (gmapping's ``maxUrange``): the launch author cannot rename them;
+    - a subscriber, service client or action client uses the name its publisher or
+      server chose, often in another package (robot_localization's ``fromLL``);
+    - in ROS 2, reading, describing or setting a parameter uses the name its declaration
+      chose.
+
+    Node names, namespaces, publishers, servers, parameter declarations (and every ROS 1
+    parameter access) are where names are chosen, and are judged.
     """
     if facts.language in _LAUNCH_LANGUAGES:
         return use.role not in (Role.PARAMETER, Role.REMAP_FROM)
-    return True
+    if use.role in _USING_ROLES:
+        return False
+    return not (facts.generation is Generation.ROS2 and use.api in _ROS2_PARAMETER_USES)
 
 
 def spelled_as_type(use: NameUse) -> bool:

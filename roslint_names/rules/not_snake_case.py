@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..model import FileFacts, Finding, Kind, Severity
+from ..model import FileFacts, Finding, Generation, Kind, NameUse, Severity
 from ..names import check_name, is_snake_case, snake_case, tokens
 from ..rule import Rule, RuleContext
 from .common import chosen_here, label, spelled_as_type, static_uses
@@ -25,7 +25,7 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
         problem = check_name(use.value, use.kind, facts.generation)
         if problem is not None and problem.fatal:
             continue  # RN101 / RN102 report it; one problem, one finding
-        name_tokens = tokens(use.value, use.kind)
+        name_tokens = tokens(_own_part(use, facts), use.kind)
         if name_tokens and (name_tokens[-1] in TRANSPORT_SUFFIXES or spelled_as_type(use)):
             name_tokens = name_tokens[:-1]  # image_transport's spelling; RN204's finding
         bad = [token for token in name_tokens if not is_snake_case(token)]
@@ -39,6 +39,19 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             use.span,
             f"{label(use)} '{use.value}' is not lower snake_case ({quoted}); use '{fixed}'",
         )
+
+
+def _own_part(use: NameUse, facts: FileFacts) -> str:
+    """The part of the name this rule judges.
+
+    A ROS 2 parameter's ``.``-separated prefix names the instance it belongs to, chosen
+    where that instance is configured: navigation2's plugin ids (``FollowPath``,
+    ``SmoothPath``) come from the parameter file's plugin list, so ``SmoothPath.w_smooth``
+    is judged by its own token, ``w_smooth``.
+    """
+    if use.kind is Kind.PARAMETER and facts.generation is Generation.ROS2:
+        return use.value.rpartition(".")[2]
+    return use.value
 
 
 RULE = Rule(

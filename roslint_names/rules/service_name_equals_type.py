@@ -18,7 +18,7 @@ from ..model import FileFacts, Finding, Generation, Kind, NameUse, Role, Severit
 from ..names import is_valid, snake_case, tokens
 from ..rule import Rule, RuleContext
 from ..types import InterfaceType, parse_type
-from .common import spelled_as_type, static_uses
+from .common import chosen_here, spelled_as_type, static_uses
 
 # Service types every ROS developer meets, per generation, so a name after one of them is
 # recognised even when the file does not use that type. A ROS 1 service is never named
@@ -92,7 +92,7 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
         if not name_tokens:
             continue
         last = name_tokens[-1]
-        if spelled_as_type(use):
+        if spelled_as_type(use) and chosen_here(use, facts):
             yield Finding(
                 use.span,
                 f"service '{use.value}' is spelled like a type ('{last}'); "
@@ -146,10 +146,15 @@ def _by_text(item: tuple[InterfaceType, str]) -> str:
 
 
 def _wrong_type_message(use: NameUse, own: InterfaceType, other: InterfaceType) -> str:
-    verb = "served" if use.role is Role.SERVE else "called"
+    if use.role is Role.SERVE:
+        return (
+            f"service '{use.value}' is served with {own} but named after {other}; "
+            "rename it after what it does"
+        )
+    # A client uses the name its server chose: what it can fix is the type it calls with.
     return (
-        f"service '{use.value}' is {verb} with {own} but named after {other}; "
-        "rename it after what it does"
+        f"service '{use.value}' is called with {own} but named after {other}; "
+        f"check that the server serves {own}"
     )
 
 
