@@ -393,15 +393,20 @@ def _run_rules(options: argparse.Namespace) -> int:
 
 
 def rules_table(registry: Registry) -> str:
-    """Code, slug, default severity and summary of every rule, as a Markdown table."""
-    lines = ["| Code | Name | Default severity | Summary |", "|---|---|---|---|"]
+    """Code, slug, default severity, whether it judges test code by default, and summary
+    of every rule, as a Markdown table."""
+    lines = [
+        "| Code | Name | Default severity | In test code | Summary |",
+        "|---|---|---|---|---|",
+    ]
     for rule in registry.rules:
         severity = rule.severity.value
         if rule.ros1_severity is not None and rule.ros1_severity != rule.severity:
             severity += f" (ROS 1: {rule.ros1_severity.value})"
         if not rule.enabled_by_default:
             severity += ", off by default"
-        lines.append(f"| {rule.code} | {rule.name} | {severity} | {rule.summary} |")
+        tests = "yes" if rule.judges_test_code else "no"
+        lines.append(f"| {rule.code} | {rule.name} | {severity} | {tests} | {rule.summary} |")
     return "\n".join(lines)
 
 

@@ -28,6 +28,13 @@ def test_every_rule_has_a_page_with_bad_and_good_examples(rule: Any) -> None:
     assert verdicts == {"bad", "good"}, f"{rule.code}: needs Bad and Good examples"
 
 
+@pytest.mark.parametrize("rule", RULES, ids=lambda rule: rule.code)
+def test_every_page_says_whether_the_rule_judges_test_code(rule: Any) -> None:
+    markdown = load_doc(rule.code, rule.name).markdown
+    verdict = "judged" if rule.judges_test_code else "not judged"
+    assert f"## Where it applies\n\n**Test code: {verdict}.**" in markdown
+
+
 def test_no_page_without_a_rule() -> None:
     expected = {page_filename(rule.code, rule.name) for rule in RULES}
     assert {path.name for path in catalog_dir().glob("RN*.md")} == expected
