@@ -196,6 +196,56 @@ def test_two_node_tags_with_one_name_in_one_group(run_cli: Any, tmp_path: Path) 
     assert "'/front/lidar'" in found[0]["message"]
 
 
+# launch_ros' test_track_node_names.py, reduced: each test function launches its own
+# description, so the two nodes named /my_namespace/my_node never run together.
+TRACK_NODE_NAMES = """import asyncio
+
+from launch import LaunchDescription, LaunchService
+from launch_ros.actions import Node
+
+TEST_NODE_NAME = 'my_node'
+TEST_NODE_NAMESPACE = '/my_namespace'
+
+
+def _launch(launch_description):
+    ls = LaunchService()
+    ls.include_launch_description(launch_description)
+    loop = asyncio.get_event_loop()
+    loop.run_until_complete(asyncio.wait_for(ls.run_async(), 5))
+    return ls.context
+
+
+def test_launch_node_with_name():
+    node = Node(package='demo_nodes_py', executable='listener_qos',
+                name=TEST_NODE_NAME, namespace=TEST_NODE_NAMESPACE)
+    _launch(LaunchDescription([node]))
+
+
+def test_launch_node_with_name_twice():
+    node = Node(package='demo_nodes_py', executable='listener_qos',
+                name=TEST_NODE_NAME, namespace=TEST_NODE_NAMESPACE)
+    _launch(LaunchDescription([node]))
+"""
+
+
+def test_descriptions_built_apart_are_not_one_launch(run_cli: Any, tmp_path: Path) -> None:
+    write(tmp_path, "src/launch_checks/package.xml", AMENT_PACKAGE.format(name="launch_checks"))
+    write(tmp_path, "src/launch_checks/launch_checks/track_node_names.py", TRACK_NODE_NAMES)
+    assert findings(run_cli, tmp_path, ".") == []
+    # The same two nodes in one description are twins.
+    one_launch = TRACK_NODE_NAMES + (
+        "\n\ndef generate_launch_description():\n"
+        "    return LaunchDescription([\n"
+        "        Node(package='demo_nodes_py', executable='listener_qos',\n"
+        "             name=TEST_NODE_NAME, namespace=TEST_NODE_NAMESPACE),\n"
+        "        Node(package='demo_nodes_py', executable='talker',\n"
+        "             name=TEST_NODE_NAME, namespace=TEST_NODE_NAMESPACE),\n"
+        "    ])\n"
+    )
+    write(tmp_path, "src/launch_checks/launch/twins.launch.py", one_launch)
+    assert [f["code"] for f in findings(run_cli, tmp_path, ".")] == ["RN402", "RN402"]
+
+
 def test_arguments_handed_to_an_include_rename_its_nodes(run_cli: Any, tmp_path: Path) -> None:
     ros1_workspace(tmp_path)
     write(
