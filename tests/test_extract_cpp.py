@@ -578,7 +578,7 @@ def test_statements_of_macro_defined_functions_are_not_static() -> None:
         "TEST_F(TestNode, construct) {\n"
         '  auto node = std::make_shared<rclcpp::Node>("node", "ns");\n'
         "}\n"
-        'TEST(A, b) { EXPECT_THROW(std::make_shared<rclcpp::Node>("n").reset(), E); }\n'
+        'TEST(A, b) { EXPECT_NO_THROW(std::make_shared<rclcpp::Node>("n").reset()); }\n'
     )
     assert [event.static_storage for event in facts.events] == [False, False]
 

@@ -196,3 +196,86 @@ def test_test_code_conventions(
     tmp_path: Path, path: str, language: Language, content: str, expected: bool
 ) -> None:
     assert is_test_code(path, language, content, Settings(root=tmp_path)) is expected
+
+
+# rclcpp's test/rclcpp/test_node.cpp and test_publisher.cpp, reduced: names the test passes
+# to check that rclcpp refuses them, and one it means to work but misspells.
+EXPECTED_FAILURES_CPP = """#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "rclcpp/rclcpp.hpp"
+#include "rclcpp/exceptions.hpp"
+#include "std_msgs/msg/string.hpp"
+
+TEST(TestNode, construction_before_init_throws)
+{
+  EXPECT_THROW(rclcpp::Node("early_node"), rclcpp::exceptions::RCLError);
+}
+
+class TestPublisher : public ::testing::Test
+{
+protected:
+  static void SetUpTestCase() { rclcpp::init(0, nullptr); }
+};
+
+TEST_F(TestPublisher, invalid_names)
+{
+  auto node = std::make_shared<rclcpp::Node>("my_node", "/ns");
+  EXPECT_THROW(
+    std::make_shared<rclcpp::Node>("invalid_node?", "/ns"),
+    rclcpp::exceptions::InvalidNodeNameError);
+  ASSERT_THROW(
+    {
+      auto publisher = node->create_publisher<std_msgs::msg::String>("invalid_topic?", 10);
+    }, rclcpp::exceptions::InvalidTopicNameError);
+  RCLCPP_EXPECT_THROW_EQ(
+    node->create_publisher<std_msgs::msg::String>("", 10),
+    std::invalid_argument("topic name must not be empty"));
+  EXPECT_ANY_THROW(node->create_subscription<std_msgs::msg::String>(
+    "7up", 10, [](std_msgs::msg::String::ConstSharedPtr) {}));
+  ASSERT_DEATH(node->create_publisher<std_msgs::msg::String>("bad topic", 10), "");
+  try {
+    auto client = node->create_client<std_srvs::srv::Empty>("bad-service");
+    FAIL() << "create_client accepted 'bad-service'";
+  } catch (const rclcpp::exceptions::InvalidServiceNameError &) {
+  }
+  EXPECT_NO_THROW(node->create_publisher<std_msgs::msg::String>("status-out", 10));
+  auto chatter = node->create_publisher<std_msgs::msg::String>("chatter out", 10);
+}
+"""
+
+# ros_comm's test_rospy, reduced: the same two idioms in Python.
+EXPECTED_FAILURES_PY = """import unittest
+
+import rospy
+
+
+class TestRospyClient(unittest.TestCase):
+    def test_init_node(self):
+        try:
+            rospy.init_node('ns/node')
+        except ValueError:
+            pass
+        else:
+            self.fail("init_node accepted 'ns/node'")
+        try: rospy.get_param('non-existent'); self.fail("get_param succeeded")
+        except KeyError: pass
+        with self.assertRaises(ValueError):
+            rospy.Publisher('bad topic', String, queue_size=1)
+        rospy.Subscriber('chatter in', String, self.callback)
+"""
+
+
+def test_names_a_test_expects_to_fail_are_never_reported(run_cli: Any, tmp_path: Path) -> None:
+    write_package(tmp_path / "talker", 2, "talker")
+    write(tmp_path, "talker/test/test_publisher.cpp", EXPECTED_FAILURES_CPP)
+    write_package(tmp_path / "test_rospy", 1, "test_rospy")
+    write(tmp_path, "test_rospy/test/test_rospy_client.py", EXPECTED_FAILURES_PY)
+    result = run_cli(["check", "--format", "json", "."], tmp_path)
+    found = [(f["path"], f["line"], f["code"]) for f in result.findings()]
+    assert found == [
+        ("talker/test/test_publisher.cpp", 41, "RN101"),  # status-out: meant to work
+        ("talker/test/test_publisher.cpp", 42, "RN101"),  # chatter out
+        ("test_rospy/test/test_rospy_client.py", 18, "RN101"),  # chatter in
+    ]

@@ -32,6 +32,7 @@ from roslint_names.model import (
 
 from .cpp_apis import CALL_WORDS, CONSTRUCTED_TYPES, FRAME_FIELDS
 from .cpp_events import INIT_WORDS, handle_event, init_event
+from .cpp_expected import ExpectedFailures
 from .cpp_handles import Handles
 from .cpp_objects import (
     NODE_BASES,
@@ -153,7 +154,12 @@ def facts_of(source: Source) -> tuple[list[NameUse], list[RuntimeEvent]]:
             sites.base_initializer(word, node)
         elif word in CALL_WORDS:
             sites.call(word, node)
-    return list(dict.fromkeys(sites.names)), list(dict.fromkeys(events))
+    names, events = list(dict.fromkeys(sites.names)), list(dict.fromkeys(events))
+    expected = ExpectedFailures(source)
+    return (
+        [use for use in names if not expected.holds(use.span)],
+        [event for event in events if not expected.holds(event.span)],
+    )
 
 
 def _constructions(
