@@ -240,6 +240,8 @@ TEST_F(TestPublisher, invalid_names)
     FAIL() << "create_client accepted 'bad-service'";
   } catch (const rclcpp::exceptions::InvalidServiceNameError &) {
   }
+  tf2::BufferCore buffer;
+  EXPECT_FALSE(buffer.canTransform("", "base_link", tf2::TimePointZero));
   EXPECT_NO_THROW(node->create_publisher<std_msgs::msg::String>("status-out", 10));
   auto chatter = node->create_publisher<std_msgs::msg::String>("chatter out", 10);
 }
@@ -261,6 +263,7 @@ class TestRospyClient(unittest.TestCase):
             self.fail("init_node accepted 'ns/node'")
         try: rospy.get_param('non-existent'); self.fail("get_param succeeded")
         except KeyError: pass
+        self.assertFalse(rospy.has_param('non-existent'))
         with self.assertRaises(ValueError):
             rospy.Publisher('bad topic', String, queue_size=1)
         rospy.Subscriber('chatter in', String, self.callback)
@@ -275,7 +278,7 @@ def test_names_a_test_expects_to_fail_are_never_reported(run_cli: Any, tmp_path:
     result = run_cli(["check", "--format", "json", "."], tmp_path)
     found = [(f["path"], f["line"], f["code"]) for f in result.findings()]
     assert found == [
-        ("talker/test/test_publisher.cpp", 41, "RN101"),  # status-out: meant to work
-        ("talker/test/test_publisher.cpp", 42, "RN101"),  # chatter out
-        ("test_rospy/test/test_rospy_client.py", 18, "RN101"),  # chatter in
+        ("talker/test/test_publisher.cpp", 43, "RN101"),  # status-out: meant to work
+        ("talker/test/test_publisher.cpp", 44, "RN101"),  # chatter out
+        ("test_rospy/test/test_rospy_client.py", 19, "RN101"),  # chatter in
     ]

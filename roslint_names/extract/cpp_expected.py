@@ -2,7 +2,9 @@
 
 gtest's ``EXPECT_THROW``, ``ASSERT_THROW``, ``EXPECT_ANY_THROW``, ``ASSERT_ANY_THROW`` and
 their wrappers (rclcpp's ``RCLCPP_EXPECT_THROW_EQ``) run a statement that must throw; the
-death tests (``EXPECT_DEATH``, ``ASSERT_EXIT``...) one that must crash. A ``try`` block
+death tests (``EXPECT_DEATH``, ``ASSERT_EXIT``...) one that must crash; ``EXPECT_FALSE`` and
+``ASSERT_FALSE`` a call that must come out false, a probe of what is refused or absent
+(tf2's ``EXPECT_FALSE(buffer.canTransform("", "a", ros::Time()))``). A ``try`` block
 that reaches ``FAIL()`` or ``ADD_FAILURE()`` expects what runs before it to throw (ros_comm's
 ``test_roscpp``: ``try { ros::NodeHandle n(parent, "illegal_name!!!"); FAIL(); } catch``).
 ``EXPECT_NO_THROW`` and ``ASSERT_NO_THROW`` expect success: their names are judged.
@@ -22,8 +24,9 @@ from .cpp_source import Source, field
 _EXPECTING = re.compile(
     rb"\b(?:\w+_)?(?:EXPECT|ASSERT)_(?:ANY_)?THROW(?:_EQ)?\b"
     rb"|\b(?:EXPECT|ASSERT)_(?:DEBUG_)?(?:DEATH|EXIT)(?:_IF_SUPPORTED)?\b"
+    rb"|\b(?:EXPECT|ASSERT)_FALSE\b"
 )
-_MARKERS = (b"_THROW", b"_DEATH", b"_EXIT")  # what every macro of _EXPECTING holds
+_MARKERS = (b"_THROW", b"_DEATH", b"_EXIT", b"_FALSE")  # one is in every macro of _EXPECTING
 _FAILURES = ("FAIL", "ADD_FAILURE", "GTEST_FAIL")
 
 

@@ -23,6 +23,7 @@ from roslint_names.extract.python_scope import (
 )
 
 _RAISES = frozenset({"raises", "assertRaises", "assertRaisesRegex", "assertRaisesRegexp"})
+_PROBES = frozenset({"assertFalse", "failIf"})  # unittest's, on self
 # Fields that hold only whitespace, punctuation and comments: never a name or a call.
 _SKIPPED_FIELDS = frozenset(
     {
@@ -359,6 +360,8 @@ class Walk:
             assert isinstance(node, cst.Call)
             self.calls.append(CallSite(node, context, self._order))
             within = context.inside(node)
+            if not context.expected_failure and _probes_failure(node):
+                within = dataclasses.replace(within, expected_failure=True)
             for child in _children(node):
                 self.expression(child, within)
         elif kind is cst.Lambda:
@@ -436,6 +439,13 @@ def _try_expects_failure(statement: cst.Try) -> bool:
         if isinstance(line, cst.SimpleStatementLine | cst.SimpleStatementSuite)
         for small in line.body
     )
+
+
+def _probes_failure(call: cst.Call) -> bool:
+    """``self.assertFalse(rospy.has_param('non-existent'))``: the call must come out false,
+    a probe of what is refused or absent, not a use of the name."""
+    func = call.func
+    return isinstance(func, cst.Attribute) and func.attr.value in _PROBES
 
 
 def _fails(small: cst.BaseSmallStatement) -> bool:
