@@ -327,6 +327,87 @@ def test_a_node_remap_its_code_never_uses(run_cli: Any, tmp_path: Path) -> None:
     assert "'/cmd_vel'" in found[0]["message"]  # what the node does use
 
 
+def test_an_illegal_name_is_a_known_use_ros1(run_cli: Any, tmp_path: Path) -> None:
+    """RN101 reports 'cmd_vel-smooth'; it is still a name the node uses, so the other
+    names are all known and the dead remap is found."""
+    ros1_workspace(tmp_path)
+    smoother = SMOOTHER_CPP.replace('"cmd_vel_smooth"', '"cmd_vel-smooth"')
+    write(tmp_path, "src/turtle_base/src/velocity_smoother.cpp", smoother)
+    write(
+        tmp_path,
+        "src/turtle_base/launch/smoother.launch",
+        "<launch>\n"
+        '  <node name="velocity_smoother" pkg="turtle_base" type="velocity_smoother">\n'
+        '    <remap from="cmd_vel_raw" to="teleop/cmd_vel"/>\n'
+        "  </node>\n"
+        "</launch>\n",
+    )
+    found = findings(run_cli, tmp_path, ".", select="RN404")
+    assert [(f["code"], f["path"], f["line"]) for f in found] == [
+        ("RN404", "src/turtle_base/launch/smoother.launch", 3)
+    ]
+    assert "'/cmd_vel-smooth'" in found[0]["message"]  # among the names it does use
+
+
+STATUS_NODE_CPP = """\
+#include <memory>
+
+#include "geometry_msgs/msg/twist.hpp"
+#include "rclcpp/rclcpp.hpp"
+#include "std_msgs/msg/string.hpp"
+
+class BaseStatus : public rclcpp::Node
+{
+public:
+  BaseStatus() : Node("base_status")
+  {
+    status_pub_ = create_publisher<std_msgs::msg::String>("status/", 10);
+    cmd_sub_ = create_subscription<geometry_msgs::msg::Twist>(
+      "cmd_vel", 10, [](geometry_msgs::msg::Twist::ConstSharedPtr) {});
+  }
+
+private:
+  rclcpp::Publisher<std_msgs::msg::String>::SharedPtr status_pub_;
+  rclcpp::Subscription<geometry_msgs::msg::Twist>::SharedPtr cmd_sub_;
+};
+
+int main(int argc, char ** argv)
+{
+  rclcpp::init(argc, argv);
+  rclcpp::spin(std::make_shared<BaseStatus>());
+  rclcpp::shutdown();
+}
+"""
+
+
+def test_an_illegal_name_is_a_known_use_ros2(run_cli: Any, tmp_path: Path) -> None:
+    """'status/' fails in rcl (RN102), but the node's names are known: the 'odom' remap
+    renames nothing, the 'status' one matches the name as spelled."""
+    write(tmp_path, "src/base_status/package.xml", AMENT_PACKAGE.format(name="base_status"))
+    write(
+        tmp_path,
+        "src/base_status/CMakeLists.txt",
+        "cmake_minimum_required(VERSION 3.8)\nproject(base_status)\n"
+        "find_package(ament_cmake REQUIRED)\nfind_package(rclcpp REQUIRED)\n"
+        "add_executable(base_status src/base_status.cpp)\nament_package()\n",
+    )
+    write(tmp_path, "src/base_status/src/base_status.cpp", STATUS_NODE_CPP)
+    write(
+        tmp_path,
+        "src/base_status/launch/base.launch.xml",
+        "<launch>\n"
+        '  <node pkg="base_status" exec="base_status" name="base_status">\n'
+        '    <remap from="odom" to="/robot/odom"/>\n'
+        '    <remap from="status" to="/robot/status"/>\n'
+        "  </node>\n"
+        "</launch>\n",
+    )
+    found = findings(run_cli, tmp_path, ".", select="RN404")
+    assert [(f["code"], f["path"], f["line"]) for f in found] == [
+        ("RN404", "src/base_status/launch/base.launch.xml", 3)
+    ]
+
+
 def test_a_per_file_run_sees_the_workspace_but_reports_only_its_files(
     run_cli: Any, tmp_path: Path
 ) -> None:

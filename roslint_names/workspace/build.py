@@ -10,6 +10,7 @@ compared pairwise, so building costs about the sum of the extractions.
 from __future__ import annotations
 
 import posixpath
+import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
@@ -294,7 +295,13 @@ def _resolve_code(
                 continue
             resolved, certain = _resolve_use(use, facts.language, instance)
             if resolved is None:
-                complete = False
+                # An illegal name is still a known one (RN101/RN102 report it): the remap
+                # of its spelling is no less used. It joins no endpoint: rcl refuses it.
+                spelled = None if use.dynamic else _spelled_out(use.value, instance)
+                if spelled is None:
+                    complete = False
+                else:
+                    uses.add(spelled)
                 continue
             uses.add(resolved)
             if not certain:
@@ -344,6 +351,21 @@ def _resolve_use(use: NameUse, language: Language, instance: _Instance) -> tuple
                 return None, False
     resolved = _resolve_quietly(use.value, _Instance(instance.name, namespace, instance.generation))
     return resolved, certain and resolved is not None
+
+
+def _spelled_out(name: str, instance: _Instance) -> str | None:
+    """An illegal name resolved by its spelling, as a remap rule would be matched against
+    it: ``status/`` in ``/robot`` is ``/robot/status``; None when the spelling leaves
+    nothing to match (an empty name, a substitution)."""
+    body = re.sub(r"/+", "/", name).rstrip("/")
+    if not body or "{" in body:
+        return None
+    namespace = instance.namespace.rstrip("/")
+    if body.startswith("~"):
+        return f"{namespace}/{instance.name}/{body[1:].lstrip('/')}".rstrip("/")
+    if body.startswith("/"):
+        return body
+    return f"{namespace}/{body}"
 
 
 def _resolve_quietly(name: str, instance: _Instance) -> str | None:
