@@ -279,7 +279,7 @@ def test_conditional_arg_pair_resolves() -> None:
     assert values(facts) == [(Kind.NAMESPACE, "sim")]
 
 
-def test_statically_false_conditions_skip_elements_and_children() -> None:
+def test_statically_false_conditions_start_nothing_but_their_names_are_read() -> None:
     facts = ros1(
         '<launch><arg name="on" default="false"/>'
         '<group if="false"><node name="a" pkg="p" type="t"/></group>'
@@ -289,7 +289,9 @@ def test_statically_false_conditions_skip_elements_and_children() -> None:
         '<node name="e" pkg="p" type="t" if="$(optenv USE_E true)"/>'
         "</launch>"
     )
-    assert values(facts) == [(Kind.NODE, "d"), (Kind.NODE, "e")]
+    assert [node.name for node in facts.launch_nodes] == ["d", "e"]
+    # Per-file rules see every branch's names: a typo in an off branch is still a typo.
+    assert values(facts) == [(Kind.NODE, name) for name in "abcde"]
 
 
 def test_unresolvable_substitutions_are_dynamic() -> None:
@@ -434,7 +436,8 @@ def test_ros2_conditions() -> None:
         '<node pkg="p" exec="e" name="a" if="$(var sim)"/>'
         '<node pkg="p" exec="e" name="b" unless="$(var sim)"/></launch>'
     )
-    assert values(facts) == [(Kind.NODE, "b")]
+    assert [node.name for node in facts.launch_nodes] == ["b"]
+    assert values(facts) == [(Kind.NODE, "a"), (Kind.NODE, "b")]
 
 
 def test_ros1_substitutions_are_dynamic_in_ros2_and_back() -> None:

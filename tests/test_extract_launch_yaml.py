@@ -101,8 +101,10 @@ def test_let_arg_and_conditions() -> None:
     )
     assert [(use.value, use.dynamic) for use in facts.names] == [
         ("r1_driver", False),
+        ("skipped", False),  # an off branch starts nothing, but its names are read
         ("$(var unknown)", True),
     ]
+    assert [node.name for node in facts.launch_nodes] == ["r1_driver", None]
 
 
 def test_composable_nodes() -> None:

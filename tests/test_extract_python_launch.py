@@ -116,6 +116,8 @@ def test_nav2_style_bringup_names_and_spans() -> None:
         ("node", "node-name", "controller_server", "/robot1", 55, 30),
         ("topic", "remap-from", "cmd_vel", "/robot1", 56, 38),
         ("topic", "remap-to", "cmd_vel_nav", "/robot1", 56, 49),
+        # off by default (IfCondition(use_rviz)): it starts nothing, its name is checked
+        ("node", "node-name", "rviz2", "/", 67, 14),
         ("node", "node-name", "lifecycle_manager", "/global", 80, 18),
         ("namespace", "namespace", "/global", "/", 81, 23),
     ]

@@ -236,3 +236,103 @@ set_state = rospy.ServiceProxy("/gazebo/SetModelState", SetModelState)
 """
     # RN202 (absolute) still applies: the client wrote the absolute form itself.
     assert lint_text(source, "scripts/teleporter.py", 1) == ["RN202", "RN202"]
+
+
+# A teleop bringup: the keyboard branch is off unless `keyboard:=true` is passed, so a run
+# under the defaults never starts it; its mistakes still wait there for the first user who
+# turns it on.
+TELEOP_ROS1 = """<launch>
+  <arg name="keyboard" default="false"/>
+  <arg name="joy_dev" default="/dev/input/js0"/>
+
+  <node pkg="joy" type="joy_node" name="joy_node">
+    <param name="dev" value="$(arg joy_dev)"/>
+  </node>
+
+  <group if="$(arg keyboard)">
+    <node pkg="teleop_twist_keyboard" type="teleop_twist_keyboard.py" name="teleopTwistKb"/>
+    <group ns="drive//kb_teleop">
+      <node pkg="teleop_twist_keyboard" type="teleop_twist_keyboard.py" name="kb teleop"/>
+    </group>
+  </group>
+  <node pkg="joy" type="joy_node" name="joy_node" if="$(arg keyboard)">
+    <remap from="joy" to="kb/joy"/>
+  </node>
+</launch>
+"""
+
+TELEOP_ROS2_XML = """<launch>
+  <arg name="keyboard" default="false"/>
+  <node pkg="joy" exec="joy_node" name="joy_node"/>
+  <group if="$(var keyboard)">
+    <push-ros-namespace namespace="drive//kb_teleop"/>
+    <node pkg="teleop_twist_keyboard" exec="teleop_twist_keyboard" name="teleopTwistKb"/>
+    <node pkg="teleop_twist_keyboard" exec="teleop_twist_keyboard" name="kb teleop"/>
+  </group>
+</launch>
+"""
+
+TELEOP_ROS2_YAML = """launch:
+- arg: {name: keyboard, default: 'false'}
+- node: {pkg: joy, exec: joy_node, name: joy_node}
+- group:
+    if: $(var keyboard)
+    children:
+    - push-ros-namespace: {namespace: drive//kb_teleop}
+    - node: {pkg: teleop_twist_keyboard, exec: teleop_twist_keyboard, name: teleopTwistKb}
+    - node: {pkg: teleop_twist_keyboard, exec: teleop_twist_keyboard, name: kb teleop}
+"""
+
+TELEOP_ROS2_PY = """from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, GroupAction
+from launch.conditions import IfCondition
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node, PushRosNamespace
+
+
+def generate_launch_description():
+    keyboard = LaunchConfiguration('use_keyboard')
+    return LaunchDescription([
+        DeclareLaunchArgument('use_keyboard', default_value='false'),
+        Node(package='joy', executable='joy_node', name='joy_node'),
+        GroupAction(
+            condition=IfCondition(keyboard),
+            actions=[
+                PushRosNamespace('drive//kb_teleop'),
+                Node(package='teleop_twist_keyboard', executable='teleop_twist_keyboard',
+                     name='teleopTwistKb'),
+            ],
+        ),
+        Node(package='teleop_twist_keyboard', executable='teleop_twist_keyboard',
+             name='kb teleop', condition=IfCondition(keyboard)),
+    ])
+"""
+
+
+def test_every_branch_of_a_launch_file_is_checked(lint_text: Any) -> None:
+    # teleopTwistKb (RN203), drive//kb_teleop and 'kb teleop' (RN101), each in a branch
+    # the defaults turn off.
+    assert sorted(lint_text(TELEOP_ROS1, "launch/teleop.launch", 1)) == [
+        "RN101",
+        "RN101",
+        "RN203",
+    ]
+    for source, file in (
+        (TELEOP_ROS2_XML, "launch/teleop.launch.xml"),
+        (TELEOP_ROS2_YAML, "launch/teleop.launch.yaml"),
+        (TELEOP_ROS2_PY, "launch/teleop.launch.py"),
+    ):
+        assert sorted(lint_text(source, file, 2)) == ["RN101", "RN101", "RN203"], file
+
+
+def test_graph_rules_see_only_the_branches_the_defaults_start(lint_text: Any) -> None:
+    """Both joy_node starts are one node twice only with keyboard:=true; under the
+    defaults the second is off, so RN402 stays quiet, and so does RN404 for its remap."""
+    fixed = TELEOP_ROS1.replace('name="teleopTwistKb"', 'name="teleop_twist_kb"')
+    fixed = fixed.replace('ns="drive//kb_teleop"', 'ns="drive/kb_teleop"')
+    fixed = fixed.replace('name="kb teleop"', 'name="kb_teleop"')
+    assert lint_text(fixed, "launch/teleop.launch", 1) == []
+    on = fixed.replace(
+        '<arg name="keyboard" default="false"/>', '<arg name="keyboard" default="true"/>'
+    )
+    assert lint_text(on, "launch/teleop.launch", 1) == ["RN402", "RN402"]

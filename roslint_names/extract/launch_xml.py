@@ -170,6 +170,9 @@ class Scope:
     global_lookup: Lookup | None = None
     anchored: bool = False
     conditional: bool = False  # inside a group whose condition is not statically known
+    # Inside what a condition statically drops (``if="false"`` under the arguments in
+    # force): its names are still checked, but it starts and includes nothing.
+    inactive: bool = False
 
     @property
     def lookup(self) -> Lookup:
@@ -183,6 +186,7 @@ class Scope:
             self.global_lookup,
             self.anchored,
             self.conditional,
+            self.inactive,
         )
 
     def enter(self, value: Value) -> None:
@@ -277,6 +281,16 @@ class LaunchWalker(ABC):
             unless_attr is not None and truth(self.value(unless_attr, scope)) is not False
         )
 
+    def branch(self, entity: Entity, scope: Scope) -> Scope:
+        """The scope to read ``entity`` in: ``scope``, or an inactive copy of it when a
+        condition statically drops the entity. Per-file rules see every name of every
+        branch; the graph sees only what the arguments in force start."""
+        if scope.inactive or not self.skipped(entity, scope):
+            return scope
+        inactive = scope.copy()
+        inactive.inactive = True
+        return inactive
+
     def skipped(self, entity: Entity, scope: Scope) -> bool:
         if_attr, unless_attr = entity.get("if"), entity.get("unless")
         return skipped(
@@ -337,6 +351,8 @@ class LaunchWalker(ABC):
         line_remaps, line_parameters = self.command_line_names(arguments, namespace, path)
         child_remaps, child_parameters = self.node_contents(entity, scope, namespace, path)
         own_remaps = child_remaps + line_remaps
+        if scope.inactive:
+            return
         self.nodes.append(
             LaunchNode(
                 package=self.static(entity, "pkg", scope),
@@ -372,6 +388,8 @@ class LaunchWalker(ABC):
             if value is not None:
                 inner.enter(value)
         located = entity.get("file")
+        if scope.inactive:
+            return
         target = UNKNOWN
         if located is not None and not located.opaque:  # opaque: unexpanded entities
             target = locate(located.text, self.dialect, scope.lookup)
@@ -505,24 +523,23 @@ class Ros1Launch(LaunchWalker):
     def walk(self, entities: Sequence[Entity], parent: Scope) -> None:
         scope = parent.copy()  # remaps declared here stay in this group
         for entity in entities:
-            if self.skipped(entity, scope):
-                continue
+            here = self.branch(entity, scope)  # an inactive copy leaks nothing to scope
             kind = entity.kind
             if kind == "group":
-                self.group(entity, scope)
+                self.group(entity, here)
             elif kind in ("node", "test"):
-                self.node(entity, scope, _ROS1_NODE)
+                self.node(entity, here, _ROS1_NODE)
             elif kind == "remap":
-                remap = self.remap(entity, scope, scope.namespace)
-                scope.remaps.extend([remap] if remap else [])
+                remap = self.remap(entity, here, here.namespace)
+                here.remaps.extend([remap] if remap else [])
             elif kind == "param":
-                self.param(entity, scope, scope.namespace)
+                self.param(entity, here, here.namespace)
             elif kind == "rosparam":
-                self.rosparam(entity, scope, scope.namespace)
+                self.rosparam(entity, here, here.namespace)
             elif kind == "include":
-                self.include(entity, scope, "ns")
+                self.include(entity, here, "ns")
             elif kind not in _ROS1_IGNORED:
-                self.walk(entity.children(), scope)
+                self.walk(entity.children(), here)
 
     def group(self, entity: Entity, scope: Scope) -> None:
         inner = scope.copy()
@@ -575,17 +592,20 @@ class Ros1Launch(LaunchWalker):
         remaps: list[Remap] = []
         parameters: list[str] = []
         for child in entity.children():
-            if self.skipped(child, scope):
-                continue
+            here = self.branch(child, scope)
+            found: Remap | str | None = None
             if child.kind == "remap":
-                remap = self.remap(child, scope, namespace)
-                remaps.extend([remap] if remap else [])
+                found = self.remap(child, here, namespace)
             elif child.kind == "param":
-                parameter = self.param(child, scope, path)
-                parameters.extend([parameter] if parameter else [])
+                found = self.param(child, here, path)
             elif child.kind == "rosparam":
-                parameter = self.rosparam(child, scope, path)
-                parameters.extend([parameter] if parameter else [])
+                found = self.rosparam(child, here, path)
+            if found is None or here.inactive:
+                continue
+            if isinstance(found, Remap):
+                remaps.append(found)
+            else:
+                parameters.append(found)
         return remaps, parameters
 
 
@@ -669,29 +689,28 @@ class Ros2Launch(LaunchWalker):
 
     def walk(self, entities: Sequence[Entity], scope: Scope) -> None:
         for entity in entities:
-            if self.skipped(entity, scope):
-                continue
+            here = self.branch(entity, scope)  # an inactive copy leaks nothing to scope
             kind = entity.kind
             if kind in ("let", "arg"):
-                self.variable(entity, scope)
+                self.variable(entity, here)
             elif kind == "group":
-                self.group(entity, scope)
+                self.group(entity, here)
             elif kind in _ROS2_PUSH:
-                self.push_namespace(entity, scope)
+                self.push_namespace(entity, here)
             elif kind in ("set_remap", "remap"):
-                remap = self.remap(entity, scope, scope.namespace)
-                scope.remaps.extend([remap] if remap else [])
+                remap = self.remap(entity, here, here.namespace)
+                here.remaps.extend([remap] if remap else [])
             elif kind == "set_parameter":
-                self.parameters([entity], scope, "", scope.namespace)
+                self.parameters([entity], here, "", here.namespace)
             elif kind in _ROS2_NODES:
-                self.node(entity, scope, _ROS2_NODE)
-                self.composable_nodes(entity, scope)
+                self.node(entity, here, _ROS2_NODE)
+                self.composable_nodes(entity, here)
             elif kind == "load_composable_node":
-                self.composable_nodes(entity, scope)
+                self.composable_nodes(entity, here)
             elif kind == "include":
-                self.include(entity, scope, None)  # its <arg>s go to another file
+                self.include(entity, here, None)  # its <arg>s go to another file
             elif kind not in _ROS2_LEAVES:
-                self.walk(entity.children(), scope)
+                self.walk(entity.children(), here)
 
     def variable(self, entity: Entity, scope: Scope) -> None:
         """``<let name value>`` sets; ``<arg name default>`` sets unless already set."""
@@ -731,8 +750,7 @@ class Ros2Launch(LaunchWalker):
     def composable_nodes(self, entity: Entity, scope: Scope) -> None:
         """Composable nodes get the pushed namespace, not their container's."""
         for description in entity.nested("composable_node"):
-            if not self.skipped(description, scope):
-                self.node(description, scope, _ROS2_COMPOSABLE)
+            self.node(description, self.branch(description, scope), _ROS2_COMPOSABLE)
 
     def parameters(
         self,
@@ -778,8 +796,9 @@ class Ros2Launch(LaunchWalker):
     ) -> tuple[list[Remap], list[str]]:
         remaps: list[Remap] = []
         for child in entity.nested("remap"):
-            remap = self.remap(child, scope, namespace)
-            remaps.extend([remap] if remap else [])
+            here = self.branch(child, scope)
+            remap = self.remap(child, here, namespace)
+            remaps.extend([remap] if remap and not here.inactive else [])
         return remaps, self.parameters(entity.nested("param"), scope, "", path)
 
 

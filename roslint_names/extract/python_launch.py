@@ -89,6 +89,7 @@ class LaunchExtractor(LaunchValues):
         self.includes: list[LaunchInclude] = []
         self.found_actions = False
         self.undecided_depth = 0  # conditions of enclosing actions not statically known
+        self.inactive_depth = 0  # enclosing actions a condition statically turns off
         self._visited: set[tuple[int, tuple[int, ...]]] = set()  # (call, frames)
         self._reached: set[int] = set()  # calls visited in any frames
         self._emitted: set[tuple[int, Fact]] = set()
@@ -134,7 +135,15 @@ class LaunchExtractor(LaunchValues):
         self.found_actions = True
         saved, self.frames = self.frames, action.frames
         try:
-            if not self.excluded(action, scope):
+            if self.excluded(action, scope):
+                # Statically off: its names are still checked, but it starts nothing,
+                # and what it would push or set stays in a copy of the scope.
+                self.inactive_depth += 1
+                try:
+                    self.visit_kind(action, scope.copy())
+                finally:
+                    self.inactive_depth -= 1
+            else:
                 undecided = self.undecided(action, scope)
                 self.undecided_depth += undecided
                 try:
@@ -307,6 +316,8 @@ class LaunchExtractor(LaunchValues):
         configurations are not per file), then the explicit arguments over them."""
         package, where = (None, None) if path is None else self.paths.locate(path, scope)
         handed = self.configurations(scope) | explicit
+        if self.inactive_depth:
+            return
         self.includes.append(
             LaunchInclude(
                 package=package,
@@ -360,6 +371,8 @@ class LaunchExtractor(LaunchValues):
         parameters = self.parameters(action, scope, node_path(namespace, name), label)
         composable = action.kind is Action.COMPOSABLE
         executable = ":plugin|node_plugin" if composable else ":executable|node_executable"
+        if self.inactive_depth:
+            return
         self.nodes.append(
             LaunchNode(
                 package=self.static(action.get(":package"), scope),
