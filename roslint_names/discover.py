@@ -25,6 +25,10 @@ SNIFF_BYTES = 64 * 1024
 
 _CPP_SUFFIXES = frozenset({".cpp", ".cc", ".cxx", ".c++", ".hpp", ".hh", ".hxx", ".h", ".ipp"})
 _YAML_LAUNCH_KEY = re.compile(rb"^launch\s*:", re.MULTILINE)
+# `#!/usr/bin/env python3`, `#!/usr/bin/python`, `#!/usr/bin/env -S python3 -u`: the line
+# catkin_install_python rewrites and every ROS script without a `.py` suffix starts with.
+_PYTHON_SHEBANG = re.compile(rb"#![ \t]*\S*?(?:/env(?:[ \t]+-\S+)*[ \t]+|/)python[0-9.]*(?:\s|$)")
+_SHEBANG_BYTES = 128
 
 
 class DiscoveryError(Exception):
@@ -51,6 +55,7 @@ class _Sniff(Enum):
 
     XML = "xml"
     YAML = "yaml"
+    SCRIPT = "script"  # no suffix at all: a ROS script is Python by its shebang
 
 
 def classify(path: Path) -> Language | None:
@@ -63,6 +68,8 @@ def _decide(path: Path, by_name: Language | _Sniff | None) -> Language | None:
         return _sniff_xml(path)
     if by_name is _Sniff.YAML:
         return Language.LAUNCH_YAML if _YAML_LAUNCH_KEY.search(_head(path)) else None
+    if by_name is _Sniff.SCRIPT:
+        return Language.PYTHON if _PYTHON_SHEBANG.match(_head(path, _SHEBANG_BYTES)) else None
     return by_name
 
 
@@ -92,6 +99,8 @@ def _by_name(file_name: str) -> Language | _Sniff | None:
         return _Sniff.XML
     if suffix in (".yaml", ".yml"):
         return _Sniff.YAML
+    if "." not in name:
+        return _Sniff.SCRIPT  # catkin's scripts/talker, ament's installed tools
     return None
 
 
@@ -106,10 +115,10 @@ def _sniff_xml(path: Path) -> Language | None:
     return None
 
 
-def _head(path: Path) -> bytes:
+def _head(path: Path, size: int = SNIFF_BYTES) -> bytes:
     try:
         with path.open("rb") as stream:
-            return stream.read(SNIFF_BYTES)
+            return stream.read(size)
     except OSError:
         return b""  # unreadable: classified by name only, and reported when read for real
 

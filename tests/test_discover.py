@@ -36,6 +36,13 @@ from roslint_names.model import Generation, Language
         ("setup.py", "from setuptools import setup\n", Language.SETUP_PY),
         ("setup.cfg", "[options.entry_points]\n", Language.SETUP_CFG),
         ("notes.txt", "", None),
+        # A ROS script installed without a suffix: Python by its shebang, nothing else is.
+        ("map_hash_generator", "#!/usr/bin/env python3\nimport rclpy\n", Language.PYTHON),
+        ("talker", "#!/usr/bin/python\nimport rospy\n", Language.PYTHON),
+        ("relay", "#!/usr/bin/env -S python3 -u\n", Language.PYTHON),
+        ("setup_env", "#!/bin/bash\nsource /opt/ros/noetic/setup.bash\n", None),
+        ("LICENSE", "BSD 3-Clause License\n", None),
+        (".gitignore", "build/\n", None),
     ],
 )
 def test_classify(tmp_path: Path, name: str, text: str, language: Language | None) -> None:
@@ -163,3 +170,17 @@ def test_the_one_regex_per_gitignore_agrees_with_pathspec(lines: list[str]) -> N
     ours = _Spec(lines)
     for path in PATHS:
         assert ours.match_file(path) == exact.match_file(path), path
+
+
+def test_extension_less_scripts_are_found_by_shebang_walked_or_named(tmp_path: Path) -> None:
+    write(tmp_path, "src/teleop/scripts/teleop_keyboard", "#!/usr/bin/env python\nimport rospy\n")
+    write(tmp_path, "src/teleop/scripts/setup_udev", "#!/bin/sh\necho udev\n")
+    write(tmp_path, "src/teleop/Makefile", "all:\n\ttrue\n")
+    walked = discover([Path(".")], (), tmp_path, tmp_path)
+    assert [(s.display, s.language) for s in walked] == [
+        ("src/teleop/scripts/teleop_keyboard", Language.PYTHON)
+    ]
+    named = [Path("src/teleop/scripts/teleop_keyboard"), Path("src/teleop/Makefile")]
+    assert [s.display for s in discover(named, (), tmp_path, tmp_path)] == [
+        "src/teleop/scripts/teleop_keyboard"
+    ]

@@ -32,6 +32,21 @@ BAD_LAUNCH = """<launch>
 </launch>
 """
 GOOD_LAUNCH = BAD_LAUNCH.replace("base-driver", "base_driver")
+# A catkin node installed without a suffix (catkin_install_python(PROGRAMS scripts/teleop)),
+# and a rostest file: neither has a suffix pre-commit's file types know.
+BAD_SCRIPT = """#!/usr/bin/env python
+import rospy
+from geometry_msgs.msg import Twist
+
+rospy.init_node("teleop-keyboard")
+pub = rospy.Publisher("cmd_vel", Twist, queue_size=1)
+rospy.spin()
+"""
+BAD_ROSTEST = """<launch>
+  <node name="base_driver" pkg="robot_base" type="driver_node"/>
+  <test test-name="odom_hz" pkg="rostest" type="hztest" name="odom hz"/>
+</launch>
+"""
 
 
 def git(cwd: Path, *arguments: str) -> None:
@@ -57,6 +72,13 @@ def test_hook_fails_on_a_bad_launch_file_and_passes_once_fixed(tmp_path: Path) -
     launch = project / "src" / "robot_bringup" / "launch" / "robot.launch"
     launch.parent.mkdir(parents=True)
     launch.write_text(BAD_LAUNCH, encoding="utf-8")
+    script = project / "src" / "robot_bringup" / "scripts" / "teleop"
+    script.parent.mkdir()
+    script.write_text(BAD_SCRIPT, encoding="utf-8")  # not executable: no `python` tag either
+    rostest = project / "src" / "robot_bringup" / "test" / "odom.test"
+    rostest.parent.mkdir()
+    rostest.write_text(BAD_ROSTEST, encoding="utf-8")
+    (project / "LICENSE").write_text("BSD 3-Clause License\n", encoding="utf-8")
     (project / ".pre-commit-config.yaml").write_text(
         f"repos:\n- repo: {hook_repository}\n  rev: {revision}\n  hooks:\n  - id: roslint-names\n",
         encoding="utf-8",
@@ -84,8 +106,14 @@ def test_hook_fails_on_a_bad_launch_file_and_passes_once_fixed(tmp_path: Path) -
         failed.stdout
     )
     assert "RN101 illegal-name" in failed.stdout
+    assert "src/robot_bringup/scripts/teleop:5:17: error: node name 'teleop-keyboard'" in (
+        failed.stdout
+    )
+    assert "src/robot_bringup/test/odom.test:3:63: error: node name 'odom hz'" in failed.stdout
 
     launch.write_text(GOOD_LAUNCH, encoding="utf-8")
+    script.write_text(BAD_SCRIPT.replace("teleop-keyboard", "teleop_keyboard"), encoding="utf-8")
+    rostest.write_text(BAD_ROSTEST.replace("odom hz", "odom_hz"), encoding="utf-8")
     commit_all(project)
     passed = run_hooks()
     assert passed.returncode == 0, passed.stdout + passed.stderr
