@@ -34,7 +34,7 @@ from .model import (
     RelatedLocation,
     Span,
 )
-from .reading import content_digest, read_file
+from .reading import BINARY, bom_encoding, content_digest, read_file
 from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
 from .run_inputs import RunInputs
@@ -242,6 +242,9 @@ def lint(
                 (data, read_error, skip), key = inputs.read(index, source)
             else:
                 data, read_error, skip = read_file(source.path, settings.max_file_size)
+            if skip == BINARY:  # a source that is not text is a finding, never a pass
+                check(index, _not_text(source), b"")
+                continue
             if skip is not None:
                 skipped.append((source.display, skip))
                 check(index, FileFacts(source.display, source.language, fallback), b"")
@@ -684,16 +687,24 @@ def _unreadable(source: SourceFile, reason: str) -> FileFacts:
     )
 
 
+def _not_text(source: SourceFile) -> FileFacts:
+    return FileFacts(
+        path=source.display,
+        language=source.language,
+        generation=DEFAULT_GENERATION,
+        parse_errors=(
+            ParseError(
+                "not a text file: a NUL byte in the first 8,000 bytes and no UTF-16 or "
+                "UTF-32 byte order mark; save it as UTF-8",
+                Span(1, 1, 1, 1),
+            ),
+        ),
+    )
+
+
 def decode_for_display(data: bytes) -> str:
     """Text for suppression scanning and source excerpts; never fails."""
-    for bom, encoding in (
-        (b"\xef\xbb\xbf", "utf-8-sig"),
-        (b"\xff\xfe", "utf-16"),
-        (b"\xfe\xff", "utf-16"),
-    ):
-        if data.startswith(bom):
-            return data.decode(encoding, errors="replace")
-    return data.decode("utf-8", errors="replace")
+    return data.decode(bom_encoding(data) or "utf-8", errors="replace")
 
 
 def _relative_to_root(display: str, settings: Settings) -> str:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import codecs
 import hashlib
 import os
 from pathlib import Path
@@ -9,8 +10,17 @@ from pathlib import Path
 Read = tuple["bytes | None", str, "str | None"]  # the bytes, why unreadable, why skipped
 
 _BINARY_SNIFF = 8000
-_WIDE_BOMS = (b"\xff\xfe", b"\xfe\xff")  # UTF-16 LE and BE (UTF-32 LE starts like LE)
 BINARY = "binary (NUL bytes)"
+# Byte order marks and the codecs that read them (dropping the mark), UTF-32 LE before
+# UTF-16 LE, whose mark is its prefix. Editors on Windows write UTF-16 with a mark.
+BOMS = (
+    (codecs.BOM_UTF32_LE, "utf-32"),
+    (codecs.BOM_UTF32_BE, "utf-32"),
+    (codecs.BOM_UTF8, "utf-8-sig"),
+    (codecs.BOM_UTF16_LE, "utf-16"),
+    (codecs.BOM_UTF16_BE, "utf-16"),
+)
+WIDE_ENCODINGS = frozenset({"utf-16", "utf-32"})
 
 
 def read_file(path: Path, max_size: int) -> Read:
@@ -18,7 +28,8 @@ def read_file(path: Path, max_size: int) -> Read:
 
     Files above ``max_size`` bytes are generated or vendored: skipped before they are read.
     So are binary files, by git's test (a NUL in the first 8,000 bytes) unless a UTF-16
-    or UTF-32 byte order mark says the NULs are text.
+    or UTF-32 byte order mark says the NULs are text; the engine reports a source that is
+    not text (RN001) rather than passing over it.
     """
     # One open, then the size of what was opened: this runs for every file of every run.
     try:
@@ -40,7 +51,15 @@ def content_digest(data: bytes) -> str:
 
 
 def is_binary(data: bytes) -> bool:
-    return b"\0" in data[:_BINARY_SNIFF] and not data.startswith(_WIDE_BOMS)
+    return b"\0" in data[:_BINARY_SNIFF] and bom_encoding(data) not in WIDE_ENCODINGS
+
+
+def bom_encoding(data: bytes) -> str | None:
+    """The codec a byte order mark at the start of ``data`` announces, if any."""
+    for bom, codec in BOMS:
+        if data.startswith(bom):
+            return codec
+    return None
 
 
 def too_large(size: int, max_size: int) -> str:

@@ -61,20 +61,27 @@ def test_a_bad_max_file_size_names_the_key_and_the_file(run_cli: Any, tmp_path: 
         assert "Traceback" not in result.stderr
 
 
-def test_a_binary_file_is_skipped_and_said_so_with_verbose(run_cli: Any, tmp_path: Path) -> None:
+def test_a_binary_file_with_a_source_name_is_one_parse_error(run_cli: Any, tmp_path: Path) -> None:
+    """A .launch that is not text is never passed over as clean: nothing is lost."""
     (tmp_path / "launch").mkdir()
     (tmp_path / "launch/firmware.launch").write_bytes(b"PK\x03\x04\x00\x00" + bytes(range(256)))
     (tmp_path / "launch/robot.launch").write_text(BAD_LAUNCH, encoding="utf-8")
     result = check(run_cli, tmp_path, "--verbose")
-    assert [f["path"] for f in result.findings()] == ["launch/robot.launch"]
-    assert "roslint-names: skipped launch/firmware.launch: binary (NUL bytes)" in result.stderr
+    assert [(f["path"], f["code"]) for f in result.findings()] == [
+        ("launch/firmware.launch", "RN001"),
+        ("launch/robot.launch", "RN101"),
+    ]
+    assert result.findings()[0]["message"].startswith("not a text file: a NUL byte")
+    assert "skipped" not in result.stderr
 
 
-def test_utf16_text_is_not_taken_for_binary(run_cli: Any, tmp_path: Path) -> None:
-    """UTF-16 is full of NUL bytes; its byte order mark says it is text."""
+def test_utf16_and_utf32_text_is_not_taken_for_binary(run_cli: Any, tmp_path: Path) -> None:
+    """UTF-16 and UTF-32 are full of NUL bytes; the byte order mark says they are text."""
     for name, encoded in (
         ("little.launch", codecs.BOM_UTF16_LE + BAD_LAUNCH.encode("utf-16-le")),
         ("big.launch", codecs.BOM_UTF16_BE + BAD_LAUNCH.encode("utf-16-be")),
+        ("little32.launch", codecs.BOM_UTF32_LE + BAD_LAUNCH.encode("utf-32-le")),
+        ("big32.launch", codecs.BOM_UTF32_BE + BAD_LAUNCH.encode("utf-32-be")),
     ):
         path = tmp_path / "launch" / name
         path.parent.mkdir(exist_ok=True)
@@ -83,5 +90,7 @@ def test_utf16_text_is_not_taken_for_binary(run_cli: Any, tmp_path: Path) -> Non
     assert "skipped" not in result.stderr
     assert sorted((f["path"], f["code"], f["line"]) for f in result.findings()) == [
         ("launch/big.launch", "RN101", 3),
+        ("launch/big32.launch", "RN101", 3),
         ("launch/little.launch", "RN101", 3),
+        ("launch/little32.launch", "RN101", 3),
     ]

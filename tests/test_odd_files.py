@@ -207,14 +207,16 @@ PADDING_LINES = 1000  # "# padding\n" 1,000 times: the NUL comes after the first
     ],
     ids=["python", "launch"],
 )
-def test_nul_byte_near_the_start_skips_the_file_as_binary(
+def test_nul_byte_near_the_start_is_not_text_and_says_so(
     run_cli: Any, tmp_path: Path, name: str, content: str
 ) -> None:
-    """git's test, as the engine applies it: a NUL in the first 8,000 bytes is binary."""
+    """git's test, as the engine applies it: a NUL in the first 8,000 bytes is binary;
+    a source that is not text is one RN001, never "All checks passed"."""
     write(tmp_path, name, content)
     result = check(run_cli, tmp_path, ".", "--verbose")
-    assert (result.exit_code, result.findings()) == (0, [])
-    assert f"roslint-names: skipped {name}: binary (NUL bytes)" in result.stderr.splitlines()
+    assert result.exit_code == 1
+    assert [(f["path"], f["code"]) for f in result.findings()] == [(name, "RN001")]
+    assert "skipped" not in result.stderr
 
 
 @pytest.mark.parametrize(
@@ -448,3 +450,85 @@ def test_five_thousand_nested_groups_are_at_most_one_parse_error(
     assert len(found(result)) == len(by_file)  # at most one finding per file
     assert set(by_file.values()) <= {"RN001"}
     assert "deep.launch" in by_file  # libxml2 refuses more than 256 levels without XML_PARSE_HUGE
+
+
+# Windows editors save UTF-16 (and some tools UTF-32) with a byte order mark.
+ROSCPP_DRIVER = """#include <ros/ros.h>
+#include <geometry_msgs/Twist.h>
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "base-driver");
+  ros::NodeHandle nh;
+  ros::Publisher odom = nh.advertise<geometry_msgs::Twist>("odom raw", 10);  // NOLINT(RN101)
+  ros::spin();
+}
+"""
+DIFF_DRIVE_URDF = """<?xml version="1.0" encoding="UTF-32"?>
+<robot name="rover">
+  <gazebo>
+    <plugin name="diff_drive" filename="libgazebo_ros_diff_drive.so">
+      <ros><namespace>rover 1</namespace></ros>
+      <odometry_frame>/odom</odometry_frame>
+    </plugin>
+  </gazebo>
+</robot>
+"""
+TELEOP_YAML = """launch:
+- node: {pkg: teleop_twist_joy, exec: teleop_node, name: teleop-joy}
+"""
+RCLPY_NODE = """import rclpy
+from rclpy.node import Node
+
+rclpy.init()
+node = Node("base-driver")
+"""
+
+
+def _with_bom(text: str, codec: str) -> bytes:
+    boms = {
+        "utf-16-le": codecs.BOM_UTF16_LE,
+        "utf-16-be": codecs.BOM_UTF16_BE,
+        "utf-32-le": codecs.BOM_UTF32_LE,
+        "utf-32-be": codecs.BOM_UTF32_BE,
+    }
+    return boms[codec] + text.encode(codec)
+
+
+@pytest.mark.parametrize("codec", ["utf-16-le", "utf-16-be", "utf-32-le", "utf-32-be"])
+def test_wide_sources_are_decoded_where_the_language_allows(
+    run_cli: Any, tmp_path: Path, codec: str
+) -> None:
+    """C++ compilers, XML and YAML accept a byte order mark; spans and suppressions hold."""
+    write(
+        tmp_path,
+        "base/package.xml",
+        "<package><buildtool_depend>catkin</buildtool_depend></package>",
+    )
+    (tmp_path / "base/src").mkdir()
+    (tmp_path / "base/src/driver.cpp").write_bytes(_with_bom(ROSCPP_DRIVER, codec))
+    (tmp_path / "base/urdf").mkdir()
+    (tmp_path / "base/urdf/rover.urdf").write_bytes(
+        _with_bom(DIFF_DRIVE_URDF.replace("UTF-32", codec[:6].upper()), codec)
+    )
+    (tmp_path / "teleop/launch").mkdir(parents=True)
+    (tmp_path / "teleop/launch/teleop.launch.yaml").write_bytes(_with_bom(TELEOP_YAML, codec))
+    result = check(run_cli, tmp_path, ".", "--ros", "2")
+    assert [(f["path"], f["line"], f["column"], f["code"]) for f in result.findings()] == [
+        ("base/src/driver.cpp", 6, 25, "RN101"),  # the suppressed 'odom raw' stays silent
+        ("base/urdf/rover.urdf", 5, 23, "RN101"),
+        ("base/urdf/rover.urdf", 6, 23, "RN205"),
+        ("teleop/launch/teleop.launch.yaml", 2, 58, "RN101"),
+    ]
+
+
+@pytest.mark.parametrize("codec", ["utf-16-le", "utf-32-be"])
+def test_a_wide_python_source_is_one_parse_error(run_cli: Any, tmp_path: Path, codec: str) -> None:
+    """CPython refuses UTF-16 and UTF-32 source: so does the linter, out loud."""
+    (tmp_path / "scripts").mkdir()
+    (tmp_path / "scripts/driver.py").write_bytes(_with_bom(RCLPY_NODE, codec))
+    result = check(run_cli, tmp_path, ".")
+    assert result.exit_code == 1
+    [finding] = result.findings()
+    assert (finding["code"], finding["line"]) == ("RN001", 1)
+    assert finding["message"].startswith(f"Python source is {codec[:6].upper()} (byte order mark)")

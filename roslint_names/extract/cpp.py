@@ -1,6 +1,6 @@
 """C++: roscpp and rclcpp names, and the init/handle order RN301 checks.
 
-The file is decoded (UTF-8, with or without BOM, or UTF-16 with a BOM), skipped when it
+The file is decoded (UTF-8, with or without BOM, or UTF-16 or UTF-32 with a BOM), skipped when it
 holds no ROS marker at all (most C++ of a robot workspace is algorithms and drivers), and
 parsed once with tree-sitter-cpp. tree-sitter always yields a tree; macros and templates
 it cannot follow become ERROR nodes, which are not parse errors to report: the sites
@@ -29,6 +29,7 @@ from roslint_names.model import (
     RuntimeEvent,
     Span,
 )
+from roslint_names.reading import bom_encoding
 
 from .cpp_apis import CALL_WORDS, CONSTRUCTED_TYPES, FRAME_FIELDS
 from .cpp_events import INIT_WORDS, handle_event, init_event
@@ -105,7 +106,6 @@ _ROS2_INCLUDE = re.compile(rb'#[ \t]*include[ \t]*[<"]rclcpp(?:_action|_lifecycl
 _ROS1_CODE = re.compile(rb"ros::(?:NodeHandle|init|Publisher|Subscriber|Rate|spin)\b")
 _ROS2_CODE = re.compile(rb"rclcpp(?:_action|_lifecycle)?::")
 _UTF8_BOM = b"\xef\xbb\xbf"
-_UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
 
 
 def extract(
@@ -190,11 +190,9 @@ def decode(data: bytes) -> tuple[bytes, ParseError | None]:
     Undecodable bytes become U+FFFD exactly as the engine's display text does, so spans
     agree with the lines shown next to findings; the rest of the file is still read.
     """
-    encoding = "utf-8"
-    if data.startswith(_UTF8_BOM):
-        data = data[len(_UTF8_BOM) :]  # the display text drops it too: columns agree
-    elif data.startswith(_UTF16_BOMS):
-        encoding = "utf-16"
+    encoding = bom_encoding(data) or "utf-8"
+    if encoding == "utf-8-sig":
+        data, encoding = data[len(_UTF8_BOM) :], "utf-8"  # the display text drops it too
     try:
         text = data.decode(encoding)
     except UnicodeDecodeError as problem:

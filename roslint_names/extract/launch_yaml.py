@@ -19,8 +19,6 @@ repeated node would only repeat the same facts at the same span.
 
 from __future__ import annotations
 
-import codecs
-
 import yaml
 
 from roslint_names.extract import evidence
@@ -34,6 +32,7 @@ from roslint_names.model import (
     ParseError,
     Span,
 )
+from roslint_names.reading import bom_encoding
 
 
 class _Document:
@@ -134,17 +133,7 @@ class YamlEntity:
 
 def _decode(data: bytes) -> str | ParseError:
     """Text as the YAML spec reads it: UTF-8, or UTF-16/32 announced by a BOM."""
-    encoding = "utf-8"
-    for bom, codec in (
-        (codecs.BOM_UTF32_LE, "utf-32"),
-        (codecs.BOM_UTF32_BE, "utf-32"),
-        (codecs.BOM_UTF8, "utf-8-sig"),
-        (codecs.BOM_UTF16_LE, "utf-16"),
-        (codecs.BOM_UTF16_BE, "utf-16"),
-    ):
-        if data.startswith(bom):
-            encoding = codec
-            break
+    encoding = bom_encoding(data) or "utf-8"
     try:
         text = data.decode(encoding)
     except UnicodeDecodeError as error:

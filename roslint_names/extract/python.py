@@ -18,7 +18,15 @@ from __future__ import annotations
 
 import re
 
-from roslint_names.model import FileFacts, Generation, Language, LaunchArguments
+from roslint_names.model import (
+    FileFacts,
+    Generation,
+    Language,
+    LaunchArguments,
+    ParseError,
+    Span,
+)
+from roslint_names.reading import WIDE_ENCODINGS, bom_encoding
 
 # A ROS import (rospy, rclpy, actionlib, tf/tf2, launch_ros, message_filters, any
 # *_msgs/*_srvs package) or a launch description. ``import os, rospy`` counts too.
@@ -59,6 +67,17 @@ def extract(
     Code that is not a launch file has no use for them.
     """
     launch_path = is_launch_path(path)
+    wide = bom_encoding(data)
+    if wide in WIDE_ENCODINGS:  # the prefilter cannot read it, and neither can CPython
+        language = Language.LAUNCH_PYTHON if launch_path else Language.PYTHON
+        message = (
+            f"Python source is {wide.upper()} (byte order mark); CPython reads only UTF-8 "
+            "or a PEP 263 8-bit encoding: save it as UTF-8"
+        )
+        error = ParseError(message, Span(1, 1, 1, 2))
+        return FileFacts(
+            path, language, package_generation or fallback_generation, parse_errors=(error,)
+        )
     if not may_hold_names(data):
         language = Language.LAUNCH_PYTHON if launch_path else Language.PYTHON
         return FileFacts(path, language, package_generation or fallback_generation)

@@ -24,6 +24,7 @@ from lxml import etree
 
 from roslint_names.extract.substitution import Located, Source
 from roslint_names.model import ParseError, Span
+from roslint_names.reading import bom_encoding
 
 SNIFF_LIMIT = 64 * 1024  # root_tag never looks further than this
 
@@ -43,21 +44,14 @@ def make_parser() -> etree.XMLParser:
 # ---------------------------------------------------------------------------------------
 # Encoding: the same decision libxml2 makes (BOM, then the declaration, then UTF-8)
 
-_BOMS = (
-    (codecs.BOM_UTF32_LE, "utf-32"),  # before UTF-16 LE, whose BOM is its prefix
-    (codecs.BOM_UTF32_BE, "utf-32"),
-    (codecs.BOM_UTF8, "utf-8-sig"),
-    (codecs.BOM_UTF16_LE, "utf-16"),
-    (codecs.BOM_UTF16_BE, "utf-16"),
-)
 _DECLARED_ENCODING = re.compile(rb"""<\?xml[^>]*?\bencoding\s*=\s*["']([A-Za-z0-9._:-]+)["']""")
 
 
 def detect_encoding(data: bytes) -> str:
     """The Python codec for ``data``: BOM, then XML declaration, then UTF-8."""
-    for bom, codec in _BOMS:
-        if data.startswith(bom):
-            return codec
+    marked = bom_encoding(data)
+    if marked is not None:
+        return marked
     if data.startswith(b"<\x00?\x00"):
         return "utf-16-le"
     if data.startswith(b"\x00<\x00?"):
