@@ -137,7 +137,8 @@ def test_a_changed_package_generation_misses(
     check: Callable[..., Any], tmp_path: Path, extractions: list[str]
 ) -> None:
     write_package(tmp_path / "ws", ros=1)
-    write(tmp_path / "ws", "robot.launch", LAUNCH)
+    # No marker of either generation (type=, exec=): the package decides.
+    write(tmp_path / "ws", "robot.launch", LAUNCH.replace(' type="driver_node"', ""))
     ros1 = check()
     extractions.clear()
     write_package(tmp_path / "ws", ros=2)

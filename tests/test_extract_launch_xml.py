@@ -473,13 +473,19 @@ def test_plain_launch_extension_is_ros1_without_evidence() -> None:
     )
 
 
-def test_package_generation_wins_but_markers_pick_the_syntax() -> None:
+def test_markers_decide_over_the_package() -> None:
+    """Only roslaunch runs <node type=>: a ROS 1 file left in a ROS 2 package (moveit2's
+    generate_state_database.launch) is judged by ROS 1's grammar, '~output_folder' too."""
     facts = ros1(
-        '<launch><group ns="g"><node name="n" pkg="p" type="t"/></group></launch>',
+        '<launch><group ns="g"><node name="n" pkg="p" type="t">'
+        '<remap from="~output_folder" to="out"/></node></group></launch>',
         package=Generation.ROS2,
     )
-    assert facts.generation is Generation.ROS2
+    assert facts.generation is Generation.ROS1
     assert node(facts).namespace == "/g"
+    # Without markers the package decides.
+    unmarked = ros1('<launch><group ns="g"/></launch>', package=Generation.ROS2)
+    assert unmarked.generation is Generation.ROS2
 
 
 def test_non_launch_root_yields_nothing() -> None:

@@ -848,15 +848,16 @@ def extract(
         generation = evidence.decide(package_generation, None, default, fallback_generation)
         return FileFacts(path, Language.LAUNCH_XML, generation, parse_errors=(document,))
     found = evidence.launch_xml_evidence(document.root)
-    generation = evidence.decide(package_generation, found, default, fallback_generation)
+    # The file's own markers, when they agree, decide both syntax and grammar: only
+    # roslaunch runs a file with <node type=> or $(arg), even one left in a ROS 2 package
+    # (moveit2's generate_state_database.launch), and only ros2 launch one with exec=.
+    generation = evidence.decide(found, package_generation, default, fallback_generation)
     root = XmlEntity(document, document.root)
     if root.kind != "launch":
         return FileFacts(path, Language.LAUNCH_XML, generation)
-    # The file's own markers pick the syntax; the package picks the grammar (docstring).
-    flavour = evidence.decide(found, package_generation, default, fallback_generation)
     walker: Ros1Launch | Ros2Launch
     try:
-        if flavour is Generation.ROS1:
+        if generation is Generation.ROS1:
             walker = Ros1Launch(root, arguments)
         else:
             walker = Ros2Launch(arguments)
