@@ -267,6 +267,20 @@ class TestRospyClient(unittest.TestCase):
         with self.assertRaises(ValueError):
             rospy.Publisher('bad topic', String, queue_size=1)
         rospy.Subscriber('chatter in', String, self.callback)
+
+    def test_init_node_empty_name(self):
+        failed = True
+        try:
+            rospy.init_node('')
+        except ValueError:
+            failed = False
+        self.failIf(failed, "init_node allowed an empty name")
+
+    def connect(self):
+        try:
+            rospy.Subscriber('odom in', Odometry, self.callback)
+        except rospy.ROSException:
+            rospy.logwarn('no odometry')
 """
 
 
@@ -281,4 +295,5 @@ def test_names_a_test_expects_to_fail_are_never_reported(run_cli: Any, tmp_path:
         ("talker/test/test_publisher.cpp", 43, "RN101"),  # status-out: meant to work
         ("talker/test/test_publisher.cpp", 44, "RN101"),  # chatter out
         ("test_rospy/test/test_rospy_client.py", 19, "RN101"),  # chatter in
+        ("test_rospy/test/test_rospy_client.py", 31, "RN101"),  # odom in: not a test
     ]
