@@ -408,6 +408,66 @@ def test_an_illegal_name_is_a_known_use_ros2(run_cli: Any, tmp_path: Path) -> No
     ]
 
 
+# image_pipeline's image_publisher, reduced: image_transport derives camera_info beside the
+# image topic it is handed, a name no code of the node spells.
+IMAGE_PUBLISHER_CPP = """\
+#include <string>
+
+#include "image_transport/image_transport.hpp"
+#include "rclcpp/rclcpp.hpp"
+
+class ImagePublisher : public rclcpp::Node
+{
+public:
+  ImagePublisher() : rclcpp::Node("image_publisher")
+  {
+    auto node_base = this->get_node_base_interface();
+    std::string topic_name = node_base->resolve_topic_or_service_name("image_raw", false);
+    pub_ = image_transport::create_camera_publisher(this, topic_name);
+    camera_info_url_ = declare_parameter("camera_info_url", std::string(""));
+    frame_id_ = declare_parameter("frame_id", std::string("camera"));
+    timer_ = create_wall_timer(std::chrono::milliseconds(100), [] {});
+  }
+
+private:
+  image_transport::CameraPublisher pub_;
+  std::string camera_info_url_;
+  std::string frame_id_;
+  rclcpp::TimerBase::SharedPtr timer_;
+};
+"""
+
+
+def test_camera_info_beside_an_image_topic_is_a_used_remap(run_cli: Any, tmp_path: Path) -> None:
+    package = "src/image_publisher"
+    write(tmp_path, f"{package}/package.xml", AMENT_PACKAGE.format(name="image_publisher"))
+    write(
+        tmp_path,
+        f"{package}/CMakeLists.txt",
+        "cmake_minimum_required(VERSION 3.8)\nproject(image_publisher)\n"
+        "find_package(ament_cmake REQUIRED)\n"
+        "add_executable(image_publisher_node src/image_publisher.cpp)\nament_package()\n",
+    )
+    write(tmp_path, f"{package}/src/image_publisher.cpp", IMAGE_PUBLISHER_CPP)
+    write(
+        tmp_path,
+        f"{package}/launch/image_publisher.launch.py",
+        "import launch\nimport launch_ros.actions\n\n\n"
+        "def generate_launch_description():\n"
+        "    return launch.LaunchDescription([\n"
+        "        launch_ros.actions.Node(\n"
+        "            package='image_publisher', executable='image_publisher_node',\n"
+        "            remappings=[('image_raw', '/camera/image_raw'),\n"
+        "                        ('camera_info', '/camera/camera_info'),\n"
+        "                        ('camera_inf', '/camera/info')]),\n"
+        "    ])\n",
+    )
+    found = findings(run_cli, tmp_path, ".", select="RN404")
+    assert [(f["line"], f["message"].split(" renames")[0]) for f in found] == [
+        (11, "remap from '/camera_inf'")
+    ]
+
+
 def test_a_per_file_run_sees_the_workspace_but_reports_only_its_files(
     run_cli: Any, tmp_path: Path
 ) -> None:

@@ -6,7 +6,8 @@ the code later, or written relative when the code uses a private name. Only a no
 remaps are judged (a group's remap is meant for whichever of its nodes uses the name),
 only when the node's code is in the workspace and every name it uses is known statically.
 A remap of a name's parent or child counts as used: actions and image_transport derive
-sub-topics (``move_base/goal``, ``image/compressed``) from the name the code gives. So does
+sub-topics (``move_base/goal``, ``image/compressed``) from the name the code gives; so does
+a ``camera_info`` beside a topic the node uses (image_transport's camera publishers). So does
 a remap of a name the client library uses for the node (``/tf``, ``/tf_static``,
 ``/clock``...): no code of the node spells it. And so does a name that a string literal of
 the node's package spells (a header, a wrapper the linter does not know): that is evidence
@@ -46,11 +47,28 @@ def _used(remap: NodeRemap, node: NodeInstance, mentions: frozenset[str]) -> boo
         return True
     # A name-shaped literal of the package's code, passed to an API we do not know,
     # resolves to the name when it is the name, a private or relative ending of it.
-    return source in mentions or any(
+    if source in mentions or any(
         spelled in mentions
         for tail in _endings(source)
         for spelled in (tail, f"~{tail}", f"~/{tail}")
-    )
+    ):
+        return True
+    return _camera_info_beside(source, node, mentions)
+
+
+def _camera_info_beside(source: str, node: NodeInstance, mentions: frozenset[str]) -> bool:
+    """image_transport's camera publishers and subscribers derive ``camera_info`` beside
+    the image topic (``image_raw`` -> ``camera_info``): a remap of it is used when the node
+    uses, or its package spells, a topic in the same namespace (image_pipeline's
+    image_publisher hands ``"image_raw"`` to ``create_camera_publisher``)."""
+    namespace, _, last = source.rpartition("/")
+    if last != "camera_info":
+        return False
+    if any(use.rpartition("/")[0] == namespace for use in node.uses if use != source):
+        return True
+    node_namespace = node.name.rpartition("/")[0]
+    relative = (m for m in mentions if m and m[0] not in "/~" and "/" not in m)
+    return namespace == node_namespace and any(m != last for m in relative)
 
 
 def _endings(name: str) -> list[str]:
