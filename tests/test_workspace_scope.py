@@ -108,6 +108,41 @@ def test_a_metapackage_ties_the_packages_it_gathers(run_cli: Any, tmp_path: Path
     assert [f["code"] for f in findings(run_cli, tmp_path, ".")] == ["RN403", "RN403"]
 
 
+def test_two_unlaunched_publishers_of_one_relative_name_are_not_a_mismatch(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """perception_pcl, reduced: two tools of one package each publish 'output', one a
+    point cloud, one an image. Nothing starts them together, and each is remapped by hand;
+    a subscriber of 'output' with a third type would still meet both."""
+    write(tmp_path, "src/pcl_tools/package.xml", catkin_package("pcl_tools", "rospy"))
+    publisher = (
+        "import rospy\nfrom sensor_msgs.msg import {kind}\n\n"
+        'rospy.init_node("{node}")\n'
+        'pub = rospy.Publisher("output", {kind}, queue_size=1)\n'
+    )
+    write(
+        tmp_path,
+        "src/pcl_tools/scripts/bag_to_cloud.py",
+        publisher.format(kind="PointCloud2", node="bag_to_cloud"),
+    )
+    write(
+        tmp_path,
+        "src/pcl_tools/scripts/pcd_to_image.py",
+        publisher.format(kind="Image", node="pcd_to_image"),
+    )
+    assert findings(run_cli, tmp_path, ".") == []
+    write(
+        tmp_path,
+        "src/pcl_tools/scripts/viewer.py",
+        "import rospy\nfrom sensor_msgs.msg import Image\n\n"
+        'rospy.init_node("viewer")\nrospy.Subscriber("output", Image, print)\n',
+    )
+    assert codes(findings(run_cli, tmp_path, ".")) == [
+        ("RN403", "src/pcl_tools/scripts/bag_to_cloud.py"),
+        ("RN403", "src/pcl_tools/scripts/viewer.py"),
+    ]
+
+
 def test_one_launch_tree_is_one_system_whatever_the_packages(run_cli: Any, tmp_path: Path) -> None:
     two_tutorial_packages(tmp_path)
     write(tmp_path, "src/demo_bringup/package.xml", catkin_package("demo_bringup"))

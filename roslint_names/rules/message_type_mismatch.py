@@ -61,6 +61,25 @@ def _mismatches(endpoints: list[Endpoint]) -> bool:
     return any(not _compatible(a, b) for i, a in enumerate(types) for b in types[i + 1 :])
 
 
+_OPPOSITE = {
+    EdgeKind.PUBLISH: EdgeKind.SUBSCRIBE,
+    EdgeKind.SUBSCRIBE: EdgeKind.PUBLISH,
+    EdgeKind.SERVE: EdgeKind.CALL,
+    EdgeKind.CALL: EdgeKind.SERVE,
+    EdgeKind.ACTION_SERVE: EdgeKind.ACTION_CALL,
+    EdgeKind.ACTION_CALL: EdgeKind.ACTION_SERVE,
+}
+
+
+def _facing(one: Endpoint, other: Endpoint) -> bool:
+    """Endpoints whose types must agree: the two sides of a name (a publisher and a
+    subscriber), or one side twice in one launch tree (two publishers a subscriber must
+    choose between). Two programs no launch file starts that both publish ``output``
+    (perception_pcl's bag and PCD tools) are not known to run together: that relative
+    name is what each is remapped by when started by hand."""
+    return _OPPOSITE[one.edge] is other.edge or (bool(one.root) and one.root == other.root)
+
+
 _DONE = {
     EdgeKind.PUBLISH: "published",
     EdgeKind.SUBSCRIBE: "subscribed",
@@ -91,6 +110,7 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
                     for other in endpoints
                     if other.type_name
                     and not _compatible(other.type_name, mine)
+                    and _facing(endpoint, other)
                     and graph.can_meet(endpoint, other)
                 },
                 key=lambda o: (o.location, o.edge.value),
