@@ -336,3 +336,21 @@ def test_graph_rules_see_only_the_branches_the_defaults_start(lint_text: Any) ->
         '<arg name="keyboard" default="false"/>', '<arg name="keyboard" default="true"/>'
     )
     assert lint_text(on, "launch/teleop.launch", 1) == ["RN402", "RN402"]
+
+
+def test_a_deep_name_is_reported_where_it_is_published(lint_text: Any) -> None:
+    """RN201 is style too: the camera driver chose the depth, its subscriber cannot."""
+    source = """import rclpy
+from rclpy.node import Node
+from sensor_msgs.msg import CompressedImage
+
+
+class LaneDetector(Node):
+    def __init__(self):
+        super().__init__("lane_detector")
+        self.create_subscription(
+            CompressedImage, "sensing/camera/front/image/compressed", self.on_image, 1
+        )
+        self.debug = self.create_publisher(CompressedImage, "lanes/debug/front/overlay/image", 1)
+"""
+    assert lint_text(source, "lane_detector/detector.py", 2) == ["RN201"]

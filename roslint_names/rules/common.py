@@ -72,7 +72,8 @@ _ROS2_PARAMETER_USES = frozenset(
 
 
 def chosen_here(use: NameUse, facts: FileFacts) -> bool:
-    """Whether the author of this file chose the name, so a style finding is actionable.
+    """Whether the author of this file chose the name, so a style finding (RN201, RN203,
+    RN204, RN206) is actionable.
 
     A name is judged for style where it is chosen and left alone where it is only used:
 

@@ -9,18 +9,18 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..model import FileFacts, Finding, Kind, Role, Severity
+from ..model import FileFacts, Finding, Kind, Severity
 from ..names import depth, is_valid
 from ..rule import Rule, RuleContext, WorkspaceFinding
 from ..workspace.graph import Endpoint, Graph, Location, NodeInstance
-from .common import GRAPH_KINDS, label, static_uses
+from .common import GRAPH_KINDS, chosen_here, label, static_uses
 from .graph_common import finding, instances
 
 
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
     for use in static_uses(facts):
-        if use.kind not in GRAPH_KINDS or use.role is Role.REMAP_FROM:
-            continue  # a remap's source is spelled by the node's code, not chosen here
+        if use.kind not in GRAPH_KINDS or not chosen_here(use, facts):
+            continue  # a remap's source, a subscriber's topic: spelled where chosen
         if not is_valid(use.value, use.kind, facts.generation):
             continue  # RN101 reports it; one problem, one finding
         levels = depth(use.value, use.kind)
