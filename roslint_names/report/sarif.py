@@ -17,7 +17,6 @@ open alerts) unless the context includes them; then each carries
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import posixpath
@@ -30,6 +29,7 @@ from urllib.parse import quote
 
 from .. import PROJECT_URL
 from ..catalog import RuleMeta
+from ..fingerprint import line_fingerprint
 from ..model import Diagnostic, Severity, Span
 from .base import ReportContext, rules_by_code
 
@@ -70,7 +70,8 @@ def sarif_log(
     results = [
         _result(diagnostic, rule_index, fingerprint, context)
         for diagnostic, fingerprint in zip(diagnostics, fingerprints, strict=True)
-        if context.include_suppressed or not diagnostic.suppressed
+        if (context.include_suppressed or not diagnostic.suppressed)
+        and (context.baseline or not diagnostic.baselined)
     ]
     driver: dict[str, Any] = {
         "name": TOOL_NAME,
@@ -149,6 +150,8 @@ def _result(
     result["partialFingerprints"] = {"primaryLocationLineHash": fingerprint}
     if diagnostic.suppressed:
         result["suppressions"] = [{"kind": "inSource"}]
+    if context.baseline:
+        result["baselineState"] = "unchanged" if diagnostic.baselined else "new"
     return result
 
 
@@ -231,12 +234,7 @@ def _fingerprints(diagnostics: Sequence[Diagnostic]) -> list[str]:
     seen: Counter[str] = Counter()
     fingerprints: list[str] = []
     for diagnostic in diagnostics:
-        if diagnostic.source_line is not None:
-            anchor = "line:" + "".join(diagnostic.source_line.split())
-        else:
-            anchor = "message:" + diagnostic.message
-        material = "\0".join((diagnostic.code, diagnostic.path, anchor))
-        digest = hashlib.sha256(material.encode("utf-8")).hexdigest()[:16]
+        digest = line_fingerprint(diagnostic)
         seen[digest] += 1
         fingerprints.append(f"{digest}:{seen[digest]}")
     return fingerprints
