@@ -13,10 +13,12 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import NoReturn, TextIO
 
-from . import __version__
+from . import __version__, baseline
+from .baseline import BaselineError
 from .cache import FactsCache
 from .cache import default_directory as default_cache_directory
 from .catalog import CatalogError, load_doc, rule_meta
+from .changes import ChangesError, changed_lines, gate
 from .collection import rare_collections
 from .config import (
     ConfigError,
@@ -28,7 +30,7 @@ from .config import (
 )
 from .discover import DiscoveryError, SourceFile, discover, workspace_root
 from .engine import LintResult, RunOptions, lint
-from .model import Generation, Kind
+from .model import Diagnostic, Generation, Kind
 from .names import Problem, check_name
 from .progress import ProgressBar
 from .progress import wanted as progress_wanted
@@ -54,7 +56,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         with rare_collections():
             return int(options.run(options))
-    except (ConfigError, DiscoveryError, UsageError, RegistryError, CatalogError) as error:
+    except (
+        ConfigError,
+        DiscoveryError,
+        UsageError,
+        RegistryError,
+        CatalogError,
+        BaselineError,
+        ChangesError,
+    ) as error:
         _fail(str(error))
     except KeyboardInterrupt:
         _fail("interrupted")
@@ -113,6 +123,23 @@ def _add_check(check: argparse.ArgumentParser) -> None:
         "--include-suppressed",
         action="store_true",
         help="SARIF: include suppressed results, marked with `suppressions`",
+    )
+    check.add_argument(
+        "--baseline",
+        type=Path,
+        metavar="FILE",
+        help="report only findings not recorded in FILE (see --write-baseline)",
+    )
+    check.add_argument(
+        "--write-baseline",
+        type=Path,
+        metavar="FILE",
+        help="record the current findings in FILE and exit 0",
+    )
+    check.add_argument(
+        "--changed-since",
+        metavar="REV",
+        help="report only findings on lines added or modified since git revision REV",
     )
     check.add_argument(
         "--no-cache", action="store_true", help="do not read or write the facts cache"
@@ -194,6 +221,15 @@ def _run_check(options: argparse.Namespace) -> int:
         bar.close()  # erased before the report and the summary are written
     if options.verbose:
         _print_run_details(result, cache, options.cache_dir or default_cache_directory())
+    diagnostics: Sequence[Diagnostic] = result.diagnostics
+    if options.changed_since is not None:
+        diagnostics = gate(diagnostics, changed_lines(options.changed_since, cwd), cwd)
+    if options.write_baseline is not None:
+        count = baseline.write(options.write_baseline, diagnostics, cwd)
+        print(f"roslint-names: wrote {count} findings to {options.write_baseline}", file=sys.stderr)
+        return EXIT_CLEAN
+    if options.baseline is not None:
+        diagnostics = _apply_baseline(options, diagnostics, cwd)
     metas = [rule_meta(rule) for rule in registry.rules]
     enabled = enabled_codes(settings, registry)
     output_is_terminal = options.output is None and sys.stdout.isatty()
@@ -203,20 +239,38 @@ def _run_check(options: argparse.Namespace) -> int:
         show_source=options.show_source,
         color=output_is_terminal and "NO_COLOR" not in os.environ,
         include_suppressed=options.include_suppressed,
+        baseline=options.baseline is not None,
     )
     if options.statistics:
-        report = statistics(result.diagnostics, metas)
+        report = statistics(diagnostics, metas)
     else:
         report = render(
             options.format,
-            result.diagnostics,
+            diagnostics,
             [meta for meta in metas if meta.code in enabled],
             context,
         )
     _write(report, options.output)
-    print(summary(result.diagnostics, result.files_checked), file=sys.stderr)
-    has_findings = any(not diagnostic.suppressed for diagnostic in result.diagnostics)
+    print(summary(diagnostics, result.files_checked), file=sys.stderr)
+    has_findings = any(not d.suppressed and not d.baselined for d in diagnostics)
     return EXIT_FINDINGS if has_findings and not options.exit_zero else EXIT_CLEAN
+
+
+def _apply_baseline(
+    options: argparse.Namespace, diagnostics: Sequence[Diagnostic], cwd: Path
+) -> Sequence[Diagnostic]:
+    """The diagnostics with those the baseline holds marked; ``--verbose`` names the
+    entries that matched nothing (fixed since, or their line edited)."""
+    path: Path = options.baseline
+    applied = baseline.apply(diagnostics, baseline.load(path), path.absolute().parent, cwd)
+    if options.verbose:
+        for entry in applied.stale:
+            print(
+                f"roslint-names: baseline {path}: no longer found: {entry.path}: "
+                f"{entry.code} '{entry.name}' (--write-baseline drops it)",
+                file=sys.stderr,
+            )
+    return applied.diagnostics
 
 
 def _generation(option: str | None) -> Generation | None:

@@ -288,6 +288,8 @@ class Diagnostic:
     related: tuple[RelatedLocation, ...] = ()
     suppressed: bool = False
     source_line: str | None = field(default=None, compare=False)
+    # Matched by the baseline given to the run (``baseline``): known before, not reported.
+    baselined: bool = False
 
     def sort_key(self) -> tuple[str, int, int, str, str]:
         return (self.path, self.span.line, self.span.column, self.code, self.message)

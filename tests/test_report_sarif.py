@@ -73,8 +73,12 @@ OUTSIDE = (
         ((), {}),
         (OUTSIDE, {"root": Path("/home/dev/my ws")}),
         (sample.DIAGNOSTICS, {"tool_version": "1.2.0rc1.dev4+g0a1b2c3"}),
+        (
+            (replace(sample.RN101, baselined=True), *sample.DIAGNOSTICS[1:]),
+            {"baseline": True},
+        ),
     ],
-    ids=["default", "with-suppressed", "empty", "odd-paths", "dev-version"],
+    ids=["default", "with-suppressed", "empty", "odd-paths", "dev-version", "baseline"],
 )
 def test_valid_against_the_official_schema(
     validator: Draft7Validator, diagnostics: tuple[Diagnostic, ...], changes: dict[str, object]

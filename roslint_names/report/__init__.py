@@ -62,13 +62,16 @@ def summary(diagnostics: Sequence[Diagnostic], files_checked: int) -> str:
     """
     shown = visible(diagnostics)
     files = plural(files_checked, "file")
+    baselined = sum(1 for d in diagnostics if d.baselined)
+    known = f" ({baselined} more in the baseline)" if baselined else ""
     if not shown:
-        return f"All checks passed: {files}, no problems."
+        new = "new " if baselined else ""
+        return f"All checks passed: {files}, no {new}problems{known}."
     errors = sum(1 for diagnostic in shown if diagnostic.severity is Severity.ERROR)
     warnings = len(shown) - errors
     counts = ((errors, "error"), (warnings, "warning"))
     detail = ", ".join(plural(count, noun) for count, noun in counts if count)
-    return f"Found {plural(len(shown), 'problem')} ({detail}) in {files}."
+    return f"Found {plural(len(shown), 'problem')} ({detail}) in {files}{known}."
 
 
 def statistics(diagnostics: Sequence[Diagnostic], rules: Sequence[RuleMeta]) -> str:

@@ -22,11 +22,13 @@ class ReportContext:
     show_source: bool = False  # text: print the source line and a caret line under the span
     color: bool = False  # text: ANSI colours; the CLI sets it only on a TTY
     include_suppressed: bool = False  # SARIF only: keep suppressed results, marked as such
+    baseline: bool = False  # a baseline is in use: SARIF marks each result's baselineState
 
 
 def visible(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
-    """The diagnostics a report shows: suppressed ones are left out, order is kept."""
-    return [diagnostic for diagnostic in diagnostics if not diagnostic.suppressed]
+    """The diagnostics a report shows: suppressed and baselined ones are left out, order
+    is kept."""
+    return [d for d in diagnostics if not d.suppressed and not d.baselined]
 
 
 def rules_by_code(rules: Sequence[RuleMeta]) -> dict[str, RuleMeta]:

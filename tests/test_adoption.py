@@ -1,0 +1,265 @@
+"""Adopting the linter on an existing codebase: the baseline and the changed-lines gate."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+from pathlib import Path
+from typing import Any
+
+import pytest
+from conftest import Run, write, write_package
+
+# A ROS 1 bringup as a team has it when it adopts the linter: two findings to live with.
+LEGACY_LAUNCH = """<launch>
+  <node name="base-driver" pkg="robot_base" type="driver_node"/>
+  <group ns="laser">
+    <node name="laser-filter" pkg="laser_filters" type="scan_to_scan_filter_chain"/>
+  </group>
+</launch>
+"""
+SMOOTHER_CPP = """#include <ros/ros.h>
+#include <geometry_msgs/Twist.h>
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "velocity_smoother");
+  ros::NodeHandle nh;
+  ros::Publisher out = nh.advertise<geometry_msgs::Twist>("/mobile_base/cmd_vel", 10);
+  ros::spin();
+}
+"""
+
+
+def _workspace(root: Path) -> None:
+    write_package(root / "src/robot_bringup", 1, "robot_bringup")
+    write(root, "src/robot_bringup/launch/robot.launch", LEGACY_LAUNCH)
+    write(root, "src/robot_bringup/src/velocity_smoother.cpp", SMOOTHER_CPP)
+
+
+def _check(run_cli: Any, root: Path, *arguments: str) -> Run:
+    result: Run = run_cli(["check", "--format", "json", *arguments, "."], root)
+    assert result.exit_code in (0, 1), result.stderr
+    return result
+
+
+def _found(result: Run) -> list[tuple[str, int, str]]:
+    return [(f["path"], f["line"], f["code"]) for f in result.findings()]
+
+
+# ---------------------------------------------------------------------------------------
+# Baseline
+
+
+def test_a_baseline_lets_known_findings_through_and_catches_new_ones(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    _workspace(tmp_path)
+    written = run_cli(["check", "--write-baseline", "baseline.json", "."], tmp_path)
+    assert written.exit_code == 0
+    assert "wrote 3 findings to baseline.json" in written.stderr
+    clean = _check(run_cli, tmp_path, "--baseline", "baseline.json")
+    assert (clean.exit_code, clean.findings()) == (0, [])
+    assert "no new problems (3 more in the baseline)" in clean.stderr
+
+    # Twenty lines above every finding move them; they stay known. A new node is new.
+    launch = tmp_path / "src/robot_bringup/launch/robot.launch"
+    comments = "".join(f"  <!-- tuning note {i} -->\n" for i in range(20))
+    text = LEGACY_LAUNCH.replace("<launch>\n", "<launch>\n" + comments)
+    text = text.replace(
+        "</launch>", '  <node name="imu-driver" pkg="imu" type="imu_node"/>\n</launch>'
+    )
+    launch.write_text(text, encoding="utf-8")
+    source = tmp_path / "src/robot_bringup/src/velocity_smoother.cpp"
+    source.write_text("// Smooths teleop commands.\n" * 20 + SMOOTHER_CPP, encoding="utf-8")
+    shifted = _check(run_cli, tmp_path, "--baseline", "baseline.json")
+    assert shifted.exit_code == 1
+    assert _found(shifted) == [("src/robot_bringup/launch/robot.launch", 26, "RN101")]
+
+
+def test_an_edited_line_or_a_second_copy_is_new(run_cli: Any, tmp_path: Path) -> None:
+    _workspace(tmp_path)
+    run_cli(["check", "--write-baseline", "baseline.json", "."], tmp_path)
+    launch = tmp_path / "src/robot_bringup/launch/robot.launch"
+    text = LEGACY_LAUNCH.replace("base-driver", "base-driver-v2")  # the finding's line edited
+    copy = '  <group ns="laser_rear">\n' + text.splitlines()[3] + "\n  </group>\n"
+    text = text.replace("</launch>", copy + "</launch>")  # the same line again
+    launch.write_text(text, encoding="utf-8")
+    result = _check(run_cli, tmp_path, "--baseline", "baseline.json")
+    assert _found(result) == [
+        ("src/robot_bringup/launch/robot.launch", 2, "RN101"),
+        ("src/robot_bringup/launch/robot.launch", 7, "RN101"),
+    ]
+
+
+def test_stale_entries_are_named_with_verbose_and_dropped_when_rewritten(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    _workspace(tmp_path)
+    baseline = tmp_path / "baseline.json"
+    run_cli(["check", "--write-baseline", "baseline.json", "."], tmp_path)
+    before = baseline.read_text(encoding="utf-8")
+    launch = tmp_path / "src/robot_bringup/launch/robot.launch"
+    launch.write_text(LEGACY_LAUNCH.replace("base-driver", "base_driver"), encoding="utf-8")
+    result = _check(run_cli, tmp_path, "--baseline", "baseline.json", "--verbose")
+    assert result.findings() == []
+    assert (
+        "baseline baseline.json: no longer found: src/robot_bringup/launch/robot.launch: "
+        "RN101 'base-driver'"
+    ) in result.stderr
+    run_cli(["check", "--write-baseline", "baseline.json", "."], tmp_path)
+    after = json.loads(baseline.read_text(encoding="utf-8"))["findings"]
+    assert [entry["name"] for entry in after] == ["laser-filter", '"/mobile_base/cmd_vel"']
+    assert len(json.loads(before)["findings"]) == 3
+
+
+def test_the_baseline_file_is_stable_and_has_no_line_numbers(run_cli: Any, tmp_path: Path) -> None:
+    _workspace(tmp_path)
+    run_cli(["check", "--write-baseline", "one.json", "."], tmp_path)
+    source = tmp_path / "src/robot_bringup/src/velocity_smoother.cpp"
+    source.write_text("\n\n" + SMOOTHER_CPP, encoding="utf-8")
+    run_cli(["check", "--write-baseline", "two.json", "."], tmp_path)
+    one = (tmp_path / "one.json").read_text(encoding="utf-8")
+    assert one == (tmp_path / "two.json").read_text(encoding="utf-8")
+    document = json.loads(one)
+    assert document["roslint-names-baseline"] == 1
+    assert document["findings"][0] == {
+        "path": "src/robot_bringup/launch/robot.launch",
+        "code": "RN101",
+        "name": "base-driver",
+        "fingerprint": document["findings"][0]["fingerprint"],
+    }
+
+
+def test_sarif_marks_the_baseline_state(run_cli: Any, tmp_path: Path) -> None:
+    _workspace(tmp_path)
+    run_cli(["check", "--write-baseline", "baseline.json", "."], tmp_path)
+    launch = tmp_path / "src/robot_bringup/launch/robot.launch"
+    launch.write_text(
+        LEGACY_LAUNCH.replace("</launch>", '<node name="imu-driver" pkg="i" type="i"/></launch>'),
+        encoding="utf-8",
+    )
+    result = run_cli(["check", "--format", "sarif", "--baseline", "baseline.json", "."], tmp_path)
+    results = json.loads(result.stdout)["runs"][0]["results"]
+    states = sorted((r["baselineState"], r["ruleId"]) for r in results)
+    assert states == [
+        ("new", "RN101"),
+        ("unchanged", "RN101"),
+        ("unchanged", "RN101"),
+        (
+            "unchanged",
+            "RN202",
+        ),
+    ]
+    without = run_cli(["check", "--format", "sarif", "."], tmp_path)
+    assert all("baselineState" not in r for r in json.loads(without.stdout)["runs"][0]["results"])
+
+
+@pytest.mark.parametrize(
+    ("content", "message"),
+    [
+        (None, "baseline.json: cannot read baseline"),
+        ("{not json", "baseline.json: not a roslint-names baseline"),
+        ('{"findings": []}', "baseline.json: not a roslint-names baseline (format 1)"),
+        (
+            '{"roslint-names-baseline": 1, "findings": [{"path": 3}]}',
+            "baseline.json: findings[0]: needs the strings path, code, name, fingerprint",
+        ),
+    ],
+)
+def test_a_bad_baseline_file_is_a_usage_error_naming_it(
+    run_cli: Any, tmp_path: Path, content: str | None, message: str
+) -> None:
+    _workspace(tmp_path)
+    if content is not None:
+        write(tmp_path, "baseline.json", content)
+    result = run_cli(["check", "--baseline", "baseline.json", "."], tmp_path)
+    assert result.exit_code == 2
+    assert message in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+# ---------------------------------------------------------------------------------------
+# Changed lines
+
+
+def git(root: Path, *arguments: str) -> None:
+    subprocess.run(
+        ["git", "-c", "user.name=t", "-c", "user.email=t@example.com", *arguments],
+        cwd=root,
+        check=True,
+        capture_output=True,
+    )
+
+
+POSE_PUBLISHER = """#include <ros/ros.h>
+#include <geometry_msgs/PoseStamped.h>
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "fleet_monitor");
+  ros::NodeHandle nh;
+  ros::Publisher pose = nh.advertise<geometry_msgs::PoseStamped>("/robot_pose", 10);
+  ros::spin();
+}
+"""
+POSE_RECORDER = """#!/usr/bin/env python
+import rospy
+from geometry_msgs.msg import PoseStamped
+
+rospy.init_node("pose_recorder")
+rospy.Subscriber("/Robot_Pose", PoseStamped, print)
+rospy.spin()
+"""
+
+
+def test_changed_since_reports_only_what_the_change_brought_in(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    _workspace(tmp_path)
+    write(tmp_path, "src/robot_bringup/src/fleet_monitor.cpp", POSE_PUBLISHER)
+    git(tmp_path, "init", "-q")
+    git(tmp_path, "add", "-A")
+    git(tmp_path, "commit", "-qm", "the robot as it was")
+    # The pull request: a node added to the launch file (committed), a script (not yet
+    # tracked) that spells the monitor's topic in another case.
+    launch = tmp_path / "src/robot_bringup/launch/robot.launch"
+    launch.write_text(
+        LEGACY_LAUNCH.replace(
+            "</launch>", '  <node name="imu-driver" pkg="i" type="i"/>\n</launch>'
+        ),
+        encoding="utf-8",
+    )
+    git(tmp_path, "commit", "-qam", "an IMU")
+    write(tmp_path, "src/robot_bringup/scripts/pose_recorder", POSE_RECORDER)
+    everything = _check(run_cli, tmp_path)
+    assert len(everything.findings()) == 8
+    gated = _check(run_cli, tmp_path, "--changed-since", "HEAD~1")
+    recorder = [
+        ("src/robot_bringup/scripts/pose_recorder", 6, "RN202"),
+        ("src/robot_bringup/scripts/pose_recorder", 6, "RN401"),
+        # the other side of the case collision, in the unchanged file: related to a new line
+        ("src/robot_bringup/src/fleet_monitor.cpp", 8, "RN401"),
+    ]
+    assert _found(gated) == [("src/robot_bringup/launch/robot.launch", 6, "RN101"), *recorder]
+    assert _found(_check(run_cli, tmp_path, "--changed-since", "HEAD")) == recorder
+
+
+@pytest.mark.parametrize(
+    ("init", "message"),
+    [
+        (True, "--changed-since: 'no-such-branch' is not a commit git knows here"),
+        (False, "--changed-since: fatal: not a git repository"),
+    ],
+)
+def test_changed_since_errors_say_what_is_wrong(
+    run_cli: Any, tmp_path: Path, init: bool, message: str
+) -> None:
+    _workspace(tmp_path)
+    if init:
+        git(tmp_path, "init", "-q")
+        git(tmp_path, "add", "-A")
+        git(tmp_path, "commit", "-qm", "x")
+    result = run_cli(["check", "--changed-since", "no-such-branch", "."], tmp_path)
+    assert result.exit_code == 2
+    assert message in result.stderr
