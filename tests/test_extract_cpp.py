@@ -485,6 +485,18 @@ def test_span_of_adjacent_literals_covers_them_all() -> None:
     assert use(facts, "ab").span == Span(2, 28, 3, 6)
 
 
+def test_comments_between_adjacent_literals_are_not_part_of_the_name() -> None:
+    """Universal_Robots' trajectory_until_node splits an action name over three lines;
+    --add-noqa puts a NOLINT after the first piece."""
+    facts = extract(
+        "#include <rclcpp_action/rclcpp_action.hpp>\n"
+        "void f() { auto c = rclcpp_action::create_client<A>(this,\n"
+        '  "/motion_controller/"  // NOLINT(RN202)\n'
+        '  "follow_joint_" /* why */ "trajectory"); }\n'
+    )
+    assert not use(facts, "/motion_controller/follow_joint_trajectory").dynamic
+
+
 def test_decoding_with_bom_and_utf16() -> None:
     text = '#include <ros/ros.h>\nvoid f() { nh.advertise<T>("chatter", 1); }\n'
     for data in (b"\xef\xbb\xbf" + text.encode(), text.encode("utf-16")):

@@ -218,6 +218,8 @@ class Folder:
     def _concatenation(self, node: Node, depth: int) -> str | None:
         parts: list[str] = []
         for child in node.named_children:
+            if child.type == "comment":
+                continue  # "a/"  // NOLINT(RN202)  "b": the comment is not part of it
             if child.type in STRING_LITERALS:
                 part = literal_value(self._source, child)
             elif child.type == "identifier":
