@@ -28,10 +28,11 @@ from .config import (
     enabled_codes,
     load_settings,
 )
-from .discover import DiscoveryError, SourceFile, discover, workspace_root
+from .discover import DiscoveryError, SourceFile, classify, discover, workspace_root
 from .engine import LintResult, RunOptions, lint
 from .model import Diagnostic, Generation, Kind
 from .names import Problem, check_name
+from .noqa import add_noqa
 from .progress import ProgressBar
 from .progress import wanted as progress_wanted
 from .registry import Registry, RegistryError, load_registry
@@ -137,6 +138,11 @@ def _add_check(check: argparse.ArgumentParser) -> None:
         help="record the current findings in FILE and exit 0",
     )
     check.add_argument(
+        "--add-noqa",
+        action="store_true",
+        help="write a suppression comment for every current finding, in its file's form",
+    )
+    check.add_argument(
         "--changed-since",
         metavar="REV",
         help="report only findings on lines added or modified since git revision REV",
@@ -230,6 +236,8 @@ def _run_check(options: argparse.Namespace) -> int:
         return EXIT_CLEAN
     if options.baseline is not None:
         diagnostics = _apply_baseline(options, diagnostics, cwd)
+    if options.add_noqa:
+        return _add_noqa(diagnostics, cwd)
     metas = [rule_meta(rule) for rule in registry.rules]
     enabled = enabled_codes(settings, registry)
     output_is_terminal = options.output is None and sys.stdout.isatty()
@@ -254,6 +262,19 @@ def _run_check(options: argparse.Namespace) -> int:
     print(summary(diagnostics, result.files_checked), file=sys.stderr)
     has_findings = any(not d.suppressed and not d.baselined for d in diagnostics)
     return EXIT_FINDINGS if has_findings and not options.exit_zero else EXIT_CLEAN
+
+
+def _add_noqa(diagnostics: Sequence[Diagnostic], cwd: Path) -> int:
+    """Write a suppression for every reported diagnostic; 1 when some could not be."""
+    languages = {d.path: classify(cwd / d.path) for d in diagnostics}
+    outcome = add_noqa(diagnostics, languages, cwd)
+    print(
+        f"roslint-names: added {outcome.added} suppression comments in {outcome.files} files",
+        file=sys.stderr,
+    )
+    for path, line, why in outcome.left:
+        print(f"roslint-names: {path}:{line}: not suppressed: {why}", file=sys.stderr)
+    return EXIT_FINDINGS if outcome.left else EXIT_CLEAN
 
 
 def _apply_baseline(

@@ -3,7 +3,8 @@
 - C++: ``// NOLINT(RN202)`` on the line, ``// NOLINTNEXTLINE(RN202)`` on the line before.
 - Python: ``# noqa: RN202`` on the line.
 - XML (launch, URDF, XACRO): ``<!-- roslint-names: ignore RN202 -->`` after the markup
-  on the line, or alone on the line before; YAML launch files:
+  on the line, or alone on the line before (before a start tag written over several
+  lines, for every line of the tag); YAML launch files:
   ``# roslint-names: ignore RN202`` likewise.
 
 Codes and slugs both work (``NOLINT(hard-coded-absolute-name)``). A bare ``NOLINT`` or
@@ -27,6 +28,7 @@ from .model import Language, Span
 # Keys separated by a comma or blanks; the separator is never empty, so no backtracking blow-up.
 _KEYS = r"([A-Za-z0-9_\-]+(?:(?:[ \t]*,[ \t]*|[ \t]+)[A-Za-z0-9_\-]+)*)"
 _NOQA_LANGUAGES = frozenset({Language.PYTHON, Language.LAUNCH_PYTHON})
+_XML_LANGUAGES = frozenset({Language.LAUNCH_XML, Language.URDF, Language.PACKAGE_XML})
 _MARKER = {
     Language.CPP: "NOLINT",
     Language.PYTHON: "noqa",
@@ -37,10 +39,10 @@ _MARKER = {
     Language.PACKAGE_XML: "roslint-names",
     Language.SERVICE_DEFINITION: "roslint-names",
 }
-_NOLINT = re.compile(r"//\s*NOLINT(NEXTLINE)?\(([^)]*)\)")
-_NOQA = re.compile(r"#\s*noqa\s*:\s*" + _KEYS, re.IGNORECASE)
-_XML_IGNORE = re.compile(r"<!--\s*roslint-names\s*:\s*ignore\s+" + _KEYS + r".*?-->")
-_YAML_IGNORE = re.compile(r"#\s*roslint-names\s*:\s*ignore\s+" + _KEYS)
+NOLINT = re.compile(r"//\s*NOLINT(NEXTLINE)?\(([^)]*)\)")
+NOQA = re.compile(r"#\s*noqa\s*:\s*" + _KEYS, re.IGNORECASE)
+XML_IGNORE = re.compile(r"<!--\s*roslint-names\s*:\s*ignore\s+" + _KEYS + r".*?-->")
+YAML_IGNORE = re.compile(r"#\s*roslint-names\s*:\s*ignore\s+" + _KEYS)
 _LOOKS_LIKE_OUR_CODE = re.compile(r"^RN[0-9]+$", re.IGNORECASE)
 
 
@@ -63,19 +65,41 @@ def find_suppressions(text: str, language: Language) -> list[Suppression]:
     for index, line in enumerate(split_lines(text)):
         number = index + 1
         found.extend(_in_line(line, number, language))
+    if language in _XML_LANGUAGES and any(len(s.lines) > 1 for s in found):
+        found = _over_whole_tags(found, text)
     return found
+
+
+def _over_whole_tags(found: list[Suppression], text: str) -> list[Suppression]:
+    """A comment alone on the line before a start tag written over several lines covers
+    every line of the tag: no comment can stand between its attributes."""
+    from .extract.xmlsafe import scan_start_tags  # only for files with such a comment
+
+    last_line_of: dict[int, int] = {}
+    for tag in scan_start_tags(text):
+        first = text.count("\n", 0, tag.start) + 1
+        last_line_of.setdefault(first, text.count("\n", 0, tag.end) + 1)
+    return [_widened(suppression, last_line_of) for suppression in found]
+
+
+def _widened(suppression: Suppression, last_line_of: dict[int, int]) -> Suppression:
+    after = suppression.span.line + 1
+    if len(suppression.lines) == 1 or last_line_of.get(after, after) == after:
+        return suppression
+    lines = suppression.lines | frozenset(range(after, last_line_of[after] + 1))
+    return Suppression(suppression.keys, lines, suppression.span)
 
 
 def _in_line(line: str, number: int, language: Language) -> Iterable[Suppression]:
     if language is Language.CPP:
-        for match in _NOLINT.finditer(line):
+        for match in NOLINT.finditer(line):
             target = number + 1 if match.group(1) else number
             yield _make(match.group(2), frozenset({target}), number, match)
     elif language in (Language.PYTHON, Language.LAUNCH_PYTHON):
-        for match in _NOQA.finditer(line):
+        for match in NOQA.finditer(line):
             yield _make(match.group(1), frozenset({number}), number, match)
     else:
-        pattern = _YAML_IGNORE if language is Language.LAUNCH_YAML else _XML_IGNORE
+        pattern = YAML_IGNORE if language is Language.LAUNCH_YAML else XML_IGNORE
         for match in pattern.finditer(line):
             # Alone on its line, the comment is about the next line; after markup, its own.
             alone = not line[: match.start()].strip()

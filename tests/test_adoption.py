@@ -263,3 +263,83 @@ def test_changed_since_errors_say_what_is_wrong(
     result = run_cli(["check", "--changed-since", "no-such-branch", "."], tmp_path)
     assert result.exit_code == 2
     assert message in result.stderr
+
+
+# ---------------------------------------------------------------------------------------
+# Suppressions added for every current finding
+
+NOQA_CPP = """#include <ros/ros.h>  // NOLINT(build/include_order)
+#include <geometry_msgs/Twist.h>
+
+#define ADVERTISE(nh, topic) \\
+  nh.advertise<geometry_msgs::Twist>(topic, 10)
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "velocity_smoother");
+  ros::NodeHandle nh;
+  ros::Publisher out = nh.advertise<geometry_msgs::Twist>("/mobile_base/cmd_vel", 10);
+  ros::Publisher raw = nh.advertise<geometry_msgs::Twist>("/raw", 10);  // NOLINT(runtime/int)
+  ros::spin();
+}
+"""
+NOQA_PY = """#!/usr/bin/env python
+import rospy
+from geometry_msgs.msg import Twist
+
+rospy.init_node("teleop")
+pub = rospy.Publisher("/cmd_vel", Twist, queue_size=1)  # noqa: E501
+alt = rospy.Publisher("/cmd_vel_alt", \\
+                      Twist, queue_size=1)
+"""
+NOQA_LAUNCH = """<launch>
+  <node name="base-driver" pkg="robot_base" type="driver_node"/>
+  <node pkg="laser_filters"
+        name="laser-filter"
+        type="scan_to_scan_filter_chain">
+    <remap from="scan" to="base_scan"/>
+  </node>
+  <node name="imu-driver" ns="Imu" pkg="imu" type="imu_node"/> <!-- roslint-names: ignore RN203 -->
+</launch>
+"""
+NOQA_YAML = """launch:
+- node: {pkg: teleop_twist_joy, exec: teleop_node, name: teleop-joy}
+"""
+
+
+def test_add_noqa_writes_each_language_s_comment_and_merges_existing_ones(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    write_package(tmp_path / "src/base", 1, "base")
+    write(tmp_path, "src/base/src/smoother.cpp", NOQA_CPP)
+    write(tmp_path, "src/base/scripts/teleop", NOQA_PY)
+    write(tmp_path, "src/base/launch/base.launch", NOQA_LAUNCH)
+    write_package(tmp_path / "src/joy", 2, "joy")
+    write(tmp_path, "src/joy/launch/joy.launch.yaml", NOQA_YAML)
+    added = run_cli(["check", "--add-noqa", "."], tmp_path)
+    assert "added 7 suppression comments in 4 files" in added.stderr
+    # The continued line has no room for a comment: named, and still a finding.
+    assert "src/base/scripts/teleop:7: not suppressed: the line ends inside" in added.stderr
+    assert added.exit_code == 1
+
+    cpp = (tmp_path / "src/base/src/smoother.cpp").read_text(encoding="utf-8").splitlines()
+    assert cpp[10].endswith('("/mobile_base/cmd_vel", 10);  // NOLINT(RN202)')
+    assert cpp[11].endswith("  // NOLINT(runtime/int, RN202)")
+    python = (tmp_path / "src/base/scripts/teleop").read_text(encoding="utf-8").splitlines()
+    assert python[4].endswith('rospy.init_node("teleop")')
+    assert python[5].endswith("  # noqa: E501, RN202")
+    launch = (tmp_path / "src/base/launch/base.launch").read_text(encoding="utf-8").splitlines()
+    assert launch[1].endswith("/> <!-- roslint-names: ignore RN101 -->")
+    # Inside a start tag over several lines: alone before the tag, which it covers whole.
+    assert launch[2] == "  <!-- roslint-names: ignore RN101 -->"
+    assert launch[8] == (
+        '  <node name="imu-driver" ns="Imu" pkg="imu" type="imu_node"/> '
+        "<!-- roslint-names: ignore RN203, RN101 -->"
+    )
+    yaml = (tmp_path / "src/joy/launch/joy.launch.yaml").read_text(encoding="utf-8")
+    assert yaml.splitlines()[1].endswith("}  # roslint-names: ignore RN101")
+
+    after = _check(run_cli, tmp_path, "--extend-select", "RN002")
+    assert _found(after) == [("src/base/scripts/teleop", 7, "RN202")]
+    again = run_cli(["check", "--add-noqa", "."], tmp_path)
+    assert "added 0 suppression comments in 0 files" in again.stderr

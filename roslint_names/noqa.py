@@ -1,0 +1,203 @@
+"""``check --add-noqa``: a suppression comment for every current finding, in its file's form.
+
+- C++: `` // NOLINT(RN202)`` at the end of the line, merged into a ``NOLINT(...)`` already
+  there (cpplint's and clang-tidy's codes stay);
+- Python: ``  # noqa: RN202``, merged into a ``# noqa: E501`` already there;
+- launch XML, URDF, XACRO: `` <!-- roslint-names: ignore RN202 -->`` after the markup; a
+  finding inside a start tag written over several lines (an attribute on a line of its
+  own) gets the comment alone on the line before the tag, which covers the whole tag;
+- launch YAML: ``  # roslint-names: ignore RN202``.
+
+A line whose end is not free for a comment (inside a Python string, after a C++ line
+continuation) is left alone and named, as is a file that is not UTF-8. Line endings and
+everything else of the file are kept byte for byte.
+"""
+
+from __future__ import annotations
+
+import io
+import re
+import tokenize
+from collections import defaultdict
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+from .model import Diagnostic, Language
+from .suppress import NOLINT, NOQA, XML_IGNORE, YAML_IGNORE
+
+
+@dataclass(frozen=True)
+class Outcome:
+    added: int  # comments written or extended
+    files: int  # files changed
+    left: tuple[tuple[str, int, str], ...]  # (path, line, why) of findings not suppressed
+
+
+def add_noqa(
+    diagnostics: Iterable[Diagnostic], languages: dict[str, Language | None], cwd: Path
+) -> Outcome:
+    """Suppress each reported (not suppressed, not baselined) diagnostic in its file.
+
+    ``languages`` gives each diagnostic path's language (``discover.classify``)."""
+    wanted: dict[str, dict[int, set[str]]] = defaultdict(lambda: defaultdict(set))
+    for diagnostic in diagnostics:
+        if not diagnostic.suppressed and not diagnostic.baselined:
+            wanted[diagnostic.path][diagnostic.span.line].add(diagnostic.code)
+    added = files = 0
+    left: list[tuple[str, int, str]] = []
+    for path, by_line in sorted(wanted.items()):
+        language = languages.get(path)
+        file = cwd / path
+        try:
+            data = file.read_bytes()
+        except OSError as error:
+            left.extend((path, line, f"cannot read it: {error.strerror}") for line in by_line)
+            continue
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError:
+            left.extend((path, line, "not UTF-8") for line in by_line)
+            continue
+        editor = _EDITORS.get(language) if language is not None else None
+        if editor is None:
+            left.extend((path, line, "no comment form for this file") for line in by_line)
+            continue
+        lines = text.splitlines(keepends=True)
+        count, refused = editor(lines, text, by_line)
+        left.extend((path, line, why) for line, why in refused)
+        if count:
+            file.write_bytes("".join(lines).encode("utf-8"))
+            added += count
+            files += 1
+    return Outcome(added, files, tuple(left))
+
+
+_Edit = tuple[int, list[tuple[int, str]]]  # comments added, (line, why) refused
+
+
+def _body_and_ending(line: str) -> tuple[str, str]:
+    body = line.rstrip("\r\n")
+    return body, line[len(body) :]
+
+
+def _codes(existing: str, new: Iterable[str]) -> str:
+    keys = [key for key in re.split(r"[\s,]+", existing.strip()) if key]
+    keys += sorted(code for code in new if code not in keys)
+    return ", ".join(keys)
+
+
+def _append(
+    lines: list[str],
+    number: int,
+    codes: set[str],
+    pattern: re.Pattern[str],
+    *,
+    make: str,
+    group: int = 1,
+) -> None:
+    """Merge ``codes`` into the comment ``pattern`` finds on the line (its keys are match
+    group ``group``), else append ``make``."""
+    body, ending = _body_and_ending(lines[number - 1])
+    match = next((m for m in pattern.finditer(body) if m.group(group) is not None), None)
+    if pattern is NOLINT and match is not None and match.group(1):
+        match = None  # NOLINTNEXTLINE on this line is about the next one
+    if match is not None:
+        merged = _codes(match.group(group), codes)
+        body = body[: match.start(group)] + merged + body[match.end(group) :]
+    else:
+        body = body.rstrip() + make.format(", ".join(sorted(codes)))
+    lines[number - 1] = body + (ending or "")
+
+
+def _cpp(lines: list[str], text: str, by_line: dict[int, set[str]]) -> _Edit:
+    refused: list[tuple[int, str]] = []
+    count = 0
+    for number, codes in sorted(by_line.items()):
+        body, _ = _body_and_ending(lines[number - 1])
+        if body.endswith("\\"):
+            refused.append((number, "the line continues a macro"))
+            continue
+        _append(lines, number, codes, NOLINT, make="  // NOLINT({})", group=2)
+        count += 1
+    return count, refused
+
+
+def _python(lines: list[str], text: str, by_line: dict[int, set[str]]) -> _Edit:
+    busy = _python_lines_without_room(text)
+    refused: list[tuple[int, str]] = []
+    count = 0
+    for number, codes in sorted(by_line.items()):
+        if number in busy:
+            refused.append((number, "the line ends inside a string or continues"))
+            continue
+        _append(lines, number, codes, NOQA, make="  # noqa: {}")
+        count += 1
+    return count, refused
+
+
+def _python_lines_without_room(text: str) -> set[int]:
+    """Lines whose end lies inside a string, or that end with a backslash."""
+    busy: set[int] = set()
+    try:
+        for token in tokenize.generate_tokens(io.StringIO(text).readline):
+            if token.type == tokenize.STRING and token.end[0] > token.start[0]:
+                busy.update(range(token.start[0], token.end[0]))
+    except (tokenize.TokenError, SyntaxError):
+        pass  # the file does not tokenize: RN001 says so; its other lines are fine
+    for number, line in enumerate(text.splitlines(), start=1):
+        if line.endswith("\\"):
+            busy.add(number)
+    return busy
+
+
+def _yaml(lines: list[str], text: str, by_line: dict[int, set[str]]) -> _Edit:
+    for number, codes in sorted(by_line.items()):
+        _append(lines, number, codes, YAML_IGNORE, make="  # roslint-names: ignore {}")
+    return len(by_line), []
+
+
+def _xml(lines: list[str], text: str, by_line: dict[int, set[str]]) -> _Edit:
+    """After the markup on the line; inside a start tag over several lines, alone on the
+    line before the tag (``suppress`` gives such a comment the whole tag)."""
+    from .extract.xmlsafe import scan_start_tags
+
+    offsets = [0]
+    for line in lines:
+        offsets.append(offsets[-1] + len(line))
+    before_tag: dict[int, set[str]] = defaultdict(set)  # tag's first line -> codes
+    at_end: dict[int, set[str]] = {}
+    tags = scan_start_tags(text)
+    for number, codes in by_line.items():
+        body, _ = _body_and_ending(lines[number - 1])
+        end_of_line = offsets[number - 1] + len(body)
+        tag = next((t for t in tags if t.start < end_of_line < t.end), None)
+        if tag is None:
+            at_end[number] = codes
+        else:
+            first = text.count("\n", 0, tag.start) + 1
+            before_tag[first] |= codes
+    for number, codes in sorted(at_end.items()):
+        _append(lines, number, codes, XML_IGNORE, make=" <!-- roslint-names: ignore {} -->")
+    for first, codes in sorted(before_tag.items(), reverse=True):  # bottom up: lines shift
+        previous = lines[first - 2] if first >= 2 else ""
+        match = XML_IGNORE.search(previous)
+        if match is not None and not previous[: match.start()].strip():
+            _append(lines, first - 1, codes, XML_IGNORE, make="")
+            continue
+        tag_line = lines[first - 1]
+        indent = tag_line[: len(tag_line) - len(tag_line.lstrip(" \t"))]
+        _, ending = _body_and_ending(tag_line)
+        comment = f"{indent}<!-- roslint-names: ignore {', '.join(sorted(codes))} -->"
+        lines.insert(first - 1, comment + (ending or "\n"))
+    return len(at_end) + len(before_tag), []
+
+
+_EDITORS = {
+    Language.CPP: _cpp,
+    Language.PYTHON: _python,
+    Language.LAUNCH_PYTHON: _python,
+    Language.LAUNCH_YAML: _yaml,
+    Language.LAUNCH_XML: _xml,
+    Language.URDF: _xml,
+}
