@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import NoReturn, TextIO
 
-from . import __version__, baseline
+from . import __version__, baseline, fixing
 from .baseline import BaselineError
 from .cache import FactsCache
 from .cache import default_directory as default_cache_directory
@@ -29,7 +29,16 @@ from .config import (
     load_settings,
 )
 from .discover import DiscoveryError, SourceFile, classify, discover, workspace_root
-from .engine import LintResult, RunOptions, lint
+from .engine import (
+    DEFAULT_GENERATION,
+    LintResult,
+    RunOptions,
+    check_file,
+    decode_for_display,
+    extractor_for,
+    lint,
+)
+from .generation import PackageGenerations
 from .model import Diagnostic, Generation, Kind
 from .names import Problem, check_name
 from .noqa import add_noqa
@@ -138,6 +147,21 @@ def _add_check(check: argparse.ArgumentParser) -> None:
         help="record the current findings in FILE and exit 0",
     )
     check.add_argument(
+        "--fix",
+        action="store_true",
+        help="apply the safe fixes ([*] in the report), then report what is left",
+    )
+    check.add_argument(
+        "--diff",
+        action="store_true",
+        help="print the fixes --fix would make as a unified diff; write nothing",
+    )
+    check.add_argument(
+        "--unsafe-fixes",
+        action="store_true",
+        help="with --fix or --diff: also the fixes that may change what the system does",
+    )
+    check.add_argument(
         "--add-noqa",
         action="store_true",
         help="write a suppression comment for every current finding, in its file's form",
@@ -238,6 +262,23 @@ def _run_check(options: argparse.Namespace) -> int:
         diagnostics = _apply_baseline(options, diagnostics, cwd)
     if options.add_noqa:
         return _add_noqa(diagnostics, cwd)
+    if options.fix or options.diff:
+        fixed = fixing.plan(
+            diagnostics,
+            unsafe=options.unsafe_fixes,
+            cwd=cwd,
+            verify=_verifier(settings, registry, cwd),
+        )
+        for path, why in fixed.refused:
+            print(f"roslint-names: {path}: {why}", file=sys.stderr)
+        if options.diff:
+            _write(fixed.diff(), options.output)
+            return EXIT_FINDINGS if fixed.changes else EXIT_CLEAN
+        fixing.write(fixed, cwd)
+        files = len(fixed.changes)
+        print(f"roslint-names: fixed {fixed.fixed} findings in {files} files", file=sys.stderr)
+        # What is left, as a run after the fixes reports it.
+        return int(_run_check(argparse.Namespace(**{**vars(options), "fix": False})))
     metas = [rule_meta(rule) for rule in registry.rules]
     enabled = enabled_codes(settings, registry)
     output_is_terminal = options.output is None and sys.stdout.isatty()
@@ -262,6 +303,25 @@ def _run_check(options: argparse.Namespace) -> int:
     print(summary(diagnostics, result.files_checked), file=sys.stderr)
     has_findings = any(not d.suppressed and not d.baselined for d in diagnostics)
     return EXIT_FINDINGS if has_findings and not options.exit_zero else EXIT_CLEAN
+
+
+def _verifier(settings: Settings, registry: Registry, cwd: Path) -> fixing.Verify:
+    """Re-reads a fixed file: its parse errors and its per-file findings (code, line)."""
+    packages = PackageGenerations()
+    enabled = enabled_codes(settings, registry)
+    fallback = settings.ros or DEFAULT_GENERATION
+
+    def verify(path: str, data: bytes) -> tuple[int, set[tuple[str, int]]]:
+        absolute = cwd / path
+        language = classify(absolute)
+        if language is None:
+            return 0, set()
+        extract = extractor_for(language)
+        facts = extract(path, data, packages.for_file(absolute), fallback)
+        found, _ = check_file(facts, decode_for_display(data), settings, registry, enabled)
+        return len(facts.parse_errors), {(d.code, d.span.line) for d in found if not d.suppressed}
+
+    return verify
 
 
 def _add_noqa(diagnostics: Sequence[Diagnostic], cwd: Path) -> int:

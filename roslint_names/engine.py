@@ -24,8 +24,10 @@ from .generation import PackageGenerations, service_types
 from .lines import split_lines
 from .model import (
     Diagnostic,
+    Edit,
     FileFacts,
     Finding,
+    Fix,
     Generation,
     Kind,
     Language,
@@ -532,7 +534,7 @@ def check_file(
     active = enabled - ignored_for_path(settings, relative, registry)
     to_diagnostic = _DiagnosticFactory(facts, settings, text)
     diagnostics = [
-        to_diagnostic(rule, finding.span, finding.message, finding.related)
+        to_diagnostic(rule, finding.span, finding.message, finding.related, finding.fix)
         for rule in registry.rules
         if rule.code in active and rule.check is not None
         for finding in _run(rule, facts, settings, known_service_types)
@@ -660,12 +662,18 @@ class _DiagnosticFactory:
         self._lines: list[str] | None = None
 
     def __call__(
-        self, rule: Rule, span: Span, message: str, related: tuple[RelatedLocation, ...] = ()
+        self,
+        rule: Rule,
+        span: Span,
+        message: str,
+        related: tuple[RelatedLocation, ...] = (),
+        fix: Fix | None = None,
     ) -> Diagnostic:
         if self._lines is None:
             self._lines = split_lines(self._text)
         severity = self.settings.severity.get(rule.code) or rule.severity_for(self.facts.generation)
         in_file = 0 < span.line <= len(self._lines)
+        source_line = self._lines[span.line - 1] if in_file else None
         return Diagnostic(
             path=self.facts.path,
             span=span,
@@ -674,8 +682,24 @@ class _DiagnosticFactory:
             severity=severity,
             message=message,
             related=related,
-            source_line=self._lines[span.line - 1] if in_file else None,
+            source_line=source_line,
+            edit=None if fix is None else _located(fix, span, source_line),
         )
+
+
+def _located(fix: Fix, span: Span, line: str | None) -> Edit | None:
+    """Where in the file the fix writes: the one place on the finding's line, within its
+    span, that spells the name exactly (an escaped spelling gets no fix)."""
+    if line is None or span.line != span.end_line or not fix.value:
+        return None
+    written = line[span.column - 1 : span.end_column - 1]
+    start = written.find(fix.value)
+    if start < 0 or written.find(fix.value, start + 1) >= 0:
+        return None
+    column = span.column + start
+    return Edit(
+        Span(span.line, column, span.line, column + len(fix.value)), fix.replacement, fix.safe
+    )
 
 
 def _unreadable(source: SourceFile, reason: str) -> FileFacts:

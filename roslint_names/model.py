@@ -260,12 +260,35 @@ class FileFacts:
 
 
 @dataclass(frozen=True)
+class Fix:
+    """A rule's certain fix: write ``replacement`` where the finding's name ``value`` is.
+
+    ``safe``: the fix cannot change what the running system does (``--fix`` applies it;
+    an unsafe one needs ``--unsafe-fixes`` too).
+    """
+
+    value: str
+    replacement: str
+    safe: bool
+
+
+@dataclass(frozen=True)
+class Edit:
+    """A fix located in the file: ``span`` (one line) becomes ``text``."""
+
+    span: Span
+    text: str
+    safe: bool
+
+
+@dataclass(frozen=True)
 class Finding:
     """What a rule reports: no code or severity, the engine attaches those from the rule."""
 
     span: Span
     message: str
     related: tuple[RelatedLocation, ...] = ()
+    fix: Fix | None = None
 
 
 @dataclass(frozen=True)
@@ -290,6 +313,7 @@ class Diagnostic:
     source_line: str | None = field(default=None, compare=False)
     # Matched by the baseline given to the run (``baseline``): known before, not reported.
     baselined: bool = False
+    edit: Edit | None = None  # the fix, where the file spells the name exactly
 
     def sort_key(self) -> tuple[str, int, int, str, str]:
         return (self.path, self.span.line, self.span.column, self.code, self.message)

@@ -343,3 +343,93 @@ def test_add_noqa_writes_each_language_s_comment_and_merges_existing_ones(
     assert _found(after) == [("src/base/scripts/teleop", 7, "RN202")]
     again = run_cli(["check", "--add-noqa", "."], tmp_path)
     assert "added 0 suppression comments in 0 files" in again.stderr
+
+
+# ---------------------------------------------------------------------------------------
+# Fixes
+
+FIX_CPP = """#include <rclcpp/rclcpp.hpp>
+#include <geometry_msgs/msg/transform_stamped.hpp>
+
+class OdomBroadcaster : public rclcpp::Node
+{
+public:
+  OdomBroadcaster() : Node("odom_broadcaster")
+  {
+    msg_.header.frame_id = "/odom";  // tf2 refuses it
+    msg_.child_frame_id = "base_link";
+    status_ = create_publisher<std_msgs::msg::String>("status/", 10);
+  }
+
+private:
+  geometry_msgs::msg::TransformStamped msg_;
+  rclcpp::Publisher<std_msgs::msg::String>::SharedPtr status_;
+};
+"""
+FIX_LAUNCH = """<launch>
+  <node pkg="robot_localization" exec="ekf_node" name="ekf" namespace="localization/">
+    <param name="world_frame" value="/map"/>
+    <remap from="~odom" to="odometry/filtered"/>
+    <remap from="imu" to="imu/data"/> <!-- roslint-names: ignore RN102 -->
+  </node>
+</launch>
+"""
+FIX_ROS1_LAUNCH = """<launch>
+  <node pkg="robot_localization" type="ekf_localization_node" name="ekf">
+    <param name="map_frame" value="/map"/>
+  </node>
+</launch>
+"""
+
+
+def _fix_workspace(root: Path) -> None:
+    write_package(root / "src/odom", 2, "odom")
+    write(root, "src/odom/src/odom_broadcaster.cpp", FIX_CPP)
+    write(root, "src/odom/launch/ekf.launch.xml", FIX_LAUNCH)
+    write_package(root / "src/legacy", 1, "legacy")
+    write(root, "src/legacy/launch/ekf.launch", FIX_ROS1_LAUNCH)
+
+
+def test_safe_fixes_are_marked_shown_as_a_diff_and_applied(run_cli: Any, tmp_path: Path) -> None:
+    _fix_workspace(tmp_path)
+    text = run_cli(["check", "."], tmp_path)
+    fixable = [line for line in text.stdout.splitlines() if line.endswith("[*]")]
+    assert len(fixable) == 5  # /odom, status/, localization/, /map, ~odom (ROS 2 only)
+
+    diff = run_cli(["check", "--diff", "."], tmp_path)
+    assert diff.exit_code == 1
+    assert '-    msg_.header.frame_id = "/odom";  // tf2 refuses it' in diff.stdout
+    assert '+    msg_.header.frame_id = "odom";  // tf2 refuses it' in diff.stdout
+    assert '+    <remap from="~/odom" to="odometry/filtered"/>' in diff.stdout
+    assert (tmp_path / "src/odom/src/odom_broadcaster.cpp").read_text(encoding="utf-8") == FIX_CPP
+
+    fixed = run_cli(["check", "--fix", "--format", "json", "."], tmp_path)
+    assert "fixed 5 findings in 2 files" in fixed.stderr
+    # What is left: the ROS 1 frame (tf, not tf2, may tell '/map' from 'map').
+    assert [(f["path"], f["code"], f["fix"]["safe"]) for f in fixed.findings()] == [
+        ("src/legacy/launch/ekf.launch", "RN205", False)
+    ]
+    launch = (tmp_path / "src/odom/launch/ekf.launch.xml").read_text(encoding="utf-8")
+    assert launch == (
+        FIX_LAUNCH.replace('"localization/"', '"localization"')
+        .replace('"/map"', '"map"')
+        .replace('"~odom"', '"~/odom"')
+    )  # and nothing else: the comment and the layout stay as they were
+    again = run_cli(["check", "--fix", "."], tmp_path)
+    assert "fixed 0 findings in 0 files" in again.stderr
+
+    unsafe = run_cli(["check", "--fix", "--unsafe-fixes", "."], tmp_path)
+    assert "fixed 1 findings in 1 files" in unsafe.stderr
+    assert unsafe.exit_code == 0
+    legacy = (tmp_path / "src/legacy/launch/ekf.launch").read_text(encoding="utf-8")
+    assert '<param name="map_frame" value="map"/>' in legacy
+
+
+def test_a_suppressed_or_baselined_finding_is_not_fixed(run_cli: Any, tmp_path: Path) -> None:
+    write_package(tmp_path / "src/odom", 2, "odom")
+    source = FIX_CPP.replace("// tf2 refuses it", "// NOLINT(RN205)")
+    write(tmp_path, "src/odom/src/odom_broadcaster.cpp", source)
+    run_cli(["check", "--write-baseline", "baseline.json", "."], tmp_path)
+    result = run_cli(["check", "--fix", "--baseline", "baseline.json", "."], tmp_path)
+    assert "fixed 0 findings in 0 files" in result.stderr
+    assert (tmp_path / "src/odom/src/odom_broadcaster.cpp").read_text(encoding="utf-8") == source

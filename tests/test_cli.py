@@ -36,7 +36,7 @@ def test_text_output_is_gcc_style_and_summary_goes_to_stderr(run_cli: Any, tmp_p
         "launch/robot.launch:4:17: error: node name 'base-driver' contains '-' at index 4"
         " (ROS 1); use 'base_driver' [RN101 illegal-name]",
         "launch/robot.launch:5:33: warning: remap target 'cmd_vel/' ends with '/'"
-        " (ROS 1 strips it); use 'cmd_vel' [RN102 trailing-slash]",
+        " (ROS 1 strips it); use 'cmd_vel' [RN102 trailing-slash] [*]",
     ]
     assert "2 problems" in result.stderr
     assert "1 file" in result.stderr

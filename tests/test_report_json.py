@@ -26,6 +26,7 @@ FINDING_KEYS = [
     "severity",
     "message",
     "related",
+    "fix",
 ]
 RELATED_KEYS = ["path", "line", "column", "end_line", "end_column", "message"]
 

@@ -14,7 +14,7 @@ import report_sample as sample
 from jsonschema import Draft7Validator
 
 from roslint_names import PROJECT_URL
-from roslint_names.model import Diagnostic, RelatedLocation, Severity, Span
+from roslint_names.model import Diagnostic, Edit, RelatedLocation, Severity, Span
 from roslint_names.report import render
 from roslint_names.report.sarif import artifact_location, root_uri, semantic_version
 
@@ -77,8 +77,12 @@ OUTSIDE = (
             (replace(sample.RN101, baselined=True), *sample.DIAGNOSTICS[1:]),
             {"baseline": True},
         ),
+        (
+            (replace(sample.RN101, edit=Edit(Span(12, 22, 12, 33), "base_driver", False)),),
+            {},
+        ),
     ],
-    ids=["default", "with-suppressed", "empty", "odd-paths", "dev-version", "baseline"],
+    ids=["default", "with-suppressed", "empty", "odd-paths", "dev-version", "baseline", "fix"],
 )
 def test_valid_against_the_official_schema(
     validator: Draft7Validator, diagnostics: tuple[Diagnostic, ...], changes: dict[str, object]

@@ -17,7 +17,8 @@ line break::
           "name": "illegal-name",
           "severity": "error",
           "message": "node name 'base-driver' contains '-' at index 4; use 'base_driver'",
-          "related": []
+          "related": [],
+          "fix": null
         }
       ]
     }
@@ -51,6 +52,11 @@ Fields:
     Other locations the finding involves, for example the other half of a case collision
     (RN401): objects with ``path``, ``line``, ``column``, ``end_line``, ``end_column`` (as
     above) and ``message``. Empty when there are none.
+``fix`` (object or null)
+    The certain fix, when the rule has one and the file spells the name exactly: the text
+    from ``column`` to ``end_column`` (exclusive) of ``line`` becomes ``replacement``.
+    ``safe`` is true when it cannot change what the running system does (``--fix``
+    applies it), false when it may (``--fix --unsafe-fixes``).
 """
 
 from __future__ import annotations
@@ -60,7 +66,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from ..catalog import RuleMeta
-from ..model import Diagnostic, RelatedLocation
+from ..model import Diagnostic, Edit, RelatedLocation
 from .base import ReportContext, visible
 
 FORMAT_VERSION = 1
@@ -91,6 +97,18 @@ def _finding(diagnostic: Diagnostic) -> dict[str, Any]:
         "severity": diagnostic.severity.value,
         "message": diagnostic.message,
         "related": [_related(related) for related in diagnostic.related],
+        "fix": None if diagnostic.edit is None else _fix(diagnostic.edit),
+    }
+
+
+def _fix(edit: Edit) -> dict[str, Any]:
+    span = edit.span
+    return {
+        "safe": edit.safe,
+        "line": span.line,
+        "column": span.column,
+        "end_column": span.end_column,
+        "replacement": edit.text,
     }
 
 

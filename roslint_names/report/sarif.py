@@ -30,7 +30,7 @@ from urllib.parse import quote
 from .. import PROJECT_URL
 from ..catalog import RuleMeta
 from ..fingerprint import line_fingerprint
-from ..model import Diagnostic, Severity, Span
+from ..model import Diagnostic, Edit, Severity, Span
 from .base import ReportContext, rules_by_code
 
 SCHEMA_URI = "https://json.schemastore.org/sarif-2.1.0.json"
@@ -152,7 +152,34 @@ def _result(
         result["suppressions"] = [{"kind": "inSource"}]
     if context.baseline:
         result["baselineState"] = "unchanged" if diagnostic.baselined else "new"
+    if diagnostic.edit is not None:
+        result["fixes"] = [_fix(diagnostic, diagnostic.edit, context)]
     return result
+
+
+def _fix(diagnostic: Diagnostic, edit: Edit, context: ReportContext) -> dict[str, Any]:
+    span = edit.span
+    location = _physical_location(diagnostic.path, diagnostic.span, context.root)
+    safety = "safe" if edit.safe else "unsafe (--unsafe-fixes)"
+    return {
+        "description": {"text": f"write '{edit.text}' ({safety} fix)"},
+        "artifactChanges": [
+            {
+                "artifactLocation": location["artifactLocation"],
+                "replacements": [
+                    {
+                        "deletedRegion": {
+                            "startLine": span.line,
+                            "startColumn": span.column,
+                            "endLine": span.end_line,
+                            "endColumn": span.end_column,
+                        },
+                        "insertedContent": {"text": edit.text},
+                    }
+                ],
+            }
+        ],
+    }
 
 
 def _message_text(diagnostic: Diagnostic, root: Path) -> str:

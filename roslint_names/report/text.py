@@ -47,10 +47,13 @@ def render_text(
 
 
 def format_line(diagnostic: Diagnostic, color: bool = False) -> str:
-    """``path:line:col: severity: message [CODE slug]``."""
+    """``path:line:col: severity: message [CODE slug]``, and `` [*]`` when ``--fix`` can
+    fix it."""
     span = diagnostic.span
     location = f"{diagnostic.path}:{span.line}:{span.column}:"
     message = f"{one_line(diagnostic.message)} [{diagnostic.code} {diagnostic.rule_name}]"
+    if diagnostic.edit is not None and diagnostic.edit.safe:
+        message += " [*]"
     return _line(location, diagnostic.severity.value, message, color)
 
 

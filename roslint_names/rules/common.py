@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 
-from ..model import FileFacts, Generation, Kind, Language, NameUse, Role
+from ..model import FileFacts, Fix, Generation, Kind, Language, NameUse, Role
 from ..names import Problem, check_name
 
 GRAPH_KINDS = frozenset({Kind.NODE, Kind.NAMESPACE, Kind.TOPIC, Kind.SERVICE, Kind.ACTION})
@@ -45,6 +45,13 @@ def grammar_problems(facts: FileFacts, code: str) -> Iterator[tuple[NameUse, Pro
 
 def fix_hint(problem: Problem) -> str:
     return f"; use '{problem.suggestion}'" if problem.suggestion else ""
+
+
+def suggested_fix(use: NameUse, problem: Problem, *, safe: bool) -> Fix | None:
+    """The grammar's suggestion as a fix of ``use``, when it has one."""
+    if problem.suggestion is None or problem.suggestion == use.value:
+        return None
+    return Fix(use.value, problem.suggestion, safe)
 
 
 # Uses of a name another node chooses: the publisher chooses a topic, the server a service

@@ -4,16 +4,31 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..model import FileFacts, Finding, Severity
+from ..model import FileFacts, Finding, Fix, Generation, NameUse, Severity
+from ..names import Problem
 from ..rule import Rule, RuleContext
-from .common import fix_hint, grammar_problems, label
+from .common import fix_hint, grammar_problems, label, suggested_fix
 
 
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
     ros = f"ROS {facts.generation.value}"
     for use, problem in grammar_problems(facts, RULE.code):
         message = f"{label(use)} '{use.value}' {problem.reason} ({ros}){fix_hint(problem)}"
-        yield Finding(use.span, message)
+        yield Finding(use.span, message, fix=_private_name_fix(use, problem, facts))
+
+
+def _private_name_fix(use: NameUse, problem: Problem, facts: FileFacts) -> Fix | None:
+    """ROS 2 ``~name`` to ``~/name``: rcl refuses ``~name`` (or, for two characters, makes
+    it ``<ns>/<node>a``, a name nobody meant), so the fix is safe."""
+    value = use.value
+    if (
+        facts.generation is Generation.ROS2
+        and value.startswith("~")
+        and not value.startswith("~/")
+        and problem.suggestion == f"~/{value[1:]}"
+    ):
+        return suggested_fix(use, problem, safe=True)
+    return None
 
 
 RULE = Rule(

@@ -6,12 +6,14 @@ from collections.abc import Iterator
 
 from ..model import FileFacts, Finding, Severity
 from ..rule import Rule, RuleContext
-from .common import fix_hint, grammar_problems, label
+from .common import fix_hint, grammar_problems, label, suggested_fix
 
 
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
     for use, problem in grammar_problems(facts, RULE.code):
-        yield Finding(use.span, f"{label(use)} '{use.value}' {problem.reason}{fix_hint(problem)}")
+        message = f"{label(use)} '{use.value}' {problem.reason}{fix_hint(problem)}"
+        # ROS 1 strips the slash itself; ROS 2 refuses the name: dropping it is safe.
+        yield Finding(use.span, message, fix=suggested_fix(use, problem, safe=True))
 
 
 RULE = Rule(
