@@ -433,3 +433,18 @@ def test_a_suppressed_or_baselined_finding_is_not_fixed(run_cli: Any, tmp_path: 
     result = run_cli(["check", "--fix", "--baseline", "baseline.json", "."], tmp_path)
     assert "fixed 0 findings in 0 files" in result.stderr
     assert (tmp_path / "src/odom/src/odom_broadcaster.cpp").read_text(encoding="utf-8") == source
+
+
+def test_unsafe_fixes_need_asking_for(run_cli: Any, tmp_path: Path) -> None:
+    """An absolute name made relative resolves elsewhere under a namespace; a renamed node
+    or topic must be renamed wherever else it is used: neither is applied by --fix alone."""
+    _workspace(tmp_path)
+    text = run_cli(["check", "."], tmp_path)
+    assert not [line for line in text.stdout.splitlines() if line.endswith("[*]")]
+    assert "fixed 0 findings in 0 files" in run_cli(["check", "--fix", "."], tmp_path).stderr
+    diff = run_cli(["check", "--diff", "--unsafe-fixes", "."], tmp_path)
+    assert '+  <node name="base_driver" pkg="robot_base" type="driver_node"/>' in diff.stdout
+    assert '("mobile_base/cmd_vel", 10);' in diff.stdout
+    fixed = run_cli(["check", "--fix", "--unsafe-fixes", "--format", "json", "."], tmp_path)
+    assert "fixed 3 findings in 2 files" in fixed.stderr
+    assert fixed.findings() == []

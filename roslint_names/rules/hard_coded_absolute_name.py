@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..model import ENDPOINT_ROLES, FileFacts, Finding, Kind, Severity
+from ..model import ENDPOINT_ROLES, FileFacts, Finding, Fix, Kind, Severity
 from ..names import is_valid
 from ..rule import Rule, RuleContext
 from .common import CODE_LANGUAGES, label, static_uses
@@ -48,6 +48,9 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             use.span,
             f"absolute {label(use)} '{use.value}' passed to {use.api} escapes the node's "
             f"namespace, so <group ns> and __ns:= cannot separate robots; use '{relative}'",
+            # Unsafe: under a namespace the name then resolves elsewhere, which is the
+            # point, but whoever used the absolute name must follow.
+            fix=Fix(use.value, relative, safe=False),
         )
 
 
