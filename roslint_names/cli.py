@@ -29,15 +29,7 @@ from .config import (
     load_settings,
 )
 from .discover import DiscoveryError, SourceFile, classify, discover, workspace_root
-from .engine import (
-    DEFAULT_GENERATION,
-    LintResult,
-    RunOptions,
-    check_file,
-    decode_for_display,
-    extractor_for,
-    lint,
-)
+from .engine import LintResult, RunOptions, lint, recheck
 from .generation import PackageGenerations
 from .model import Diagnostic, Generation, Kind
 from .names import Problem, check_name
@@ -308,18 +300,11 @@ def _run_check(options: argparse.Namespace) -> int:
 def _verifier(settings: Settings, registry: Registry, cwd: Path) -> fixing.Verify:
     """Re-reads a fixed file: its parse errors and its per-file findings (code, line)."""
     packages = PackageGenerations()
-    enabled = enabled_codes(settings, registry)
-    fallback = settings.ros or DEFAULT_GENERATION
 
     def verify(path: str, data: bytes) -> tuple[int, set[tuple[str, int]]]:
-        absolute = cwd / path
-        language = classify(absolute)
-        if language is None:
-            return 0, set()
-        extract = extractor_for(language)
-        facts = extract(path, data, packages.for_file(absolute), fallback)
-        found, _ = check_file(facts, decode_for_display(data), settings, registry, enabled)
-        return len(facts.parse_errors), {(d.code, d.span.line) for d in found if not d.suppressed}
+        return recheck(
+            cwd / path, path, data, settings=settings, registry=registry, packages=packages
+        )
 
     return verify
 

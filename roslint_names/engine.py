@@ -19,7 +19,7 @@ from types import ModuleType
 from typing import TYPE_CHECKING, Protocol
 
 from .config import Settings, enabled_codes, ignored_for_path, test_code_codes
-from .discover import SourceFile
+from .discover import SourceFile, classify
 from .generation import PackageGenerations, service_types
 from .lines import split_lines
 from .model import (
@@ -599,6 +599,27 @@ class _TestCodeFilter:
 
     def rules(self, codes: frozenset[str]) -> frozenset[str]:
         return codes & self._judging if self.is_test() else codes
+
+
+def recheck(
+    path: Path,
+    display: str,
+    data: bytes,
+    *,
+    settings: Settings,
+    registry: Registry,
+    packages: PackageGenerations,
+) -> tuple[int, set[tuple[str, int]]]:
+    """One file's parse errors and per-file findings ``(code, line)`` for ``data`` as its
+    content: what ``--fix`` asks of a file before it writes it."""
+    language = classify(path)
+    if language is None or language not in EXTRACTOR_MODULES:
+        return 0, set()
+    fallback = settings.ros or DEFAULT_GENERATION
+    facts = extractor_for(language)(display, data, packages.for_file(path), fallback)
+    enabled = enabled_codes(settings, registry)
+    found, _ = check_file(facts, decode_for_display(data), settings, registry, enabled)
+    return len(facts.parse_errors), {(d.code, d.span.line) for d in found if not d.suppressed}
 
 
 def _run(
