@@ -54,7 +54,8 @@ Fields:
     above) and ``message``. Empty when there are none.
 ``fix`` (object or null)
     The certain fix, when the rule has one and the file spells the name exactly: the text
-    from ``column`` to ``end_column`` (exclusive) of ``line`` becomes ``replacement``.
+    from ``line``:``column`` to ``end_line``:``end_column`` (exclusive) becomes
+    ``replacement``.
     ``safe`` is true when it cannot change what the running system does (``--fix``
     applies it), false when it may (``--fix --unsafe-fixes``).
 """
@@ -66,7 +67,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from ..catalog import RuleMeta
-from ..model import Diagnostic, Edit, RelatedLocation
+from ..model import Diagnostic, Edit, RelatedLocation, Span
 from .base import ReportContext, visible
 
 FORMAT_VERSION = 1
@@ -85,13 +86,9 @@ def render_json(
 
 
 def _finding(diagnostic: Diagnostic) -> dict[str, Any]:
-    span = diagnostic.span
     return {
         "path": diagnostic.path,
-        "line": span.line,
-        "column": span.column,
-        "end_line": span.end_line,
-        "end_column": span.end_column,
+        **_span(diagnostic.span),
         "code": diagnostic.code,
         "name": diagnostic.rule_name,
         "severity": diagnostic.severity.value,
@@ -102,23 +99,17 @@ def _finding(diagnostic: Diagnostic) -> dict[str, Any]:
 
 
 def _fix(edit: Edit) -> dict[str, Any]:
-    span = edit.span
-    return {
-        "safe": edit.safe,
-        "line": span.line,
-        "column": span.column,
-        "end_column": span.end_column,
-        "replacement": edit.text,
-    }
+    return {"safe": edit.safe, **_span(edit.span), "replacement": edit.text}
 
 
 def _related(related: RelatedLocation) -> dict[str, Any]:
-    span = related.span
+    return {"path": related.path, **_span(related.span), "message": related.message}
+
+
+def _span(span: Span) -> dict[str, int]:
     return {
-        "path": related.path,
         "line": span.line,
         "column": span.column,
         "end_line": span.end_line,
         "end_column": span.end_column,
-        "message": related.message,
     }
