@@ -16,6 +16,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
+from .lines import split_lines_keeping_ends
 from .model import Diagnostic
 
 # (path, new bytes) -> the file's parse errors and its findings as (code, line), re-read
@@ -34,8 +35,8 @@ class Fixed:
         return "".join(
             "".join(
                 difflib.unified_diff(
-                    before.splitlines(keepends=True),
-                    after.splitlines(keepends=True),
+                    split_lines_keeping_ends(before),
+                    split_lines_keeping_ends(after),
                     fromfile=f"a/{path}",
                     tofile=f"b/{path}",
                 )
@@ -87,7 +88,7 @@ def write(fixed: Fixed, cwd: Path) -> None:
 
 def _apply(text: str, found: list[Diagnostic]) -> tuple[str, list[Diagnostic]]:
     """``text`` with the edits of ``found`` made, from the end; the diagnostics applied."""
-    lines = text.splitlines(keepends=True)
+    lines = split_lines_keeping_ends(text)
     applied: list[Diagnostic] = []
     taken: dict[int, list[tuple[int, int]]] = defaultdict(list)
     ordered = sorted(found, key=lambda d: d.edit.span if d.edit else d.span, reverse=True)

@@ -17,3 +17,12 @@ def split_lines(text: str) -> list[str]:
     if lines and lines[-1] == "":
         lines.pop()  # a final line break ends the last line; it does not start a new one
     return lines
+
+
+def split_lines_keeping_ends(text: str) -> list[str]:
+    """The lines of ``split_lines``, each with its own line break: joined, they are
+    ``text`` again (what an editor of the file needs)."""
+    lines = re.split(r"(?<=\r\n)|(?<=\r)(?!\n)|(?<=\n)", text)
+    if lines and lines[-1] == "":
+        lines.pop()
+    return lines

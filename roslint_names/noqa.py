@@ -23,6 +23,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
+from .lines import split_lines, split_lines_keeping_ends
 from .model import Diagnostic, Language
 from .suppress import NOLINT, NOQA, XML_IGNORE, YAML_IGNORE
 
@@ -63,7 +64,7 @@ def add_noqa(
         if editor is None:
             left.extend((path, line, "no comment form for this file") for line in by_line)
             continue
-        lines = text.splitlines(keepends=True)
+        lines = split_lines_keeping_ends(text)
         count, refused = editor(lines, text, by_line)
         left.extend((path, line, why) for line, why in refused)
         if count:
@@ -145,7 +146,7 @@ def _python_lines_without_room(text: str) -> set[int]:
                 busy.update(range(token.start[0], token.end[0]))
     except (tokenize.TokenError, SyntaxError):
         pass  # the file does not tokenize: RN001 says so; its other lines are fine
-    for number, line in enumerate(text.splitlines(), start=1):
+    for number, line in enumerate(split_lines(text), start=1):
         if line.endswith("\\"):
             busy.add(number)
     return busy

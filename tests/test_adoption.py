@@ -448,3 +448,18 @@ def test_unsafe_fixes_need_asking_for(run_cli: Any, tmp_path: Path) -> None:
     fixed = run_cli(["check", "--fix", "--unsafe-fixes", "--format", "json", "."], tmp_path)
     assert "fixed 3 findings in 2 files" in fixed.stderr
     assert fixed.findings() == []
+
+
+def test_edits_count_lines_as_the_parsers_do(run_cli: Any, tmp_path: Path) -> None:
+    """A form feed (old C++ sources separate sections with one) is no line break for
+    tree-sitter: fixes and comments must land on the finding's line all the same."""
+    write_package(tmp_path / "src/odom", 2, "odom")
+    source = FIX_CPP.replace("class OdomBroadcaster", "// Section 2\x0c\nclass OdomBroadcaster")
+    write(tmp_path, "src/odom/src/odom_broadcaster.cpp", source)
+    run_cli(["check", "--fix", "."], tmp_path)
+    fixed = (tmp_path / "src/odom/src/odom_broadcaster.cpp").read_text(encoding="utf-8")
+    assert fixed == source.replace('"/odom"', '"odom"').replace('"status/"', '"status"')
+    write(tmp_path, "src/odom/src/odom_broadcaster.cpp", source)
+    run_cli(["check", "--add-noqa", "."], tmp_path)
+    noqa = (tmp_path / "src/odom/src/odom_broadcaster.cpp").read_text(encoding="utf-8")
+    assert '"/odom";  // tf2 refuses it  // NOLINT(RN205)' in noqa
