@@ -10,6 +10,7 @@ named. Applying twice changes nothing the second time: a fixed name has no findi
 
 from __future__ import annotations
 
+import codecs
 import difflib
 from collections import defaultdict
 from collections.abc import Callable, Iterable
@@ -62,7 +63,8 @@ def plan(diagnostics: Iterable[Diagnostic], *, unsafe: bool, cwd: Path, verify: 
     fixed = 0
     for path, found in sorted(by_file.items()):
         try:
-            before = (cwd / path).read_bytes().decode("utf-8")
+            # utf-8-sig: a byte order mark is no column of line 1 for the extractors
+            before = (cwd / path).read_bytes().decode("utf-8-sig")
         except (OSError, UnicodeDecodeError):
             refused.append((path, "not a UTF-8 file that can be read"))
             continue
@@ -83,7 +85,9 @@ def plan(diagnostics: Iterable[Diagnostic], *, unsafe: bool, cwd: Path, verify: 
 
 def write(fixed: Fixed, cwd: Path) -> None:
     for path, _, after in fixed.changes:
-        (cwd / path).write_bytes(after.encode("utf-8"))
+        file = cwd / path
+        mark = codecs.BOM_UTF8 if file.read_bytes().startswith(codecs.BOM_UTF8) else b""
+        file.write_bytes(mark + after.encode("utf-8"))
 
 
 def _apply(text: str, found: list[Diagnostic]) -> tuple[str, list[Diagnostic]]:

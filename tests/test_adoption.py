@@ -463,3 +463,15 @@ def test_edits_count_lines_as_the_parsers_do(run_cli: Any, tmp_path: Path) -> No
     run_cli(["check", "--add-noqa", "."], tmp_path)
     noqa = (tmp_path / "src/odom/src/odom_broadcaster.cpp").read_text(encoding="utf-8")
     assert '"/odom";  // tf2 refuses it  // NOLINT(RN205)' in noqa
+
+
+def test_a_byte_order_mark_survives_a_fix_and_shifts_nothing(run_cli: Any, tmp_path: Path) -> None:
+    write_package(tmp_path / "src/odom", 2, "odom")
+    launch = tmp_path / "src/odom/launch/tf.launch.xml"
+    launch.parent.mkdir(parents=True)
+    one_line = (
+        '<launch><node pkg="tf2_ros" exec="static_transform_publisher" namespace="tf/"/></launch>\n'
+    )
+    launch.write_bytes(b"\xef\xbb\xbf" + one_line.encode("utf-8"))
+    run_cli(["check", "--fix", "."], tmp_path)
+    assert launch.read_bytes() == b"\xef\xbb\xbf" + one_line.replace('"tf/"', '"tf"').encode()
