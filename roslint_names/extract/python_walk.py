@@ -8,7 +8,7 @@ a name are handled one by one.
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 
 import libcst as cst
 
@@ -210,8 +210,12 @@ class Walk:
             failing = statement.body
         for child in _children(statement):
             if isinstance(child, cst.BaseSuite):
-                expected = context.expected_failure or child is failing
-                self.block(child, dataclasses.replace(context, expected_failure=expected))
+                # A new context only for the failing body: this walk is the extractor's
+                # hot path, and a dataclass copy per suite is not free.
+                if child is failing and not context.expected_failure:
+                    self.block(child, dataclasses.replace(context, expected_failure=True))
+                else:
+                    self.block(child, context)
             elif isinstance(child, _CLAUSES):
                 self.compound(child, context)
             else:
@@ -433,14 +437,7 @@ def _try_expects_failure(statement: cst.Try) -> bool:
     ros_comm's rospy tests write ``try: rospy.init_node('ns/node') ... else: self.fail()``.
     """
     suites = [statement.body] + ([statement.orelse.body] if statement.orelse else [])
-    return any(
-        _fails(small)
-        for suite in suites
-        if isinstance(suite, cst.IndentedBlock | cst.SimpleStatementSuite)
-        for line in (suite.body if isinstance(suite, cst.IndentedBlock) else (suite,))
-        if isinstance(line, cst.SimpleStatementLine | cst.SimpleStatementSuite)
-        for small in line.body
-    )
+    return any(_fails(small) for suite in suites for small in _small_statements(suite))
 
 
 def _probes_failure(call: cst.Call) -> bool:
@@ -458,9 +455,7 @@ def _test_catches(statement: cst.Try, scope: Scope) -> bool:
     function = scope.function
     if function is None or not function.name.value.startswith("test"):
         return False
-    body = statement.body
-    lines = body.body if isinstance(body, cst.IndentedBlock) else (body,)
-    if len(lines) != 1 or not statement.handlers:
+    if len(_lines(statement.body)) != 1 or not statement.handlers:
         return False
     return all(
         handler.type is not None
@@ -471,13 +466,19 @@ def _test_catches(statement: cst.Try, scope: Scope) -> bool:
 
 
 def _raises(suite: cst.BaseSuite) -> bool:
-    lines = suite.body if isinstance(suite, cst.IndentedBlock) else (suite,)
-    return any(
-        isinstance(small, cst.Raise)
-        for line in lines
-        if isinstance(line, cst.SimpleStatementLine | cst.SimpleStatementSuite)
-        for small in line.body
-    )
+    return any(isinstance(small, cst.Raise) for small in _small_statements(suite))
+
+
+def _lines(suite: cst.BaseSuite) -> Sequence[cst.BaseStatement | cst.BaseSuite]:
+    """The statements of an indented block; a one-line suite is its own one line."""
+    return suite.body if isinstance(suite, cst.IndentedBlock) else (suite,)
+
+
+def _small_statements(suite: cst.BaseSuite) -> Iterator[cst.BaseSmallStatement]:
+    """The simple statements of a suite's own lines (not of nested blocks)."""
+    for line in _lines(suite):
+        if isinstance(line, cst.SimpleStatementLine | cst.SimpleStatementSuite):
+            yield from line.body
 
 
 def _fails(small: cst.BaseSmallStatement) -> bool:
