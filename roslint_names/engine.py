@@ -724,26 +724,24 @@ def _located(fix: Fix, span: Span, line: str | None) -> Edit | None:
 
 
 def _unreadable(source: SourceFile, reason: str) -> FileFacts:
-    return FileFacts(
-        path=source.display,
-        language=source.language,
-        generation=DEFAULT_GENERATION,
-        parse_errors=(ParseError(f"cannot read file: {reason}", Span(1, 1, 1, 1)),),
-    )
+    return _file_error(source, f"cannot read file: {reason}")
 
 
 def _not_text(source: SourceFile) -> FileFacts:
+    return _file_error(
+        source,
+        "not a text file: a NUL byte in the first 8,000 bytes and no UTF-16 or UTF-32 "
+        "byte order mark; save it as UTF-8",
+    )
+
+
+def _file_error(source: SourceFile, message: str) -> FileFacts:
+    """The facts of a file whose content was never read: one RN001 at its start."""
     return FileFacts(
         path=source.display,
         language=source.language,
         generation=DEFAULT_GENERATION,
-        parse_errors=(
-            ParseError(
-                "not a text file: a NUL byte in the first 8,000 bytes and no UTF-16 or "
-                "UTF-32 byte order mark; save it as UTF-8",
-                Span(1, 1, 1, 1),
-            ),
-        ),
+        parse_errors=(ParseError(message, Span(1, 1, 1, 1)),),
     )
 
 

@@ -25,7 +25,7 @@ from pathlib import Path
 
 from .lines import split_lines, split_lines_keeping_ends
 from .model import Diagnostic, Language
-from .suppress import NOLINT, NOQA, XML_IGNORE, YAML_IGNORE
+from .suppress import NOLINT, NOQA, XML_IGNORE, YAML_IGNORE, split_keys
 
 
 @dataclass(frozen=True)
@@ -83,7 +83,7 @@ def _body_and_ending(line: str) -> tuple[str, str]:
 
 
 def _codes(existing: str, new: Iterable[str]) -> str:
-    keys = [key for key in re.split(r"[\s,]+", existing.strip()) if key]
+    keys = split_keys(existing)
     keys += sorted(code for code in new if code not in keys)
     return ", ".join(keys)
 

@@ -107,8 +107,13 @@ def _in_line(line: str, number: int, language: Language) -> Iterable[Suppression
             yield _make(match.group(1), lines, number, match)
 
 
+def split_keys(keys_text: str) -> list[str]:
+    """The codes or slugs of a suppression comment, as written."""
+    return [key for key in re.split(r"[\s,]+", keys_text.strip()) if key]
+
+
 def _make(keys_text: str, lines: frozenset[int], number: int, match: re.Match[str]) -> Suppression:
-    keys = tuple(key for key in re.split(r"[\s,]+", keys_text.strip()) if key)
+    keys = tuple(split_keys(keys_text))
     span = Span(number, match.start() + 1, number, match.end() + 1)
     return Suppression(keys, lines, span)
 
