@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import NoReturn, TextIO
 
-from . import __version__, baseline, fixing
+from . import __version__, baseline, fixing, renames
 from .baseline import BaselineError
 from .cache import FactsCache
 from .cache import default_directory as default_cache_directory
@@ -28,14 +28,23 @@ from .config import (
     enabled_codes,
     load_settings,
 )
-from .discover import DiscoveryError, SourceFile, classify, discover, workspace_root
+from .discover import (
+    DiscoveryError,
+    SourceFile,
+    classify,
+    discover,
+    display_path,
+    text_files,
+    workspace_root,
+)
 from .engine import LintResult, RunOptions, lint, recheck
 from .generation import PackageGenerations
-from .model import Diagnostic, Generation, Kind
+from .model import Diagnostic, FileFacts, Generation, Kind
 from .names import Problem, check_name
 from .noqa import add_noqa
 from .progress import ProgressBar
 from .progress import wanted as progress_wanted
+from .reading import read_file
 from .registry import Registry, RegistryError, load_registry
 from .report import FORMATS, ReportContext, render, statistics, summary
 
@@ -238,12 +247,22 @@ def _run_check(options: argparse.Namespace) -> int:
     cache = _facts_cache(options)
     try:
         run = RunOptions(jobs=options.jobs, cache=cache, progress=bar)
-        result = lint(sources, settings, registry, run, context=workspace)
+        # Renames are offered where unsafe fixes show; they need every file's facts
+        # (``renames``): kept from the start when no cache can give them again.
+        renaming = options.unsafe_fixes or options.format in ("json", "sarif")
+        want_facts = renaming and cache is None
+        result = lint(sources, settings, registry, run, context=workspace, want_facts=want_facts)
+        diagnostics: Sequence[Diagnostic] = result.diagnostics
+        if renaming and any(diagnostic.renaming for diagnostic in diagnostics):
+            facts = (
+                result.facts
+                or lint(sources, settings, registry, run, context=workspace, want_facts=True).facts
+            )
+            diagnostics = _resolve_renames(options.paths, settings, diagnostics, facts, cwd)
     finally:
         bar.close()  # erased before the report and the summary are written
     if options.verbose:
         _print_run_details(result, cache, options.cache_dir or default_cache_directory())
-    diagnostics: Sequence[Diagnostic] = result.diagnostics
     if options.changed_since is not None:
         diagnostics = gate(diagnostics, changed_lines(options.changed_since, cwd), cwd)
     if options.write_baseline is not None:
@@ -295,6 +314,31 @@ def _run_check(options: argparse.Namespace) -> int:
     print(summary(diagnostics, result.files_checked), file=sys.stderr)
     has_findings = any(not d.suppressed and not d.baselined for d in diagnostics)
     return EXIT_FINDINGS if has_findings and not options.exit_zero else EXIT_CLEAN
+
+
+def _resolve_renames(
+    paths: Sequence[Path],
+    settings: Settings,
+    diagnostics: Sequence[Diagnostic],
+    facts: Sequence[FileFacts],
+    cwd: Path,
+) -> list[Diagnostic]:
+    """The diagnostics with each rename offered or dropped, after a search of the
+    workspaces of ``paths`` (the directories named, the workspace of each file named)."""
+    roots = sorted(
+        {
+            absolute if absolute.is_dir() else workspace_root(absolute) or absolute
+            for path in paths
+            if (absolute := (cwd / path).absolute()).exists()
+        }
+    )
+    files = text_files(roots, settings.exclude, settings.root, cwd)
+
+    def read(display: str) -> bytes | None:
+        return read_file(cwd / display, settings.max_file_size)[0]
+
+    displays = [display_path(file, cwd) for file in files]
+    return renames.resolve(diagnostics, facts, displays, read)
 
 
 def _verifier(settings: Settings, registry: Registry, cwd: Path) -> fixing.Verify:

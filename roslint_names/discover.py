@@ -12,17 +12,25 @@ from __future__ import annotations
 
 import os
 import re
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from enum import Enum
 from pathlib import Path
+from typing import TypeVar
 
 from .model import Language
 
 IGNORE_MARKERS = ("COLCON_IGNORE", "CATKIN_IGNORE", "AMENT_IGNORE")
 SKIPPED_DIRECTORIES = frozenset({".git", ".hg", ".svn", "__pycache__", ".mypy_cache", ".tox"})
 SNIFF_BYTES = 64 * 1024
+_T = TypeVar("_T")
 
+# Files no extractor reads that hold ROS names all the same: `rosparam` and ROS 2
+# parameter files, rviz displays, dynamic_reconfigure `.cfg`, Gazebo worlds, scripts.
+_CONFIGURATION_SUFFIXES = frozenset(
+    {".yaml", ".yml", ".xml", ".cfg", ".rviz", ".json", ".ini", ".toml", ".sdf", ".world"}
+    | {".sh", ".bash", ".cmake", ".perspective"}
+)
 _CPP_SUFFIXES = frozenset({".cpp", ".cc", ".cxx", ".c++", ".hpp", ".hh", ".hxx", ".h", ".ipp"})
 _YAML_LAUNCH_KEY = re.compile(rb"^launch\s*:", re.MULTILINE)
 # `#!/usr/bin/env python3`, `#!/usr/bin/python`, `#!/usr/bin/env -S python3 -u`: the line
@@ -227,12 +235,41 @@ def discover(
             raise DiscoveryError(f"{given}: no such file or directory")
         if absolute.is_dir():
             pushed = sum(rules.enter(ancestor) for ancestor in _repository_ancestors(absolute))
-            for path, by_name in _walk(os.fspath(absolute), rules):
+            walked: Iterator[tuple[str, Language | _Sniff]]
+            walked = _walk(os.fspath(absolute), rules, _by_name)
+            for path, by_name in walked:
                 _add(found, Path(path), by_name, cwd)
             rules.leave(pushed)
         elif not rules.excluded_by_config(absolute, is_dir=False):
             _add(found, absolute, _by_name(absolute.name), cwd)
     return sorted(found.values(), key=lambda source: source.display)
+
+
+def text_files(
+    paths: Sequence[Path], exclude: Sequence[str], exclude_root: Path, cwd: Path
+) -> list[Path]:
+    """Every file under ``paths`` that can hold a ROS name, sorted: the lintable ones and
+    the configuration no extractor reads (parameter files, rviz and dynamic_reconfigure
+    configs, scripts). What a rename must search before it is offered (``renames``);
+    documentation is left out, it does not break when a name changes."""
+    rules = _IgnoreRules(exclude, exclude_root)
+    found: set[Path] = set()
+    for given in paths:
+        absolute = (cwd / given).absolute()
+        if absolute.is_dir():
+            pushed = sum(rules.enter(ancestor) for ancestor in _repository_ancestors(absolute))
+            found.update(Path(path) for path, _ in _walk(os.fspath(absolute), rules, _holds_names))
+            rules.leave(pushed)
+        elif absolute.is_file() and not rules.excluded_by_config(absolute, is_dir=False):
+            found.add(absolute)
+    return sorted(found)
+
+
+def _holds_names(file_name: str) -> bool | None:
+    """True for a file a name may be in: lintable or configuration (``text_files``)."""
+    if _by_name(file_name) is not None:
+        return True
+    return os.path.splitext(file_name.lower())[1] in _CONFIGURATION_SUFFIXES or None
 
 
 def workspace_root(path: Path) -> Path | None:
@@ -277,7 +314,9 @@ def _add(
         found[os.fspath(path)] = SourceFile(path, display_path(path, cwd), language)
 
 
-def _walk(top: str, rules: _IgnoreRules) -> Iterator[tuple[str, Language | _Sniff]]:
+def _walk(
+    top: str, rules: _IgnoreRules, select: Callable[[str], _T | None]
+) -> Iterator[tuple[str, _T]]:
     try:
         entries = sorted(os.scandir(top), key=lambda entry: entry.name)
     except OSError:
@@ -292,9 +331,9 @@ def _walk(top: str, rules: _IgnoreRules) -> Iterator[tuple[str, Language | _Snif
         if entry.is_dir(follow_symlinks=False):
             if entry.name in SKIPPED_DIRECTORIES or rules.ignored(entry.path, is_dir=True):
                 continue
-            yield from _walk(entry.path, rules)
+            yield from _walk(entry.path, rules, select)
         elif (
-            (by_name := _by_name(entry.name)) is not None
+            (by_name := select(entry.name)) is not None
             and _is_file(entry)
             and not rules.ignored(entry.path, is_dir=False)
         ):

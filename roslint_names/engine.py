@@ -20,11 +20,11 @@ from typing import TYPE_CHECKING, Protocol
 
 from .config import Settings, enabled_codes, ignored_for_path, test_code_codes
 from .discover import SourceFile, classify
+from .fixing import located
 from .generation import PackageGenerations, service_types
 from .lines import split_lines
 from .model import (
     Diagnostic,
-    Edit,
     FileFacts,
     Finding,
     Fix,
@@ -80,6 +80,9 @@ class LintResult:
     graph: Graph | None = None  # the workspace graph, when a graph rule or the caller wants it
     skipped: tuple[tuple[str, str], ...] = ()  # (display path, why): too large or binary
     reused: bool = False  # the stored result of an earlier run over the same inputs
+    # Every file's facts, the rest of the workspace's too, when they were kept for the graph
+    # or the caller (``want_facts``); never those of a stored result.
+    facts: tuple[FileFacts, ...] = ()
 
 
 Progress = Callable[[int, int], None]  # (files done, files in total)
@@ -129,6 +132,7 @@ def lint(
     *,
     context: Sequence[SourceFile] = (),
     want_graph: bool = False,
+    want_facts: bool = False,
 ) -> LintResult:
     """Diagnostics of every lintable source; the same bytes whatever the ``run`` options.
 
@@ -145,6 +149,9 @@ def lint(
     ``context`` files (the rest of the workspace of a per-file run) are extracted for the
     graph rules only: nothing is reported in them. Once every file is in, the graph rules
     run over the workspace graph and report into the files of ``sources``.
+
+    ``want_graph`` returns the graph; ``want_facts`` every file's facts (``renames``
+    searches them), without the graph when no graph rule needs it.
     """
     enabled = enabled_codes(settings, registry)
     test_rules = test_code_codes(settings, registry)
@@ -154,7 +161,9 @@ def lint(
     cache, progress = run.cache, run.progress
     checked = lintable(sources)
     reported = len(checked)
-    keep_facts = bool(graph_rules) or want_graph
+    keep_facts = bool(graph_rules) or want_graph or want_facts
+    # A stored result has neither the graph nor the facts.
+    fresh = want_graph or want_facts
     if keep_facts:
         given = {source.path for source in checked}
         checked += [source for source in lintable(context) if source.path not in given]
@@ -218,7 +227,7 @@ def lint(
             packages=packages,
             fallback=fallback,
         )
-        run_key = None if want_graph else inputs.key_first()
+        run_key = None if fresh else inputs.key_first()
         stored = None if run_key is None else _stored_result(cache.load_run(run_key), len(checked))
         if stored is not None:
             inputs.finish()
@@ -267,7 +276,7 @@ def lint(
             check_extracted(dispatcher.put((job, data, key), len(data)))
         check_extracted(dispatcher.finish())
         workers = dispatcher.workers  # that extracted the files (specialisations may start some)
-        if inputs is not None and not want_graph and run_key is None:
+        if inputs is not None and not fresh and run_key is None:
             run_key = inputs.key_last()
         for index, facts, data in waiting:
             known = frozenset(
@@ -277,7 +286,7 @@ def lint(
             )
             check_now(index, facts, data, known)
         graph: Graph | None = None
-        if keep_facts:
+        if graph_rules or want_graph:
             known_facts = [facts for facts in all_facts if facts is not None]
             # Launch files extracted again under their includers' arguments go through the
             # same workers, a depth of the launch trees at a time.
@@ -312,7 +321,14 @@ def lint(
             cache.store_run(run_key, (tuple(diagnostics), checked_count, tuple(skipped)))
         inputs.finish()
     return LintResult(
-        tuple(diagnostics), checked_count, extracted, cached, workers, graph, tuple(skipped)
+        tuple(diagnostics),
+        checked_count,
+        extracted,
+        cached,
+        workers,
+        graph,
+        tuple(skipped),
+        facts=tuple(facts for facts in all_facts if facts is not None),
     )
 
 
@@ -704,23 +720,9 @@ class _DiagnosticFactory:
             message=message,
             related=related,
             source_line=source_line,
-            edit=None if fix is None else _located(fix, span, source_line),
+            edit=None if fix is None or fix.tokens else located(fix, span, source_line),
+            renaming=fix if fix is not None and fix.tokens else None,
         )
-
-
-def _located(fix: Fix, span: Span, line: str | None) -> Edit | None:
-    """Where in the file the fix writes: the one place on the finding's line, within its
-    span, that spells the name exactly (an escaped spelling gets no fix)."""
-    if line is None or span.line != span.end_line or not fix.value:
-        return None
-    written = line[span.column - 1 : span.end_column - 1]
-    start = written.find(fix.value)
-    if start < 0 or written.find(fix.value, start + 1) >= 0:
-        return None
-    column = span.column + start
-    return Edit(
-        Span(span.line, column, span.line, column + len(fix.value)), fix.replacement, fix.safe
-    )
 
 
 def _unreadable(source: SourceFile, reason: str) -> FileFacts:

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .lines import split_lines_keeping_ends
-from .model import Diagnostic
+from .model import Diagnostic, Edit, Fix, Span
 
 # (path, new bytes) -> the file's parse errors and its findings as (code, line), re-read
 Verify = Callable[[str, bytes], tuple[int, set[tuple[str, int]]]]
@@ -47,40 +47,90 @@ class Fixed:
 
 
 def plan(diagnostics: Iterable[Diagnostic], *, unsafe: bool, cwd: Path, verify: Verify) -> Fixed:
-    """The fixes to make, verified, without writing anything."""
-    by_file: dict[str, list[Diagnostic]] = defaultdict(list)
-    for diagnostic in diagnostics:
-        edit = diagnostic.edit
-        if (
-            edit is not None
-            and (edit.safe or unsafe)
-            and not diagnostic.suppressed
-            and not diagnostic.baselined
-        ):
-            by_file[diagnostic.path].append(diagnostic)
-    changes: list[tuple[str, str, str]] = []
+    """The fixes to make, verified, without writing anything.
+
+    A fix is all its edits or none: a rename's edits in other files (``Diagnostic.also``)
+    are made with its own, and a file refused takes every fix that touches it with it."""
+    chosen = _without_overlaps(
+        diagnostic
+        for diagnostic in sorted(diagnostics, key=Diagnostic.sort_key)
+        if diagnostic.edit is not None
+        and (diagnostic.edit.safe or unsafe)
+        and not diagnostic.suppressed
+        and not diagnostic.baselined
+    )
     refused: list[tuple[str, str]] = []
-    fixed = 0
-    for path, found in sorted(by_file.items()):
-        try:
-            # utf-8-sig: a byte order mark is no column of line 1 for the extractors
-            before = (cwd / path).read_bytes().decode("utf-8-sig")
-        except (OSError, UnicodeDecodeError):
-            refused.append((path, "not a UTF-8 file that can be read"))
+    texts: dict[str, str | None] = {}
+    while True:
+        by_file: dict[str, dict[tuple[int, int, int], Edit]] = defaultdict(dict)
+        for diagnostic in chosen:
+            for path, edit in _edits(diagnostic):
+                by_file[path][(edit.span.line, edit.span.column, edit.span.end_column)] = edit
+        changes: list[tuple[str, str, str]] = []
+        failed: dict[str, str] = {}
+        for path, edits in sorted(by_file.items()):
+            if path not in texts:
+                texts[path] = _read(cwd / path)
+            before = texts[path]
+            if before is None:
+                failed[path] = "not a UTF-8 file that can be read"
+                continue
+            after = _apply(before, edits.values())
+            errors_before, _ = verify(path, before.encode("utf-8"))
+            errors_after, remaining = verify(path, after.encode("utf-8"))
+            if errors_after > errors_before:
+                failed[path] = "it would no longer parse"
+            elif any(d.path == path and (d.code, d.span.line) in remaining for d in chosen):
+                failed[path] = "no effect"
+            else:
+                changes.append((path, before, after))
+        if not failed:
+            return Fixed(tuple(changes), len(chosen), tuple(refused))
+        for path, why in failed.items():
+            # A rename reaching into the file goes first: the file's own fixes may pass.
+            touching = [d for d in chosen if path in {p for p, _ in _edits(d)}]
+            renames = [d for d in touching if d.also]
+            dropped = renames or touching
+            refused.append((path, f"{'renames' if renames else 'fixes'} not applied: {why}"))
+            chosen = [d for d in chosen if d not in dropped]
+
+
+def _edits(diagnostic: Diagnostic) -> list[tuple[str, Edit]]:
+    """Every edit of a diagnostic's fix, with the file it is in."""
+    assert diagnostic.edit is not None
+    own = [(diagnostic.path, diagnostic.edit)]
+    return own + [(edit.path or diagnostic.path, edit) for edit in diagnostic.also]
+
+
+def _without_overlaps(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
+    """The fixes, in order, less each that writes over another's span with other text:
+    only one of two fixes on one span is made in a run (the next run sees the other)."""
+    taken: dict[tuple[str, int], list[Edit]] = defaultdict(list)
+    chosen: list[Diagnostic] = []
+    for diagnostic in diagnostics:
+        edits = _edits(diagnostic)
+        if any(
+            _overlap(edit, other) and (edit.span, edit.text) != (other.span, other.text)
+            for path, edit in edits
+            for other in taken[path, edit.span.line]
+        ):
             continue
-        after, applied = _apply(before, found)
-        if not applied:
-            continue
-        errors_before, _ = verify(path, before.encode("utf-8"))
-        errors_after, remaining = verify(path, after.encode("utf-8"))
-        still = [d for d in applied if (d.code, d.span.line) in remaining]
-        if errors_after > errors_before or still:
-            why = "it would no longer parse" if errors_after > errors_before else "no effect"
-            refused.append((path, f"fixes not applied: {why}"))
-            continue
-        changes.append((path, before, after))
-        fixed += len(applied)
-    return Fixed(tuple(changes), fixed, tuple(refused))
+        for path, edit in edits:
+            taken[path, edit.span.line].append(edit)
+        chosen.append(diagnostic)
+    return chosen
+
+
+def _overlap(one: Edit, other: Edit) -> bool:
+    return one.span.column < other.span.end_column and other.span.column < one.span.end_column
+
+
+def _read(file: Path) -> str | None:
+    try:
+        # utf-8-sig: a byte order mark is no column of line 1 for the extractors
+        return file.read_bytes().decode("utf-8-sig")
+    except (OSError, UnicodeDecodeError):
+        return None
 
 
 def write(fixed: Fixed, cwd: Path) -> None:
@@ -90,23 +140,26 @@ def write(fixed: Fixed, cwd: Path) -> None:
         file.write_bytes(mark + after.encode("utf-8"))
 
 
-def _apply(text: str, found: list[Diagnostic]) -> tuple[str, list[Diagnostic]]:
-    """``text`` with the edits of ``found`` made, from the end; the diagnostics applied."""
+def _apply(text: str, edits: Iterable[Edit]) -> str:
+    """``text`` with ``edits`` (one-line, not overlapping) made, from the end."""
     lines = split_lines_keeping_ends(text)
-    applied: list[Diagnostic] = []
-    taken: dict[int, list[tuple[int, int]]] = defaultdict(list)
-    ordered = sorted(found, key=lambda d: d.edit.span if d.edit else d.span, reverse=True)
-    for diagnostic in ordered:
-        edit = diagnostic.edit
-        assert edit is not None
+    for edit in sorted(edits, key=lambda edit: edit.span, reverse=True):
         span = edit.span
-        start, end = span.column - 1, span.end_column - 1
-        if any(
-            start < other_end and other_start < end for other_start, other_end in taken[span.line]
-        ):
-            continue  # two fixes on one span: only one this run
         line = lines[span.line - 1]
-        lines[span.line - 1] = line[:start] + edit.text + line[end:]
-        taken[span.line].append((start, end))
-        applied.append(diagnostic)
-    return "".join(lines), applied
+        lines[span.line - 1] = line[: span.column - 1] + edit.text + line[span.end_column - 1 :]
+    return "".join(lines)
+
+
+def located(fix: Fix, span: Span, line: str | None) -> Edit | None:
+    """Where in the file the fix writes: the one place on the finding's line, within its
+    span, that spells the name exactly (an escaped spelling gets no fix)."""
+    if line is None or span.line != span.end_line or not fix.value:
+        return None
+    written = line[span.column - 1 : span.end_column - 1]
+    start = written.find(fix.value)
+    if start < 0 or written.find(fix.value, start + 1) >= 0:
+        return None
+    column = span.column + start
+    return Edit(
+        Span(span.line, column, span.line, column + len(fix.value)), fix.replacement, fix.safe
+    )

@@ -270,15 +270,24 @@ class Fix:
     value: str
     replacement: str
     safe: bool
+    # A rename (RN203): the tokens it renames, (old, new). Not a fix of one place: it is
+    # offered only once every other use of those tokens in the workspace is found and
+    # renamed with it (``renames``), else not at all.
+    tokens: tuple[tuple[str, str], ...] = ()
 
 
 @dataclass(frozen=True)
 class Edit:
-    """A fix located in the file: ``span`` (one line) becomes ``text``."""
+    """A fix located in a file: ``span`` (one line) becomes ``text``.
+
+    ``path`` is None for the finding's own file; a rename's edits of the name's other
+    uses name theirs.
+    """
 
     span: Span
     text: str
     safe: bool
+    path: str | None = None
 
 
 @dataclass(frozen=True)
@@ -314,6 +323,12 @@ class Diagnostic:
     # Matched by the baseline given to the run (``baseline``): known before, not reported.
     baselined: bool = False
     edit: Edit | None = None  # the fix, where the file spells the name exactly
+    # A rename's edits of the other uses of the name, in this file or others: applied
+    # with ``edit`` or not at all.
+    also: tuple[Edit, ...] = ()
+    # A rename not yet offered: ``renames.resolve`` turns it into ``edit`` and ``also``
+    # once it has seen every use of the name, or drops it.
+    renaming: Fix | None = None
 
     def sort_key(self) -> tuple[str, int, int, str, str]:
         return (self.path, self.span.line, self.span.column, self.code, self.message)

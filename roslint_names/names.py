@@ -18,6 +18,7 @@ from __future__ import annotations
 import re
 import string
 import unicodedata
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, replace
 from functools import lru_cache
 
@@ -175,6 +176,20 @@ def snake_case(text: str) -> str:
     if not words:
         return ""
     return ("_" if text.startswith("_") else "") + "_".join(words)
+
+
+def token_pattern(words: Iterable[str]) -> re.Pattern[str]:
+    """Each of ``words`` where it is a whole token: not inside a longer identifier
+    (``TestNode`` in ``/TestNode/x`` and ``TestNode.rate``, not in ``MyTestNode``)."""
+    alternatives = "|".join(re.escape(word) for word in sorted(words, key=len, reverse=True))
+    return re.compile(rf"(?<![A-Za-z0-9_])(?:{alternatives})(?![A-Za-z0-9_])")
+
+
+def rename_tokens(name: str, renamed: Mapping[str, str]) -> str:
+    """``name`` with each whole token that ``renamed`` names replaced."""
+    if not renamed:
+        return name
+    return token_pattern(renamed).sub(lambda found: renamed[found.group()], name)
 
 
 def resolve(

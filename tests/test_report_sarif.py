@@ -65,6 +65,17 @@ OUTSIDE = (
 )
 
 
+# A rename: its own edit, one more in its file and one in a launch file of another package.
+RENAME = replace(
+    sample.RN101,
+    edit=Edit(Span(12, 22, 12, 33), "base_driver", False),
+    also=(
+        Edit(Span(20, 22, 20, 33), "base_driver", False, sample.RN101.path),
+        Edit(Span(3, 15, 3, 26), "base_driver", False, "src/robot/launch/robot.launch"),
+    ),
+)
+
+
 @pytest.mark.parametrize(
     ("diagnostics", "changes"),
     [
@@ -81,8 +92,18 @@ OUTSIDE = (
             (replace(sample.RN101, edit=Edit(Span(12, 22, 12, 33), "base_driver", False)),),
             {},
         ),
+        ((RENAME,), {}),
     ],
-    ids=["default", "with-suppressed", "empty", "odd-paths", "dev-version", "baseline", "fix"],
+    ids=[
+        "default",
+        "with-suppressed",
+        "empty",
+        "odd-paths",
+        "dev-version",
+        "baseline",
+        "fix",
+        "rename",
+    ],
 )
 def test_valid_against_the_official_schema(
     validator: Draft7Validator, diagnostics: tuple[Diagnostic, ...], changes: dict[str, object]
@@ -356,3 +377,19 @@ def test_a_rule_without_a_catalog_page_still_has_help(validator: Draft7Validator
     assert rule["help"] == {"text": bare.summary, "markdown": bare.summary}
     assert "helpUri" not in rule
     assert not list(validator.iter_errors(loaded))
+
+
+def test_a_rename_is_one_fix_with_a_change_per_file() -> None:
+    (result,) = results((RENAME,))
+    (fix,) = result["fixes"]
+    assert fix["description"]["text"] == (
+        "write 'base_driver', and 2 other uses (unsafe (--unsafe-fixes) fix)"
+    )
+    changes = [
+        (
+            change["artifactLocation"]["uri"],
+            [r["deletedRegion"]["startLine"] for r in change["replacements"]],
+        )
+        for change in fix["artifactChanges"]
+    ]
+    assert changes == [(sample.RN101.path, [12, 20]), ("src/robot/launch/robot.launch", [3])]

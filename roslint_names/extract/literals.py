@@ -10,6 +10,7 @@ text, so they cost no parse; a name-shaped string in a comment is harmless evide
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 
 # A quoted relative, private (``~``, ``~/``) or absolute name of at most nine tokens.
 _NAME = r"""["']((?:~/?|/)?[A-Za-z_][A-Za-z0-9_]{0,63}(?:/[A-Za-z0-9_]{1,64}){0,8}/?)["']"""
@@ -22,3 +23,10 @@ def name_literals(text: str | bytes) -> tuple[str, ...]:
     if isinstance(text, bytes):
         return tuple(sorted({found.decode("ascii") for found in _QUOTED_BYTES.findall(text)}))
     return tuple(sorted(set(_QUOTED.findall(text))))
+
+
+def name_literal_spans(text: str) -> Iterator[tuple[int, int]]:
+    """Where each name-shaped string literal's name is in ``text``: (start, end) offsets,
+    quotes excluded; every occurrence, in order."""
+    for found in _QUOTED.finditer(text):
+        yield found.span(1)

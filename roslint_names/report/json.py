@@ -67,7 +67,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from ..catalog import RuleMeta
-from ..model import Diagnostic, Edit, RelatedLocation, Span
+from ..model import Diagnostic, RelatedLocation, Span
 from .base import ReportContext, visible
 
 FORMAT_VERSION = 1
@@ -94,12 +94,23 @@ def _finding(diagnostic: Diagnostic) -> dict[str, Any]:
         "severity": diagnostic.severity.value,
         "message": diagnostic.message,
         "related": [_related(related) for related in diagnostic.related],
-        "fix": None if diagnostic.edit is None else _fix(diagnostic.edit),
+        "fix": None if diagnostic.edit is None else _fix(diagnostic),
     }
 
 
-def _fix(edit: Edit) -> dict[str, Any]:
-    return {"safe": edit.safe, **_span(edit.span), "replacement": edit.text}
+def _fix(diagnostic: Diagnostic) -> dict[str, Any]:
+    """The fix's own edit, and a rename's edits of the name's other uses (``also``)."""
+    edit = diagnostic.edit
+    assert edit is not None
+    return {
+        "safe": edit.safe,
+        **_span(edit.span),
+        "replacement": edit.text,
+        "also": [
+            {"path": other.path or diagnostic.path, **_span(other.span), "replacement": other.text}
+            for other in diagnostic.also
+        ],
+    }
 
 
 def _related(related: RelatedLocation) -> dict[str, Any]:

@@ -158,26 +158,26 @@ def _result(
 
 
 def _fix(diagnostic: Diagnostic, edit: Edit, context: ReportContext) -> dict[str, Any]:
-    span = edit.span
-    location = _physical_location(diagnostic.path, diagnostic.span, context.root)
+    """The fix as one change per file: a rename's other uses are in the same fix."""
     safety = "safe" if edit.safe else "unsafe (--unsafe-fixes)"
+    by_file: dict[str, list[Edit]] = {diagnostic.path: [edit]}
+    for other in diagnostic.also:
+        by_file.setdefault(other.path or diagnostic.path, []).append(other)
+    uses = f", and {len(diagnostic.also)} other uses" if diagnostic.also else ""
     return {
-        "description": {"text": f"write '{edit.text}' ({safety} fix)"},
+        "description": {"text": f"write '{edit.text}'{uses} ({safety} fix)"},
         "artifactChanges": [
             {
-                "artifactLocation": location["artifactLocation"],
+                "artifactLocation": artifact_location(path, context.root),
                 "replacements": [
                     {
-                        "deletedRegion": {
-                            "startLine": span.line,
-                            "startColumn": span.column,
-                            "endLine": span.end_line,
-                            "endColumn": span.end_column,
-                        },
-                        "insertedContent": {"text": edit.text},
+                        "deletedRegion": _region(change.span),
+                        "insertedContent": {"text": change.text},
                     }
+                    for change in edits
                 ],
             }
+            for path, edits in by_file.items()
         ],
     }
 

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..model import FileFacts, Finding, Generation, Kind, NameUse, Severity
-from ..names import check_name, is_snake_case, snake_case, tokens
+from ..model import FileFacts, Finding, Fix, Generation, Kind, NameUse, Severity
+from ..names import check_name, is_snake_case, rename_tokens, snake_case, tokens
 from ..rule import Rule, RuleContext
 from .common import chosen_here, label, spelled_as_type, static_uses
 
@@ -32,12 +32,16 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
         if not bad:
             continue
         quoted = ", ".join(f"'{token}'" for token in bad)
-        fixed = use.value
-        for token in bad:
-            fixed = fixed.replace(token, snake_case(token), 1)
+        renamed = tuple((token, snake_case(token)) for token in dict.fromkeys(bad))
+        fixed = rename_tokens(use.value, dict(renamed))
         yield Finding(
             use.span,
             f"{label(use)} '{use.value}' is not lower snake_case ({quoted}); use '{fixed}'",
+            # Unsafe: a renamed parameter or node is a changed interface, and only the
+            # workspace's uses of it are known (``renames``).
+            fix=Fix(use.value, fixed, safe=False, tokens=renamed)
+            if all(new for _, new in renamed)
+            else None,
         )
 
 

@@ -1,0 +1,152 @@
+"""Renames across the workspace (RN203's fix): offered only when every use is found.
+
+Renaming ``minimumScore`` to ``minimum_score`` where the code reads the parameter breaks
+every launch file and parameter file that sets it, unless they are renamed in the same
+run. So a rename is offered only when each place its words appear in a name can be
+renamed with it:
+
+- every name the extractors found (any file, any kind) holding one of the words is
+  renamed at the exact span where its file spells it; a name the file does not spell
+  there (a constant folded in from elsewhere) or a frame id holding the word (not the
+  rule's to rename) blocks the rename;
+- every other place the words appear blocks it: in code, a name-shaped string literal
+  that is not one of those names (a helper's argument, a constant); in launch files,
+  URDF and configuration no extractor reads (parameter YAML, rviz, ``.cfg``), any
+  occurrence at all. Identifiers and the words of comments do not count, they are not
+  names; a quoted name in a comment does (the literals are found without a parse).
+
+A use a suppression keeps (``# noqa: RN203``) blocks the rename too: someone chose to keep
+that spelling. Documentation is not searched (``discover.text_files``).
+"""
+
+from __future__ import annotations
+
+import bisect
+import re
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, replace
+
+from .extract.literals import name_literal_spans
+from .fixing import located
+from .lines import split_lines
+from .model import Diagnostic, Edit, FileFacts, Fix, Kind, Language, NameUse
+from .names import rename_tokens, token_pattern
+from .reading import bom_encoding
+
+# Files whose names are string literals: elsewhere in them a word is an identifier.
+_CODE = frozenset({Language.CPP, Language.PYTHON, Language.LAUNCH_PYTHON, Language.SETUP_PY})
+
+_LINE_BREAK = re.compile(r"\r\n|\r|\n")  # as ``lines`` breaks lines
+
+Read = Callable[[str], "bytes | None"]  # a display path's bytes; None when unreadable
+
+
+@dataclass(frozen=True)
+class _Use:
+    """A name holding some of the words, and where its file spells it."""
+
+    path: str
+    use: NameUse
+    edit: Edit
+
+
+def resolve(
+    diagnostics: Sequence[Diagnostic],
+    facts: Iterable[FileFacts],
+    files: Iterable[str],
+    read: Read,
+) -> list[Diagnostic]:
+    """``diagnostics`` with each pending rename (``Diagnostic.renaming``) offered as edits
+    of every use of its words, or dropped. ``files``: the display paths of the workspace's
+    text files (``discover.text_files``), searched with ``facts`` for the words."""
+    pending = [d.renaming for d in diagnostics if d.renaming is not None]
+    if not pending:
+        return list(diagnostics)
+    renamed = {old: new for fix in pending for old, new in fix.tokens}
+    blocked = {
+        old
+        for d in diagnostics
+        if d.suppressed and d.renaming is not None
+        for old, _ in d.renaming.tokens
+    }
+    facts_of = {file_facts.path: file_facts for file_facts in facts}
+    search = _Search(renamed, read)
+    uses: list[_Use] = []
+    for path in sorted({*files, *facts_of}):
+        found, blocking = search.file(path, facts_of.get(path))
+        uses += found
+        blocked |= blocking
+    return [_resolved(d, uses, blocked) for d in diagnostics]
+
+
+class _Search:
+    """Finds, file by file, the uses of the words and the places that block them."""
+
+    def __init__(self, renamed: dict[str, str], read: Read) -> None:
+        self._renamed = renamed
+        self._read = read
+        self._words = token_pattern(renamed)
+        # A first look at the bytes: nearly no file holds any of the words at all.
+        self._any = re.compile(b"|".join(re.escape(word.encode("utf-8")) for word in renamed))
+
+    def file(self, path: str, facts: FileFacts | None) -> tuple[list[_Use], set[str]]:
+        data = self._read(path)
+        if data is None or self._any.search(data) is None:
+            return [], set()
+        text = data.decode(bom_encoding(data) or "utf-8", errors="replace")
+        lines = split_lines(text)
+        uses: list[_Use] = []
+        blocked: set[str] = set()
+        for use in () if facts is None else facts.names:
+            words = set(self._words.findall(use.value))
+            if use.dynamic or not words:
+                continue
+            line = lines[use.span.line - 1] if 0 < use.span.line <= len(lines) else None
+            fix = Fix(use.value, rename_tokens(use.value, self._renamed), safe=False)
+            edit = None if use.kind is Kind.FRAME else located(fix, use.span, line)
+            if edit is None:
+                blocked |= words
+            else:
+                uses.append(_Use(path, use, replace(edit, path=path)))
+        covered = [use.edit.span for use in uses]
+        starts: list[int] = []
+        code = facts is not None and facts.language in _CODE
+        for start, end in name_literal_spans(text) if code else [(0, len(text))]:
+            for found in self._words.finditer(text, start, end):
+                starts = starts or _line_starts(text)
+                number = bisect.bisect_right(starts, found.start())
+                column = found.start() - starts[number - 1] + 1
+                if not any(
+                    span.line == number and span.column <= column < span.end_column
+                    for span in covered
+                ):
+                    blocked.add(found.group())
+        return uses, blocked
+
+
+def _resolved(diagnostic: Diagnostic, uses: list[_Use], blocked: set[str]) -> Diagnostic:
+    fix = diagnostic.renaming
+    if fix is None:
+        return diagnostic
+    mine = dict(fix.tokens)
+    edit = located(fix, diagnostic.span, diagnostic.source_line)
+    if edit is None or not mine.keys().isdisjoint(blocked):
+        return replace(diagnostic, renaming=None)
+    words = token_pattern(mine)
+    also = {
+        (use.path, use.edit.span): replace(use.edit, text=rename_tokens(use.use.value, mine))
+        for use in uses
+        if words.search(use.use.value)
+    }
+    also.pop((diagnostic.path, edit.span), None)
+    return replace(
+        diagnostic,
+        renaming=None,
+        edit=edit,
+        also=tuple(also[key] for key in sorted(also)),
+    )
+
+
+def _line_starts(text: str) -> list[int]:
+    """Offsets where each line starts, as ``lines`` counts lines."""
+    return [0, *(found.end() for found in _LINE_BREAK.finditer(text))]
