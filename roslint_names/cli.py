@@ -37,7 +37,7 @@ from .discover import (
     text_files,
     workspace_root,
 )
-from .engine import LintResult, RunOptions, lint, recheck
+from .engine import LintResult, RunOptions, lint, lintable, recheck
 from .generation import PackageGenerations
 from .model import Diagnostic, FileFacts, Generation, Kind
 from .names import Problem, check_name
@@ -300,6 +300,7 @@ def _run_check(options: argparse.Namespace) -> int:
         color=output_is_terminal and "NO_COLOR" not in os.environ,
         include_suppressed=options.include_suppressed,
         baseline=options.baseline is not None,
+        files=_checked_files(sources, result),
     )
     if options.statistics:
         report = statistics(diagnostics, metas)
@@ -314,6 +315,12 @@ def _run_check(options: argparse.Namespace) -> int:
     print(summary(diagnostics, result.files_checked), file=sys.stderr)
     has_findings = any(not d.suppressed and not d.baselined for d in diagnostics)
     return EXIT_FINDINGS if has_findings and not options.exit_zero else EXIT_CLEAN
+
+
+def _checked_files(sources: Sequence[SourceFile], result: LintResult) -> tuple[str, ...]:
+    """The display paths of the files the run checked (what ``files_checked`` counts)."""
+    skipped = {path for path, _ in result.skipped}
+    return tuple(source.display for source in lintable(sources) if source.display not in skipped)
 
 
 def _resolve_renames(

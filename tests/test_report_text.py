@@ -31,8 +31,8 @@ def check_snapshot(name: str, actual: str) -> None:
     assert actual == path.read_text(encoding="utf-8"), f"{name} changed; review the diff"
 
 
-def test_formats_are_the_four_agreed() -> None:
-    assert FORMATS == ("text", "json", "sarif", "github")
+def test_formats_are_the_six_agreed() -> None:
+    assert FORMATS == ("text", "json", "sarif", "github", "junit", "gitlab")
 
 
 def test_unknown_format_is_a_value_error() -> None:

@@ -1,6 +1,7 @@
 """Reporters: diagnostics and rule metadata in, one string out.
 
-Each output format lives in its own module (``text``, ``json``, ``sarif``, ``github``).
+Each output format lives in its own module (``text``, ``json``, ``sarif``, ``github``,
+``junit``, ``gitlab``).
 Reporters never see rules, extractors or the engine: only
 :class:`~roslint_names.model.Diagnostic` values, already sorted, and the
 :class:`~roslint_names.catalog.RuleMeta` of the rules that ran.
@@ -20,7 +21,9 @@ from ..catalog import RuleMeta
 from ..model import Diagnostic, Severity
 from .base import ReportContext, plural, rules_by_code, visible
 from .github import render_github
+from .gitlab import render_gitlab
 from .json import render_json
+from .junit import render_junit
 from .sarif import render_sarif
 from .text import render_text
 
@@ -28,12 +31,14 @@ __all__ = ["FORMATS", "ReportContext", "render", "statistics", "summary"]
 
 Renderer = Callable[[Sequence[Diagnostic], Sequence[RuleMeta], ReportContext], str]
 
-FORMATS = ("text", "json", "sarif", "github")
+FORMATS = ("text", "json", "sarif", "github", "junit", "gitlab")
 _RENDERERS: dict[str, Renderer] = {
     "text": render_text,
     "json": render_json,
     "sarif": render_sarif,
     "github": render_github,
+    "junit": render_junit,
+    "gitlab": render_gitlab,
 }
 
 

@@ -23,6 +23,7 @@ class ReportContext:
     color: bool = False  # text: ANSI colours; the CLI sets it only on a TTY
     include_suppressed: bool = False  # SARIF only: keep suppressed results, marked as such
     baseline: bool = False  # a baseline is in use: SARIF marks each result's baselineState
+    files: tuple[str, ...] = ()  # JUnit: the files checked, each a testcase, findings or not
 
 
 def visible(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
