@@ -125,6 +125,13 @@ def _add_check(check: argparse.ArgumentParser) -> None:
     check.add_argument("--select", type=_codes, help="check only these codes, prefixes or slugs")
     check.add_argument("--extend-select", type=_codes, default=(), help="check these as well")
     check.add_argument("--ignore", type=_codes, default=(), help="do not check these")
+    check.add_argument(
+        "--extend-exclude",
+        action="append",
+        default=[],
+        metavar="PATTERN",
+        help="skip files matching this gitignore pattern too (repeatable)",
+    )
     check.add_argument("--ros", choices=("1", "2", "auto"), help="generation when undecided")
     check.add_argument("--max-depth", type=int, help="deepest allowed name (RN201)")
     check.add_argument("--exit-zero", action="store_true", help="exit 0 even with findings")
@@ -241,6 +248,7 @@ def _run_check(options: argparse.Namespace) -> int:
         extend_select=options.extend_select,
         ignore=options.ignore,
         max_depth=options.max_depth,
+        extend_exclude=tuple(options.extend_exclude),
     )
     registry, settings, sources, workspace = _prepare(options, overrides)
     cwd = Path.cwd()
@@ -490,6 +498,8 @@ def _write(report: str, output: Path | None) -> None:
         _print(report, end="")
         return
     try:
+        # A CI's results directory may not exist yet (catkin's, colcon's per package).
+        output.parent.mkdir(parents=True, exist_ok=True)
         output.write_text(report, encoding="utf-8")
     except OSError as error:
         raise UsageError(f"{output}: cannot write the report: {error.strerror}") from error

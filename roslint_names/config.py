@@ -154,6 +154,7 @@ class Overrides:
     extend_select: tuple[str, ...] = ()
     ignore: tuple[str, ...] = ()
     max_depth: int | None = None
+    extend_exclude: tuple[str, ...] = ()  # gitignore patterns, after the file's ``exclude``
 
 
 def apply_overrides(settings: Settings, overrides: Overrides, registry: Registry) -> Settings:
@@ -174,6 +175,7 @@ def apply_overrides(settings: Settings, overrides: Overrides, registry: Registry
         extend_select=settings.extend_select + overrides.extend_select,
         ignore=settings.ignore + overrides.ignore,
         max_depth=overrides.max_depth if overrides.max_depth is not None else settings.max_depth,
+        exclude=settings.exclude + overrides.extend_exclude,
     )
 
 

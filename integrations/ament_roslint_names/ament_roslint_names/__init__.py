@@ -1,0 +1,1 @@
+"""The ament_lint entry point of roslint-names (``ament_roslint_names``)."""
