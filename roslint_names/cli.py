@@ -51,7 +51,7 @@ from .report import FORMATS, ReportContext, render, statistics, summary
 EXIT_CLEAN = 0
 EXIT_FINDINGS = 1
 EXIT_ERROR = 2
-COMMANDS = ("check", "graph", "validate", "rule", "rules")
+COMMANDS = ("check", "graph", "validate", "rule", "rules", "server")
 
 
 class UsageError(Exception):
@@ -114,6 +114,8 @@ def _parser() -> argparse.ArgumentParser:
     rule.set_defaults(run=_run_rule)
     rules = commands.add_parser("rules", help="list every rule")
     rules.set_defaults(run=_run_rules)
+    server = commands.add_parser("server", help="speak the Language Server Protocol on stdio")
+    server.set_defaults(run=_run_server)
     return parser
 
 
@@ -433,6 +435,17 @@ def _workspace_context(
     files = [(cwd / path).absolute() for path in paths if (cwd / path).is_file()]
     roots = sorted({root for path in files if (root := workspace_root(path)) is not None})
     return discover(roots, settings.exclude, settings.root, cwd) if roots else []
+
+
+def _run_server(options: argparse.Namespace) -> int:
+    try:
+        from .lsp import serve  # pygls is imported only by the server
+    except ImportError as error:
+        raise UsageError(
+            f"the language server needs pygls ({error}); install roslint-names[server]"
+        ) from error
+    serve()
+    return EXIT_CLEAN
 
 
 def _run_graph(options: argparse.Namespace) -> int:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import importlib
 import os
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from functools import partial
 from pathlib import Path
@@ -236,7 +236,7 @@ def lint(
         cache.writable()  # create the directory now, not racing in every worker
     extracted = cached = 0
     skipped: list[tuple[str, str]] = []
-    extract = partial(_extract_batch, cache)
+    extract = partial(extract_batch, cache)
     with Dispatcher(extract, run.jobs, expected_items=len(checked)) as dispatcher:
         for index, source in enumerate(checked):
             # A file of the rest of the workspace is only its facts: when they are cached
@@ -290,16 +290,16 @@ def lint(
             known_facts = [facts for facts in all_facts if facts is not None]
             # Launch files extracted again under their includers' arguments go through the
             # same workers, a depth of the launch trees at a time.
-            specialise = _Specialiser(
+            specialise = Specialiser(
                 checked, packages, fallback, cache, settings.max_file_size, dispatcher=dispatcher
             )
             graph = build(
                 known_facts,
-                _packages([*sources, *context], packages),
+                workspace_packages([*sources, *context], packages),
                 specialise,
                 specialise.prepare,
             )
-            _report_graph(
+            report_graph(
                 graph,
                 graph_rules,
                 reported=checked[:reported],
@@ -345,7 +345,9 @@ def _stored_result(value: object, files: int) -> LintResult | None:
     return None
 
 
-def _packages(sources: Sequence[SourceFile], packages: PackageGenerations) -> list[Package]:
+def workspace_packages(
+    sources: Sequence[SourceFile], packages: PackageGenerations
+) -> list[Package]:
     """Every package holding a file of the run, by name and display directory."""
     found: dict[Path, Package] = {}
     for source in sources:
@@ -359,7 +361,7 @@ def _packages(sources: Sequence[SourceFile], packages: PackageGenerations) -> li
     return list(found.values())
 
 
-class _Specialiser:
+class Specialiser:
     """An included launch file's facts under the arguments its includer hands it: the
     same extraction, with those arguments, through the same cache."""
 
@@ -381,6 +383,11 @@ class _Specialiser:
         self._dispatcher = dispatcher
         self._memo: dict[tuple[str, LaunchArguments], FileFacts | None] = {}
         self._files: dict[str, tuple[bytes | None, str]] = {}
+
+    def forget(self, display: str) -> None:
+        """The file changed: its specialisations are to be made again when asked."""
+        self._files.pop(display, None)
+        self._memo = {key: facts for key, facts in self._memo.items() if key[0] != display}
 
     def __call__(self, display: str, arguments: LaunchArguments) -> FileFacts | None:
         key = (display, arguments)
@@ -442,7 +449,7 @@ class _Specialiser:
         return self._files[source.display]
 
 
-def _report_graph(
+def report_graph(
     graph: Graph,
     rules: Sequence[Rule],
     *,
@@ -452,9 +459,12 @@ def _report_graph(
     suppressions_of: dict[int, list[Suppression]],
     settings: Settings,
     registry: Registry,
+    texts: Mapping[str, str] | None = None,
 ) -> None:
     """Graph rules' findings, each into its file's slot with that file's suppressions;
-    findings in files outside ``reported`` (a per-file run's context) are dropped."""
+    findings in files outside ``reported`` (a per-file run's context) are dropped.
+    ``texts``: files' content by display path where it is not the file's on disk (an
+    editor's unsaved buffer)."""
     slots = {source.display: index for index, source in enumerate(reported)}
     test_rules = test_code_codes(settings, registry)
     facts_of = {f.path: f for f in facts}
@@ -470,8 +480,11 @@ def _report_graph(
         file_facts = facts_of[source.display]
         relative = _relative_to_root(source.display, settings)
         ignored = ignored_for_path(settings, relative, registry)
-        data, _, _ = read_file(source.path, settings.max_file_size)
-        text = decode_for_display(data or b"")
+        if texts is not None and source.display in texts:
+            text = texts[source.display]
+        else:
+            data, _, _ = read_file(source.path, settings.max_file_size)
+            text = decode_for_display(data or b"")
         to_diagnostic = _DiagnosticFactory(file_facts, settings, text)
         judging = _TestCodeFilter(file_facts, text, relative, settings, test_rules)
         fresh = [
@@ -509,7 +522,7 @@ class _Job:
 _Item = tuple[_Job, bytes, str | None]
 
 
-def _extract_batch(cache: FactsCache | None, batch: list[_Item]) -> list[tuple[int, FileFacts]]:
+def extract_batch(cache: FactsCache | None, batch: list[_Item]) -> list[tuple[int, FileFacts]]:
     """Extract and store facts: the work of a worker process, or of the main one.
 
     Module-level so that worker processes can run it; extractor modules are imported on

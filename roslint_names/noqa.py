@@ -60,18 +60,31 @@ def add_noqa(
         except UnicodeDecodeError:
             left.extend((path, line, "not UTF-8") for line in by_line)
             continue
-        editor = _EDITORS.get(language) if language is not None else None
-        if editor is None:
+        suppressed = with_suppressions(text, language, by_line)
+        if suppressed is None:
             left.extend((path, line, "no comment form for this file") for line in by_line)
             continue
-        lines = split_lines_keeping_ends(text)
-        count, refused = editor(lines, text, by_line)
+        after, count, refused = suppressed
         left.extend((path, line, why) for line, why in refused)
         if count:
-            file.write_bytes("".join(lines).encode("utf-8"))
+            file.write_bytes(after.encode("utf-8"))
             added += count
             files += 1
     return Outcome(added, files, tuple(left))
+
+
+def with_suppressions(
+    text: str, language: Language | None, by_line: dict[int, set[str]]
+) -> tuple[str, int, list[tuple[int, str]]] | None:
+    """``text`` with a suppression of the codes ``by_line`` names on each line, the number
+    of comments written, and the (line, why) of those refused; None when the language
+    has no comment form."""
+    editor = _EDITORS.get(language) if language is not None else None
+    if editor is None:
+        return None
+    lines = split_lines_keeping_ends(text)
+    count, refused = editor(lines, text, by_line)
+    return "".join(lines), count, refused
 
 
 _Edit = tuple[int, list[tuple[int, str]]]  # comments added, (line, why) refused

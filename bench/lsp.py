@@ -1,0 +1,196 @@
+"""The language server's latency on a workspace, as an editor sees it.
+
+    python bench/lsp.py WORKSPACE [--edits N] [--cache DIR]
+
+Starts ``roslint-names server`` as an editor would (a pygls client on stdio) with the
+workspace as its root, after a CLI run has filled the facts cache (``--cache``, else a
+fresh temporary one filled here): the warm workspace of the target. Then, for one launch
+file, one C++ file and one Python file of the workspace, opens the document and makes
+``--edits`` changes, each a whole-document change as editors send them, waiting between
+two for everything the change brings. Measured, from the moment the change is sent:
+
+- ``file``: until the document's diagnostics are published (its own text checked by the
+  per-file rules, the last graph findings kept): the target is 0.5 s, the server's
+  typing pause (``TYPING_PAUSE_S``) included;
+- ``graph``: until they are published again with the graph rules' findings made anew
+  over the whole workspace, which the server does once changes pause (``GRAPH_PAUSE_S``).
+
+Also the time from ``initialized`` to the first diagnostics of the first document (the
+session loading the workspace from the warm cache).
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import json
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+from lsprotocol import types
+from pygls.lsp.client import LanguageClient
+from pygls.uris import from_fs_path
+
+CLI = [sys.executable, "-c", "import sys; from roslint_names.cli import main; sys.exit(main())"]
+SERVER = [*CLI, "server"]
+# One edit each way: a line that gives the document a finding, then the line taken out.
+EDITS = {
+    "launch": '  <node name="bench-node" pkg="bench" type="bench_node"/>\n',
+    "cpp": '// bench: "cmd vel"\n',
+    "python": '# bench: "cmd vel"\n',
+}
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("workspace", type=Path)
+    parser.add_argument("--edits", type=int, default=10)
+    parser.add_argument("--cache", type=Path, help="a facts cache the CLI filled for WORKSPACE")
+    parser.add_argument("--json", type=Path, metavar="OUT")
+    options = parser.parse_args(argv)
+    results = latency(options.workspace.resolve(), options.edits, options.cache)
+    print(json.dumps(results, indent=2))
+    if options.json:
+        options.json.write_text(json.dumps(results, indent=2) + "\n", encoding="utf-8")
+    return 0
+
+
+def latency(workspace: Path, edits: int, cache: Path | None = None) -> dict[str, Any]:
+    """Open and edit one file per language; the latencies in seconds."""
+    with tempfile.TemporaryDirectory(prefix="roslint-names-lsp-") as scratch:
+        home = cache.parent if cache is not None else Path(scratch)
+        if cache is None:  # fill one: the warm workspace the target is about
+            # From the workspace, as the server runs: the cache knows files by that path.
+            subprocess.run(
+                [*CLI, "check", "--exit-zero", "."],
+                cwd=workspace,
+                env={"XDG_CACHE_HOME": str(home), "PATH": ""},
+                capture_output=True,
+                check=False,
+            )
+        return asyncio.run(_measure(workspace, home, edits))
+
+
+def pick(workspace: Path, suffixes: tuple[str, ...], marker: str) -> Path:
+    """A mid-sized file of the workspace with ``marker`` in it: what a developer edits."""
+    found = sorted(
+        path
+        for suffix in suffixes
+        for path in workspace.rglob(f"*{suffix}")
+        if path.is_file() and 2_000 < path.stat().st_size < 20_000 and marker in _text(path)
+    )
+    if not found:
+        raise SystemExit(f"no {suffixes} file with {marker!r} in {workspace}")
+    return found[len(found) // 2]
+
+
+def _text(path: Path) -> str:
+    try:
+        return path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return ""
+
+
+class _Client:
+    def __init__(self) -> None:
+        self.lsp = LanguageClient("roslint-names-bench", "1")
+        self.arrivals: dict[str, list[float]] = {}
+        self.event = asyncio.Event()
+
+        @self.lsp.feature(types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
+        def published(params: types.PublishDiagnosticsParams) -> None:
+            self.arrivals.setdefault(params.uri, []).append(time.perf_counter())
+            self.event.set()
+
+    async def arrivals_after(self, uri: str, count: int, timeout: float = 120) -> list[float]:
+        async def wait() -> list[float]:
+            while len(self.arrivals.get(uri, [])) < count:
+                self.event.clear()
+                await self.event.wait()
+            return self.arrivals[uri]
+
+        return await asyncio.wait_for(wait(), timeout)
+
+
+async def _measure(workspace: Path, home: Path, edits: int) -> dict[str, Any]:
+    files = {
+        "launch": pick(workspace, (".launch", ".launch.xml"), "<node"),
+        "cpp": pick(workspace, (".cpp",), "create_publisher"),
+        "python": pick(workspace, (".py",), "create_subscription"),
+    }
+    client = _Client()
+    await client.lsp.start_io(*SERVER, env={"XDG_CACHE_HOME": str(home), "PATH": ""})
+    results: dict[str, Any] = {"workspace": str(workspace), "edits": edits}
+    try:
+        root = from_fs_path(str(workspace)) or ""
+        await client.lsp.initialize_async(
+            types.InitializeParams(
+                capabilities=types.ClientCapabilities(),
+                root_uri=root,
+                workspace_folders=[types.WorkspaceFolder(root, workspace.name)],
+            )
+        )
+        started = time.perf_counter()
+        client.lsp.initialized(types.InitializedParams())
+        for language, path in files.items():
+            uri = from_fs_path(str(path)) or ""
+            text = path.read_text(encoding="utf-8")
+            opened = time.perf_counter()
+            client.lsp.text_document_did_open(
+                types.DidOpenTextDocumentParams(
+                    types.TextDocumentItem(uri=uri, language_id=language, version=1, text=text)
+                )
+            )
+            arrivals = await client.arrivals_after(uri, 2)  # its diagnostics, then the graph's
+            if "load_s" not in results:
+                results["load_s"] = round(arrivals[0] - started, 3)
+            results.setdefault("open_s", {})[language] = round(arrivals[0] - opened, 3)
+            file_s: list[float] = []
+            graph_s: list[float] = []
+            for edit in range(edits):
+                changed = _edited(text, EDITS[language]) if edit % 2 == 0 else text
+                count = len(client.arrivals[uri])
+                sent = time.perf_counter()
+                client.lsp.text_document_did_change(
+                    types.DidChangeTextDocumentParams(
+                        types.VersionedTextDocumentIdentifier(uri=uri, version=edit + 2),
+                        [types.TextDocumentContentChangeWholeDocument(text=changed)],
+                    )
+                )
+                arrivals = await client.arrivals_after(uri, count + 2)
+                file_s.append(arrivals[count] - sent)
+                graph_s.append(arrivals[count + 1] - sent)
+            results.setdefault("file", {})[language] = _summary(file_s, path, workspace)
+            results.setdefault("graph", {})[language] = _summary(graph_s, path, workspace)
+            client.lsp.text_document_did_close(
+                types.DidCloseTextDocumentParams(types.TextDocumentIdentifier(uri))
+            )
+        await client.lsp.shutdown_async(None)
+    finally:
+        client.lsp.exit(None)
+        await client.lsp.stop()
+    return results
+
+
+def _edited(text: str, line: str) -> str:
+    """``text`` with ``line`` inserted in the middle (inside the root element of XML)."""
+    lines = text.splitlines(keepends=True)
+    middle = len(lines) // 2
+    return "".join([*lines[:middle], line, *lines[middle:]])
+
+
+def _summary(values: list[float], path: Path, workspace: Path) -> dict[str, Any]:
+    return {
+        "file": path.relative_to(workspace).as_posix(),
+        "median_s": round(statistics.median(values), 3),
+        "max_s": round(max(values), 3),
+    }
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,193 @@
+"""`roslint-names server` end to end: a real LSP client speaking to a server process."""
+
+from __future__ import annotations
+
+import asyncio
+import sys
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import pytest
+from conftest import write, write_package
+from lsprotocol import types
+from pygls.lsp.client import LanguageClient
+from pygls.uris import from_fs_path
+
+ROBOT_LAUNCH = """<launch>
+  <arg name="robot" default="robot1"/>
+  <group ns="$(arg robot)">
+    <node name="base-driver" pkg="robot_base" type="driver_node">
+      <remap from="cmd_vel" to="mobile_base/cmd_vel"/>
+    </node>
+  </group>
+</launch>
+"""
+# Another package's launch file, which the bringup will include.
+TELEOP_LAUNCH = """<launch>
+  <node name="base_driver" pkg="teleop" type="teleop_node"/>
+</launch>
+"""
+SERVER = [
+    sys.executable,
+    "-c",
+    "import sys; from roslint_names.cli import main; sys.exit(main(['server']))",
+]
+
+
+class Client:
+    """A pygls client that records what the server publishes."""
+
+    def __init__(self) -> None:
+        self.lsp = LanguageClient("roslint-names-tests", "1")
+        self.published: dict[str, list[types.Diagnostic]] = {}
+        self._changed = asyncio.Event()
+
+        @self.lsp.feature(types.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
+        def diagnostics(params: types.PublishDiagnosticsParams) -> None:
+            self.published[params.uri] = params.diagnostics
+            self._changed.set()
+
+    async def until(
+        self, uri: str, wanted: Callable[[list[types.Diagnostic]], bool], timeout: float = 60
+    ) -> list[types.Diagnostic]:
+        async def wait() -> list[types.Diagnostic]:
+            while uri not in self.published or not wanted(self.published[uri]):
+                self._changed.clear()
+                await self._changed.wait()
+            return self.published[uri]
+
+        return await asyncio.wait_for(wait(), timeout)
+
+
+def _codes(diagnostics: list[types.Diagnostic]) -> list[Any]:
+    return sorted(str(d.code) for d in diagnostics)
+
+
+def _apply(text: str, edits: list[types.TextEdit]) -> str:
+    lines = text.splitlines(keepends=True)
+    offsets = [0]
+    for line in lines:
+        offsets.append(offsets[-1] + len(line))
+
+    def offset(position: types.Position) -> int:
+        return offsets[position.line] + position.character
+
+    for edit in sorted(edits, key=lambda e: offset(e.range.start), reverse=True):
+        text = text[: offset(edit.range.start)] + edit.new_text + text[offset(edit.range.end) :]
+    return text
+
+
+async def _session(root: Path, cache: Path) -> None:
+    launch = root / "src/robot_bringup/launch/robot.launch"
+    uri = from_fs_path(str(launch))
+    assert uri is not None
+    client = Client()
+    await client.lsp.start_io(*SERVER, env={"XDG_CACHE_HOME": str(cache), "PATH": ""})
+    try:
+        await client.lsp.initialize_async(
+            types.InitializeParams(
+                capabilities=types.ClientCapabilities(),
+                root_uri=from_fs_path(str(root)),
+                workspace_folders=[types.WorkspaceFolder(from_fs_path(str(root)) or "", "ws")],
+            )
+        )
+        client.lsp.initialized(types.InitializedParams())
+        text = launch.read_text(encoding="utf-8")
+        client.lsp.text_document_did_open(
+            types.DidOpenTextDocumentParams(
+                types.TextDocumentItem(uri=uri, language_id="xml", version=1, text=text)
+            )
+        )
+        found = await client.until(uri, lambda d: "RN101" in _codes(d))
+        (illegal,) = [d for d in found if d.code == "RN101"]
+        assert illegal.range == types.Range(types.Position(3, 16), types.Position(3, 27))
+        assert illegal.severity == types.DiagnosticSeverity.Error
+        assert illegal.source == "roslint-names"
+
+        # Hover: the rule's page.
+        hover = await client.lsp.text_document_hover_async(
+            types.HoverParams(types.TextDocumentIdentifier(uri), types.Position(3, 20))
+        )
+        assert hover is not None and isinstance(hover.contents, types.MarkupContent)
+        assert hover.contents.value.startswith("# RN101 illegal-name")
+
+        # Code actions: the fix the rule carries, and a suppression in XML's comment form.
+        actions = await client.lsp.text_document_code_action_async(
+            types.CodeActionParams(
+                types.TextDocumentIdentifier(uri),
+                illegal.range,
+                types.CodeActionContext(diagnostics=[illegal]),
+            )
+        )
+        assert actions is not None
+        by_title = {a.title: a for a in actions if isinstance(a, types.CodeAction)}
+        assert sorted(by_title) == [
+            "RN101: suppress on this line",
+            "RN101: write 'base_driver' (unsafe: may change what the system does)",
+        ]
+        suppress = by_title["RN101: suppress on this line"].edit
+        assert suppress is not None and suppress.changes is not None
+        suppressed = _apply(text, suppress.changes[uri])
+        assert "<!-- roslint-names: ignore RN101 -->" in suppressed.splitlines()[3]
+
+        fix = by_title["RN101: write 'base_driver' (unsafe: may change what the system does)"]
+        assert fix.edit is not None and fix.edit.changes is not None
+        fixed = _apply(text, fix.edit.changes[uri])
+        assert 'name="base_driver"' in fixed
+
+        # Applied, unsaved: the buffer is what is checked.
+        client.lsp.text_document_did_change(
+            types.DidChangeTextDocumentParams(
+                types.VersionedTextDocumentIdentifier(uri=uri, version=2),
+                [types.TextDocumentContentChangeWholeDocument(text=fixed)],
+            )
+        )
+        await client.until(uri, lambda d: "RN101" not in _codes(d))
+
+        # A graph finding: an included launch file of another package starts a node of the
+        # same name in the same namespace.
+        include = '    <include file="$(find teleop)/launch/teleop.launch"/>\n  </group>'
+        twice = fixed.replace("  </group>", include)
+        client.lsp.text_document_did_change(
+            types.DidChangeTextDocumentParams(
+                types.VersionedTextDocumentIdentifier(uri=uri, version=3),
+                [types.TextDocumentContentChangeWholeDocument(text=twice)],
+            )
+        )
+        found = await client.until(uri, lambda d: "RN402" in _codes(d))
+        # Reported at the node and at the include that starts the other one.
+        assert [d.range.start.line for d in found if d.code == "RN402"] == [3, 6]
+        duplicate = next(d for d in found if d.code == "RN402")
+        assert "'/robot1/base_driver' is started twice" in duplicate.message
+        assert duplicate.related_information is not None
+        related = duplicate.related_information[0].location
+        assert (related.uri, related.range.start.line) == (uri, 6)  # the include
+
+        client.lsp.text_document_did_close(
+            types.DidCloseTextDocumentParams(types.TextDocumentIdentifier(uri))
+        )
+        await client.until(uri, lambda d: not d)
+        await client.lsp.shutdown_async(None)
+    finally:
+        client.lsp.exit(None)  # after a failed assertion too: stop() waits for the server
+        await client.lsp.stop()
+
+
+def test_the_server_publishes_fixes_suppresses_and_explains(tmp_path: Path) -> None:
+    root = tmp_path / "ws"
+    write_package(root / "src/robot_bringup", 1)
+    write(root, "src/robot_bringup/launch/robot.launch", ROBOT_LAUNCH)
+    write_package(root / "src/teleop", 1, "teleop")
+    write(root, "src/teleop/launch/teleop.launch", TELEOP_LAUNCH)
+    asyncio.run(_session(root, tmp_path / "cache"))
+
+
+def test_without_pygls_the_command_says_what_to_install(
+    run_cli: Any, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setitem(sys.modules, "pygls.lsp.server", None)
+    monkeypatch.delitem(sys.modules, "roslint_names.lsp", raising=False)
+    result = run_cli(["server"], tmp_path)
+    assert result.exit_code == 2
+    assert "install roslint-names[server]" in result.stderr
