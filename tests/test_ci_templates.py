@@ -1,0 +1,136 @@
+"""The CI templates: the GitHub composite action and the GitLab CI job, their scripts run."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+import yaml
+from conftest import write, write_package
+from jsonschema import Draft7Validator
+from lxml import etree
+from test_report_gitlab import CODE_QUALITY_SCHEMA
+from test_report_sarif import SCHEMA as SARIF_SCHEMA
+
+REPOSITORY = Path(__file__).resolve().parents[1]
+JUNIT = etree.XMLSchema(etree.parse(str(Path(__file__).parent / "fixtures/schemas/junit-10.xsd")))
+
+TELEOP_LAUNCH = """<launch>
+  <node name="teleop-joy" pkg="joy" type="joy_node"/>
+</launch>
+"""
+
+
+def _workspace(root: Path) -> Path:
+    write_package(root / "src/teleop", 1, "teleop")
+    write(root, "src/teleop/launch/teleop.launch", TELEOP_LAUNCH)
+    return root
+
+
+def _environment(root: Path, **variables: str) -> dict[str, str]:
+    path = os.pathsep.join((str(Path(sys.executable).parent), os.environ["PATH"]))
+    return {**os.environ, "PATH": path, "XDG_CACHE_HOME": str(root / ".cache"), **variables}
+
+
+def _bash(script: str, cwd: Path, env: dict[str, str]) -> subprocess.CompletedProcess[str]:
+    # As GitHub runs a `shell: bash` step: bash --noprofile --norc -eo pipefail
+    return subprocess.run(
+        ["bash", "--noprofile", "--norc", "-eo", "pipefail", "-c", script],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
+        timeout=300,
+    )
+
+
+def _action() -> dict[str, Any]:
+    loaded: dict[str, Any] = yaml.safe_load((REPOSITORY / "action.yml").read_text())
+    return loaded
+
+
+def _step(action: dict[str, Any], name: str) -> dict[str, Any]:
+    return next(step for step in action["runs"]["steps"] if step.get("name") == name)
+
+
+def test_the_action_annotates_writes_sarif_and_reports_the_exit_code(tmp_path: Path) -> None:
+    action = _action()
+    assert action["runs"]["using"] == "composite"
+    assert {"paths", "version", "args", "changed-since", "upload-sarif"} <= set(action["inputs"])
+    upload = _step(action, "Upload to code scanning")
+    assert upload["uses"].startswith("github/codeql-action/upload-sarif@")
+
+    root = _workspace(tmp_path / "ws")
+    outputs = tmp_path / "github_output"
+    env = _environment(
+        root,
+        PATHS=".",
+        ARGS="--select RN1",
+        CHANGED_SINCE="",
+        RUNNER_TEMP=str(tmp_path),
+        GITHUB_OUTPUT=str(outputs),
+    )
+    ran = _bash(_step(action, "Check ROS names")["run"], root, env)
+    assert ran.returncode == 0, ran.stderr
+    assert ran.stdout.startswith("::error file=src/teleop/launch/teleop.launch,line=2,")
+    written = dict(line.split("=", 1) for line in outputs.read_text().splitlines())
+    assert written == {"sarif-file": str(tmp_path / "roslint-names.sarif"), "exit-code": "1"}
+    sarif = json.loads((tmp_path / "roslint-names.sarif").read_text())
+    schema = json.loads(SARIF_SCHEMA.read_text())
+    assert not list(Draft7Validator(schema).iter_errors(sarif))
+    assert [r["ruleId"] for r in sarif["runs"][0]["results"]] == ["RN101"]
+
+    gate = _step(action, "Gate")["run"]
+    for code, fail, expected in (
+        ("1", "true", 1),
+        ("1", "false", 0),
+        ("0", "true", 0),
+        ("2", "false", 2),
+    ):
+        result = _bash(gate, root, _environment(root, CODE=code, FAIL_ON_FINDINGS=fail))
+        assert result.returncode == expected, (code, fail)
+
+
+def test_the_action_gates_a_pull_request_on_its_changes(tmp_path: Path) -> None:
+    root = _workspace(tmp_path / "ws")
+    git = ["git", "-c", "user.name=ci", "-c", "user.email=ci@example.com"]
+    for command in (["init", "-q"], ["add", "."], ["commit", "-qm", "base"]):
+        subprocess.run([*git, *command], cwd=root, check=True, capture_output=True)
+    outputs = tmp_path / "github_output"
+    env = _environment(
+        root,
+        PATHS=".",
+        ARGS="",
+        CHANGED_SINCE="HEAD",
+        RUNNER_TEMP=str(tmp_path),
+        GITHUB_OUTPUT=str(outputs),
+    )
+    ran = _bash(_step(_action(), "Check ROS names")["run"], root, env)
+    assert ran.returncode == 0, ran.stderr
+    assert "exit-code=0" in outputs.read_text().splitlines()  # the old finding is not the PR's
+
+
+def test_the_gitlab_job_writes_code_quality_and_junit_reports(tmp_path: Path) -> None:
+    template = yaml.safe_load(
+        (REPOSITORY / "integrations/gitlab/roslint-names.gitlab-ci.yml").read_text()
+    )
+    job = template["roslint-names"]
+    reports = job["artifacts"]["reports"]
+    assert job["artifacts"]["when"] == "always"
+    root = _workspace(tmp_path / "ws")
+    env = _environment(root)
+    results = [
+        _bash(line, root, env).returncode for line in job["script"] if not line.startswith("pip ")
+    ]
+    assert results == [0, 0, 1]  # the reports always, then the gate fails on the finding
+    issues = json.loads((root / reports["codequality"]).read_text())
+    assert not list(Draft7Validator(CODE_QUALITY_SCHEMA).iter_errors(issues))
+    assert [issue["check_name"] for issue in issues] == ["RN101 illegal-name"]
+    suite = etree.parse(str(root / reports["junit"])).getroot()
+    JUNIT.assertValid(suite)
+    assert suite.get("failures") == "1"
