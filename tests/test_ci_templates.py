@@ -58,6 +58,25 @@ def _step(action: dict[str, Any], name: str) -> dict[str, Any]:
     return next(step for step in action["runs"]["steps"] if step.get("name") == name)
 
 
+def _check_step(
+    root: Path, scratch: Path, args: str, changed_since: str
+) -> tuple[dict[str, str], str]:
+    """The action's check step run as GitHub would, in ``root``: the outputs it set and
+    the annotations it printed."""
+    outputs = scratch / "github_output"
+    env = _environment(
+        root,
+        PATHS=".",
+        ARGS=args,
+        CHANGED_SINCE=changed_since,
+        RUNNER_TEMP=str(scratch),
+        GITHUB_OUTPUT=str(outputs),
+    )
+    ran = _bash(_step(_action(), "Check ROS names")["run"], root, env)
+    assert ran.returncode == 0, ran.stderr
+    return dict(line.split("=", 1) for line in outputs.read_text().splitlines()), ran.stdout
+
+
 def test_the_action_annotates_writes_sarif_and_reports_the_exit_code(tmp_path: Path) -> None:
     action = _action()
     assert action["runs"]["using"] == "composite"
@@ -66,19 +85,8 @@ def test_the_action_annotates_writes_sarif_and_reports_the_exit_code(tmp_path: P
     assert upload["uses"].startswith("github/codeql-action/upload-sarif@")
 
     root = _workspace(tmp_path / "ws")
-    outputs = tmp_path / "github_output"
-    env = _environment(
-        root,
-        PATHS=".",
-        ARGS="--select RN1",
-        CHANGED_SINCE="",
-        RUNNER_TEMP=str(tmp_path),
-        GITHUB_OUTPUT=str(outputs),
-    )
-    ran = _bash(_step(action, "Check ROS names")["run"], root, env)
-    assert ran.returncode == 0, ran.stderr
-    assert ran.stdout.startswith("::error file=src/teleop/launch/teleop.launch,line=2,")
-    written = dict(line.split("=", 1) for line in outputs.read_text().splitlines())
+    written, annotations = _check_step(root, tmp_path, args="--select RN1", changed_since="")
+    assert annotations.startswith("::error file=src/teleop/launch/teleop.launch,line=2,")
     assert written == {"sarif-file": str(tmp_path / "roslint-names.sarif"), "exit-code": "1"}
     sarif = json.loads((tmp_path / "roslint-names.sarif").read_text())
     schema = json.loads(SARIF_SCHEMA.read_text())
@@ -101,18 +109,11 @@ def test_the_action_gates_a_pull_request_on_its_changes(tmp_path: Path) -> None:
     git = ["git", "-c", "user.name=ci", "-c", "user.email=ci@example.com"]
     for command in (["init", "-q"], ["add", "."], ["commit", "-qm", "base"]):
         subprocess.run([*git, *command], cwd=root, check=True, capture_output=True)
-    outputs = tmp_path / "github_output"
-    env = _environment(
-        root,
-        PATHS=".",
-        ARGS="",
-        CHANGED_SINCE="HEAD",
-        RUNNER_TEMP=str(tmp_path),
-        GITHUB_OUTPUT=str(outputs),
-    )
-    ran = _bash(_step(_action(), "Check ROS names")["run"], root, env)
-    assert ran.returncode == 0, ran.stderr
-    assert "exit-code=0" in outputs.read_text().splitlines()  # the old finding is not the PR's
+    written, annotations = _check_step(root, tmp_path, args="", changed_since="HEAD")
+    assert (written["exit-code"], annotations) == (
+        "0",
+        "",
+    )  # the old finding is not the pull request's
 
 
 def test_the_gitlab_job_writes_code_quality_and_junit_reports(tmp_path: Path) -> None:

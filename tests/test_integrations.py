@@ -71,27 +71,17 @@ def _environment(bin_directory: Path) -> dict[str, str]:
 
 def _cmake(*arguments: str, env: dict[str, str], cwd: Path) -> subprocess.CompletedProcess[str]:
     assert CMAKE is not None
-    return subprocess.run(
-        [CMAKE, *arguments],
-        check=False,
-        env=env,
-        cwd=cwd,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
+    return _run([CMAKE, *arguments], env=env, cwd=cwd)
 
 
 def _ctest(build: Path, env: dict[str, str]) -> subprocess.CompletedProcess[str]:
     ctest = str(Path(CMAKE or "cmake").with_name("ctest"))
+    return _run([ctest, "--output-on-failure"], env=env, cwd=build)
+
+
+def _run(command: list[str], env: dict[str, str], cwd: Path) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
-        [ctest, "--output-on-failure"],
-        check=False,
-        env=env,
-        cwd=build,
-        capture_output=True,
-        text=True,
-        timeout=300,
+        command, check=False, env=env, cwd=cwd, capture_output=True, text=True, timeout=300
     )
 
 
