@@ -328,7 +328,8 @@ def _past_prefilter(data: bytes, language: Language) -> bool:
     its own parses, whatever it does around them. Launch, URDF and YAML files have no
     prefilter; build files are not parsed by the floor.
     """
-    from roslint_names.extract import cpp, python
+    from roslint_names.extract.cpp import extract as cpp
+    from roslint_names.extract.python import extract as python
 
     if language is Language.CPP:
         text, _ = cpp.decode(data)

@@ -103,7 +103,7 @@ _PARSER_PACKAGES = ("tree_sitter", "tree_sitter_cpp", "libcst", "lxml", "yaml")
 # relative `from ..X` (in extract/) or `from .X` (in a top-level module), at any indent.
 _PACKAGE_IMPORT = re.compile(
     rb"^[ \t]*(?:from|import)[ \t]+"
-    rb"(?:roslint_names\.(\w+)|roslint_names[ \t]+import[ \t]+(\w+)|\.\.?(\w+))",
+    rb"(?:roslint_names\.(\w+)|roslint_names[ \t]+import[ \t]+(\w+)|\.{1,3}(\w+))",
     re.MULTILINE,
 )
 
@@ -563,7 +563,7 @@ def _extractor_sources(package: Path) -> dict[Path, bytes]:
     pending: list[Path] = []
     for name in _EXTRACTOR_SOURCES:
         path = package / name
-        pending.extend(sorted(path.glob("*.py")) if path.is_dir() else [path])
+        pending.extend(sorted(path.rglob("*.py")) if path.is_dir() else [path])
     found: dict[Path, bytes] = {}
     while pending:
         path = pending.pop(0)

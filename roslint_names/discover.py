@@ -113,7 +113,7 @@ def _by_name(file_name: str) -> Language | _Sniff | None:
 
 
 def _sniff_xml(path: Path) -> Language | None:
-    from .extract.xmlsafe import root_tag  # lxml is imported only when an .xml file is seen
+    from .extract.launch.xmlsafe import root_tag  # lxml is imported only when an .xml file is seen
 
     tag = root_tag(_head(path))
     if tag == "launch":

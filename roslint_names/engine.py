@@ -54,14 +54,14 @@ if TYPE_CHECKING:
 Extract = Callable[[str, bytes, "Generation | None", Generation], FileFacts]
 
 EXTRACTOR_MODULES: dict[Language, str] = {
-    Language.CPP: "cpp",
-    Language.PYTHON: "python",
-    Language.LAUNCH_XML: "launch_xml",
-    Language.LAUNCH_YAML: "launch_yaml",
-    Language.URDF: "urdf",
-    Language.CMAKE: "cmake",
-    Language.SETUP_PY: "setup_py",
-    Language.SETUP_CFG: "setup_py",
+    Language.CPP: "cpp.extract",
+    Language.PYTHON: "python.extract",
+    Language.LAUNCH_XML: "launch.xml_launch",
+    Language.LAUNCH_YAML: "launch.yaml_launch",
+    Language.URDF: "launch.urdf",
+    Language.CMAKE: "build.cmake",
+    Language.SETUP_PY: "build.setup_py",
+    Language.SETUP_CFG: "build.setup_py",
 }
 # Launch files an including file can hand arguments to (see ``workspace.launch_tree``).
 SPECIALISABLE = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.PYTHON})

@@ -174,7 +174,7 @@ def _yaml(lines: list[str], text: str, by_line: dict[int, set[str]]) -> _Edit:
 def _xml(lines: list[str], text: str, by_line: dict[int, set[str]]) -> _Edit:
     """After the markup on the line; inside a start tag over several lines, alone on the
     line before the tag (``suppress`` gives such a comment the whole tag)."""
-    from .extract.xmlsafe import scan_start_tags
+    from .extract.launch.xmlsafe import scan_start_tags
 
     offsets = [0]
     for line in lines:

@@ -73,7 +73,7 @@ def find_suppressions(text: str, language: Language) -> list[Suppression]:
 def _over_whole_tags(found: list[Suppression], text: str) -> list[Suppression]:
     """A comment alone on the line before a start tag written over several lines covers
     every line of the tag: no comment can stand between its attributes."""
-    from .extract.xmlsafe import scan_start_tags  # only for files with such a comment
+    from .extract.launch.xmlsafe import scan_start_tags  # only for files with such a comment
 
     last_line_of: dict[int, int] = {}
     for tag in scan_start_tags(text):

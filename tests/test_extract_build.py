@@ -15,8 +15,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from roslint_names.extract import cmake, setup_py
-from roslint_names.extract.cmake_lexer import ArgKind, VarRef, lex
+from roslint_names.extract.build import cmake, setup_py
+from roslint_names.extract.build.cmake_lexer import ArgKind, VarRef, lex
 from roslint_names.model import ExecutableKind, FileFacts, Generation, Language, Span
 
 FIXTURES = Path(__file__).parent / "fixtures" / "build"

@@ -10,7 +10,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from roslint_names.extract import cpp, cpp_source
+from roslint_names.extract.cpp import extract as cpp
+from roslint_names.extract.cpp import source as cpp_source
 from roslint_names.model import (
     EventKind,
     FileFacts,

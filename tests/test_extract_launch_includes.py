@@ -7,8 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from roslint_names.extract import launch_include, launch_xml, launch_yaml
-from roslint_names.extract.substitution import ARG, Dialect, Lookup, Value
+from roslint_names.extract.launch import include as launch_include
+from roslint_names.extract.launch import xml_launch as launch_xml
+from roslint_names.extract.launch import yaml_launch as launch_yaml
+from roslint_names.extract.launch.substitution import ARG, Dialect, Lookup, Value
 from roslint_names.model import (
     FileFacts,
     Generation,

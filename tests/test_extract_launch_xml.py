@@ -6,8 +6,9 @@ from pathlib import Path
 
 from lxml import etree
 
-from roslint_names.extract import evidence, launch_xml
-from roslint_names.extract.substitution import (
+from roslint_names.extract import evidence
+from roslint_names.extract.launch import xml_launch as launch_xml
+from roslint_names.extract.launch.substitution import (
     ARG,
     Dialect,
     Located,

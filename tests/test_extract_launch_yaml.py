@@ -8,7 +8,7 @@ from pathlib import Path
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from roslint_names.extract import launch_yaml
+from roslint_names.extract.launch import yaml_launch as launch_yaml
 from roslint_names.model import FileFacts, Generation, Kind, Role, Span
 
 FIXTURES = Path(__file__).parent / "fixtures" / "launch"

@@ -17,7 +17,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from roslint_names.extract.python import extract, may_hold_names
+from roslint_names.extract.python.extract import extract, may_hold_names
 from roslint_names.model import EventKind, FileFacts, Generation, Language, NameUse
 
 FIXTURES = Path(__file__).parent / "fixtures" / "python"
@@ -649,7 +649,7 @@ def test_prefilter_skips_files_without_ros() -> None:
 def test_prefiltered_run_does_not_import_libcst(tmp_path: Path) -> None:
     script = (
         "import sys\n"
-        "from roslint_names.extract.python import extract\n"
+        "from roslint_names.extract.python.extract import extract\n"
         "from roslint_names.model import Generation\n"
         "extract('a.py', b'import numpy\\n', None, Generation.ROS2)\n"
         "assert 'libcst' not in sys.modules\n"

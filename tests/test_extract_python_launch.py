@@ -11,7 +11,7 @@ from typing import Any
 
 import pytest
 
-from roslint_names.extract.python import extract
+from roslint_names.extract.python.extract import extract
 from roslint_names.model import FileFacts, Generation, Language, LaunchNode
 
 FIXTURES = Path(__file__).parent / "fixtures" / "python"

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from roslint_names.extract.python import extract
+from roslint_names.extract.python.extract import extract
 from roslint_names.model import FileFacts, Generation, LaunchInclude, Span
 
 FIXTURES = Path(__file__).parent / "fixtures" / "python"
@@ -604,7 +604,7 @@ def generate_launch_description():
 def test_extractions_of_one_file_under_several_arguments_share_nothing_but_the_parse() -> None:
     """An includer's arguments re-run only the launch part (the parse, the walk and the
     code's names are kept per file): each set must give what a fresh extraction gives."""
-    from roslint_names.extract import python_extract
+    from roslint_names.extract.python import parsed as python_extract
 
     sets: list[Arguments] = [
         (),

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from roslint_names.extract import urdf
+from roslint_names.extract.launch import urdf
 from roslint_names.model import FileFacts, Generation, Kind, Role, Span
 
 FIXTURES = Path(__file__).parent / "fixtures" / "urdf"

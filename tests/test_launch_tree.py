@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from roslint_names.extract import launch_xml
+from roslint_names.extract.launch import xml_launch as launch_xml
 from roslint_names.model import FileFacts, Generation, LaunchArguments
 from roslint_names.workspace.index import Package, WorkspaceIndex
 from roslint_names.workspace.launch_tree import LaunchTrees

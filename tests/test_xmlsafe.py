@@ -9,8 +9,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from roslint_names.extract import launch_xml, urdf, xmlsafe
-from roslint_names.extract.xmlsafe import root_tag
+from roslint_names.extract.launch import urdf, xmlsafe
+from roslint_names.extract.launch import xml_launch as launch_xml
+from roslint_names.extract.launch.xmlsafe import root_tag
 from roslint_names.model import FileFacts, Generation, Kind, ParseError, Span
 
 FIXTURES = Path(__file__).parent / "fixtures"

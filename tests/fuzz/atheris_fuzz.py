@@ -33,8 +33,8 @@ with atheris.instrument_imports(include=["roslint_names"]):
     from roslint_names.model import Generation
 
     # Extractors import their parsers' glue on first use: instrument all of it now.
-    for module in pkgutil.iter_modules(roslint_names.extract.__path__):
-        importlib.import_module(f"roslint_names.extract.{module.name}")
+    for module in pkgutil.walk_packages(roslint_names.extract.__path__, "roslint_names.extract."):
+        importlib.import_module(module.name)
 
 _GENERATIONS = (None, Generation.ROS1, Generation.ROS2)
 

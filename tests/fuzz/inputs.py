@@ -18,7 +18,12 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from roslint_names.discover import classify
-from roslint_names.extract import cmake, cpp, launch_xml, launch_yaml, python, setup_py, urdf
+from roslint_names.extract.build import cmake, setup_py
+from roslint_names.extract.cpp import extract as cpp
+from roslint_names.extract.launch import urdf
+from roslint_names.extract.launch import xml_launch as launch_xml
+from roslint_names.extract.launch import yaml_launch as launch_yaml
+from roslint_names.extract.python import extract as python
 from roslint_names.model import FileFacts, Generation, Language, LaunchArguments
 
 ROOT = Path(__file__).resolve().parents[2]

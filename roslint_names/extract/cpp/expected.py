@@ -1,0 +1,99 @@
+"""Code a C++ test expects to fail: what it holds is deliberately wrong, never a finding.
+
+gtest's ``EXPECT_THROW``, ``ASSERT_THROW``, ``EXPECT_ANY_THROW``, ``ASSERT_ANY_THROW`` and
+their wrappers (rclcpp's ``RCLCPP_EXPECT_THROW_EQ``) run a statement that must throw; the
+death tests (``EXPECT_DEATH``, ``ASSERT_EXIT``...) one that must crash; ``EXPECT_FALSE`` and
+``ASSERT_FALSE`` a call that must come out false, a probe of what is refused or absent
+(tf2's ``EXPECT_FALSE(buffer.canTransform("", "a", ros::Time()))``). A ``try`` block
+that reaches ``FAIL()`` or ``ADD_FAILURE()`` expects what runs before it to throw (ros_comm's
+``test_roscpp``: ``try { ros::NodeHandle n(parent, "illegal_name!!!"); FAIL(); } catch``).
+``EXPECT_NO_THROW`` and ``ASSERT_NO_THROW`` expect success: their names are judged.
+"""
+
+from __future__ import annotations
+
+import re
+from bisect import bisect_right
+
+from tree_sitter import Node
+
+from roslint_names.model import Span
+
+from .source import Source, field
+
+_EXPECTING = re.compile(
+    rb"\b(?:\w+_)?(?:EXPECT|ASSERT)_(?:ANY_)?THROW(?:_EQ)?\b"
+    rb"|\b(?:EXPECT|ASSERT)_(?:DEBUG_)?(?:DEATH|EXIT)(?:_IF_SUPPORTED)?\b"
+    rb"|\b(?:EXPECT|ASSERT)_FALSE\b"
+)
+_MARKERS = (b"_THROW", b"_DEATH", b"_EXIT", b"_FALSE")  # one is in every macro of _EXPECTING
+_FAILURES = ("FAIL", "ADD_FAILURE", "GTEST_FAIL")
+
+
+Position = tuple[int, int]  # (line, column), as spans count them
+
+
+class ExpectedFailures:
+    """Where a file's code is expected to fail: ranges of positions, end exclusive."""
+
+    def __init__(self, source: Source) -> None:
+        ranges = sorted([*_macro_arguments(source), *_tries_that_fail(source)])
+        self._starts = [start for start, _ in ranges]
+        self._ranges = ranges
+
+    def holds(self, span: Span) -> bool:
+        """Whether what starts at ``span`` lies inside code expected to fail."""
+        position = (span.line, span.column)
+        for start, end in self._ranges[: bisect_right(self._starts, position)]:
+            if start <= position < end:
+                return True
+        return False
+
+
+def _start(source: Source, node: Node) -> Position:
+    span = source.span(node)
+    return span.line, span.column
+
+
+def _end(source: Source, node: Node) -> Position:
+    span = source.span(node)
+    return span.end_line, span.end_column
+
+
+def _macro_arguments(source: Source) -> list[tuple[Position, Position]]:
+    found: list[tuple[Position, Position]] = []
+    if not any(marker in source.data for marker in _MARKERS):
+        return found  # nearly every file: the regex is not run at all
+    for _, word in source.words(_EXPECTING):
+        call = word.parent
+        if call is None or call.type != "call_expression" or field(call, "function") != word:
+            continue
+        arguments = field(call, "arguments")
+        if arguments is not None:
+            found.append((_start(source, arguments), _end(source, arguments)))
+    return found
+
+
+def _tries_that_fail(source: Source) -> list[tuple[Position, Position]]:
+    """From a ``try`` body's start to a failure call among its statements."""
+    found = []
+    for name in _FAILURES:
+        for word in source.occurrences(name):
+            call = word.parent
+            statement = None if call is None else call.parent
+            while statement is not None and statement.type == "binary_expression":
+                statement = statement.parent  # FAIL() << "what was accepted"
+            body = None if statement is None else statement.parent
+            if (
+                call is None
+                or call.type != "call_expression"
+                or statement is None
+                or statement.type != "expression_statement"
+                or body is None
+                or body.type != "compound_statement"
+                or body.parent is None
+                or body.parent.type != "try_statement"
+            ):
+                continue
+            found.append((_start(source, body), _start(source, word)))
+    return found

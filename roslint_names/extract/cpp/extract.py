@@ -1,0 +1,227 @@
+"""C++: roscpp and rclcpp names, and the init/handle order RN301 checks.
+
+The file is decoded (UTF-8, with or without BOM, or UTF-16 or UTF-32 with a BOM), skipped when it
+holds no ROS marker at all (most C++ of a robot workspace is algorithms and drivers), and
+parsed once with tree-sitter-cpp. tree-sitter always yields a tree; macros and templates
+it cannot follow become ERROR nodes, which are not parse errors to report: the sites
+around them are still read. See ``cpp_source`` for how sites are found without walking
+the whole tree, and ``cpp_sites`` for which names each API takes.
+
+The generation is the package's when known, else the file's includes (``ros/``,
+``actionlib/``, ``tf/`` for ROS 1; ``rclcpp*/`` for ROS 2), else its qualified names
+(``ros::`` versus ``rclcpp::``), else the fallback.
+"""
+
+from __future__ import annotations
+
+import re
+
+import tree_sitter
+import tree_sitter_cpp
+from tree_sitter import Node
+
+from roslint_names.model import (
+    FileFacts,
+    Generation,
+    Language,
+    NameUse,
+    ParseError,
+    RuntimeEvent,
+    Span,
+)
+from roslint_names.reading import bom_encoding
+
+from ..literals import name_literals
+from .apis import CALL_WORDS, CONSTRUCTED_TYPES, FRAME_FIELDS
+from .events import INIT_WORDS, handle_event, init_event
+from .expected import ExpectedFailures
+from .handles import Handles
+from .objects import (
+    NODE_BASES,
+    Classes,
+    Construction,
+    constructions_named_by,
+    member_constructions,
+)
+from .sites import Sites
+from .source import Source, trie_regex, word_pattern
+from .types import Types
+from .values import Declarations, Folder
+
+_PARSER = tree_sitter.Parser(tree_sitter.Language(tree_sitter_cpp.language()))
+
+# A file without any of these cannot hold a site this extractor reads: each is the word a
+# site is found by, then (when the word alone says too little) what must follow it. About
+# half of the C++ files of a ROS workspace include rclcpp or ros/ and still name nothing.
+_POINTER_TYPEDEF = rb"\b(?!::(?:SharedPtr|WeakPtr|ConstSharedPtr|UniquePtr)\b)"
+_PARAMETER_METHOD = rb"(?:_or|_if_not_declared)?\b"  # get_parameter_or, not get_parameters
+MARKERS: dict[str, bytes | None] = {
+    "ros::init": None,
+    "rclcpp::init": None,
+    "::service::": None,  # ros::service::call
+    "param::": None,  # ros::param::get
+    "NodeHandle": None,
+    "Node": rb"\s*\(",  # `: Node("talker")`
+    "rclcpp::Node": _POINTER_TYPEDEF,
+    "LifecycleNode": _POINTER_TYPEDEF,
+    **dict.fromkeys(("advertise", "subscribe", "serviceClient"), None),
+    **dict.fromkeys(("getParam", "setParam", "hasParam", "deleteParam", "searchParam"), None),
+    "param": rb"\s*[<(]",  # nh.param(...), nh.param<T>(...)
+    **dict.fromkeys(f"create_{what}" for what in ("publisher", "subscription", "service")),
+    **dict.fromkeys(f"create_{what}" for what in ("client", "server", "generic", "action")),
+    **{
+        f"{verb}_parameter": _PARAMETER_METHOD
+        for verb in ("declare", "get", "has", "undeclare", "describe")
+    },
+    "rclcpp::Parameter": rb"\b",
+    "frame_id": rb"\s*=[^=]",  # frame_id = "map", not frame_id == "map"
+    **dict.fromkeys(("lookupTransform", "canTransform", "waitForTransform"), None),
+    **dict.fromkeys(f"transform{what}" for what in ("Pose", "Point", "Vector", "Quaternion")),
+    "StampedTransform": None,
+    "Stamped": rb"\s*<",  # tf::Stamped<tf::Pose>
+    **dict.fromkeys(("ActionServer", "ActionClient", "ServiceClient", "ServiceServer"), None),
+    "message_filters": None,
+    "Subscriber": rb"\s*<",  # message_filters::Subscriber<T>
+}
+_MARKER_WORDS = re.compile(trie_regex(MARKERS).encode("ascii"))
+_MARKER_CONTEXT = {
+    word.encode("ascii"): None if follows is None else re.compile(follows)
+    for word, follows in MARKERS.items()
+}
+
+
+def has_ros_marker(data: bytes) -> bool:
+    """Whether the bytes hold a marker; one regex scan for the words, then the context."""
+    position = 0
+    while (match := _MARKER_WORDS.search(data, position)) is not None:
+        context = _MARKER_CONTEXT[match.group()]
+        if context is None or context.match(data, match.end()):
+            return True
+        position = match.start() + 1  # a longer marker may start inside this one
+    return False
+
+
+_ROS1_INCLUDE = re.compile(rb'#[ \t]*include[ \t]*[<"](?:ros|actionlib|tf|nodelet)/')
+_ROS2_INCLUDE = re.compile(rb'#[ \t]*include[ \t]*[<"]rclcpp(?:_action|_lifecycle|_components)?/')
+_ROS1_CODE = re.compile(rb"ros::(?:NodeHandle|init|Publisher|Subscriber|Rate|spin)\b")
+_ROS2_CODE = re.compile(rb"rclcpp(?:_action|_lifecycle)?::")
+_UTF8_BOM = b"\xef\xbb\xbf"
+
+
+def extract(
+    path: str,
+    data: bytes,
+    package_generation: Generation | None,
+    fallback_generation: Generation,
+) -> FileFacts:
+    """Names and runtime events of one C++ source or header."""
+    text, error = decode(data)
+    if not has_ros_marker(text):
+        generation = package_generation or fallback_generation
+        return FileFacts(path, Language.CPP, generation, parse_errors=_errors(error))
+    generation = package_generation or file_generation(text) or fallback_generation
+    source = Source(text, _PARSER.parse(text))
+    names, events = facts_of(source)
+    return FileFacts(
+        path=path,
+        language=Language.CPP,
+        generation=generation,
+        names=tuple(sorted(names, key=lambda use: (use.span, use.kind.value, use.role.value))),
+        events=tuple(sorted(events, key=lambda event: (event.scope, event.order))),
+        parse_errors=_errors(error),
+        literals=name_literals(text),
+    )
+
+
+def facts_of(source: Source) -> tuple[list[NameUse], list[RuntimeEvent]]:
+    """Every name and runtime event of a parsed file."""
+    anchors = list(source.words(_ANCHORS))  # one scan of the file for every site's word
+    folder = Folder(source, Declarations(source))
+    classes = Classes(source)
+    constructions = _constructions(source, classes, anchors)
+    handles = Handles(source, folder, classes, constructions)
+    sites = Sites(source, folder, classes, handles, Types(source))
+    events: list[RuntimeEvent] = []
+    for construction in constructions:
+        sites.construction(construction)
+        events.extend(_present(handle_event(source, classes, construction)))
+    for word, node in anchors:
+        if word in INIT_WORDS:
+            events.extend(_present(init_event(source, node)))
+        if word in FRAME_FIELDS:
+            sites.frame_field(word, node)
+        elif word in NODE_BASES:
+            sites.base_initializer(word, node)
+        elif word in CALL_WORDS:
+            sites.call(word, node)
+    names, events = list(dict.fromkeys(sites.names)), list(dict.fromkeys(events))
+    expected = ExpectedFailures(source)
+    return (
+        [use for use in names if not expected.holds(use.span)],
+        [event for event in events if not expected.holds(event.span)],
+    )
+
+
+def _constructions(
+    source: Source, classes: Classes, anchors: list[tuple[str, Node]]
+) -> list[Construction]:
+    """What the file builds, members built by its constructors included."""
+    words = [node for word, node in anchors if word in CONSTRUCTED_TYPES]
+    for name in sorted(classes.nodes.keys() | classes.holders):
+        words.extend(source.occurrences(name))
+    found = [c for word in words for c in constructions_named_by(source, word)]
+    return found + member_constructions(source, found)
+
+
+def _present(event: RuntimeEvent | None) -> list[RuntimeEvent]:
+    return [] if event is None else [event]
+
+
+_ANCHORS = word_pattern(CALL_WORDS | FRAME_FIELDS | INIT_WORDS | CONSTRUCTED_TYPES)
+
+
+# ---------------------------------------------------------------------------------------
+# Decoding and generation
+
+
+def decode(data: bytes) -> tuple[bytes, ParseError | None]:
+    """UTF-8 bytes to parse, and the decoding problem to report, if any.
+
+    Undecodable bytes become U+FFFD exactly as the engine's display text does, so spans
+    agree with the lines shown next to findings; the rest of the file is still read.
+    """
+    encoding = bom_encoding(data) or "utf-8"
+    if encoding == "utf-8-sig":
+        data, encoding = data[len(_UTF8_BOM) :], "utf-8"  # the display text drops it too
+    try:
+        text = data.decode(encoding)
+    except UnicodeDecodeError as problem:
+        replaced = data.decode(encoding, errors="replace").encode("utf-8")
+        return replaced, _decode_error(data, problem)
+    return (data if encoding == "utf-8" else text.encode("utf-8")), None
+
+
+def _decode_error(data: bytes, problem: UnicodeDecodeError) -> ParseError:
+    before = data[: problem.start].decode(problem.encoding, errors="replace").lstrip("\ufeff")
+    line = before.count("\n") + 1
+    column = len(before) - (before.rfind("\n") + 1) + 1
+    return ParseError(
+        f"not valid {problem.encoding.upper()}: byte 0x{data[problem.start]:02x} "
+        f"at offset {problem.start}",
+        Span(line, column, line, column + 1),
+    )
+
+
+def _errors(error: ParseError | None) -> tuple[ParseError, ...]:
+    return () if error is None else (error,)
+
+
+def file_generation(text: bytes) -> Generation | None:
+    """The generation the file's includes (else its qualified names) say, if they agree."""
+    for ros1, ros2 in ((_ROS1_INCLUDE, _ROS2_INCLUDE), (_ROS1_CODE, _ROS2_CODE)):
+        one, two = bool(ros1.search(text)), bool(ros2.search(text))
+        if one != two:
+            return Generation.ROS1 if one else Generation.ROS2
+        if one and two:
+            return None  # a bridge between the generations: the fallback decides
+    return None

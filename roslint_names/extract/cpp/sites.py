@@ -1,0 +1,398 @@
+"""The name sites of roscpp and rclcpp: which call or construction takes which name.
+
+Each site reads the argument that holds the name (folded to its static text, or marked
+dynamic), the kind and role of the name, the interface type when the code says it, and
+the namespace of the handle the call goes through. Only whole arguments are names: in
+``nh.advertise<T>(prefix + "cmd", 1)`` neither ``prefix`` nor ``"cmd"`` is one.
+"""
+
+from __future__ import annotations
+
+import re
+
+from tree_sitter import Node
+
+from roslint_names.model import Kind, NameUse, Role
+
+from .apis import (
+    ACTION_FUNCTIONS,
+    ACTIONLIB,
+    ACTIONLIB_QUALIFIERS,
+    ENDPOINTS,
+    FRAME_CONSTRUCTIONS,
+    FRAME_FUNCTIONS,
+    MAX_FRAME_ARGUMENTS,
+    ROS1_PARAMETER_FUNCTIONS,
+    ROS1_PARAMETERS,
+    ROS2_PARAMETERS,
+    SERVICE_FUNCTIONS,
+    SERVICE_WRAPPERS,
+    Endpoint,
+    ParameterSite,
+    value_fact,
+)
+from .handles import Handles
+from .objects import NODE_BASES, Classes, Construction
+from .source import (
+    Call,
+    Source,
+    arguments,
+    call_named_by,
+    enclosing_functions,
+    is_field,
+    template_types,
+)
+from .types import Types
+from .values import Folder, Value
+
+
+class Sites:
+    """Collects the ``NameUse`` facts of one file."""
+
+    def __init__(
+        self,
+        source: Source,
+        folder: Folder,
+        classes: Classes,
+        handles: Handles,
+        types: Types,
+    ) -> None:
+        self.source = source
+        self.folder = folder
+        self.classes = classes
+        self.handles = handles
+        self.types = types
+        self.names: list[NameUse] = []
+
+    # -- emitting -----------------------------------------------------------------------
+
+    def emit(
+        self,
+        kind: Kind,
+        role: Role,
+        api: str,
+        value: Value | None,
+        type_name: str | None = None,
+        *,
+        namespace: str | None = None,
+    ) -> None:
+        if value is None:
+            return
+        self.names.append(
+            NameUse(
+                kind=kind,
+                value=value.text,
+                span=self.source.span(value.node),
+                role=role,
+                api=api,
+                dynamic=value.dynamic,
+                type_name=type_name,
+                namespace=namespace,
+            )
+        )
+
+    def argument(self, values: tuple[Node, ...], index: int) -> Value | None:
+        return self.folder.fold(values[index]) if 0 <= index < len(values) else None
+
+    def static_argument(self, values: tuple[Node, ...], index: int) -> Value | None:
+        value = self.argument(values, index)
+        return None if value is None or value.dynamic else value
+
+    # -- calls --------------------------------------------------------------------------
+
+    def call(self, word: str, node: Node) -> None:
+        if word in ("param", "service") and node.type == "namespace_identifier":
+            node = _qualified_member(node) or node  # ros::param::get, ros::service::call
+        call = call_named_by(self.source, node)
+        if call is None:
+            return
+        if call.name == "init" and call.qualifier == "ros":
+            self.ros_init(call)
+        elif call.qualifier.endswith("rclcpp_action") and call.name in ACTION_FUNCTIONS:
+            self.action_function(call)
+        elif call.name in ENDPOINTS:
+            self.endpoint(call, ENDPOINTS[call.name])
+        elif call.name == "subscribe":
+            self.subscribe(call)
+        elif call.name == "advertiseService":
+            self.advertise_service(call)
+        elif call.qualifier.endswith("service") and call.name in SERVICE_FUNCTIONS:
+            self.service_function(call)
+        elif call.qualifier.endswith("param") and call.name in ROS1_PARAMETER_FUNCTIONS:
+            self.parameter(call, ROS1_PARAMETER_FUNCTIONS[call.name])
+        elif call.name in ROS1_PARAMETERS and call.receiver is not None:
+            self.parameter(call, ROS1_PARAMETERS[call.name])
+        elif call.name in ROS2_PARAMETERS:
+            self.parameter(call, ROS2_PARAMETERS[call.name])
+        elif call.name in FRAME_FUNCTIONS:
+            self.frames(call)
+
+    def ros_init(self, call: Call) -> None:
+        """``ros::init(argc, argv, name[, options])`` or ``ros::init(remappings, name)``."""
+        values = call.arguments
+        index = 1 if self.static_argument(values, 1) is not None or len(values) == 2 else 2
+        self.emit(Kind.NODE, Role.NODE_NAME, "ros::init", self.argument(values, index))
+
+    def endpoint(self, call: Call, site: Endpoint) -> None:
+        """A member call (``nh.advertise``, ``create_publisher``) or its free form
+        (``rclcpp::create_publisher<T>(node, name, qos)``)."""
+        free = call.receiver is None and _is_namespace(call.qualifier)
+        index = 1 if free else 0
+        api = f"{call.qualifier}::{call.name}" if free else site.api
+        type_name = self._template_type(call)
+        if call.name.startswith("create_generic_"):
+            generic = self.static_argument(call.arguments, index + 1)
+            type_name = None if generic is None else generic.text
+        namespace = self.handles.namespace_of(call.receiver)
+        value = self.argument(call.arguments, index)
+        self.emit(site.kind, site.role, api, value, type_name, namespace=namespace)
+
+    def action_function(self, call: Call) -> None:
+        """``rclcpp_action::create_server<T>(node, name, ...)``; with node interfaces
+        instead of a node, the name comes after four of them."""
+        site = ACTION_FUNCTIONS[call.name]
+        first = self.source.text(call.arguments[0]) if call.arguments else ""
+        index = 4 if "interface" in first else 1
+        value = self.argument(call.arguments, index)
+        self.emit(site.kind, site.role, site.api, value, self._template_type(call))
+
+    def subscribe(self, call: Call) -> None:
+        """``nh.subscribe(name, queue, callback)``; message_filters' ``sub.subscribe(nh,
+        name, queue)`` takes the handle first."""
+        values = call.arguments
+        index = 0
+        if (
+            len(values) >= 2
+            and self.folder.fold(values[0]).dynamic
+            and (
+                self.handles.is_handle_expression(values[0])
+                or not self.folder.fold(values[1]).dynamic
+            )
+        ):
+            index = 1
+        api = "message_filters::Subscriber::subscribe" if index else "ros::NodeHandle::subscribe"
+        type_name = self._template_type(call)
+        if type_name is None and index == 0 and len(values) > 2:
+            type_name = self.types.message_type(values[2])
+        namespace = self.handles.namespace_of(call.receiver)
+        value = self.argument(values, index)
+        self.emit(Kind.TOPIC, Role.SUBSCRIBE, api, value, type_name, namespace=namespace)
+
+    def advertise_service(self, call: Call) -> None:
+        values = call.arguments
+        type_name = self.types.service_type(values[1]) if len(values) > 1 else None
+        namespace = self.handles.namespace_of(call.receiver)
+        api = "ros::NodeHandle::advertiseService"
+        value = self.argument(values, 0)
+        self.emit(Kind.SERVICE, Role.SERVE, api, value, type_name, namespace=namespace)
+
+    def service_function(self, call: Call) -> None:
+        """``ros::service::call(name, srv)``: the type is the one ``srv`` is declared with."""
+        api = f"ros::service::{call.name}"
+        type_name = None
+        if call.name == "call" and len(call.arguments) == 2:
+            type_name = self._variable_type(call.arguments[1])
+        self.emit(Kind.SERVICE, Role.CALL, api, self.argument(call.arguments, 0), type_name)
+
+    def parameter(self, call: Call, site: ParameterSite) -> None:
+        values = call.arguments
+        if len(values) < site.minimum:
+            return
+        namespace = self.handles.namespace_of(call.receiver)
+        name = self.argument(values, site.name)
+        self.emit(Kind.PARAMETER, Role.PARAMETER, site.api, name, namespace=namespace)
+        if site.value is not None and name is not None and not name.dynamic:
+            index = len(values) - 1 if site.value < 0 else site.value
+            if index > site.name:
+                self.parameter_value(name.text, values, index, site.api, namespace)
+
+    def parameter_value(
+        self, name: str, values: tuple[Node, ...], index: int, api: str, namespace: str | None
+    ) -> None:
+        """A string default or value that names something, judged by the parameter name."""
+        fact = value_fact(name)
+        value = self.static_argument(values, index)
+        if fact is None or value is None or not value.text or re.search(r"\s", value.text):
+            return
+        self.emit(fact[0], fact[1], api, value, namespace=namespace)
+
+    def frames(self, call: Call) -> None:
+        for node in call.arguments[:MAX_FRAME_ARGUMENTS]:
+            value = self.folder.fold(node)
+            if not value.dynamic:
+                self.emit(Kind.FRAME, Role.FRAME, call.name, value)
+
+    def frame_field(self, word: str, node: Node) -> None:
+        """``msg.header.frame_id = "map"``, ``t.child_frame_id = "base_link"``."""
+        access = node.parent
+        if (
+            access is None
+            or access.type != "field_expression"
+            or not is_field(access, "field", node)
+        ):
+            return
+        assignment = access.parent
+        if assignment is None or assignment.type != "assignment_expression":
+            return
+        right = assignment.child_by_field_name("right")
+        if not is_field(assignment, "left", access) or right is None:
+            return
+        value = self.folder.fold(right)
+        if not value.dynamic and value.text:  # "" clears the field, it names no frame
+            self.emit(Kind.FRAME, Role.FRAME, word, value)
+
+    def _template_type(self, call: Call) -> str | None:
+        return self._first_type(call.template)
+
+    def _first_type(self, template: Node | None) -> str | None:
+        """The first template argument, through the file's type aliases."""
+        types = template_types(self.source, template)
+        return self.types.resolve(types[0]) if types else None
+
+    def _variable_type(self, node: Node) -> str | None:
+        if node.type != "identifier":
+            return None
+        declarations = self.folder.declarations.visible(self.source.text(node), node)
+        return self.types.declared_type([declaration.node for declaration in declarations])
+
+    # -- constructions ------------------------------------------------------------------
+
+    def construction(self, construction: Construction) -> None:
+        name, qualifier = construction.type_name, construction.qualifier
+        if name == "NodeHandle":
+            self.node_handle(construction)
+        elif name in ("Node", "LifecycleNode"):
+            if self.classes.accepts_node_base(name, qualifier):
+                api = f"{qualifier or 'rclcpp'}::{name}"
+                self.node(construction.arguments, api, construction.site)
+        elif name in ACTIONLIB and qualifier in ACTIONLIB_QUALIFIERS and construction.template:
+            self.action(construction, ACTIONLIB[name])
+        elif name == "Subscriber" and construction.template is not None:
+            if qualifier in ("message_filters", ""):
+                self.filter_subscriber(construction)
+        elif name in SERVICE_WRAPPERS and construction.template is not None:
+            if qualifier.startswith("nav2"):
+                self.service_wrapper(construction, SERVICE_WRAPPERS[name])
+        elif name in FRAME_CONSTRUCTIONS and qualifier in ("tf", "tf2", ""):
+            for index in FRAME_CONSTRUCTIONS[name]:
+                value = self.static_argument(construction.arguments, index)
+                self.emit(Kind.FRAME, Role.FRAME, f"{qualifier or 'tf'}::{name}", value)
+        elif name == "Parameter" and qualifier == "rclcpp":
+            self.parameter(_as_call(construction), ParameterSite(0, 1, "rclcpp::Parameter"))
+
+    def node_handle(self, construction: Construction) -> None:
+        """``NodeHandle(ns)``, ``NodeHandle(ns, remappings)``, ``NodeHandle(parent, ns)``."""
+        values = construction.arguments
+        if not values:
+            return
+        first = self.folder.fold(values[0])
+        if not first.dynamic:
+            if first.text != "~":  # the private namespace, legal wherever NodeHandle exists
+                self.emit(Kind.NAMESPACE, Role.NAMESPACE, "ros::NodeHandle", first)
+        elif len(values) >= 2:
+            parent = self.handles.parent_namespace(construction)
+            value = self.argument(values, 1)
+            self.emit(Kind.NAMESPACE, Role.NAMESPACE, "ros::NodeHandle", value, namespace=parent)
+
+    def node(self, values: tuple[Node, ...], api: str, site: Node) -> None:
+        """``rclcpp::Node(name[, namespace][, options])`` and its subclasses' base call.
+
+        Code that builds ``--ros-args -r __node:=...`` next to the node renames it at run
+        time (moveit and nav2 name such helper nodes "_"): the name written is not the
+        one the node gets, so it is dynamic; ``__ns:=`` likewise for the namespace.
+        """
+        remapped = _remapped(self.source, site)
+        name = self.argument(values, 0)
+        self.emit(Kind.NODE, Role.NODE_NAME, api, _dynamic_if(name, "node" in remapped))
+        namespace = self.static_argument(values, 1)
+        namespace = _dynamic_if(namespace, "namespace" in remapped)
+        self.emit(Kind.NAMESPACE, Role.NAMESPACE, api, namespace)
+
+    def base_initializer(self, word: str, node: Node) -> None:
+        """``: Node("talker")`` / ``: rclcpp_lifecycle::LifecycleNode("lc", options)``."""
+        head = node.parent if node.parent and node.parent.type == "qualified_identifier" else node
+        initializer = head.parent
+        if initializer is None or initializer.type != "field_initializer":
+            return
+        if initializer.named_children[0] != head or initializer.named_child_count < 2:
+            return
+        qualifier = self.source.text(head).rpartition("::")[0] if head != node else ""
+        if not self.classes.initializes_node_base(initializer, word, qualifier):
+            return
+        values = tuple(arguments(initializer.named_children[1]))
+        self.node(values, f"{qualifier}::{word}" if qualifier else NODE_BASES[word], initializer)
+
+    def action(self, construction: Construction, role: Role) -> None:
+        """actionlib's ``(name, ...)`` or ``(nh, name, ...)``; nav2's ``(node, name, ...)``."""
+        values = construction.arguments
+        if not values:
+            return
+        index = 0
+        if self.folder.fold(values[0]).dynamic and len(values) >= 2:
+            second = self.folder.fold(values[1])
+            if not second.dynamic or self.handles.is_handle_expression(values[0]):
+                index = 1
+        api = f"{construction.qualifier or 'actionlib'}::{construction.type_name}"
+        value = self.argument(values, index)
+        self.emit(Kind.ACTION, role, api, value, self._first_type(construction.template))
+
+    def filter_subscriber(self, construction: Construction) -> None:
+        """``message_filters::Subscriber<T> sub(nh, "scan", 10)``."""
+        value = self.argument(construction.arguments, 1)
+        api = "message_filters::Subscriber"
+        self.emit(Kind.TOPIC, Role.SUBSCRIBE, api, value, self._first_type(construction.template))
+
+    def service_wrapper(self, construction: Construction, role: Role) -> None:
+        """nav2's ``ServiceClient<T>(name, node)`` and ``ServiceServer<T>(name, node, cb)``."""
+        value = self.argument(construction.arguments, 0)
+        api = f"{construction.qualifier}::{construction.type_name}"
+        self.emit(Kind.SERVICE, role, api, value, self._first_type(construction.template))
+
+
+_REMAPS = re.compile(rb"__(node|name|ns):=")
+
+
+def _remapped(source: Source, site: Node) -> set[str]:
+    """What ``__node:=``/``__ns:=`` arguments in the enclosing function (or file) rename."""
+    functions = enclosing_functions(site)
+    scope = functions[-1] if functions else source.root
+    text = source.data[scope.start_byte : scope.end_byte]
+    found = {match.group(1) for match in _REMAPS.finditer(text)}
+    return {"namespace" if key == b"ns" else "node" for key in found}
+
+
+def _dynamic_if(value: Value | None, condition: bool) -> Value | None:
+    if value is None or not condition:
+        return value
+    return Value(value.text, True, value.node)
+
+
+def _qualified_member(scope: Node) -> Node | None:
+    """``get`` of ``ros::param::get`` given the ``param`` node."""
+    parent = scope.parent
+    if (
+        parent is None
+        or parent.type != "qualified_identifier"
+        or not is_field(parent, "scope", scope)
+    ):
+        return None
+    name = parent.child_by_field_name("name")
+    return name if name is not None and name.type == "identifier" else None
+
+
+def _is_namespace(qualifier: str) -> bool:
+    """``rclcpp`` or ``image_transport`` (a free function), not ``rclcpp::Node`` (a class)."""
+    last = qualifier.rpartition("::")[2]
+    return bool(last) and not last[0].isupper()
+
+
+def _as_call(construction: Construction) -> Call:
+    return Call(
+        node=construction.site,
+        word=construction.site,
+        name=construction.type_name,
+        qualifier=construction.qualifier,
+        receiver=None,
+        template=construction.template,
+        arguments=construction.arguments,
+    )

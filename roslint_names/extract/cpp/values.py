@@ -1,0 +1,278 @@
+"""Static values of C++ expressions: literals, adjacent literals and same-file constants.
+
+A name is folded when the whole argument is a string literal, adjacent literals
+(``"a" "b"``), ``std::string("a")``, or an identifier bound to a constant of the same file:
+a ``const``/``constexpr`` ``std::string``, ``std::string_view``, ``char*``, ``char[]`` or
+``auto`` (namespace scope, class member or local), or a ``#define`` of literals. Anything
+else is dynamic: ``prefix + "/cmd"``, a function result, a ternary, a mutable string.
+A constant that is assigned anywhere in the file, or set in a constructor's initializer
+list, is not a constant.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from tree_sitter import Node
+
+from .source import (
+    STRING_LITERALS,
+    Source,
+    arguments,
+    compact,
+    enclosing_functions,
+    is_field,
+    literal_value,
+    macro_literal,
+    unparenthesized,
+)
+
+_DECLARATIONS = frozenset(
+    {"declaration", "field_declaration", "parameter_declaration", "optional_parameter_declaration"}
+)
+_POINTER_LIKE = frozenset({"pointer_declarator", "array_declarator"})
+_STRING_TYPES = frozenset(
+    {"std::string", "string", "std::string_view", "string_view", "auto", "std::basic_string<char>"}
+)
+_CHARACTER_TYPES = frozenset({"char", "auto"})
+# Functions that return their single string argument unchanged, as far as names go.
+STRING_WRAPPERS = frozenset(
+    {
+        "std::string",
+        "string",
+        "std::string_view",
+        "string_view",
+        "rclcpp::ParameterValue",
+        "ParameterValue",
+    }
+)
+_MAX_DEPTH = 8  # constants defined through constants; also stops cycles in broken code
+
+
+@dataclass(frozen=True)
+class Value:
+    """What an argument evaluates to; ``node`` is where a finding should point."""
+
+    text: str  # the value, or the argument's spelling when dynamic
+    dynamic: bool
+    node: Node
+
+
+@dataclass(frozen=True)
+class Declaration:
+    """One declaration of a name: a variable, member, parameter or macro."""
+
+    name: str
+    node: Node  # the declaration (or preproc_def) node
+    value: Node | None  # its initializer expression, when it has one
+    function: Node | None  # innermost enclosing function or lambda; None at file level
+    constant: bool  # const (or a macro) and of a string type
+    macro: bool
+
+
+class Declarations:
+    """Where each identifier of the file is declared, found on demand and cached."""
+
+    def __init__(self, source: Source) -> None:
+        self._source = source
+        self._found: dict[str, list[Declaration]] = {}
+        self._mutated: dict[str, bool] = {}
+
+    def of(self, name: str) -> list[Declaration]:
+        found = self._found.get(name)
+        if found is None:
+            found = [
+                declaration
+                for node in self._source.occurrences(name)
+                if (declaration := self._declaration_at(node)) is not None
+            ]
+            self._found[name] = found
+        return found
+
+    def mutated(self, name: str) -> bool:
+        """Assigned somewhere, or set in a constructor's initializer list."""
+        known = self._mutated.get(name)
+        if known is None:
+            known = any(_is_mutation(node) for node in self._source.occurrences(name))
+            self._mutated[name] = known
+        return known
+
+    def visible(self, name: str, use: Node) -> list[Declaration]:
+        """The declarations ``use`` can mean: the innermost scope that declares ``name``.
+
+        A local declared before the use (in this function or one enclosing it) shadows the
+        file; several file-level declarations are all returned, so that a caller can see
+        they disagree. A macro defined before the use replaces everything.
+        """
+        chain = enclosing_functions(use)
+        before = [d for d in self.of(name) if d.node.start_byte < use.start_byte]
+        macros = [d for d in before if d.macro]
+        if macros:
+            return macros[-1:]
+        for function in chain:
+            local = [d for d in before if d.function == function]
+            if local:
+                return local[-1:]
+        found = [d for d in self.of(name) if d.function is None and not d.macro]
+        if any(d.value is not None for d in found):
+            # `static const std::string kName;` in the class, defined with its value later
+            found = [d for d in found if d.value is not None or not d.constant]
+        return found
+
+    def _declaration_at(self, node: Node) -> Declaration | None:
+        child, parent = node, node.parent
+        if parent is not None and parent.type == "preproc_def":
+            if not is_field(parent, "name", child):
+                return None
+            body = parent.child_by_field_name("value")
+            return Declaration(self._source.text(node), parent, body, None, True, macro=True)
+        while parent is not None and parent.type == "qualified_identifier":
+            if not is_field(parent, "name", child):
+                return None
+            child, parent = parent, parent.parent  # `const std::string ns::Foo::kName = ...`
+        value: Node | None = None
+        indirect = False
+        while parent is not None and _wraps_declarator(parent, child):
+            if parent.type == "init_declarator":
+                value = parent.child_by_field_name("value")
+            indirect = indirect or parent.type in _POINTER_LIKE
+            child, parent = parent, parent.parent
+        if parent is None or parent.type not in _DECLARATIONS:
+            return None
+        if child not in parent.children_by_field_name("declarator"):
+            return None
+        if parent.type == "field_declaration":
+            value = parent.child_by_field_name("default_value")
+        functions = enclosing_functions(parent)
+        constant = parent.type in ("declaration", "field_declaration") and _constant_string(
+            self._source, parent, indirect
+        )
+        name = self._source.text(node)
+        return Declaration(
+            name, parent, value, functions[0] if functions else None, constant, False
+        )
+
+
+def _wraps_declarator(parent: Node, child: Node) -> bool:
+    if parent.type == "reference_declarator":
+        return True  # its declarator is not a named field
+    if parent.type in ("init_declarator", "pointer_declarator", "array_declarator"):
+        return is_field(parent, "declarator", child)
+    return False
+
+
+def _constant_string(source: Source, declaration: Node, indirect: bool) -> bool:
+    qualifiers = {
+        source.text(child) for child in declaration.children if child.type == "type_qualifier"
+    }
+    if not qualifiers & {"const", "constexpr"}:
+        return False
+    kind = declaration.child_by_field_name("type")
+    spelling = "" if kind is None else compact(source.text(kind))
+    return spelling in _STRING_TYPES or (indirect and spelling in _CHARACTER_TYPES)
+
+
+def _is_mutation(node: Node) -> bool:
+    target, parent = node, node.parent
+    if parent is not None and parent.type == "field_expression" and is_field(parent, "field", node):
+        target, parent = parent, parent.parent
+    if parent is None:
+        return False
+    if parent.type == "assignment_expression":
+        return is_field(parent, "left", target)
+    return parent.type == "field_initializer" and parent.named_children[0] == node
+
+
+class Folder:
+    """Evaluates name arguments to their static text, or says they are dynamic."""
+
+    def __init__(self, source: Source, declarations: Declarations) -> None:
+        self._source = source
+        self.declarations = declarations
+
+    def fold(self, node: Node) -> Value:
+        return self._fold(node, 0)
+
+    def static(self, node: Node) -> str | None:
+        value = self.fold(node)
+        return None if value.dynamic else value.text
+
+    def _fold(self, node: Node, depth: int) -> Value:
+        expression = unparenthesized(node)
+        kind = expression.type
+        text: str | None = None
+        if kind in STRING_LITERALS:
+            text = literal_value(self._source, expression)
+        elif kind == "concatenated_string":
+            text = self._concatenation(expression, depth)
+        elif kind in ("identifier", "qualified_identifier"):
+            text = self._constant(expression, depth)
+        elif kind in ("call_expression", "compound_literal_expression"):
+            wrapped = self._wrapped(expression)
+            if wrapped is not None:
+                return self._fold(wrapped, depth)
+        if text is None:
+            return Value(compact(self._source.text(node)), True, node)
+        return Value(text, False, expression)
+
+    def _concatenation(self, node: Node, depth: int) -> str | None:
+        parts: list[str] = []
+        for child in node.named_children:
+            if child.type == "comment":
+                continue  # "a/"  // NOLINT(RN202)  "b": the comment is not part of it
+            if child.type in STRING_LITERALS:
+                part = literal_value(self._source, child)
+            elif child.type == "identifier":
+                part = self._constant(child, depth)  # "prefix" MACRO "suffix"
+            else:
+                part = None
+            if part is None:
+                return None
+            parts.append(part)
+        return "".join(parts)
+
+    def _wrapped(self, node: Node) -> Node | None:
+        """The argument of ``std::string("a")`` or ``std::string{"a"}``."""
+        callee = node.child_by_field_name("function") or node.child_by_field_name("type")
+        if callee is None or compact(self._source.text(callee)) not in STRING_WRAPPERS:
+            return None
+        values = arguments(
+            node.child_by_field_name("arguments") or node.child_by_field_name("value")
+        )
+        return values[0] if len(values) == 1 else None
+
+    def _constant(self, node: Node, depth: int) -> str | None:
+        if depth >= _MAX_DEPTH:
+            return None
+        name_node = node
+        while name_node.type == "qualified_identifier":
+            inner = name_node.child_by_field_name("name")
+            if inner is None:
+                return None
+            name_node = inner
+        if name_node.type != "identifier":
+            return None
+        name = self._source.text(name_node)
+        candidates = self.declarations.visible(name, node)
+        if not candidates or any(not candidate.constant for candidate in candidates):
+            return None
+        if not candidates[0].macro and self.declarations.mutated(name):
+            return None
+        values = {self._declaration_value(candidate, depth + 1) for candidate in candidates}
+        if len(values) != 1:
+            return None
+        return values.pop()
+
+    def _declaration_value(self, declaration: Declaration, depth: int) -> str | None:
+        initializer = declaration.value
+        if initializer is None:
+            return None
+        if declaration.macro:
+            return macro_literal(self._source.text(initializer))
+        if initializer.type in ("argument_list", "initializer_list"):
+            values = arguments(initializer)  # `const std::string k("a")` or `k{"a"}`
+            if len(values) != 1:
+                return None
+            initializer = values[0]
+        value = self._fold(initializer, depth)
+        return None if value.dynamic else value.text

@@ -1,0 +1,122 @@
+"""Static values of Python expressions: folded when known, dynamic otherwise."""
+
+from __future__ import annotations
+
+import ast
+import warnings
+
+import libcst as cst
+
+from roslint_names.extract.launch.substitution import Value, without_surrogates
+from roslint_names.extract.python.scope import Scope
+from roslint_names.extract.python.spans import Locator
+
+_MAX_DEPTH = 16  # constants defined through constants; deeper (or cyclic) is dynamic
+
+
+class Folder:
+    """The static string value of an expression, or its code marked dynamic.
+
+    Folded: string literals, names bound once to a foldable value (module- or function-
+    level constants), f-strings, implicit concatenation, ``+`` and ``%`` whose parts all
+    fold. Everything else (a parameter, an attribute, a call) is dynamic.
+    """
+
+    def __init__(self, locator: Locator) -> None:
+        self._locator = locator
+
+    def value(self, expr: cst.BaseExpression, scope: Scope) -> Value:
+        text = self.static(expr, scope)
+        if text is None:
+            return Value(self._locator.code(expr), dynamic=True)
+        return Value(text)
+
+    def static(self, expr: cst.BaseExpression, scope: Scope, depth: int = 0) -> str | None:
+        if depth > _MAX_DEPTH:
+            return None
+        if isinstance(expr, cst.SimpleString):
+            return string_literal(expr)
+        if isinstance(expr, cst.ConcatenatedString):
+            return _join(
+                self.static(expr.left, scope, depth), self.static(expr.right, scope, depth)
+            )
+        if isinstance(expr, cst.FormattedString):
+            return self._formatted(expr, scope, depth)
+        if isinstance(expr, cst.BinaryOperation):
+            return self._operation(expr, scope, depth)
+        if isinstance(expr, cst.Name):
+            binding = scope.constant(expr.value)
+            if binding is None or binding.value is None:
+                return None
+            return self.static(binding.value, binding.scope, depth + 1)
+        return None
+
+    def _formatted(self, expr: cst.FormattedString, scope: Scope, depth: int) -> str | None:
+        parts: list[str] = []
+        for part in expr.parts:
+            if isinstance(part, cst.FormattedStringText):
+                text = _fstring_text(expr, part.value)
+            elif not isinstance(part, cst.FormattedStringExpression) or (
+                part.format_spec or part.equal or part.conversion not in (None, "s")
+            ):
+                return None  # formatting we do not reproduce
+            else:
+                text = self.static(part.expression, scope, depth)
+            if text is None:
+                return None
+            parts.append(text)
+        return "".join(parts)
+
+    def _operation(self, expr: cst.BinaryOperation, scope: Scope, depth: int) -> str | None:
+        left = self.static(expr.left, scope, depth)
+        if left is None:
+            return None
+        if isinstance(expr.operator, cst.Add):
+            return _join(left, self.static(expr.right, scope, depth))
+        if not isinstance(expr.operator, cst.Modulo):
+            return None
+        right = expr.right
+        items = (
+            [element.value for element in right.elements]
+            if isinstance(right, cst.Tuple)
+            else [right]
+        )
+        values = [self.static(item, scope, depth) for item in items]
+        if any(value is None for value in values):
+            return None
+        try:
+            return left % tuple(values)
+        except (TypeError, ValueError, KeyError):
+            return None  # a %d or a mismatch: Python would raise, we do not guess
+
+
+def string_literal(node: cst.SimpleString) -> str | None:
+    """The literal's value; None for bytes, or escapes Python rejects (libcst does not)."""
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # "invalid escape sequence '\\d'": not ours to say
+            value = node.evaluated_value
+    except (SyntaxError, ValueError, MemoryError, RecursionError):
+        return None
+    return without_surrogates(value) if isinstance(value, str) else None
+
+
+def _join(left: str | None, right: str | None) -> str | None:
+    return None if left is None or right is None else left + right
+
+
+def _fstring_text(expr: cst.FormattedString, raw: str) -> str | None:
+    """The value of an f-string's literal part: its escapes, and ``{{`` for ``{``."""
+    prefix = expr.prefix.lower().replace("f", "")
+    quote = expr.start[len(expr.prefix) :]
+    if "\\" not in raw and "{" not in raw and "}" not in raw:
+        return raw
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # as in string_literal
+            value = ast.literal_eval(
+                f"{prefix}{quote}{raw.replace('{{', '{').replace('}}', '}')}{quote}"
+            )
+    except (SyntaxError, ValueError, MemoryError, RecursionError):
+        return None
+    return without_surrogates(value) if isinstance(value, str) else None

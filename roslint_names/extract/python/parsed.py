@@ -1,0 +1,112 @@
+"""Python files past the prefilter: decode, parse once, walk once, extract, assemble.
+
+Imported by ``python.py`` only after its prefilter passed, because it imports libcst.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+from roslint_names.extract import evidence
+from roslint_names.extract.launch.python_launch import LaunchExtractor
+from roslint_names.extract.literals import name_literals
+from roslint_names.extract.python.code import CodeExtractor
+from roslint_names.extract.python.source import decode, parse
+from roslint_names.extract.python.spans import Locator
+from roslint_names.extract.python.walk import Walk
+from roslint_names.model import (
+    FileFacts,
+    Generation,
+    Language,
+    LaunchArguments,
+    ParseError,
+    Span,
+)
+
+# Imports that only exist in one generation (tf2_ros, message_filters and the message
+# packages exist in both).
+_ROS1_PACKAGES = frozenset(
+    {"rospy", "roslib", "actionlib", "tf", "rostest", "rosbag", "roslaunch", "rosgraph"}
+)
+_ROS2_PACKAGES = frozenset(
+    {"rclpy", "launch", "launch_ros", "launch_testing", "launch_testing_ros", "ament_index_python"}
+)
+_LAUNCH_PACKAGES = frozenset({"launch", "launch_ros"})
+_NODE_PACKAGES = frozenset({"rospy", "rclpy"})
+_ROOTS = frozenset({"generate_launch_description", "generate_test_description"})
+
+
+def import_generation(packages: set[str]) -> Generation | None:
+    ros1 = len(packages & _ROS1_PACKAGES)
+    ros2 = len(packages & _ROS2_PACKAGES)
+    if ros1 == ros2:
+        return None
+    return Generation.ROS1 if ros1 > ros2 else Generation.ROS2
+
+
+def extract_parsed(
+    path: str,
+    data: bytes,
+    package_generation: Generation | None,
+    fallback_generation: Generation,
+    launch_path: bool,
+    *,
+    arguments: LaunchArguments = (),
+) -> FileFacts:
+    default_language = Language.LAUNCH_PYTHON if launch_path else Language.PYTHON
+    prepared = _prepare(data, package_generation, fallback_generation)
+    if isinstance(prepared, ParseError):
+        generation = package_generation or fallback_generation
+        return FileFacts(path, default_language, generation, parse_errors=(prepared,))
+    walk, locator, code, generation, text = prepared
+    file_name = path.replace("\\", "/").rpartition("/")[2]
+    launch = LaunchExtractor(walk, locator, file_name, arguments)
+    launch.run()
+    defines_root = any(function.name.value in _ROOTS for function in walk.functions)
+    launch_module = launch.found_actions and not (walk.packages & _NODE_PACKAGES)
+    language = (
+        Language.LAUNCH_PYTHON if launch_path or defines_root or launch_module else Language.PYTHON
+    )
+    names = sorted(code.names + launch.names, key=lambda use: (use.span.line, use.span.column))
+    return FileFacts(
+        path=path,
+        language=language,
+        generation=generation,
+        names=tuple(names),
+        launch_nodes=tuple(launch.nodes),
+        events=tuple(code.events),
+        includes=tuple(launch.includes),
+        literals=() if language is Language.LAUNCH_PYTHON else name_literals(text),
+    )
+
+
+_Prepared = tuple[Walk, Locator, CodeExtractor, Generation, str]
+
+
+@lru_cache(maxsize=16)
+def _prepare(
+    data: bytes, package_generation: Generation | None, fallback_generation: Generation
+) -> _Prepared | ParseError:
+    """Everything of a file that launch arguments do not change: parsed, walked, and its
+    code's names extracted. A launch file that includers hand different arguments is
+    extracted once per set (``extract(arguments=...)``); only its launch part runs again.
+    Nothing here answers differently after it is built (the locator only fills its own
+    memos of where nodes are), so the memo is safe to share.
+    """
+    text = decode(data)
+    if isinstance(text, ParseError):
+        return text
+    module = parse(text)
+    if isinstance(module, ParseError):
+        return module
+    try:
+        walk = Walk(module)
+    except RecursionError:
+        return ParseError("Python code nested too deeply to analyse", Span(1, 1, 1, 2))
+    generation = evidence.decide(
+        package_generation, import_generation(walk.packages), None, fallback_generation
+    )
+    locator = Locator(module, text, walk.anchor_indents)
+    code = CodeExtractor(walk, locator, generation)
+    code.run()
+    return walk, locator, code, generation, text
