@@ -60,14 +60,10 @@ import time
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from . import __version__, model
 from .model import FileFacts, Generation, Language
 from .reading import content_digest
-
-if TYPE_CHECKING:
-    from .digests import ContentDigests
 
 FORMAT_VERSION = 2  # 2: facts in one pack; whole-run results; digests
 _MAGIC = b"RNFACTS\x01"
@@ -82,7 +78,7 @@ _RECORD_HEADER = len(_RECORD) + _KEY_BYTES + _LENGTH_BYTES + _CHECKSUM_BYTES
 PACK_LIMIT = 64 * 1024 * 1024  # bytes of the pack or the log; beyond, a run keeps what it used
 _PACK_BATCH = 1024 * 1024  # bytes of records buffered before an append
 _RUNS = "runs"
-_DIGESTS = "digests"
+DIGESTS = "digests"  # the directory of ``digests.ContentDigests``, one file per workspace
 RUNS_KEPT = 64  # whole-run results: one per recent (file set, settings) of each checkout
 _LOG_BATCH = 512  # lines buffered before an append; and every batch of extraction ends one
 _CACHEDIR_TAG = (
@@ -191,13 +187,6 @@ class FactsCache:
         header = f"{path}\0{language.value}\0{package}\0{fallback_generation.value}\0{content}"
         digest.update(header.encode("utf-8", errors="surrogatepass"))
         return digest.hexdigest()
-
-    def digests(self, root: Path) -> ContentDigests:
-        """The digests remembered for the files under ``root`` (see ``digests``)."""
-        from .digests import ContentDigests
-
-        name = hashlib.blake2b(os.fsencode(root), digest_size=8).hexdigest()
-        return ContentDigests(self.directory / _DIGESTS / name, self)
 
     def load(self, key: str, path: str) -> FileFacts | None:
         """The facts stored under ``key`` (for the file reported as ``path``), or None."""

@@ -3,13 +3,14 @@ not mean reading every file (see ``ContentDigests``)."""
 
 from __future__ import annotations
 
+import hashlib
 import os
 import pickle
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .cache import FactsCache, keep_newest
+from .cache import DIGESTS, FactsCache, keep_newest
 from .reading import BINARY, Read, content_digest, read_file, too_large
 
 KEPT = 64  # digest files: one per recently linted workspace
@@ -44,6 +45,12 @@ class ContentDigests:
     _seen: dict[str, tuple[_Status, str, bool]] = field(default_factory=dict)
     _loaded: bool = False
     _present: bool = False  # the file exists (damaged or not)
+
+    @classmethod
+    def of(cls, cache: FactsCache, root: Path) -> ContentDigests:
+        """The digests ``cache`` remembers for the files under ``root``."""
+        name = hashlib.blake2b(os.fsencode(root), digest_size=8).hexdigest()
+        return cls(cache.directory / DIGESTS / name, cache)
 
     def remembered(self) -> bool:
         """Whether an earlier run of this workspace left its digests, even none (files

@@ -24,6 +24,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .config import Settings, settings_fingerprint
+from .digests import ContentDigests
 from .discover import SourceFile
 from .generation import PackageGenerations
 from .model import Generation
@@ -57,7 +58,7 @@ class RunInputs:
         self._registry = registry
         self._packages = packages
         self._fallback = fallback
-        self._digests = cache.digests(_common_directory(checked))
+        self._digests = ContentDigests.of(cache, _common_directory(checked))
         self._tags: list[str] = []  # per checked file: its facts key, or why it has none
         self._keyed_first = False
         self.changed = False  # a file read differs from what the run was keyed by
