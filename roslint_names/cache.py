@@ -41,8 +41,8 @@ rest of ``~/.cache``.
 A run over inputs a recent run had (every file's bytes, the package manifests read, the
 settings, all of the tool's code: the engine makes the key, ``load_run``/``store_run`` keep
 the value) is served whole from ``runs/``: applying the rules again is cheap next to
-parsing, but not next to the 0.05x-the-parse-floor budget of a re-run (DESIGN.md, section
-6). Only the ``RUNS_KEPT`` most recently used results are kept. ``digests/`` holds, per
+parsing, but not next to the 0.05x-the-parse-floor budget of a re-run (the README's
+Performance table). Only the ``RUNS_KEPT`` most recently used results are kept. ``digests/`` holds, per
 workspace, each file's content digest with its status, so that keying a re-run does not
 mean reading every file (``digests.ContentDigests``).
 """
