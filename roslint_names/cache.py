@@ -42,9 +42,9 @@ A run over inputs a recent run had (every file's bytes, the package manifests re
 settings, all of the tool's code: the engine makes the key, ``load_run``/``store_run`` keep
 the value) is served whole from ``runs/``: applying the rules again is cheap next to
 parsing, but not next to the 0.05x-the-parse-floor budget of a re-run (the README's
-Performance table). Only the ``RUNS_KEPT`` most recently used results are kept. ``digests/`` holds, per
-workspace, each file's content digest with its status, so that keying a re-run does not
-mean reading every file (``digests.ContentDigests``).
+Performance table). Only the ``RUNS_KEPT`` most recently used results are kept.
+``digests/`` holds, per workspace, each file's content digest with its status, so that
+keying a re-run does not mean reading every file (``digests.ContentDigests``).
 """
 
 from __future__ import annotations
