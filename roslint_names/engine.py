@@ -1,26 +1,30 @@
-"""Run the pipeline over discovered files: extract facts, apply rules, then suppressions.
+"""The pipeline from discovered files to diagnostics (``lint``), and one file's checks.
 
-Extractor modules are imported on first use, so a run over launch files never imports
-libcst or tree-sitter, and a run over one C++ file never imports lxml. Facts come from the
-facts cache (``cache``) when a file is unchanged, and are extracted in worker processes
-(``workers``) when there are enough files to pay for them; diagnostics never depend on
-either.
+Facts come from ``gather`` (the cache, extraction in this process or in workers); the
+per-file rules, suppressions and the test-code policy run here (``check_file``), then
+the workspace graph and the graph rules. Diagnostics never depend on how facts came.
 """
 
 from __future__ import annotations
 
-import importlib
 import os
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from functools import partial
 from pathlib import Path
-from types import ModuleType
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING
 
 from .config import Settings, enabled_codes, ignored_for_path, test_code_codes
 from .discover import SourceFile, classify
 from .fixing import located
+from .gather import (
+    DEFAULT_GENERATION,
+    EXTRACTOR_MODULES,
+    Gatherer,
+    Specialiser,
+    extract_batch,
+    extractor_for,
+)
 from .generation import PackageGenerations, service_types
 from .lines import split_lines
 from .model import (
@@ -30,13 +34,10 @@ from .model import (
     Fix,
     Generation,
     Kind,
-    Language,
-    LaunchArguments,
-    ParseError,
     RelatedLocation,
     Span,
 )
-from .reading import BINARY, bom_encoding, content_digest, read_file
+from .reading import bom_encoding, read_file
 from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
 from .run_inputs import RunInputs
@@ -51,21 +52,6 @@ from .workspace.index import Package
 if TYPE_CHECKING:
     from .cache import FactsCache  # imported by the caller that wants a cache
 
-Extract = Callable[[str, bytes, "Generation | None", Generation], FileFacts]
-
-EXTRACTOR_MODULES: dict[Language, str] = {
-    Language.CPP: "cpp.extract",
-    Language.PYTHON: "python.extract",
-    Language.LAUNCH_XML: "launch.xml_launch",
-    Language.LAUNCH_YAML: "launch.yaml_launch",
-    Language.URDF: "launch.urdf",
-    Language.CMAKE: "build.cmake",
-    Language.SETUP_PY: "build.setup_py",
-    Language.SETUP_CFG: "build.setup_py",
-}
-# Launch files an including file can hand arguments to (see ``workspace.launch_tree``).
-SPECIALISABLE = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.PYTHON})
-DEFAULT_GENERATION = Generation.ROS2
 UNUSED_SUPPRESSION = "RN002"
 INVALID_SUPPRESSION = "RN003"
 
@@ -101,29 +87,6 @@ def lintable(sources: Iterable[SourceFile]) -> list[SourceFile]:
     return [source for source in sources if source.language in EXTRACTOR_MODULES]
 
 
-def extractor_for(language: Language) -> Extract:
-    extract: Extract = _extractor_module(language).extract
-    return extract
-
-
-def _extractor_module(language: Language) -> ModuleType:
-    return importlib.import_module(f"roslint_names.extract.{EXTRACTOR_MODULES[language]}")
-
-
-class _ExtractWithArguments(Protocol):
-    """A launch extractor's ``extract``: also takes the arguments an includer hands over."""
-
-    def __call__(
-        self,
-        path: str,
-        data: bytes,
-        package_generation: Generation | None,
-        fallback_generation: Generation,
-        *,
-        arguments: LaunchArguments,
-    ) -> FileFacts: ...
-
-
 def lint(
     sources: Sequence[SourceFile],
     settings: Settings,
@@ -136,91 +99,43 @@ def lint(
 ) -> LintResult:
     """Diagnostics of every lintable source; the same bytes whatever the ``run`` options.
 
-    With a cache, the run is first keyed by its inputs (``run_inputs``): a run over the
-    same inputs as a recent one returns that run's result. Otherwise each file is read
-    once, here (a file of the rest of the workspace not at all when its facts are
-    cached). Its facts come from the cache when its key is there; otherwise the file goes
-    to extraction, in-process or in worker processes (see ``workers``), which store what
-    they extract. Rules and suppressions run here, in the main process, as facts arrive,
-    in whatever order; every file's diagnostics are kept in its own slot and joined in
-    discovery order before the final sort, so the order in which workers finish never
-    shows in the output.
+    The pipeline: (1) a run over the same inputs as a recent one is that run's stored
+    result (``run_inputs``); otherwise (2) every file's facts are gathered, from the cache
+    or by extraction in workers (``gather``), and (3) each file is checked by the per-file
+    rules as its facts arrive, in whatever order; (4) the workspace graph is built once
+    every file is in and the graph rules report into the files of ``sources``; (5) the
+    diagnostics are joined in discovery order, sorted, and the result stored for (1).
+    Arrival order never shows in the output.
 
-    ``context`` files (the rest of the workspace of a per-file run) are extracted for the
-    graph rules only: nothing is reported in them. Once every file is in, the graph rules
-    run over the workspace graph and report into the files of ``sources``.
-
-    ``want_graph`` returns the graph; ``want_facts`` every file's facts (``renames``
-    searches them), without the graph when no graph rule needs it.
+    ``context`` files (the rest of the workspace of a per-file run) are gathered for the
+    graph rules only: nothing is reported in them. ``want_graph`` returns the graph;
+    ``want_facts`` every file's facts (``renames`` searches them), without the graph when
+    no graph rule needs it.
     """
     enabled = enabled_codes(settings, registry)
-    test_rules = test_code_codes(settings, registry)
     graph_rules = [r for r in registry.rules if r.check_workspace and r.code in enabled]
     packages = PackageGenerations()
     fallback = settings.ros or DEFAULT_GENERATION
-    cache, progress = run.cache, run.progress
-    checked = lintable(sources)
-    reported = len(checked)
+    cache = run.cache
     keep_facts = bool(graph_rules) or want_graph or want_facts
-    # A stored result has neither the graph nor the facts.
-    fresh = want_graph or want_facts
+    files = lintable(sources)
+    reported = len(files)
     if keep_facts:
-        given = {source.path for source in checked}
-        checked += [source for source in lintable(context) if source.path not in given]
+        given = {source.path for source in files}
+        files += [source for source in lintable(context) if source.path not in given]
     else:
         context = ()
-    per_file: list[list[Diagnostic]] = [[] for _ in range(reported)]
-    suppressions_of: dict[int, list[Suppression]] = {}
-    all_facts: list[FileFacts | None] = [None] * len(checked)
-    extracting: dict[int, bytes] = {}  # files sent to extraction: their bytes, to check them
-    # RN204 compares a service's name with every service type of the run (of the file's own
-    # generation), known only once every file is extracted: files that serve or call a typed
-    # service wait for that list; the others (nearly all) are checked as their facts arrive.
-    run_service_types = set(service_types([*sources, *context], packages))
-    waiting: list[tuple[int, FileFacts, bytes]] = []
-    done = 0
+    workspace = [*sources, *context]
 
-    def check(index: int, facts: FileFacts, data: bytes) -> None:
-        nonlocal done
-        if keep_facts:
-            all_facts[index] = facts
-        types = typed_services(facts)
-        run_service_types.update((facts.generation, spelling) for spelling in types)
-        if index < reported:
-            if types:
-                waiting.append((index, facts, data))
-            else:
-                check_now(index, facts, data, frozenset())
-        done += 1
-        if progress is not None:
-            progress(done, len(checked))
-
-    def check_now(index: int, facts: FileFacts, data: bytes, known: frozenset[str]) -> None:
-        text = decode_for_display(data)
-        per_file[index], found = check_file(
-            facts,
-            text,
-            settings,
-            registry,
-            enabled,
-            known_service_types=known,
-            test_rules=test_rules,
-        )
-        if found:
-            suppressions_of[index] = found
-
-    def check_extracted(results: Iterable[tuple[int, FileFacts]]) -> None:
-        for index, facts in results:
-            check(index, facts, extracting.pop(index))
-
-    # A run over the same inputs as a recent one (nothing edited since) is its result again.
+    # (1) A stored result has neither the graph nor the facts: not for a caller wanting them.
     inputs: RunInputs | None = None
     run_key: str | None = None
-    if cache is not None and checked:
+    fresh = want_graph or want_facts
+    if cache is not None and files:
         inputs = RunInputs(
             cache,
-            checked,
-            [*sources, *context],
+            files,
+            workspace,
             reported=reported,
             settings=settings,
             registry=registry,
@@ -228,108 +143,167 @@ def lint(
             fallback=fallback,
         )
         run_key = None if fresh else inputs.key_first()
-        stored = None if run_key is None else _stored_result(cache.load_run(run_key), len(checked))
+        stored = None if run_key is None else _stored_result(cache.load_run(run_key), len(files))
         if stored is not None:
             inputs.finish()
             return stored
     if cache is not None:
         cache.writable()  # create the directory now, not racing in every worker
-    extracted = cached = 0
-    skipped: list[tuple[str, str]] = []
+
+    checks = _FileChecks(
+        len(files),
+        reported,
+        settings=settings,
+        registry=registry,
+        enabled=enabled,
+        service_types=service_types(workspace, packages),
+        keep_facts=keep_facts,
+        progress=run.progress,
+    )
+    graph: Graph | None = None
     extract = partial(extract_batch, cache)
-    with Dispatcher(extract, run.jobs, expected_items=len(checked)) as dispatcher:
-        for index, source in enumerate(checked):
-            # A file of the rest of the workspace is only its facts: when they are cached
-            # under the key its digest gave, it is not read at all.
-            cached_key = None if inputs is None or index < reported else inputs.known_key(index)
-            if cached_key is not None and cache is not None:
-                facts = cache.load(cached_key, source.display)
-                if facts is not None:
-                    cached += 1
-                    check(index, facts, b"")
-                    continue
-            key: str | None = None
-            if inputs is not None:
-                (data, read_error, skip), key = inputs.read(index, source)
-            else:
-                data, read_error, skip = read_file(source.path, settings.max_file_size)
-            if skip == BINARY:  # a source that is not text is a finding, never a pass
-                check(index, _not_text(source), b"")
-                continue
-            if skip is not None:
-                skipped.append((source.display, skip))
-                check(index, FileFacts(source.display, source.language, fallback), b"")
-                continue
-            if data is None:
-                check(index, _unreadable(source, read_error), b"")
-                continue
-            package = packages.for_file(source.path)
-            job = _Job(index, source.display, source.language, package, fallback)
-            if cache is not None and key is not None:
-                facts = cache.load(key, source.display)
-                if facts is not None:
-                    cached += 1
-                    check(index, facts, data)
-                    continue
-            extracted += 1
-            extracting[index] = data
-            check_extracted(dispatcher.put((job, data, key), len(data)))
-        check_extracted(dispatcher.finish())
+    with Dispatcher(extract, run.jobs, expected_items=len(files)) as dispatcher:
+        # (2) and (3)
+        gathered = Gatherer(
+            files,
+            reported,
+            cache=cache,
+            inputs=inputs,
+            dispatcher=dispatcher,
+            packages=packages,
+            fallback=fallback,
+            max_file_size=settings.max_file_size,
+        )
+        for index, facts, data in gathered.facts():
+            checks.take(index, facts, data)
         workers = dispatcher.workers  # that extracted the files (specialisations may start some)
         if inputs is not None and not fresh and run_key is None:
             run_key = inputs.key_last()
-        for index, facts, data in waiting:
-            known = frozenset(
-                spelling
-                for generation, spelling in run_service_types
-                if generation in (facts.generation, None)
-            )
-            check_now(index, facts, data, known)
-        graph: Graph | None = None
+        checks.finish()
+        # (4) Launch files extracted again under their includers' arguments go through the
+        # same workers, a depth of the launch trees at a time.
         if graph_rules or want_graph:
-            known_facts = [facts for facts in all_facts if facts is not None]
-            # Launch files extracted again under their includers' arguments go through the
-            # same workers, a depth of the launch trees at a time.
+            known_facts = checks.facts()
             specialise = Specialiser(
-                checked, packages, fallback, cache, settings.max_file_size, dispatcher=dispatcher
+                files, packages, fallback, cache, settings.max_file_size, dispatcher=dispatcher
             )
             graph = build(
-                known_facts,
-                workspace_packages([*sources, *context], packages),
-                specialise,
-                specialise.prepare,
+                known_facts, workspace_packages(workspace, packages), specialise, specialise.prepare
             )
             report_graph(
                 graph,
                 graph_rules,
-                reported=checked[:reported],
+                reported=files[:reported],
                 facts=known_facts,
-                per_file=per_file,
-                suppressions_of=suppressions_of,
+                per_file=checks.per_file,
+                suppressions_of=checks.suppressions_of,
                 settings=settings,
                 registry=registry,
             )
-    diagnostics = [diagnostic for found in per_file for diagnostic in found]
-    diagnostics.sort(key=Diagnostic.sort_key)
-    skipped_paths = {path for path, _ in skipped}
-    checked_count = sum(1 for source in checked[:reported] if source.display not in skipped_paths)
+
+    # (5)
+    diagnostics = sorted(
+        (diagnostic for found in checks.per_file for diagnostic in found), key=Diagnostic.sort_key
+    )
+    skipped_paths = {path for path, _ in gathered.skipped}
+    checked_count = sum(1 for source in files[:reported] if source.display not in skipped_paths)
     if cache is not None:
         cache.finish()  # the graph's specialised facts are still buffered
     if inputs is not None:
         if run_key is not None and not inputs.changed:
             assert cache is not None
-            cache.store_run(run_key, (tuple(diagnostics), checked_count, tuple(skipped)))
+            cache.store_run(run_key, (tuple(diagnostics), checked_count, tuple(gathered.skipped)))
         inputs.finish()
     return LintResult(
         tuple(diagnostics),
         checked_count,
-        extracted,
-        cached,
+        gathered.extracted,
+        gathered.cached,
         workers,
         graph,
-        tuple(skipped),
-        facts=tuple(facts for facts in all_facts if facts is not None),
+        tuple(gathered.skipped),
+        facts=tuple(checks.facts()),
     )
+
+
+class _FileChecks:
+    """The per-file rules over each file's facts as they arrive; what the graph rules
+    then need: the diagnostics in one slot per reported file (joined in discovery order,
+    so arrival order never shows), each file's suppressions, and every file's facts.
+
+    RN204 compares a service's name with every service type of the run (of the file's own
+    generation), known only once every file is in: files that serve or call a typed
+    service wait for ``finish``; the others, nearly all, are checked as they arrive.
+    """
+
+    def __init__(
+        self,
+        files: int,
+        reported: int,
+        *,
+        settings: Settings,
+        registry: Registry,
+        enabled: frozenset[str],
+        service_types: Iterable[tuple[Generation | None, str]],
+        keep_facts: bool,
+        progress: Progress | None,
+    ) -> None:
+        self._files = files
+        self._reported = reported
+        self._settings = settings
+        self._registry = registry
+        self._enabled = enabled
+        self._test_rules = test_code_codes(settings, registry)
+        self._service_types = set(service_types)
+        self._keep_facts = keep_facts
+        self._progress = progress
+        self._all_facts: list[FileFacts | None] = [None] * files
+        self._waiting: list[tuple[int, FileFacts, bytes]] = []
+        self._done = 0
+        self.per_file: list[list[Diagnostic]] = [[] for _ in range(reported)]
+        self.suppressions_of: dict[int, list[Suppression]] = {}
+
+    def take(self, index: int, facts: FileFacts, data: bytes) -> None:
+        if self._keep_facts:
+            self._all_facts[index] = facts
+        types = typed_services(facts)
+        self._service_types.update((facts.generation, spelling) for spelling in types)
+        if index < self._reported:
+            if types:
+                self._waiting.append((index, facts, data))
+            else:
+                self._check(index, facts, data, frozenset())
+        self._done += 1
+        if self._progress is not None:
+            self._progress(self._done, self._files)
+
+    def finish(self) -> None:
+        """Check the files that waited for the run's service types."""
+        for index, facts, data in self._waiting:
+            known = frozenset(
+                spelling
+                for generation, spelling in self._service_types
+                if generation in (facts.generation, None)
+            )
+            self._check(index, facts, data, known)
+        self._waiting.clear()
+
+    def facts(self) -> list[FileFacts]:
+        """Every file's facts, in discovery order (when they were kept)."""
+        return [facts for facts in self._all_facts if facts is not None]
+
+    def _check(self, index: int, facts: FileFacts, data: bytes, known: frozenset[str]) -> None:
+        self.per_file[index], found = check_file(
+            facts,
+            decode_for_display(data),
+            self._settings,
+            self._registry,
+            self._enabled,
+            known_service_types=known,
+            test_rules=self._test_rules,
+        )
+        if found:
+            self.suppressions_of[index] = found
 
 
 def _stored_result(value: object, files: int) -> LintResult | None:
@@ -359,94 +333,6 @@ def workspace_packages(
         display = source.display[: -len(relative)].rstrip("/")
         found[directory] = Package(name, display, packages.package_depends(source.path))
     return list(found.values())
-
-
-class Specialiser:
-    """An included launch file's facts under the arguments its includer hands it: the
-    same extraction, with those arguments, through the same cache."""
-
-    def __init__(
-        self,
-        sources: Sequence[SourceFile],
-        packages: PackageGenerations,
-        fallback: Generation,
-        cache: FactsCache | None,
-        max_file_size: int,
-        *,
-        dispatcher: Dispatcher[_Item, tuple[int, FileFacts]],
-    ) -> None:
-        self._sources = {source.display: source for source in sources}
-        self._packages = packages
-        self._fallback = fallback
-        self._cache = cache
-        self._max_file_size = max_file_size
-        self._dispatcher = dispatcher
-        self._memo: dict[tuple[str, LaunchArguments], FileFacts | None] = {}
-        self._files: dict[str, tuple[bytes | None, str]] = {}
-
-    def forget(self, display: str) -> None:
-        """The file changed: its specialisations are to be made again when asked."""
-        self._files.pop(display, None)
-        self._memo = {key: facts for key, facts in self._memo.items() if key[0] != display}
-
-    def __call__(self, display: str, arguments: LaunchArguments) -> FileFacts | None:
-        key = (display, arguments)
-        if key not in self._memo:
-            self.prepare([key])
-        return self._memo[key]
-
-    def prepare(self, wanted: Sequence[tuple[str, LaunchArguments]]) -> None:
-        """Extract every specialisation of ``wanted`` not known yet: from the cache, else
-        through the dispatcher (in workers when it has them), all handed over together."""
-        asked: list[tuple[str, LaunchArguments]] = []
-        for key in dict.fromkeys(wanted):
-            if key in self._memo:
-                continue
-            found = self._job(len(asked), *key)
-            if isinstance(found, tuple):
-                asked.append(key)
-                self._take(asked, self._dispatcher.put(found, len(found[1])))
-            else:
-                self._memo[key] = found
-        self._take(asked, self._dispatcher.finish())
-
-    def _take(
-        self, asked: list[tuple[str, LaunchArguments]], results: Iterable[tuple[int, FileFacts]]
-    ) -> None:
-        for index, facts in results:
-            self._memo[asked[index]] = facts
-
-    def _job(
-        self, index: int, display: str, arguments: LaunchArguments
-    ) -> FileFacts | _Item | None:
-        """The cached facts (None: nothing to specialise), or the work to extract them."""
-        source = self._sources.get(display)
-        if source is None or source.language not in SPECIALISABLE:
-            return None
-        data, content = self._read(source)
-        if data is None:
-            return None
-        package = self._packages.for_file(source.path)
-        cache_key = None
-        if self._cache is not None:
-            # The arguments are part of what the facts depend on: key them with the path.
-            keyed = f"{display}\0{arguments!r}"
-            cache_key = self._cache.key_of_digest(
-                content, keyed, source.language, package, self._fallback
-            )
-            found = self._cache.load(cache_key, display)
-            if found is not None:
-                return found
-        job = _Job(index, display, source.language, package, self._fallback, arguments)
-        return job, data, cache_key
-
-    def _read(self, source: SourceFile) -> tuple[bytes | None, str]:
-        """A launch file's bytes and content digest, read once however many argument
-        sets it is specialised under (up to 19 on realws)."""
-        if source.display not in self._files:
-            data, _, _ = read_file(source.path, self._max_file_size)
-            self._files[source.display] = data, "" if data is None else content_digest(data)
-        return self._files[source.display]
 
 
 def report_graph(
@@ -504,44 +390,6 @@ def _now_used(diagnostic: Diagnostic, used: set[tuple[Suppression, str]]) -> boo
         and diagnostic.message.startswith(f"suppression of {code} ")
         for suppression, code in used
     )
-
-
-@dataclass(frozen=True)
-class _Job:
-    """What an extractor needs besides the bytes; small, so cheap to send to a worker."""
-
-    index: int
-    display: str
-    language: Language
-    package_generation: Generation | None
-    fallback_generation: Generation
-    arguments: LaunchArguments = ()  # a launch file specialised under its includer's
-
-
-# A job, the file's bytes, and the key its facts are cached under.
-_Item = tuple[_Job, bytes, str | None]
-
-
-def extract_batch(cache: FactsCache | None, batch: list[_Item]) -> list[tuple[int, FileFacts]]:
-    """Extract and store facts: the work of a worker process, or of the main one.
-
-    Module-level so that worker processes can run it; extractor modules are imported on
-    first use, in whichever process extracts.
-    """
-    results: list[tuple[int, FileFacts]] = []
-    for job, data, key in batch:
-        generations = (job.package_generation, job.fallback_generation)
-        if job.arguments:
-            specialise: _ExtractWithArguments = _extractor_module(job.language).extract
-            facts = specialise(job.display, data, *generations, arguments=job.arguments)
-        else:
-            facts = extractor_for(job.language)(job.display, data, *generations)
-        if cache is not None and key is not None:
-            cache.store(key, facts)
-        results.append((job.index, facts))
-    if cache is not None:
-        cache.flush()  # a worker process has no "end of run": every batch ends its writes
-    return results
 
 
 def check_file(
@@ -736,28 +584,6 @@ class _DiagnosticFactory:
             edit=None if fix is None or fix.tokens else located(fix, span, source_line),
             renaming=fix if fix is not None and fix.tokens else None,
         )
-
-
-def _unreadable(source: SourceFile, reason: str) -> FileFacts:
-    return _file_error(source, f"cannot read file: {reason}")
-
-
-def _not_text(source: SourceFile) -> FileFacts:
-    return _file_error(
-        source,
-        "not a text file: a NUL byte in the first 8,000 bytes and no UTF-16 or UTF-32 "
-        "byte order mark; save it as UTF-8",
-    )
-
-
-def _file_error(source: SourceFile, message: str) -> FileFacts:
-    """The facts of a file whose content was never read: one RN001 at its start."""
-    return FileFacts(
-        path=source.display,
-        language=source.language,
-        generation=DEFAULT_GENERATION,
-        parse_errors=(ParseError(message, Span(1, 1, 1, 1)),),
-    )
 
 
 def decode_for_display(data: bytes) -> str:

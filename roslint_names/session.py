@@ -24,18 +24,20 @@ from .cache import FactsCache
 from .config import Settings, enabled_codes, test_code_codes
 from .discover import SourceFile, classify, discover, display_path
 from .engine import (
-    DEFAULT_GENERATION,
-    EXTRACTOR_MODULES,
     RunOptions,
-    Specialiser,
     check_file,
-    extract_batch,
-    extractor_for,
     lint,
     lintable,
     report_graph,
     typed_services,
     workspace_packages,
+)
+from .gather import (
+    DEFAULT_GENERATION,
+    EXTRACTOR_MODULES,
+    Specialiser,
+    extract_batch,
+    extractor_for,
 )
 from .generation import PackageGenerations, service_types
 from .model import Diagnostic, FileFacts, Generation

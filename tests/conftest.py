@@ -12,7 +12,7 @@ from typing import Any
 
 import pytest
 
-from roslint_names import engine
+from roslint_names import gather
 from roslint_names.cli import main
 from roslint_names.model import Generation, Language
 
@@ -123,9 +123,9 @@ def lint_text(run_cli: Any, tmp_path: Path) -> Any:
 def extractions(monkeypatch: pytest.MonkeyPatch) -> list[str]:
     """The paths the engine extracted, in order (in-process runs only)."""
     seen: list[str] = []
-    real = engine.extractor_for
+    real = gather.extractor_for
 
-    def counting(language: Language) -> engine.Extract:
+    def counting(language: Language) -> gather.Extract:
         extract = real(language)
 
         def wrapper(
@@ -136,5 +136,5 @@ def extractions(monkeypatch: pytest.MonkeyPatch) -> list[str]:
 
         return wrapper
 
-    monkeypatch.setattr(engine, "extractor_for", counting)
+    monkeypatch.setattr(gather, "extractor_for", counting)
     return seen

@@ -9,6 +9,6 @@
   which maps a launch file's executables to their sources;
 - ``literals`` and ``evidence``: text-level evidence that more than one extractor uses.
 
-``engine.EXTRACTOR_MODULES`` names each language's entry module; parsers are imported
+``gather.EXTRACTOR_MODULES`` names each language's entry module; parsers are imported
 only by the modules that need them, on first use.
 """

@@ -1,0 +1,305 @@
+"""Ways of getting facts: the cache, extraction in this process or in workers, and the
+launch files extracted again under their includers' arguments.
+
+``Gatherer`` hands every file's facts to the engine as they arrive, by the cheapest way
+there is: a file of the rest of the workspace whose facts the cache holds under the key
+its remembered digest gives is not even read; a file read is looked up under its
+content's key; the rest is extracted, in worker processes when there are enough files to
+pay for them (``workers``), which store what they extract. Arrival order depends on the
+workers; nothing downstream may depend on it. ``Specialiser`` does the same for a launch
+file under the arguments an including file hands it, for the workspace graph.
+
+Extractor modules are imported on first use, in whichever process extracts: a run over
+launch files never imports libcst or tree-sitter.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from dataclasses import dataclass
+from types import ModuleType
+from typing import TYPE_CHECKING, Protocol
+
+from .discover import SourceFile
+from .generation import PackageGenerations
+from .model import FileFacts, Generation, Language, LaunchArguments, ParseError, Span
+from .reading import BINARY, content_digest, read_file
+from .run_inputs import RunInputs
+from .workers import Dispatcher
+
+if TYPE_CHECKING:
+    from .cache import FactsCache  # imported by the caller that wants a cache
+
+Extract = Callable[[str, bytes, "Generation | None", Generation], FileFacts]
+
+EXTRACTOR_MODULES: dict[Language, str] = {
+    Language.CPP: "cpp.extract",
+    Language.PYTHON: "python.extract",
+    Language.LAUNCH_XML: "launch.xml_launch",
+    Language.LAUNCH_YAML: "launch.yaml_launch",
+    Language.URDF: "launch.urdf",
+    Language.CMAKE: "build.cmake",
+    Language.SETUP_PY: "build.setup_py",
+    Language.SETUP_CFG: "build.setup_py",
+}
+# Launch files an including file can hand arguments to (see ``workspace.launch_tree``).
+SPECIALISABLE = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.PYTHON})
+DEFAULT_GENERATION = Generation.ROS2
+
+
+def extractor_for(language: Language) -> Extract:
+    extract: Extract = _extractor_module(language).extract
+    return extract
+
+
+def _extractor_module(language: Language) -> ModuleType:
+    return importlib.import_module(f"roslint_names.extract.{EXTRACTOR_MODULES[language]}")
+
+
+class _ExtractWithArguments(Protocol):
+    """A launch extractor's ``extract``: also takes the arguments an includer hands over."""
+
+    def __call__(
+        self,
+        path: str,
+        data: bytes,
+        package_generation: Generation | None,
+        fallback_generation: Generation,
+        *,
+        arguments: LaunchArguments,
+    ) -> FileFacts: ...
+
+
+class Specialiser:
+    """An included launch file's facts under the arguments its includer hands it: the
+    same extraction, with those arguments, through the same cache."""
+
+    def __init__(
+        self,
+        sources: Sequence[SourceFile],
+        packages: PackageGenerations,
+        fallback: Generation,
+        cache: FactsCache | None,
+        max_file_size: int,
+        *,
+        dispatcher: Dispatcher[_Item, tuple[int, FileFacts]],
+    ) -> None:
+        self._sources = {source.display: source for source in sources}
+        self._packages = packages
+        self._fallback = fallback
+        self._cache = cache
+        self._max_file_size = max_file_size
+        self._dispatcher = dispatcher
+        self._memo: dict[tuple[str, LaunchArguments], FileFacts | None] = {}
+        self._files: dict[str, tuple[bytes | None, str]] = {}
+
+    def forget(self, display: str) -> None:
+        """The file changed: its specialisations are to be made again when asked."""
+        self._files.pop(display, None)
+        self._memo = {key: facts for key, facts in self._memo.items() if key[0] != display}
+
+    def __call__(self, display: str, arguments: LaunchArguments) -> FileFacts | None:
+        key = (display, arguments)
+        if key not in self._memo:
+            self.prepare([key])
+        return self._memo[key]
+
+    def prepare(self, wanted: Sequence[tuple[str, LaunchArguments]]) -> None:
+        """Extract every specialisation of ``wanted`` not known yet: from the cache, else
+        through the dispatcher (in workers when it has them), all handed over together."""
+        asked: list[tuple[str, LaunchArguments]] = []
+        for key in dict.fromkeys(wanted):
+            if key in self._memo:
+                continue
+            found = self._job(len(asked), *key)
+            if isinstance(found, tuple):
+                asked.append(key)
+                self._take(asked, self._dispatcher.put(found, len(found[1])))
+            else:
+                self._memo[key] = found
+        self._take(asked, self._dispatcher.finish())
+
+    def _take(
+        self, asked: list[tuple[str, LaunchArguments]], results: Iterable[tuple[int, FileFacts]]
+    ) -> None:
+        for index, facts in results:
+            self._memo[asked[index]] = facts
+
+    def _job(
+        self, index: int, display: str, arguments: LaunchArguments
+    ) -> FileFacts | _Item | None:
+        """The cached facts (None: nothing to specialise), or the work to extract them."""
+        source = self._sources.get(display)
+        if source is None or source.language not in SPECIALISABLE:
+            return None
+        data, content = self._read(source)
+        if data is None:
+            return None
+        package = self._packages.for_file(source.path)
+        cache_key = None
+        if self._cache is not None:
+            # The arguments are part of what the facts depend on: key them with the path.
+            keyed = f"{display}\0{arguments!r}"
+            cache_key = self._cache.key_of_digest(
+                content, keyed, source.language, package, self._fallback
+            )
+            found = self._cache.load(cache_key, display)
+            if found is not None:
+                return found
+        job = _Job(index, display, source.language, package, self._fallback, arguments)
+        return job, data, cache_key
+
+    def _read(self, source: SourceFile) -> tuple[bytes | None, str]:
+        """A launch file's bytes and content digest, read once however many argument
+        sets it is specialised under (up to 19 on realws)."""
+        if source.display not in self._files:
+            data, _, _ = read_file(source.path, self._max_file_size)
+            self._files[source.display] = data, "" if data is None else content_digest(data)
+        return self._files[source.display]
+
+
+@dataclass(frozen=True)
+class _Job:
+    """What an extractor needs besides the bytes; small, so cheap to send to a worker."""
+
+    index: int
+    display: str
+    language: Language
+    package_generation: Generation | None
+    fallback_generation: Generation
+    arguments: LaunchArguments = ()  # a launch file specialised under its includer's
+
+
+# A job, the file's bytes, and the key its facts are cached under.
+_Item = tuple[_Job, bytes, str | None]
+
+
+def extract_batch(cache: FactsCache | None, batch: list[_Item]) -> list[tuple[int, FileFacts]]:
+    """Extract and store facts: the work of a worker process, or of the main one.
+
+    Module-level so that worker processes can run it; extractor modules are imported on
+    first use, in whichever process extracts.
+    """
+    results: list[tuple[int, FileFacts]] = []
+    for job, data, key in batch:
+        generations = (job.package_generation, job.fallback_generation)
+        if job.arguments:
+            specialise: _ExtractWithArguments = _extractor_module(job.language).extract
+            facts = specialise(job.display, data, *generations, arguments=job.arguments)
+        else:
+            facts = extractor_for(job.language)(job.display, data, *generations)
+        if cache is not None and key is not None:
+            cache.store(key, facts)
+        results.append((job.index, facts))
+    if cache is not None:
+        cache.flush()  # a worker process has no "end of run": every batch ends its writes
+    return results
+
+
+def unreadable(source: SourceFile, reason: str) -> FileFacts:
+    return _file_error(source, f"cannot read file: {reason}")
+
+
+def not_text(source: SourceFile) -> FileFacts:
+    return _file_error(
+        source,
+        "not a text file: a NUL byte in the first 8,000 bytes and no UTF-16 or UTF-32 "
+        "byte order mark; save it as UTF-8",
+    )
+
+
+def _file_error(source: SourceFile, message: str) -> FileFacts:
+    """The facts of a file whose content was never read: one RN001 at its start."""
+    return FileFacts(
+        path=source.display,
+        language=source.language,
+        generation=DEFAULT_GENERATION,
+        parse_errors=(ParseError(message, Span(1, 1, 1, 1)),),
+    )
+
+
+class Gatherer:
+    """Every file of ``files`` as ``(index, facts, bytes)``, in the order facts arrive.
+
+    The bytes are empty for a file that was not read (its facts came from the cache by
+    its remembered digest) and for a file that could not be. Files from ``reported`` on
+    are the rest of the workspace: only their facts matter. Counts of what came from
+    where, and the files skipped (too large), are kept for the run's summary.
+    """
+
+    def __init__(
+        self,
+        files: Sequence[SourceFile],
+        reported: int,
+        *,
+        cache: FactsCache | None,
+        inputs: RunInputs | None,
+        dispatcher: Dispatcher[_Item, tuple[int, FileFacts]],
+        packages: PackageGenerations,
+        fallback: Generation,
+        max_file_size: int,
+    ) -> None:
+        self._files = files
+        self._reported = reported
+        self._cache = cache
+        self._inputs = inputs
+        self._dispatcher = dispatcher
+        self._packages = packages
+        self._fallback = fallback
+        self._max_file_size = max_file_size
+        self._extracting: dict[int, bytes] = {}  # sent to extraction: their bytes
+        self.extracted = 0
+        self.cached = 0
+        self.skipped: list[tuple[str, str]] = []
+
+    def facts(self) -> Iterator[tuple[int, FileFacts, bytes]]:
+        for index, source in enumerate(self._files):
+            known = self._known(index, source)
+            if known is not None:
+                yield index, known, b""
+                continue
+            key: str | None = None
+            if self._inputs is not None:
+                (data, read_error, skip), key = self._inputs.read(index, source)
+            else:
+                data, read_error, skip = read_file(source.path, self._max_file_size)
+            if skip == BINARY:  # a source that is not text is a finding, never a pass
+                yield index, not_text(source), b""
+            elif skip is not None:
+                self.skipped.append((source.display, skip))
+                yield index, FileFacts(source.display, source.language, self._fallback), b""
+            elif data is None:
+                yield index, unreadable(source, read_error), b""
+            else:
+                package = self._packages.for_file(source.path)
+                stored = self._stored(key, source)
+                if stored is not None:
+                    yield index, stored, data
+                    continue
+                job = _Job(index, source.display, source.language, package, self._fallback)
+                self.extracted += 1
+                self._extracting[index] = data
+                yield from self._arrived(self._dispatcher.put((job, data, key), len(data)))
+        yield from self._arrived(self._dispatcher.finish())
+
+    def _known(self, index: int, source: SourceFile) -> FileFacts | None:
+        """A file of the rest of the workspace is only its facts: when they are cached
+        under the key its remembered digest gives, it is not read at all."""
+        if self._inputs is None or index < self._reported:
+            return None
+        return self._stored(self._inputs.known_key(index), source)
+
+    def _stored(self, key: str | None, source: SourceFile) -> FileFacts | None:
+        if key is None or self._cache is None:
+            return None
+        facts = self._cache.load(key, source.display)
+        if facts is not None:
+            self.cached += 1
+        return facts
+
+    def _arrived(
+        self, results: Iterable[tuple[int, FileFacts]]
+    ) -> Iterator[tuple[int, FileFacts, bytes]]:
+        for index, facts in results:
+            yield index, facts, self._extracting.pop(index)
