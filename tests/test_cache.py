@@ -362,7 +362,7 @@ def test_the_fingerprint_covers_the_extractors_and_the_model() -> None:
         "extract/python/walk.py",
         "extract/launch/xml_launch.py",
         "extract/launch/substitution.py",
-        "extract/build/cmake_lexer.py",
+        "extract/build/cmake_syntax.py",
         "model.py",
         "names.py",
         "reading.py",

@@ -16,7 +16,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from roslint_names.extract.build import cmake, setup_py
-from roslint_names.extract.build.cmake_lexer import ArgKind, VarRef, lex
+from roslint_names.extract.build.cmake_syntax import ArgKind, VarRef, lex
 from roslint_names.model import ExecutableKind, FileFacts, Generation, Language, Span
 
 FIXTURES = Path(__file__).parent / "fixtures" / "build"
@@ -272,11 +272,11 @@ def test_lexer_escapes_continuations_and_nested_references() -> None:
     ("text", "error"),
     [
         ("project(p)\nadd_executable(talker src/talker.cpp\n", 11),  # unbalanced
-        ('project(p)\nset(x "open)\n', 17),  # unterminated quote
-        ("project(p)\nset(x [[open)\n", 17),  # unterminated bracket
+        ('project(p)\nset(x "open)\n', 11),  # unterminated quote
+        ("project(p)\nset(x [[open)\n", 11),  # unterminated bracket
         ("project(p)\nadd_executable talker\n", 11),  # no parenthesis
         ("project(p)\n+\n", 11),  # not a command
-        ("project(p)\nset(x ${a b})\n", 17),  # CMake rejects a space in a name
+        ("project(p)\nset(x ${a b})\n", 11),  # CMake rejects a space in a name
     ],
 )
 def test_lexer_stops_at_the_first_error(text: str, error: int) -> None:

@@ -24,7 +24,7 @@ import re
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
-from roslint_names.extract.build.cmake_lexer import ArgKind, Argument, Piece, VarRef
+from roslint_names.extract.build.cmake_syntax import ArgKind, Argument, Piece, VarRef
 
 DYNAMIC = "\x00"
 SOURCE_DIR = "\x01"
