@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -151,12 +151,12 @@ def lint(
         cache.writable()  # create the directory now, not racing in every worker
 
     checks = _FileChecks(
-        len(files),
-        reported,
+        files=len(files),
+        reported=reported,
         settings=settings,
         registry=registry,
         enabled=enabled,
-        service_types=service_types(workspace, packages),
+        service_types=set(service_types(workspace, packages)),
         keep_facts=keep_facts,
         progress=run.progress,
     )
@@ -165,8 +165,8 @@ def lint(
     with Dispatcher(extract, run.jobs, expected_items=len(files)) as dispatcher:
         # (2) and (3)
         gathered = Gatherer(
-            files,
-            reported,
+            files=files,
+            reported=reported,
             cache=cache,
             inputs=inputs,
             dispatcher=dispatcher,
@@ -226,6 +226,7 @@ def lint(
     )
 
 
+@dataclass
 class _FileChecks:
     """The per-file rules over each file's facts as they arrive; what the graph rules
     then need: the diagnostics in one slot per reported file (joined in discovery order,
@@ -236,53 +237,45 @@ class _FileChecks:
     service wait for ``finish``; the others, nearly all, are checked as they arrive.
     """
 
-    def __init__(
-        self,
-        files: int,
-        reported: int,
-        *,
-        settings: Settings,
-        registry: Registry,
-        enabled: frozenset[str],
-        service_types: Iterable[tuple[Generation | None, str]],
-        keep_facts: bool,
-        progress: Progress | None,
-    ) -> None:
-        self._files = files
-        self._reported = reported
-        self._settings = settings
-        self._registry = registry
-        self._enabled = enabled
-        self._test_rules = test_code_codes(settings, registry)
-        self._service_types = set(service_types)
-        self._keep_facts = keep_facts
-        self._progress = progress
-        self._all_facts: list[FileFacts | None] = [None] * files
-        self._waiting: list[tuple[int, FileFacts, bytes]] = []
-        self._done = 0
-        self.per_file: list[list[Diagnostic]] = [[] for _ in range(reported)]
-        self.suppressions_of: dict[int, list[Suppression]] = {}
+    files: int
+    reported: int
+    settings: Settings
+    registry: Registry
+    enabled: frozenset[str]
+    service_types: set[tuple[Generation | None, str]]
+    keep_facts: bool
+    progress: Progress | None
+    per_file: list[list[Diagnostic]] = field(init=False)
+    suppressions_of: dict[int, list[Suppression]] = field(default_factory=dict)
+    _all_facts: list[FileFacts | None] = field(init=False)
+    _waiting: list[tuple[int, FileFacts, bytes]] = field(default_factory=list)
+    _done: int = 0
+
+    def __post_init__(self) -> None:
+        self.per_file = [[] for _ in range(self.reported)]
+        self._all_facts = [None] * self.files
+        self._test_rules = test_code_codes(self.settings, self.registry)
 
     def take(self, index: int, facts: FileFacts, data: bytes) -> None:
-        if self._keep_facts:
+        if self.keep_facts:
             self._all_facts[index] = facts
         types = typed_services(facts)
-        self._service_types.update((facts.generation, spelling) for spelling in types)
-        if index < self._reported:
+        self.service_types.update((facts.generation, spelling) for spelling in types)
+        if index < self.reported:
             if types:
                 self._waiting.append((index, facts, data))
             else:
                 self._check(index, facts, data, frozenset())
         self._done += 1
-        if self._progress is not None:
-            self._progress(self._done, self._files)
+        if self.progress is not None:
+            self.progress(self._done, self.files)
 
     def finish(self) -> None:
         """Check the files that waited for the run's service types."""
         for index, facts, data in self._waiting:
             known = frozenset(
                 spelling
-                for generation, spelling in self._service_types
+                for generation, spelling in self.service_types
                 if generation in (facts.generation, None)
             )
             self._check(index, facts, data, known)
@@ -296,9 +289,9 @@ class _FileChecks:
         self.per_file[index], found = check_file(
             facts,
             decode_for_display(data),
-            self._settings,
-            self._registry,
-            self._enabled,
+            self.settings,
+            self.registry,
+            self.enabled,
             known_service_types=known,
             test_rules=self._test_rules,
         )

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import importlib
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from types import ModuleType
 from typing import TYPE_CHECKING, Protocol
 
@@ -219,6 +219,7 @@ def _file_error(source: SourceFile, message: str) -> FileFacts:
     )
 
 
+@dataclass
 class Gatherer:
     """Every file of ``files`` as ``(index, facts, bytes)``, in the order facts arrive.
 
@@ -228,72 +229,60 @@ class Gatherer:
     where, and the files skipped (too large), are kept for the run's summary.
     """
 
-    def __init__(
-        self,
-        files: Sequence[SourceFile],
-        reported: int,
-        *,
-        cache: FactsCache | None,
-        inputs: RunInputs | None,
-        dispatcher: Dispatcher[_Item, tuple[int, FileFacts]],
-        packages: PackageGenerations,
-        fallback: Generation,
-        max_file_size: int,
-    ) -> None:
-        self._files = files
-        self._reported = reported
-        self._cache = cache
-        self._inputs = inputs
-        self._dispatcher = dispatcher
-        self._packages = packages
-        self._fallback = fallback
-        self._max_file_size = max_file_size
-        self._extracting: dict[int, bytes] = {}  # sent to extraction: their bytes
-        self.extracted = 0
-        self.cached = 0
-        self.skipped: list[tuple[str, str]] = []
+    files: Sequence[SourceFile]
+    reported: int
+    cache: FactsCache | None
+    inputs: RunInputs | None
+    dispatcher: Dispatcher[_Item, tuple[int, FileFacts]]
+    packages: PackageGenerations
+    fallback: Generation
+    max_file_size: int
+    extracted: int = 0
+    cached: int = 0
+    skipped: list[tuple[str, str]] = field(default_factory=list)
+    _extracting: dict[int, bytes] = field(default_factory=dict)  # sent to extraction
 
     def facts(self) -> Iterator[tuple[int, FileFacts, bytes]]:
-        for index, source in enumerate(self._files):
+        for index, source in enumerate(self.files):
             known = self._known(index, source)
             if known is not None:
                 yield index, known, b""
                 continue
             key: str | None = None
-            if self._inputs is not None:
-                (data, read_error, skip), key = self._inputs.read(index, source)
+            if self.inputs is not None:
+                (data, read_error, skip), key = self.inputs.read(index, source)
             else:
-                data, read_error, skip = read_file(source.path, self._max_file_size)
+                data, read_error, skip = read_file(source.path, self.max_file_size)
             if skip == BINARY:  # a source that is not text is a finding, never a pass
                 yield index, not_text(source), b""
             elif skip is not None:
                 self.skipped.append((source.display, skip))
-                yield index, FileFacts(source.display, source.language, self._fallback), b""
+                yield index, FileFacts(source.display, source.language, self.fallback), b""
             elif data is None:
                 yield index, unreadable(source, read_error), b""
             else:
-                package = self._packages.for_file(source.path)
+                package = self.packages.for_file(source.path)
                 stored = self._stored(key, source)
                 if stored is not None:
                     yield index, stored, data
                     continue
-                job = _Job(index, source.display, source.language, package, self._fallback)
+                job = _Job(index, source.display, source.language, package, self.fallback)
                 self.extracted += 1
                 self._extracting[index] = data
-                yield from self._arrived(self._dispatcher.put((job, data, key), len(data)))
-        yield from self._arrived(self._dispatcher.finish())
+                yield from self._arrived(self.dispatcher.put((job, data, key), len(data)))
+        yield from self._arrived(self.dispatcher.finish())
 
     def _known(self, index: int, source: SourceFile) -> FileFacts | None:
         """A file of the rest of the workspace is only its facts: when they are cached
         under the key its remembered digest gives, it is not read at all."""
-        if self._inputs is None or index < self._reported:
+        if self.inputs is None or index < self.reported:
             return None
-        return self._stored(self._inputs.known_key(index), source)
+        return self._stored(self.inputs.known_key(index), source)
 
     def _stored(self, key: str | None, source: SourceFile) -> FileFacts | None:
-        if key is None or self._cache is None:
+        if key is None or self.cache is None:
             return None
-        facts = self._cache.load(key, source.display)
+        facts = self.cache.load(key, source.display)
         if facts is not None:
             self.cached += 1
         return facts
