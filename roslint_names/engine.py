@@ -30,7 +30,6 @@ from .lines import split_lines
 from .model import (
     Diagnostic,
     FileFacts,
-    Finding,
     Fix,
     Generation,
     Kind,
@@ -255,6 +254,9 @@ class _FileChecks:
         self.per_file = [[] for _ in range(self.reported)]
         self._all_facts = [None] * self.files
         self._test_rules = test_code_codes(self.settings, self.registry)
+        # Built once for the run, not once per rule per file: most files compare with no
+        # service type (those that do wait for ``finish`` and get their own).
+        self._contexts = rule_contexts(self.registry, self.settings)
 
     def take(self, index: int, facts: FileFacts, data: bytes) -> None:
         if self.keep_facts:
@@ -294,6 +296,7 @@ class _FileChecks:
             self.enabled,
             known_service_types=known,
             test_rules=self._test_rules,
+            contexts=self._contexts if not known else None,
         )
         if found:
             self.suppressions_of[index] = found
@@ -394,20 +397,24 @@ def check_file(
     *,
     known_service_types: frozenset[str] = frozenset(),
     test_rules: frozenset[str] | None = None,
+    contexts: Mapping[str, RuleContext] | None = None,
 ) -> tuple[list[Diagnostic], list[Suppression]]:
     """Every diagnostic of one file: rule findings, then suppression bookkeeping; and the
     file's suppressions, for the graph rules' findings still to come.
 
     ``test_rules``: the rules that judge test code (``test_code_codes``), when the caller
-    has them already."""
+    has them already; ``contexts``: each rule's context (``rule_contexts``) for these
+    settings and service types, when the caller checks many files with the same."""
     relative = _relative_to_root(facts.path, settings)
     active = enabled - ignored_for_path(settings, relative, registry)
+    if contexts is None:
+        contexts = rule_contexts(registry, settings, known_service_types)
     to_diagnostic = _DiagnosticFactory(facts, settings, text)
     diagnostics = [
         to_diagnostic(rule, finding.span, finding.message, finding.related, finding.fix)
         for rule in registry.rules
         if rule.code in active and rule.check is not None
-        for finding in _run(rule, facts, settings, known_service_types)
+        for finding in rule.check(facts, contexts[rule.code])
     ]
     suppressions = find_suppressions(text, facts.language)
     # Whether the file is test code is asked only when the answer can change something.
@@ -492,11 +499,16 @@ def recheck(
     return len(facts.parse_errors), {(d.code, d.span.line) for d in found if not d.suppressed}
 
 
-def _run(
-    rule: Rule, facts: FileFacts, settings: Settings, known_service_types: frozenset[str]
-) -> Iterable[Finding]:
-    assert rule.check is not None
-    return rule.check(facts, _context(rule, settings, known_service_types))
+def rule_contexts(
+    registry: Registry, settings: Settings, known_service_types: frozenset[str] = frozenset()
+) -> dict[str, RuleContext]:
+    """Each per-file rule's context: the same for every file of a run that has the same
+    service types to compare with (nearly all: none)."""
+    return {
+        rule.code: _context(rule, settings, known_service_types)
+        for rule in registry.rules
+        if rule.check is not None
+    }
 
 
 def _context(rule: Rule, settings: Settings, known_service_types: frozenset[str]) -> RuleContext:

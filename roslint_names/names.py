@@ -141,17 +141,23 @@ def tokens(name: str, kind: Kind) -> list[str]:
     splits. Parameters split on '.' as well (ROS 2) since ROS 1 parameters cannot contain
     one. A frame id is one token, after tf2's stripping of one leading '/'.
     """
+    return list(_tokens(name, kind))
+
+
+@lru_cache(maxsize=4096)
+def _tokens(name: str, kind: Kind) -> tuple[str, ...]:
+    """``tokens``, kept: the same names come back in every file of a package."""
     if kind is Kind.FRAME:
         frame = name[1:] if name.startswith("/") else name
-        return [frame] if frame else []
+        return (frame,) if frame else ()
     body = name[1:] if name.startswith("~") else name
     separators = "/." if kind is Kind.PARAMETER else "/"
-    return [token for token in _split_outside_braces(body, separators) if token]
+    return tuple(token for token in _split_outside_braces(body, separators) if token)
 
 
 def depth(name: str, kind: Kind) -> int:
     """Number of tokens of ``name``."""
-    return len(tokens(name, kind))
+    return len(_tokens(name, kind))
 
 
 def is_snake_case(token: str) -> bool:
