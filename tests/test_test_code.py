@@ -297,3 +297,54 @@ def test_names_a_test_expects_to_fail_are_never_reported(run_cli: Any, tmp_path:
         ("test_rospy/test/test_rospy_client.py", 19, "RN101"),  # chatter in
         ("test_rospy/test/test_rospy_client.py", 31, "RN101"),  # odom in: not a test
     ]
+
+
+# A launch_testing test as universal_robots writes them (ur_robot_driver/test/
+# urscript_interface.py): the launch description and the test's own rclpy node in one file.
+LAUNCH_TEST = """import unittest
+
+import launch_testing
+import pytest
+import rclpy
+from launch import LaunchDescription
+from launch_ros.actions import Node
+from rclpy.action import ActionClient
+from std_msgs.msg import String
+from ur_msgs.action import ExecuteScript
+from ur_msgs.msg import IOStates
+
+
+@pytest.mark.launch_test
+def generate_test_description():
+    driver = Node(package="ur_robot_driver", executable="urscript_interface", name="urscript_interface")
+    return LaunchDescription([driver, launch_testing.actions.ReadyToTest()])
+
+
+class URScriptInterfaceTest(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rclpy.init()
+        cls.node = rclpy.node.Node("urscript_interface_test")
+
+    def test_set_io(self):
+        publisher = self.node.create_publisher(String, "/urscript_interface/script_command", 1)
+        client = ActionClient(self.node, ExecuteScript, "/urscript_interface/execute_script")
+        states = self.node.create_subscription(
+            IOStates, "/io_and_status_controller/io_states", lambda msg: None, 1
+        )
+"""
+
+
+def test_a_launch_test_s_own_code_is_judged_as_code(run_cli: Any, tmp_path: Path) -> None:
+    """The file is a launch description and Python code at once: its publisher, client
+    and subscription are endpoints RN202 judges (once test code is selected for it), and
+    a subscription uses a name, it does not choose one."""
+    write_package(tmp_path / "ur_robot_driver", 2, "ur_robot_driver")
+    write(tmp_path, "ur_robot_driver/test/urscript_interface.py", LAUNCH_TEST)
+    write(tmp_path, "roslint-names.toml", '[test-code]\nextend-select = ["RN202", "RN203"]\n')
+    result = run_cli(["check", "--format", "json", "."], tmp_path)
+    assert [(f["line"], f["code"]) for f in result.findings()] == [
+        (27, "RN202"),  # the publisher
+        (28, "RN202"),  # the action client
+        (30, "RN202"),  # the subscription
+    ]

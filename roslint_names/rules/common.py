@@ -13,6 +13,9 @@ _LAUNCH_LANGUAGES = frozenset(
     {Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.LAUNCH_PYTHON, Language.URDF}
 )
 CODE_LANGUAGES = frozenset({Language.CPP, Language.PYTHON})
+# The APIs of node code, as the Python extractor names them (``rclpy.node.Node.
+# create_publisher``); a launch description's are its actions' (``Node(remappings=)``).
+_CODE_APIS = ("rclpy.", "rospy.", "actionlib.")
 
 _TYPE_SPELLING = re.compile(r"[A-Z][A-Za-z0-9]*[a-z][A-Za-z0-9]*")
 _LABELS = {
@@ -94,11 +97,21 @@ def chosen_here(use: NameUse, facts: FileFacts) -> bool:
     Node names, namespaces, publishers, servers, parameter declarations (and every ROS 1
     parameter access) are where names are chosen, and are judged.
     """
-    if facts.language in _LAUNCH_LANGUAGES:
+    if facts.language in _LAUNCH_LANGUAGES and not in_code(use, facts):
         return use.role not in (Role.PARAMETER, Role.REMAP_FROM)
     if use.role in _USING_ROLES:
         return False
     return not (facts.generation is Generation.ROS2 and use.api in _ROS2_PARAMETER_USES)
+
+
+def in_code(use: NameUse, facts: FileFacts) -> bool:
+    """Whether ``use`` is in node code, not in a launch description. A Python launch file
+    can hold both: launch_testing's ``generate_test_description`` sits beside the rclpy
+    nodes and subscriptions of the test itself (universal_robots'
+    ``ur_robot_driver/test/urscript_interface.py``)."""
+    if facts.language in CODE_LANGUAGES:
+        return True
+    return facts.language is Language.LAUNCH_PYTHON and use.api.startswith(_CODE_APIS)
 
 
 def spelled_as_type(use: NameUse) -> bool:

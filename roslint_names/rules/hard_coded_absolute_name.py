@@ -13,7 +13,7 @@ from collections.abc import Iterator
 from ..model import ENDPOINT_ROLES, FileFacts, Finding, Fix, Kind, Severity
 from ..names import is_valid
 from ..rule import Rule, RuleContext
-from .common import CODE_LANGUAGES, label, static_uses
+from .common import in_code, label, static_uses
 
 GLOBAL_BY_DESIGN = (
     "/tf",
@@ -30,13 +30,12 @@ _ENDPOINT_KINDS = frozenset({Kind.TOPIC, Kind.SERVICE, Kind.ACTION})
 
 
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
-    if facts.language not in CODE_LANGUAGES:
-        return
     allowed = set(_names(context.options.get("allow", GLOBAL_BY_DESIGN)))
     allowed.update(_names(context.options.get("extend-allow", ())))
     for use in static_uses(facts):
         if (
-            use.role not in ENDPOINT_ROLES
+            not in_code(use, facts)
+            or use.role not in ENDPOINT_ROLES
             or use.kind not in _ENDPOINT_KINDS
             or not use.value.startswith("/")
             or use.value in allowed

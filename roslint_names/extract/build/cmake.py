@@ -38,8 +38,8 @@ from roslint_names.extract.build.cmake_eval import (
     clean,
     split_list,
 )
-from roslint_names.extract.build.cmake_syntax import Command, lex
 from roslint_names.extract.build.cmake_sources import code_paths, normalise
+from roslint_names.extract.build.cmake_syntax import Command, lex
 from roslint_names.extract.build.cmake_targets import Named, Registration, Targets
 from roslint_names.extract.launch.substitution import Source
 from roslint_names.model import FileFacts, Generation, Language

@@ -38,6 +38,7 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from tree_sitter import Node, Parser
 
+
 class ArgKind(str, Enum):
     BRACKET = "bracket"
     QUOTED = "quoted"
@@ -128,7 +129,7 @@ def _holds_commands(node: Node) -> bool:
     )
 
 
-class _Stop(Exception):
+class _RefusedError(Exception):
     """A part of the file CMake would refuse: reading stops before its command."""
 
 
@@ -159,9 +160,9 @@ class _Reader:
             if node.type in _COMMANDS:
                 try:
                     if node.has_error:
-                        raise _Stop
+                        raise _RefusedError
                     commands.append(self._command(node))
-                except _Stop:
+                except _RefusedError:
                     return Lexed(tuple(commands), self.offset(node.start_byte))
             elif node.type in _CONTAINERS and not node.is_missing and _holds_commands(node):
                 # An ERROR node may only stand for a block left open (``if`` without
@@ -266,7 +267,7 @@ class _Reader:
 
     def _reference(self, node: Node, depth: int) -> VarRef:
         if depth >= _MAX_REFERENCE_DEPTH:
-            raise _Stop
+            raise _RefusedError
         inner = node.children[0]
         variable = next((child for child in inner.children if child.type == "variable"), None)
         pieces = _Pieces()
