@@ -316,7 +316,7 @@ from ur_msgs.msg import IOStates
 
 @pytest.mark.launch_test
 def generate_test_description():
-    driver = Node(package="ur_robot_driver", executable="urscript_interface", name="urscript_interface")
+    driver = Node(package="ur_robot_driver", executable="urscript_interface")
     return LaunchDescription([driver, launch_testing.actions.ReadyToTest()])
 
 
