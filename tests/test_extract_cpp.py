@@ -641,6 +641,26 @@ def test_node_renamed_by_node_remap_arguments_is_dynamic() -> None:
     assert uses(facts) == [(NAMESPACE, Role.NAMESPACE, "ns", None)]
 
 
+def test_a_remap_in_a_command_line_renames_that_process_not_this_node() -> None:
+    """A test that starts the node under test with `ros2 run ... -r __node:=...` through a
+    shell: the remap is that process's; the test's own node keeps the name it is given
+    (cause 3 of the recall issue: the string turned off every node name of the file)."""
+    facts = extract(
+        "#include <gtest/gtest.h>\n"
+        "#include <rclcpp/rclcpp.hpp>\n"
+        "TEST(Talker, RenamedTalkerPublishes) {\n"
+        '  std::system("ros2 run demo_nodes_cpp talker --ros-args -r __node:=talker2 '
+        '-r __ns:=/robot1 &");\n'
+        '  auto node = std::make_shared<rclcpp::Node>("chatter listener", "robot1");\n'
+        "}\n"
+    )
+    assert dynamic(facts) == []
+    assert [(u.kind, u.value) for u in facts.names] == [
+        (NODE, "chatter listener"),
+        (NAMESPACE, "robot1"),
+    ]
+
+
 def test_clearing_a_frame_id_names_no_frame() -> None:
     facts = extract('#include <ros/ros.h>\nvoid f() { msg.header.frame_id = ""; }\n')
     assert facts.names == ()

@@ -349,7 +349,10 @@ class Sites:
         self.emit(Kind.SERVICE, role, api, value, self._first_type(construction.template))
 
 
-_REMAPS = re.compile(rb"__(node|name|ns):=")
+# A remapping argument as rclcpp's NodeOptions().arguments() takes it: a string of its own
+# (``"__node:=planner"``, ``"__ns:=" + ns``), not inside a command line a test hands a
+# shell (``"ros2 run demo talker --ros-args -r __node:=x"``), which renames that process.
+_REMAPS = re.compile(rb'"(?:-r )?__(node|name|ns):=')
 
 
 def _remapped(source: Source, site: Node) -> set[str]:
