@@ -817,3 +817,55 @@ def test_member_written_without_its_type_does_not_hang() -> None:
         signal.alarm(0)
         signal.signal(signal.SIGALRM, previous)
     assert facts.parse_errors == ()
+
+
+# ---------------------------------------------------------------------------------------
+# API forms with a model now (recall issue, cause 4)
+
+CAMERA_DRIVER_ROS1 = """#include <ros/ros.h>
+#include <image_transport/image_transport.h>
+#include <sensor_msgs/LaserScan.h>
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "stereo_driver");
+  ros::NodeHandle nh;
+  image_transport::ImageTransport it(nh);
+  image_transport::CameraPublisher left = it.advertiseCamera("/stereo/left/image_raw", 1);
+  image_transport::CameraSubscriber sync = it.subscribeCamera("sync/image", 1, &onSync);
+  // Wait for the laser before starting: the calibration needs one scan.
+  auto scan = ros::topic::waitForMessage<sensor_msgs::LaserScan>("/base_scan", nh);
+  ros::spin();
+}
+"""
+CAMERA_DRIVER_ROS2 = """#include <rclcpp/rclcpp.hpp>
+#include <image_transport/image_transport.hpp>
+#include <sensor_msgs/msg/laser_scan.hpp>
+
+class StereoDriver : public rclcpp::Node
+{
+public:
+  StereoDriver() : Node("stereo_driver")
+  {
+    left_ = image_transport::create_camera_publisher(this, "left/image_raw");
+    sync_ = image_transport::create_camera_subscription(this, "sync/image", cb, "raw");
+    sensor_msgs::msg::LaserScan scan;
+    rclcpp::wait_for_message(scan, shared_from_this(), "/base_scan", std::chrono::seconds(5));
+  }
+};
+"""
+
+
+def test_camera_publishers_subscribers_and_waiting_for_one_message() -> None:
+    ros1 = extract(CAMERA_DRIVER_ROS1, Generation.ROS1)
+    assert [u for u in uses(ros1) if u[0] is TOPIC] == [
+        (TOPIC, Role.PUBLISH, "/stereo/left/image_raw", None),
+        (TOPIC, Role.SUBSCRIBE, "sync/image", None),
+        (TOPIC, Role.SUBSCRIBE, "/base_scan", "sensor_msgs::LaserScan"),
+    ]
+    ros2 = extract(CAMERA_DRIVER_ROS2)
+    assert [u for u in uses(ros2) if u[0] is TOPIC] == [
+        (TOPIC, Role.PUBLISH, "left/image_raw", None),
+        (TOPIC, Role.SUBSCRIBE, "sync/image", None),
+        (TOPIC, Role.SUBSCRIBE, "/base_scan", None),
+    ]

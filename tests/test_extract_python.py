@@ -734,3 +734,43 @@ def test_nesting_that_crashes_libcst_is_a_parse_error(expression: str) -> None:
 def test_brackets_in_strings_do_not_make_a_file_too_deep() -> None:
     source = "import rospy\nART = '" + "(" * 300 + "'\nrospy.init_node('n')\n"
     assert values(source) == ["n"]
+
+
+# message_filters.Subscriber takes rospy's arguments in ROS 1 and (node, type, topic) in
+# ROS 2 (recall issue, cause 4): a stereo pair synchronised by time, in both generations.
+STEREO_SYNC_ROS1 = """#!/usr/bin/env python
+import message_filters
+import rospy
+from sensor_msgs.msg import CameraInfo, Image
+
+rospy.init_node("stereo_sync")
+left = message_filters.Subscriber("/stereo/left/image_raw", Image)
+info = message_filters.Subscriber("left/camera_info", CameraInfo)
+sync = message_filters.ApproximateTimeSynchronizer([left, info], 10, 0.1)
+"""
+STEREO_SYNC_ROS2 = """import message_filters
+import rclpy
+from rclpy.node import Node
+from sensor_msgs.msg import CameraInfo, Image
+
+
+class StereoSync(Node):
+    def __init__(self):
+        super().__init__("stereo_sync")
+        left = message_filters.Subscriber(self, Image, "/stereo/left/image_raw")
+        info = message_filters.Subscriber(self, CameraInfo, topic="left/camera_info")
+        self.sync = message_filters.ApproximateTimeSynchronizer([left, info], 10, 0.1)
+"""
+
+
+def test_message_filters_subscribers_in_both_generations() -> None:
+    ros1 = facts_of(STEREO_SYNC_ROS1, ros=ROS1)
+    assert [u for u in uses(ros1) if u[0] == "topic"] == [
+        ("topic", "subscribe", "/stereo/left/image_raw", "sensor_msgs.msg.Image", 7, 35),
+        ("topic", "subscribe", "left/camera_info", "sensor_msgs.msg.CameraInfo", 8, 35),
+    ]
+    ros2 = facts_of(STEREO_SYNC_ROS2, ros=ROS2)
+    assert [u[:4] for u in uses(ros2) if u[0] == "topic"] == [
+        ("topic", "subscribe", "/stereo/left/image_raw", "sensor_msgs.msg.Image"),
+        ("topic", "subscribe", "left/camera_info", "sensor_msgs.msg.CameraInfo"),
+    ]

@@ -15,7 +15,7 @@ _LAUNCH_LANGUAGES = frozenset(
 CODE_LANGUAGES = frozenset({Language.CPP, Language.PYTHON})
 # The APIs of node code, as the Python extractor names them (``rclpy.node.Node.
 # create_publisher``); a launch description's are its actions' (``Node(remappings=)``).
-_CODE_APIS = ("rclpy.", "rospy.", "actionlib.")
+_CODE_APIS = ("rclpy.", "rospy.", "actionlib.", "message_filters.")
 
 _TYPE_SPELLING = re.compile(r"[A-Z][A-Za-z0-9]*[a-z][A-Za-z0-9]*")
 _LABELS = {

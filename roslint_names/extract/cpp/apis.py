@@ -33,6 +33,19 @@ ENDPOINTS = {
     "create_generic_subscription": Endpoint(
         Kind.TOPIC, Role.SUBSCRIBE, "rclcpp::Node::create_generic_subscription"
     ),
+    # image_transport: a camera publisher is an image topic and its camera_info beside it
+    "advertiseCamera": Endpoint(
+        Kind.TOPIC, Role.PUBLISH, "image_transport::ImageTransport::advertiseCamera"
+    ),
+    "subscribeCamera": Endpoint(
+        Kind.TOPIC, Role.SUBSCRIBE, "image_transport::ImageTransport::subscribeCamera"
+    ),
+    "create_camera_publisher": Endpoint(
+        Kind.TOPIC, Role.PUBLISH, "image_transport::create_camera_publisher"
+    ),
+    "create_camera_subscription": Endpoint(
+        Kind.TOPIC, Role.SUBSCRIBE, "image_transport::create_camera_subscription"
+    ),
     # nav2::LifecycleNode's wrappers around rclcpp_action
     "create_action_server": Endpoint(
         Kind.ACTION, Role.ACTION_SERVE, "nav2::LifecycleNode::create_action_server"
@@ -41,11 +54,20 @@ ENDPOINTS = {
         Kind.ACTION, Role.ACTION_CALL, "nav2::LifecycleNode::create_action_client"
     ),
 }
+CAMERA_ENDPOINTS = frozenset(
+    {"advertiseCamera", "subscribeCamera", "create_camera_publisher", "create_camera_subscription"}
+)
 ACTION_FUNCTIONS = {
     "create_server": Endpoint(Kind.ACTION, Role.ACTION_SERVE, "rclcpp_action::create_server"),
     "create_client": Endpoint(Kind.ACTION, Role.ACTION_CALL, "rclcpp_action::create_client"),
 }
 SERVICE_FUNCTIONS = frozenset({"call", "waitForService", "exists"})  # ros::service::
+# One message, waited for: (namespace, argument holding the topic, api) per function; a
+# member function of the same name (moveit's SynchronizedStringParameter) is not it.
+WAIT_FOR_MESSAGE = {
+    "waitForMessage": ("topic", 0, "ros::topic::waitForMessage"),  # (topic[, nh][, timeout])
+    "wait_for_message": ("rclcpp", 2, "rclcpp::wait_for_message"),  # (msg, node, topic, ...)
+}
 
 
 @dataclass(frozen=True)
@@ -121,6 +143,7 @@ CALL_WORDS = frozenset(
         "advertiseService",
         "init",
         "service",  # ros::service::call
+        *WAIT_FOR_MESSAGE,
         # `param` (above) also anchors ros::param::get
     }
 )

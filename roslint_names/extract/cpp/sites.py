@@ -18,6 +18,7 @@ from .apis import (
     ACTION_FUNCTIONS,
     ACTIONLIB,
     ACTIONLIB_QUALIFIERS,
+    CAMERA_ENDPOINTS,
     ENDPOINTS,
     FRAME_CONSTRUCTIONS,
     FRAME_FUNCTIONS,
@@ -27,6 +28,7 @@ from .apis import (
     ROS2_PARAMETERS,
     SERVICE_FUNCTIONS,
     SERVICE_WRAPPERS,
+    WAIT_FOR_MESSAGE,
     Endpoint,
     ParameterSite,
     value_fact,
@@ -114,6 +116,14 @@ class Sites:
             self.endpoint(call, ENDPOINTS[call.name])
         elif call.name == "subscribe":
             self.subscribe(call)
+        elif (
+            call.name in WAIT_FOR_MESSAGE
+            and call.receiver is None
+            and call.qualifier.endswith(WAIT_FOR_MESSAGE[call.name][0])
+        ):
+            _, index, api = WAIT_FOR_MESSAGE[call.name]
+            value = self.argument(call.arguments, index)
+            self.emit(Kind.TOPIC, Role.SUBSCRIBE, api, value, self._template_type(call))
         elif call.name == "advertiseService":
             self.advertise_service(call)
         elif call.qualifier.endswith("service") and call.name in SERVICE_FUNCTIONS:
@@ -145,6 +155,10 @@ class Sites:
             type_name = None if generic is None else generic.text
         namespace = self.handles.namespace_of(call.receiver)
         value = self.argument(call.arguments, index)
+        if value is not None and value.dynamic and call.name in CAMERA_ENDPOINTS:
+            # image_publisher resolves "image_raw" into a variable first: the literal is
+            # the evidence RN404 reads, and an unknown use would silence it for the node.
+            return
         self.emit(site.kind, site.role, api, value, type_name, namespace=namespace)
 
     def action_function(self, call: Call) -> None:

@@ -148,6 +148,17 @@ RCLPY = _table(
     ("rclpy.wait_for_message.wait_for_message", "rclpy.wait_for_message.wait_for_message",
      _TOPIC, Role.SUBSCRIBE, "2:topic", "0:msg_type", None, None),
 )
+# message_filters.Subscriber: rospy's arguments in ROS 1, (node, type, topic) in ROS 2.
+MESSAGE_FILTERS = {
+    "ros1": _table(
+        ("message_filters.Subscriber", "message_filters.Subscriber", _TOPIC, Role.SUBSCRIBE,
+         "0:name", "1:data_class", None, _PRIVATE),
+    ),
+    "ros2": _table(
+        ("message_filters.Subscriber", "message_filters.Subscriber", _TOPIC, Role.SUBSCRIBE,
+         "2:topic", "1:msg_type", None, None),
+    ),
+}
 # rclpy.node.Node's methods, matched on any receiver in rclpy code.
 RCLPY_METHODS = _table(
     ("create_publisher", "rclpy.node.Node.create_publisher", _TOPIC, Role.PUBLISH, "1:topic",

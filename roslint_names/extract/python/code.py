@@ -25,6 +25,7 @@ from roslint_names.extract.python.apis import (
     ACTIONLIB,
     DECLARE_PARAMETERS,
     GET_PARAMETERS,
+    MESSAGE_FILTERS,
     NODE_CLASSES,
     NODE_FACTORIES,
     RCLPY,
@@ -147,7 +148,7 @@ class CodeExtractor:
         if super_init is not None:
             return super_init
         for name in scope.qualified(call.func):
-            found = _known_api(name)
+            found = _known_api(name, self.rclpy_code)
             if found is not None:
                 return Resolved(found)
         node_class = self.instantiated_node_class(call.func, scope)
@@ -357,9 +358,11 @@ class CodeExtractor:
 _INTERFACE_FOLDERS = {Kind.TOPIC: "msg", Kind.SERVICE: "srv", Kind.ACTION: "action"}
 
 
-def _known_api(name: str) -> Api | None:
+def _known_api(name: str, rclpy_code: bool) -> Api | None:
     head, _, rest = name.partition(".")
     last = name.rpartition(".")[2]
+    if head == "message_filters" and rest:
+        return MESSAGE_FILTERS["ros2" if rclpy_code else "ros1"].get(f"message_filters.{last}")
     if head == "rospy" and rest:
         return ROSPY.get(last)
     if head == "actionlib" and rest:
