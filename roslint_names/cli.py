@@ -257,9 +257,10 @@ def _run_check(options: argparse.Namespace) -> int:
     cache = _facts_cache(options)
     try:
         run = RunOptions(jobs=options.jobs, cache=cache, progress=bar)
-        # Renames are offered where unsafe fixes show; they need every file's facts
-        # (``renames``): kept from the start when no cache can give them again.
-        renaming = options.unsafe_fixes or options.format in ("json", "sarif")
+        # Renames are offered when unsafe fixes are asked for: they need every file's
+        # facts and a search of the workspace's text (``renames``), which a warm run must
+        # not pay for; kept from the start when no cache can give them again.
+        renaming = options.unsafe_fixes
         want_facts = renaming and cache is None
         result = lint(sources, settings, registry, run, context=workspace, want_facts=want_facts)
         diagnostics: Sequence[Diagnostic] = result.diagnostics

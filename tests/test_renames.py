@@ -68,7 +68,10 @@ def _slam_workspace(root: Path) -> None:
 
 
 def _check(run_cli: Any, root: Path, *arguments: str) -> Run:
-    result: Run = run_cli(["check", "--format", "json", "--select", "RN203", *arguments, "."], root)
+    result: Run = run_cli(
+        ["check", "--format", "json", "--unsafe-fixes", "--select", "RN203", *arguments, "."],
+        root,
+    )
     assert result.exit_code in (0, 1), result.stderr
     return result
 
@@ -102,12 +105,16 @@ def test_a_rename_is_offered_with_every_use_of_the_name_in_the_workspace(
     }
     assert fixes["kernelSize"]["also"][0]["path"] == "src/robot_bringup/launch/slam.launch"
 
+    # Without --unsafe-fixes a report does not search the workspace for renames.
+    plain = run_cli(["check", "--format", "json", "--select", "RN203", "."], tmp_path)
+    assert [f["fix"] for f in plain.findings()] == [None, None]
+
     # The text report marks only safe fixes; a rename is never one.
     text = run_cli(["check", "--select", "RN203", "."], tmp_path)
     assert not [line for line in text.stdout.splitlines() if line.endswith("[*]")]
     assert "fixed 0 findings" in run_cli(["check", "--fix", "."], tmp_path).stderr
 
-    fixed = _check(run_cli, tmp_path, "--fix", "--unsafe-fixes")
+    fixed = _check(run_cli, tmp_path, "--fix")
     assert "fixed 2 findings in 2 files" in fixed.stderr
     assert fixed.findings() == []
     launch = tmp_path / "src/robot_bringup/launch/slam.launch"
@@ -221,7 +228,7 @@ def test_a_node_name_is_renamed_across_languages(run_cli: Any, tmp_path: Path) -
         ("src/imu_tools/src/imu_filter.cpp", 2),
         ("src/robot/launch/robot.launch.xml", 2),
     ]
-    fixed = _check(run_cli, tmp_path, "--fix", "--unsafe-fixes")
+    fixed = _check(run_cli, tmp_path, "--fix")
     assert "fixed 3 findings in 3 files" in fixed.stderr
     assert fixed.findings() == []
     launch = (tmp_path / "src/imu_tools/launch/imu.launch.py").read_text(encoding="utf-8")
