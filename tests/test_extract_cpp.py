@@ -869,3 +869,46 @@ def test_camera_publishers_subscribers_and_waiting_for_one_message() -> None:
         (TOPIC, Role.SUBSCRIBE, "sync/image", None),
         (TOPIC, Role.SUBSCRIBE, "/base_scan", None),
     ]
+
+
+# rclcpp's overloads taking node interfaces, as rclcpp's own TimeSource and NodeLogging
+# call them, and a sub-node's namespace (recall issue, cause 4).
+NODE_INTERFACES = """#include <rclcpp/rclcpp.hpp>
+#include <rosgraph_msgs/msg/clock.hpp>
+#include <std_srvs/srv/trigger.hpp>
+
+void attach(
+  rclcpp::node_interfaces::NodeBaseInterface::SharedPtr node_base,
+  rclcpp::node_interfaces::NodeGraphInterface::SharedPtr node_graph,
+  rclcpp::node_interfaces::NodeServicesInterface::SharedPtr node_services,
+  rclcpp::node_interfaces::NodeParametersInterface::SharedPtr node_parameters,
+  rclcpp::node_interfaces::NodeTopicsInterface::SharedPtr node_topics)
+{
+  auto clock = rclcpp::create_subscription<rosgraph_msgs::msg::Clock>(
+    node_parameters, node_topics, "/clock", rclcpp::ClockQoS(), on_clock);
+  auto reset = rclcpp::create_client<std_srvs::srv::Trigger>(
+    node_base, node_graph, node_services, "reset odometry", rclcpp::ServicesQoS(), nullptr);
+}
+
+class Driver : public rclcpp::Node
+{
+public:
+  Driver() : Node("driver")
+  {
+    auto sensors = create_sub_node("Sensors");
+    auto pub = rclcpp::create_publisher<rosgraph_msgs::msg::Clock>(this, "tick", 10);
+  }
+};
+"""
+
+
+def test_node_interface_overloads_and_sub_nodes() -> None:
+    facts = extract(NODE_INTERFACES)
+    assert [(u[0], u[1], u[2]) for u in uses(facts)] == [
+        (TOPIC, Role.SUBSCRIBE, "/clock"),
+        (SERVICE, Role.CALL, "reset odometry"),
+        (NODE, Role.NODE_NAME, "driver"),
+        (NAMESPACE, Role.NAMESPACE, "Sensors"),
+        (TOPIC, Role.PUBLISH, "tick"),
+    ]
+    assert dynamic(facts) == []

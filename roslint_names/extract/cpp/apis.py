@@ -144,6 +144,7 @@ CALL_WORDS = frozenset(
         "init",
         "service",  # ros::service::call
         *WAIT_FOR_MESSAGE,
+        "create_sub_node",
         # `param` (above) also anchors ros::param::get
     }
 )

@@ -116,6 +116,8 @@ class Sites:
             self.endpoint(call, ENDPOINTS[call.name])
         elif call.name == "subscribe":
             self.subscribe(call)
+        elif call.name == "create_sub_node":
+            self.sub_node(call)
         elif (
             call.name in WAIT_FOR_MESSAGE
             and call.receiver is None
@@ -147,7 +149,7 @@ class Sites:
         """A member call (``nh.advertise``, ``create_publisher``) or its free form
         (``rclcpp::create_publisher<T>(node, name, qos)``)."""
         free = call.receiver is None and _is_namespace(call.qualifier)
-        index = 1 if free else 0
+        index = self._name_after_node(call.arguments) if free else 0
         api = f"{call.qualifier}::{call.name}" if free else site.api
         type_name = self._template_type(call)
         if call.name.startswith("create_generic_"):
@@ -160,6 +162,21 @@ class Sites:
             # the evidence RN404 reads, and an unknown use would silence it for the node.
             return
         self.emit(site.kind, site.role, api, value, type_name, namespace=namespace)
+
+    def _name_after_node(self, values: tuple[Node, ...]) -> int:
+        """Where a free function's name is: after the node, or after the node interfaces
+        its other overloads take (``rclcpp::create_client<T>(node_base, node_graph,
+        node_services, "name", ...)``): the first string among the next arguments."""
+        for index in range(1, min(len(values), 5)):
+            value = values[index]
+            if self.folder.static(value) is not None or '"' in self.source.text(value):
+                return index
+        return 1
+
+    def sub_node(self, call: Call) -> None:
+        """``node->create_sub_node("sensors")``: a namespace below the node's."""
+        value = self.argument(call.arguments, 0)
+        self.emit(Kind.NAMESPACE, Role.NAMESPACE, "rclcpp::Node::create_sub_node", value)
 
     def action_function(self, call: Call) -> None:
         """``rclcpp_action::create_server<T>(node, name, ...)``; with node interfaces
