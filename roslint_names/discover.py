@@ -234,12 +234,10 @@ def discover(
         if not os.path.lexists(absolute):
             raise DiscoveryError(f"{given}: no such file or directory")
         if absolute.is_dir():
-            pushed = sum(rules.enter(ancestor) for ancestor in _repository_ancestors(absolute))
             walked: Iterator[tuple[str, Language | _Sniff]]
-            walked = _walk(os.fspath(absolute), rules, _by_name)
+            walked = _walk_named(absolute, rules, _by_name)
             for path, by_name in walked:
                 _add(found, Path(path), by_name, cwd)
-            rules.leave(pushed)
         elif not rules.excluded_by_config(absolute, is_dir=False):
             _add(found, absolute, _by_name(absolute.name), cwd)
     return sorted(found.values(), key=lambda source: source.display)
@@ -257,9 +255,7 @@ def text_files(
     for given in paths:
         absolute = (cwd / given).absolute()
         if absolute.is_dir():
-            pushed = sum(rules.enter(ancestor) for ancestor in _repository_ancestors(absolute))
-            found.update(Path(path) for path, _ in _walk(os.fspath(absolute), rules, _holds_names))
-            rules.leave(pushed)
+            found.update(Path(path) for path, _ in _walk_named(absolute, rules, _holds_names))
         elif absolute.is_file() and not rules.excluded_by_config(absolute, is_dir=False):
             found.add(absolute)
     return sorted(found)
@@ -312,6 +308,16 @@ def _add(
     language = _decide(path, by_name)
     if language is not None:  # package.xml too: the workspace model needs every package
         found[os.fspath(path)] = SourceFile(path, display_path(path, cwd), language)
+
+
+def _walk_named(
+    directory: Path, rules: _IgnoreRules, select: Callable[[str], _T | None]
+) -> Iterator[tuple[str, _T]]:
+    """The walk of a directory named by the user, under the ``.gitignore`` files of its
+    repository above it, as git applies them."""
+    pushed = sum(rules.enter(ancestor) for ancestor in _repository_ancestors(directory))
+    yield from _walk(os.fspath(directory), rules, select)
+    rules.leave(pushed)
 
 
 def _walk(

@@ -36,7 +36,7 @@ from .model import (
     RelatedLocation,
     Span,
 )
-from .reading import bom_encoding, read_file
+from .reading import decode_for_display, read_file
 from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
 from .run_inputs import RunInputs
@@ -275,11 +275,7 @@ class _FileChecks:
     def finish(self) -> None:
         """Check the files that waited for the run's service types."""
         for index, facts, data in self._waiting:
-            known = frozenset(
-                spelling
-                for generation, spelling in self.service_types
-                if generation in (facts.generation, None)
-            )
+            known = service_types_of(self.service_types, facts.generation)
             self._check(index, facts, data, known)
         self._waiting.clear()
 
@@ -521,6 +517,14 @@ def _context(rule: Rule, settings: Settings, known_service_types: frozenset[str]
     )
 
 
+def service_types_of(
+    types: Iterable[tuple[Generation | None, str]], generation: Generation
+) -> frozenset[str]:
+    """The service types a file of ``generation`` is compared with (RN204): its
+    generation's and those of packages that build for both."""
+    return frozenset(spelling for owner, spelling in types if owner in (generation, None))
+
+
 def typed_services(facts: FileFacts) -> set[str]:
     """``package/Name`` of every service type the file serves or calls."""
     return {
@@ -589,11 +593,6 @@ class _DiagnosticFactory:
             edit=None if fix is None or fix.tokens else located(fix, span, source_line),
             renaming=fix if fix is not None and fix.tokens else None,
         )
-
-
-def decode_for_display(data: bytes) -> str:
-    """Text for suppression scanning and source excerpts; never fails."""
-    return data.decode(bom_encoding(data) or "utf-8", errors="replace")
 
 
 def _relative_to_root(display: str, settings: Settings) -> str:

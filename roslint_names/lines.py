@@ -26,3 +26,9 @@ def split_lines_keeping_ends(text: str) -> list[str]:
     if lines and lines[-1] == "":
         lines.pop()
     return lines
+
+
+def line_starts(text: str) -> list[int]:
+    """The offset where each line of ``text`` starts, lines counted as ``split_lines``
+    counts them (one more entry after a final line break)."""
+    return [0, *(found.end() for found in _LINE_BREAK.finditer(text))]

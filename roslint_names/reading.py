@@ -54,6 +54,11 @@ def is_binary(data: bytes) -> bool:
     return b"\0" in data[:_BINARY_SNIFF] and bom_encoding(data) not in WIDE_ENCODINGS
 
 
+def decode_for_display(data: bytes) -> str:
+    """Text for suppression scanning, source excerpts and searches; never fails."""
+    return data.decode(bom_encoding(data) or "utf-8", errors="replace")
+
+
 def bom_encoding(data: bytes) -> str | None:
     """The codec a byte order mark at the start of ``data`` announces, if any."""
     for bom, codec in BOMS:

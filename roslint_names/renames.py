@@ -28,15 +28,13 @@ from dataclasses import dataclass, replace
 
 from .extract.literals import name_literal_spans
 from .fixing import located
-from .lines import split_lines
+from .lines import line_starts, split_lines
 from .model import Diagnostic, Edit, FileFacts, Fix, Kind, Language, NameUse
 from .names import rename_tokens, token_pattern
-from .reading import bom_encoding
+from .reading import decode_for_display
 
 # Files whose names are string literals: elsewhere in them a word is an identifier.
 _CODE = frozenset({Language.CPP, Language.PYTHON, Language.LAUNCH_PYTHON, Language.SETUP_PY})
-
-_LINE_BREAK = re.compile(r"\r\n|\r|\n")  # as ``lines`` breaks lines
 
 Read = Callable[[str], "bytes | None"]  # a display path's bytes; None when unreadable
 
@@ -93,7 +91,7 @@ class _Search:
         data = self._read(path)
         if data is None or self._any.search(data) is None:
             return [], set()
-        text = data.decode(bom_encoding(data) or "utf-8", errors="replace")
+        text = decode_for_display(data)
         lines = split_lines(text)
         uses: list[_Use] = []
         blocked: set[str] = set()
@@ -113,7 +111,7 @@ class _Search:
         code = facts is not None and facts.language in _CODE
         for start, end in name_literal_spans(text) if code else [(0, len(text))]:
             for found in self._words.finditer(text, start, end):
-                starts = starts or _line_starts(text)
+                starts = starts or line_starts(text)
                 number = bisect.bisect_right(starts, found.start())
                 column = found.start() - starts[number - 1] + 1
                 if not any(
@@ -145,8 +143,3 @@ def _resolved(diagnostic: Diagnostic, uses: list[_Use], blocked: set[str]) -> Di
         edit=edit,
         also=tuple(also[key] for key in sorted(also)),
     )
-
-
-def _line_starts(text: str) -> list[int]:
-    """Offsets where each line starts, as ``lines`` counts lines."""
-    return [0, *(found.end() for found in _LINE_BREAK.finditer(text))]

@@ -29,6 +29,7 @@ from .engine import (
     lint,
     lintable,
     report_graph,
+    service_types_of,
     typed_services,
     workspace_packages,
 )
@@ -144,11 +145,7 @@ class Session:
         if self._specialiser is not None:
             self._specialiser.forget(display)
         self._service_types.update((facts.generation, t) for t in typed_services(facts))
-        known = frozenset(
-            spelling
-            for generation, spelling in self._service_types
-            if generation in (facts.generation, None)
-        )
+        known = service_types_of(self._service_types, facts.generation)
         found, suppressions = check_file(
             facts,
             text,
