@@ -770,3 +770,47 @@ def test_verbose_counts_the_workspace_files_a_per_file_run_reads(
         shutil.rmtree(runs)  # the next run builds its result from the cached facts
     result = run_cli(["check", "--verbose", launch], tmp_path)
     assert "; 5 of 5 files from the cache, 0 extracted" in result.stderr
+
+
+SENSORS_LAUNCH = """\
+<launch>
+  <arg name="robot" default="site_a/robot1"/>
+  <group ns="$(arg robot)">
+    <node name="front_lidar" pkg="sick_scan" type="sick_generic_caller">
+      <remap from="scan" to="sensors/front/scan"/>
+    </node>
+    <node name="velocity_smoother" pkg="turtle_base" type="velocity_smoother">
+      <remap from="cmd_vel_smooth" to="base/smoothed/cmd_vel"/>
+      <remap from="cmd_vel" to="teleop_cmd_vel"/>
+    </node>
+  </group>
+</launch>
+"""
+
+
+def test_a_remap_target_pushed_too_deep_by_the_namespace_is_reported_at_the_remap(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """The lidar driver's code is not in the workspace: only its remap says the name. The
+    smoother's code is: its topic is reported once, at the remap that made it deep."""
+    ros1_workspace(tmp_path)
+    write(tmp_path, "src/robot_bringup/package.xml", CATKIN_PACKAGE.format(name="robot_bringup"))
+    write(tmp_path, "src/robot_bringup/launch/sensors.launch", SENSORS_LAUNCH)
+    write(
+        tmp_path,
+        "src/robot_bringup/launch/fleet.launch",
+        "<launch>\n"
+        '  <include file="$(find robot_bringup)/launch/sensors.launch"/>\n'
+        '  <include file="$(find robot_bringup)/launch/sensors.launch">\n'
+        '    <arg name="robot" value="site_a/robot2"/>\n'
+        "  </include>\n"
+        "</launch>\n",
+    )
+    found = findings(run_cli, tmp_path, ".", select="RN201")
+    assert [(f["path"], f["line"]) for f in found] == [
+        ("src/robot_bringup/launch/sensors.launch", 5),
+        ("src/robot_bringup/launch/sensors.launch", 8),
+    ]
+    assert "'/site_a/robot1/sensors/front/scan'" in found[0]["message"]
+    assert "'/site_a/robot1/base/smoothed/cmd_vel'" in found[1]["message"]
+    assert all(f["message"].endswith("(and in 1 more launch)") for f in found)  # robot2

@@ -136,6 +136,7 @@ def _launched_instance(
             remap.span,
             path=path,
             own=own,
+            written_target=remap.target,
         )
         for remap, path, own in launched.remaps
     ]

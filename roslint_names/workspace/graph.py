@@ -63,12 +63,14 @@ class Placed(Protocol):
 
 @dataclass(frozen=True, order=True)
 class NodeRemap(Remap):
-    """A remap applied to one node: both sides fully qualified, where it is written, and
+    """A remap applied to one node: both sides fully qualified, where it is written, the
+    target as written there (RN201 judges what the node's namespace makes of it), and
     whether it is the node's own (RN404 judges only those: a group's remap is meant for
     whichever of its nodes uses the name)."""
 
     path: str = ""
     own: bool = False
+    written_target: str = ""
 
 
 @dataclass(frozen=True)
