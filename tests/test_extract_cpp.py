@@ -371,6 +371,7 @@ def test_constants_are_folded() -> None:
         "robot_status",  # #define of adjacent literals
         "diagnostics_agg",  # local const
         "laser/scan",  # adjacent literals at the call
+        "mutable",  # a local std::string nothing changes: as certain as a constant
         "wrapped",  # std::string("wrapped")
     ]
 
@@ -382,7 +383,6 @@ def test_names_built_at_run_time_are_dynamic() -> None:
         '"sensors/" + suffix',
         'suffix.empty() ? "a" : "b"',
         'ros::names::append("ns/",suffix)',
-        "mutable_topic",  # not const
         "kMutable",  # const char* reassigned in rename()
     ]
 
@@ -912,3 +912,124 @@ def test_node_interface_overloads_and_sub_nodes() -> None:
         (TOPIC, Role.PUBLISH, "tick"),
     ]
     assert dynamic(facts) == []
+
+
+# Names held in variables: followed where the value is certain, dynamic where it is not.
+
+LASER_FILTER_CPP = """\
+#include <ros/ros.h>
+#include <sensor_msgs/LaserScan.h>
+#include <std_srvs/Empty.h>
+
+class LaserFilter
+{
+public:
+  LaserFilter() : scan_topic_("scan"), nh_("~")
+  {
+    filtered_topic_ = "/scan_filtered";
+    reset_service_ = "reset";
+    nh_.param("input", input_topic_, std::string("raw_scan"));  // written by the server
+  }
+
+  void start()
+  {
+    sub_ = nh_.subscribe(scan_topic_, 10, &LaserFilter::onScan, this);
+    pub_ = nh_.advertise<sensor_msgs::LaserScan>(filtered_topic_, 10);
+    raw_sub_ = nh_.subscribe(input_topic_, 10, &LaserFilter::onScan, this);
+    ROS_INFO("serving %s", reset_service_.c_str());
+    server_ = nh_.advertiseService(reset_service_, &LaserFilter::onReset, this);
+  }
+
+private:
+  void onScan(const sensor_msgs::LaserScan::ConstPtr& scan) { pub_.publish(*scan); }
+  bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) { return true; }
+
+  ros::NodeHandle nh_;
+  std::string scan_topic_;
+  std::string filtered_topic_;
+  std::string reset_service_;
+  std::string input_topic_;
+  ros::Subscriber sub_, raw_sub_;
+  ros::Publisher pub_;
+  ros::ServiceServer server_;
+};
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "laser_filter");
+  ros::NodeHandle nh;
+  std::string status = "status";
+  status = "/diagnostics/status";
+  ros::Publisher status_pub = nh.advertise<std_msgs::String>(status, 1);
+  std::string mode = "mode";
+  if (argc > 1) {
+    mode = argv[1];
+  }
+  ros::Publisher mode_pub = nh.advertise<std_msgs::String>(mode, 1);
+  std::string odom = "odom";
+  for (int i = 0; i < 2; ++i) {
+    ros::Publisher odom_pub = nh.advertise<std_msgs::String>(odom, 1);
+    odom = "odom_" + std::to_string(i);
+  }
+  std::string cmd = "cmd_vel";
+  cmd += "_raw";
+  ros::Subscriber cmd_sub = nh.subscribe(cmd, 1, &onCommand);
+  std::string same = "heartbeat";
+  if (argc > 2) {
+    same = "heartbeat";
+  }
+  ros::Publisher heartbeat_pub = nh.advertise<std_msgs::String>(same, 1);
+  LaserFilter filter;
+  filter.start();
+  ros::spin();
+}
+"""
+
+
+def test_locals_and_members_whose_value_is_certain_are_followed() -> None:
+    facts = extract(LASER_FILTER_CPP, ROS1)
+    assert uses(facts) == [
+        (PARAMETER, Role.PARAMETER, "input", None),
+        (TOPIC, Role.SUBSCRIBE, "scan", "sensor_msgs::LaserScan"),
+        (TOPIC, Role.PUBLISH, "/scan_filtered", "sensor_msgs::LaserScan"),
+        (SERVICE, Role.SERVE, "reset", "std_srvs::Empty"),
+        (NODE, Role.NODE_NAME, "laser_filter", None),
+        (TOPIC, Role.PUBLISH, "/diagnostics/status", "std_msgs::String"),
+        (TOPIC, Role.PUBLISH, "heartbeat", "std_msgs::String"),
+    ]
+    # nh_.param() writes input_topic_; mode is set on one path only; odom changes on the
+    # loop's next turn; cmd is appended to.
+    assert [value for kind, value in dynamic(facts) if kind is TOPIC] == [
+        "input_topic_",
+        "mode",
+        "odom",
+        "cmd",
+    ]
+
+
+IMU_DRIVER_CPP = """\
+#include "imu_driver/imu_driver.hpp"
+
+namespace imu_driver
+{
+ImuDriver::ImuDriver(const rclcpp::NodeOptions& options) : rclcpp::Node("imu_driver", options)
+{
+  data_topic_ = "/imu/data";
+  frame_ = declare_parameter("frame_id", "imu_link");
+}
+
+void ImuDriver::start()
+{
+  publisher_ = create_publisher<sensor_msgs::msg::Imu>(data_topic_, 10);
+  for (const auto& topic_name : extra_topics_) {
+    extra_.push_back(create_publisher<sensor_msgs::msg::Imu>(topic_name, 10));
+  }
+}
+}  // namespace imu_driver
+"""
+
+
+def test_a_member_declared_in_the_header_and_set_in_the_constructor_is_followed() -> None:
+    facts = extract(IMU_DRIVER_CPP, ROS2)
+    assert (TOPIC, Role.PUBLISH, "/imu/data", "sensor_msgs::msg::Imu") in uses(facts)
+    assert dynamic(facts) == [(TOPIC, "topic_name")]

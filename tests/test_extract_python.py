@@ -774,3 +774,66 @@ def test_message_filters_subscribers_in_both_generations() -> None:
         ("topic", "subscribe", "/stereo/left/image_raw", "sensor_msgs.msg.Image"),
         ("topic", "subscribe", "left/camera_info", "sensor_msgs.msg.CameraInfo"),
     ]
+
+
+# Names held in instance attributes: followed where every write agrees.
+
+SCAN_MONITOR_PY = """\
+import unittest
+
+import rclpy
+from rclpy.node import Node
+from sensor_msgs.msg import LaserScan
+from std_msgs.msg import String
+
+STATUS = "/monitor/status"
+
+
+class ScanMonitor(Node):
+    def __init__(self, args):
+        super().__init__("scan_monitor")
+        self.scan_topic = "/scan"
+        self.status_topic = STATUS
+        self.alert_topic = "alerts"
+        self.input_topic = args.input
+        self.create_timer(1.0, self.start)
+
+    def start(self):
+        self.create_subscription(LaserScan, self.scan_topic, self.on_scan, 10)
+        self.status_pub = self.create_publisher(String, self.status_topic, 10)
+        self.alert_pub = self.create_publisher(String, self.alert_topic, 10)
+        self.input_sub = self.create_subscription(String, self.input_topic, self.on_scan, 10)
+
+    def retarget(self):
+        self.alert_topic = "alerts_" + str(self.get_clock().now().nanoseconds)
+
+    def on_scan(self, msg):
+        self.status_pub.publish(String(data="ok"))
+
+
+class TestScanMonitor(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rclpy.init()
+        cls.node = rclpy.create_node("scan_monitor_test")
+        cls.topic = "/monitor/status"
+
+    def test_status_is_published(self):
+        received = []
+        self.node.create_subscription(String, self.topic, received.append, 10)
+"""
+
+
+def test_instance_attributes_every_write_agrees_on_are_followed() -> None:
+    facts = facts_of(SCAN_MONITOR_PY, "scan_monitor/scan_monitor.py", ros=ROS2)
+    topics = [(u.role.value, u.value) for u in facts.names if u.kind.value == "topic"]
+    assert [(role, value) for role, value in topics if "_topic" not in value] == [
+        ("subscribe", "/scan"),
+        ("publish", "/monitor/status"),
+        ("subscribe", "/monitor/status"),  # cls.topic, set in setUpClass
+    ]
+    # set from an argument; rewritten with a time stamp in retarget()
+    assert [value for role, value in topics if "_topic" in value] == [
+        "self.alert_topic",
+        "self.input_topic",
+    ]

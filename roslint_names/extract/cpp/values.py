@@ -3,8 +3,9 @@
 A name is folded when the whole argument is a string literal, adjacent literals
 (``"a" "b"``), ``std::string("a")``, or an identifier bound to a constant of the same file:
 a ``const``/``constexpr`` ``std::string``, ``std::string_view``, ``char*``, ``char[]`` or
-``auto`` (namespace scope, class member or local), or a ``#define`` of literals. Anything
-else is dynamic: ``prefix + "/cmd"``, a function result, a ternary, a mutable string.
+``auto`` (namespace scope, class member or local), or a ``#define`` of literals; or to a
+mutable variable whose value there is certain (``variables.py``). Anything else is
+dynamic: ``prefix + "/cmd"``, a function result, a ternary, a string the code may change.
 A constant that is assigned anywhere in the file, or set in a constructor's initializer
 list, is not a constant.
 """
@@ -26,6 +27,7 @@ from .source import (
     macro_literal,
     unparenthesized,
 )
+from .variables import Write, known_writes, reaching
 
 _DECLARATIONS = frozenset(
     {"declaration", "field_declaration", "parameter_declaration", "optional_parameter_declaration"}
@@ -172,6 +174,16 @@ def _constant_string(source: Source, declaration: Node, indirect: bool) -> bool:
     return spelling in _STRING_TYPES or (indirect and spelling in _CHARACTER_TYPES)
 
 
+def _string_type(source: Source, declaration: Node) -> bool:
+    kind = declaration.child_by_field_name("type")
+    spelling = "" if kind is None else compact(source.text(kind))
+    return spelling in _STRING_TYPES or spelling in _CHARACTER_TYPES
+
+
+def _inside(outer: Node, inner: Node) -> bool:
+    return outer.start_byte <= inner.start_byte and inner.end_byte <= outer.end_byte
+
+
 def _is_mutation(node: Node) -> bool:
     target, parent = node, node.parent
     if parent is not None and parent.type == "field_expression" and is_field(parent, "field", node):
@@ -255,13 +267,54 @@ class Folder:
         name = self._source.text(name_node)
         candidates = self.declarations.visible(name, node)
         if not candidates or any(not candidate.constant for candidate in candidates):
-            return None
+            return self._variable(name, node, candidates, depth)
         if not candidates[0].macro and self.declarations.mutated(name):
             return None
         values = {self._declaration_value(candidate, depth + 1) for candidate in candidates}
         if len(values) != 1:
             return None
         return values.pop()
+
+    def _variable(
+        self, name: str, use: Node, candidates: list[Declaration], depth: int
+    ) -> str | None:
+        """A mutable local, member or global whose value at ``use`` is certain: the one
+        every write agrees on, or a local's last write before the use on every path to it.
+        A member the file only assigns (declared in its header) counts too."""
+        if len(candidates) > 1 or any(candidate.macro for candidate in candidates):
+            return None
+        declared = candidates[0] if candidates else None
+        if declared is not None and (
+            declared.node.type not in ("declaration", "field_declaration")
+            or not _string_type(self._source, declared.node)
+        ):
+            return None  # a parameter, or not a string
+        function = declared.function if declared is not None else None
+        if declared is None and not enclosing_functions(use):
+            return None
+        occurrences = self._source.occurrences(name)
+        if declared is not None and function is not None:  # a local
+            start = declared.node.start_byte
+            occurrences = [o for o in occurrences if _inside(function, o) and o.start_byte >= start]
+        else:  # a member or a global, where no function declares its own
+            shadowing = [d.function for d in self.declarations.of(name) if d.function is not None]
+            occurrences = [o for o in occurrences if not any(_inside(f, o) for f in shadowing)]
+        writes = known_writes(self._source, occurrences)
+        if writes is not None and function is None:
+            writes = [w for w in writes if w.value is not None]  # `std::string topic_;`
+        if not writes:
+            return None
+        values = {self._written_value(write, depth) for write in writes}
+        if len(values) == 1:
+            return values.pop()
+        last = reaching(writes, use, function) if function is not None else None
+        return None if last is None else self._written_value(last, depth)
+
+    def _written_value(self, write: Write, depth: int) -> str | None:
+        if write.value is None or depth >= _MAX_DEPTH:
+            return None
+        value = self._fold(write.value, depth + 1)
+        return None if value.dynamic else value.text
 
     def _declaration_value(self, declaration: Declaration, depth: int) -> str | None:
         initializer = declaration.value

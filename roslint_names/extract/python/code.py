@@ -42,6 +42,7 @@ from roslint_names.extract.python.apis import (
     is_frame_field,
     positional_count,
 )
+from roslint_names.extract.python.attributes import InstanceAttributes
 from roslint_names.extract.python.fold import Folder
 from roslint_names.extract.python.scope import AssignSite, CallSite, ClassSite, Scope
 from roslint_names.extract.python.spans import Locator, Where
@@ -77,7 +78,10 @@ class CodeExtractor:
     def __init__(self, walk: Walk, locator: Locator, generation: Generation) -> None:
         self.walk = walk
         self.locator = locator
-        self.folder = Folder(locator)
+        attributes = InstanceAttributes.of(
+            walk.classes, walk.assignments, walk.other_attribute_writes
+        )
+        self.folder = Folder(locator, attributes)
         self.rclpy_code = generation is Generation.ROS2 or _imports(walk.root, "rclpy")
         self.node_classes = _node_classes(walk.classes)
         self.names: list[NameUse] = []

@@ -8,6 +8,7 @@ import warnings
 import libcst as cst
 
 from roslint_names.extract.launch.substitution import Value, without_surrogates
+from roslint_names.extract.python.attributes import InstanceAttributes, instance_class
 from roslint_names.extract.python.scope import Scope
 from roslint_names.extract.python.spans import Locator
 
@@ -18,12 +19,14 @@ class Folder:
     """The static string value of an expression, or its code marked dynamic.
 
     Folded: string literals, names bound once to a foldable value (module- or function-
-    level constants), f-strings, implicit concatenation, ``+`` and ``%`` whose parts all
-    fold. Everything else (a parameter, an attribute, a call) is dynamic.
+    level constants), ``self.x`` attributes every write agrees on (``attributes.py``),
+    f-strings, implicit concatenation, ``+`` and ``%`` whose parts all fold. Everything
+    else (a parameter, another object's attribute, a call) is dynamic.
     """
 
-    def __init__(self, locator: Locator) -> None:
+    def __init__(self, locator: Locator, attributes: InstanceAttributes | None = None) -> None:
         self._locator = locator
+        self._attributes = attributes
 
     def value(self, expr: cst.BaseExpression, scope: Scope) -> Value:
         text = self.static(expr, scope)
@@ -49,7 +52,22 @@ class Folder:
             if binding is None or binding.value is None:
                 return None
             return self.static(binding.value, binding.scope, depth + 1)
+        if isinstance(expr, cst.Attribute) and self._attributes is not None:
+            return self._attribute(expr, scope, depth)
         return None
+
+    def _attribute(self, expr: cst.Attribute, scope: Scope, depth: int) -> str | None:
+        """``self.topic``: the value every write of the attribute agrees on."""
+        assert self._attributes is not None
+        owner = instance_class(expr.value, scope)
+        if owner is None:
+            return None
+        writes = self._attributes.of_instance(owner, expr.attr.value)
+        values = {
+            None if write.value is None else self.static(write.value, write.scope, depth + 1)
+            for write in writes
+        }
+        return values.pop() if len(values) == 1 else None
 
     def _formatted(self, expr: cst.FormattedString, scope: Scope, depth: int) -> str | None:
         parts: list[str] = []

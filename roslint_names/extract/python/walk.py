@@ -144,6 +144,8 @@ class Walk:
         self.root = Scope(ScopeKind.MODULE, "", None, "")
         self.calls: list[CallSite] = []
         self.assignments: list[AssignSite] = []
+        # Attributes written other than by ``x.attr = value`` (``+=``, tuple targets, del)
+        self.other_attribute_writes: set[str] = set()
         self.classes: list[ClassSite] = []
         self.functions: list[cst.FunctionDef] = []  # module-level defs
         self.function_scopes: dict[cst.FunctionDef, Scope] = {}
@@ -327,6 +329,8 @@ class Walk:
                 self.bind_target(element.value, None, scope)
         elif isinstance(target, cst.StarredElement):
             self.bind_target(target.value, None, scope)
+        elif isinstance(target, cst.Attribute):
+            self.other_attribute_writes.add(target.attr.value)
 
     def bind_import(self, alias: cst.ImportAlias, module: str | None, scope: Scope) -> None:
         name = _import_name(alias.name)
