@@ -41,6 +41,7 @@ from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
 from .run_inputs import RunInputs
 from .suppress import Suppression, find_suppressions, is_our_code
+from .symbols import PackageConstants
 from .test_code import is_test_code
 from .types import parse_type
 from .workers import Dispatcher
@@ -158,6 +159,7 @@ def lint(
         service_types=set(service_types(workspace, packages)),
         keep_facts=keep_facts,
         progress=run.progress,
+        package_of=lambda index: package_display(files[index], packages),
     )
     graph: Graph | None = None
     extract = partial(extract_batch, cache)
@@ -232,8 +234,10 @@ class _FileChecks:
     so arrival order never shows), each file's suppressions, and every file's facts.
 
     RN204 compares a service's name with every service type of the run (of the file's own
-    generation), known only once every file is in: files that serve or call a typed
-    service wait for ``finish``; the others, nearly all, are checked as they arrive.
+    generation), and a C++ name held in another file's constant gets its value from the
+    headers of the run (``symbols``), both known only once every file is in: files that
+    serve or call a typed service, or use such a constant, wait for ``finish``; the
+    others, nearly all, are checked as they arrive.
     """
 
     files: int
@@ -244,10 +248,13 @@ class _FileChecks:
     service_types: set[tuple[Generation | None, str]]
     keep_facts: bool
     progress: Progress | None
+    package_of: Callable[[int], str | None]  # the display directory of a file's package
     per_file: list[list[Diagnostic]] = field(init=False)
     suppressions_of: dict[int, list[Suppression]] = field(default_factory=dict)
     _all_facts: list[FileFacts | None] = field(init=False)
     _waiting: list[tuple[int, FileFacts, bytes]] = field(default_factory=list)
+    _unresolved: list[int] = field(default_factory=list)  # files only the graph reads
+    _constants: PackageConstants = field(default_factory=PackageConstants)
     _done: int = 0
 
     def __post_init__(self) -> None:
@@ -263,21 +270,34 @@ class _FileChecks:
             self._all_facts[index] = facts
         types = typed_services(facts)
         self.service_types.update((facts.generation, spelling) for spelling in types)
+        self._constants.add(facts)
+        symbols = any(use.symbol for use in facts.names)
         if index < self.reported:
-            if types:
+            if types or symbols:
                 self._waiting.append((index, facts, data))
             else:
                 self._check(index, facts, data, frozenset())
+        elif symbols and self.keep_facts:
+            self._unresolved.append(index)
         self._done += 1
         if self.progress is not None:
             self.progress(self._done, self.files)
 
     def finish(self) -> None:
-        """Check the files that waited for the run's service types."""
-        for index, facts, data in self._waiting:
-            known = service_types_of(self.service_types, facts.generation)
+        """Check the files that waited for the run's service types and constants."""
+        for index in self._unresolved:
+            facts = self._all_facts[index]
+            if facts is not None:
+                self._all_facts[index] = self._constants.resolve(facts, self.package_of(index))
+        for index, extracted, data in self._waiting:
+            facts = self._constants.resolve(extracted, self.package_of(index))
+            if self.keep_facts:
+                self._all_facts[index] = facts
+            typed = bool(typed_services(facts))
+            known = service_types_of(self.service_types, facts.generation) if typed else frozenset()
             self._check(index, facts, data, known)
         self._waiting.clear()
+        self._unresolved.clear()
 
     def facts(self) -> list[FileFacts]:
         """Every file's facts, in discovery order (when they were kept)."""
@@ -319,12 +339,20 @@ def workspace_packages(
     for source in sources:
         name = packages.package_name(source.path)
         directory = packages.package_directory(source.path)
-        if name is None or directory is None or directory in found:
+        display = package_display(source, packages)
+        if name is None or directory is None or display is None or directory in found:
             continue
-        relative = source.path.relative_to(directory).as_posix()
-        display = source.display[: -len(relative)].rstrip("/")
         found[directory] = Package(name, display, packages.package_depends(source.path))
     return list(found.values())
+
+
+def package_display(source: SourceFile, packages: PackageGenerations) -> str | None:
+    """The display directory of the package holding ``source`` ("" for the run's root)."""
+    directory = packages.package_directory(source.path)
+    if directory is None:
+        return None
+    relative = source.path.relative_to(directory).as_posix()
+    return source.display[: -len(relative)].rstrip("/")
 
 
 def report_graph(

@@ -109,6 +109,9 @@ class NameUse:
     dynamic: bool = False
     type_name: str | None = None  # message, service or action type when known
     namespace: str | None = None  # enclosing namespace known in the file (launch group ns)
+    # A dynamic C++ name that is an identifier the file does not declare: a constant an
+    # included header may define (``symbols`` gives it its value there).
+    symbol: str | None = None
 
 
 @dataclass(frozen=True)
@@ -257,6 +260,10 @@ class FileFacts:
     # Name-shaped string literals of code (``extract.literals``): evidence of names used
     # through APIs the linter does not know.
     literals: tuple[str, ...] = ()
+    # C++: the string constants a header defines, (name, value), and the paths the file
+    # includes (both only where ``symbols`` may need them).
+    constants: tuple[tuple[str, str], ...] = ()
+    cpp_includes: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

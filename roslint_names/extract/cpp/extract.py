@@ -33,6 +33,7 @@ from roslint_names.reading import bom_encoding
 
 from ..literals import name_literals
 from .apis import CALL_WORDS, CONSTRUCTED_TYPES, FRAME_FIELDS
+from .constants import header_constants, included_paths, is_header
 from .events import INIT_WORDS, handle_event, init_event
 from .expected import ExpectedFailures
 from .handles import Handles
@@ -116,12 +117,22 @@ def extract(
 ) -> FileFacts:
     """Names and runtime events of one C++ source or header."""
     text, error = decode(data)
+    header = is_header(path)
+    constants = header_constants(text) if header else ()
     if not has_ros_marker(text):
         generation = package_generation or fallback_generation
-        return FileFacts(path, Language.CPP, generation, parse_errors=_errors(error))
+        return FileFacts(
+            path,
+            Language.CPP,
+            generation,
+            parse_errors=_errors(error),
+            constants=constants,
+            cpp_includes=included_paths(text) if header else (),
+        )
     generation = package_generation or file_generation(text) or fallback_generation
     source = Source(text, _PARSER.parse(text))
     names, events = facts_of(source)
+    symbols = header or any(use.symbol for use in names)
     return FileFacts(
         path=path,
         language=Language.CPP,
@@ -130,6 +141,8 @@ def extract(
         events=tuple(sorted(events, key=lambda event: (event.scope, event.order))),
         parse_errors=_errors(error),
         literals=name_literals(text),
+        constants=constants,
+        cpp_includes=included_paths(text) if symbols else (),
     )
 
 

@@ -90,6 +90,7 @@ class Sites:
                 dynamic=value.dynamic,
                 type_name=type_name,
                 namespace=namespace,
+                symbol=value.symbol,
             )
         )
 

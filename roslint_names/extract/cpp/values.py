@@ -27,7 +27,7 @@ from .source import (
     macro_literal,
     unparenthesized,
 )
-from .variables import Write, known_writes, reaching
+from .variables import Write, is_assigned, known_writes, reaching
 
 _DECLARATIONS = frozenset(
     {"declaration", "field_declaration", "parameter_declaration", "optional_parameter_declaration"}
@@ -58,6 +58,7 @@ class Value:
     text: str  # the value, or the argument's spelling when dynamic
     dynamic: bool
     node: Node
+    symbol: str | None = None  # a dynamic identifier no declaration of the file binds
 
 
 @dataclass(frozen=True)
@@ -219,6 +220,9 @@ class Folder:
             text = self._concatenation(expression, depth)
         elif kind in ("identifier", "qualified_identifier"):
             text = self._constant(expression, depth)
+            if text is None and depth == 0 and self._undeclared(expression):
+                spelling = compact(self._source.text(node))
+                return Value(spelling, True, node, symbol=compact(self._source.text(expression)))
         elif kind in ("call_expression", "compound_literal_expression"):
             wrapped = self._wrapped(expression)
             if wrapped is not None:
@@ -274,6 +278,22 @@ class Folder:
         if len(values) != 1:
             return None
         return values.pop()
+
+    def _undeclared(self, expression: Node) -> bool:
+        """An identifier the file neither declares nor assigns: maybe another file's
+        constant (a constant cannot be written through the calls it is passed to)."""
+        name_node = expression
+        while name_node.type == "qualified_identifier":
+            inner = name_node.child_by_field_name("name")
+            if inner is None:
+                return False
+            name_node = inner
+        if name_node.type != "identifier":
+            return False
+        name = self._source.text(name_node)
+        return not self.declarations.of(name) and not is_assigned(
+            self._source, self._source.occurrences(name)
+        )
 
     def _variable(
         self, name: str, use: Node, candidates: list[Declaration], depth: int

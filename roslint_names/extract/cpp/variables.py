@@ -85,6 +85,12 @@ def known_writes(source: Source, occurrences: list[Node]) -> list[Write] | None:
     return found
 
 
+def is_assigned(source: Source, occurrences: list[Node]) -> bool:
+    """Whether the file gives the variable a value anywhere (a declaration, ``=``, a
+    constructor initializer)."""
+    return any(_classify(source, occurrence)[0] == "write" for occurrence in occurrences)
+
+
 def reaching(writes: list[Write], use: Node, function: Node) -> Write | None:
     """The write a local's use sees: the last one before it, when that one runs on every
     path to the use, and no later write can come round a loop to it."""

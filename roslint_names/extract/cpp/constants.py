@@ -1,0 +1,55 @@
+"""String constants a C++ header defines for other files, and the files C++ includes.
+
+Read from the bytes without parsing: a header of constants (moveit's
+``capability_names.hpp``: ``static const std::string MOVE_ACTION = "move_action";``)
+holds no ROS marker and is never parsed. ``symbols`` gives a name argument that is such a
+constant of an included header of the same package its value.
+"""
+
+from __future__ import annotations
+
+import re
+
+from .source import macro_literal
+
+HEADER_SUFFIXES = (".h", ".hh", ".hpp", ".hxx", ".h++", ".ipp", ".inl")
+
+_LITERAL = rb'(?:u8|u|U|L)?"(?:[^"\\\n]|\\.)*"'
+_CONSTANT = re.compile(
+    rb"(?m)^[ \t]*(?:(?:static|inline|extern)[ \t]+)*(?:const|constexpr)\b([^;{}()=\n]*?)"
+    rb"\b([A-Za-z_]\w*)[ \t]*(?:\[[ \t]*\])?\s*=\s*((?:" + _LITERAL + rb"\s*)+);"
+)
+_DEFINE = re.compile(
+    rb"(?m)^[ \t]*#[ \t]*define[ \t]+([A-Za-z_]\w*)[ \t]+((?:" + _LITERAL + rb"[ \t]*)+)$"
+)
+_STRING_TYPE = re.compile(rb"\b(?:string|string_view|char)\b")
+_INCLUDE = re.compile(rb'(?m)^[ \t]*#[ \t]*include[ \t]*[<"]([^>"\n]+)[>"]')
+
+
+def is_header(path: str) -> bool:
+    return path.lower().endswith(HEADER_SUFFIXES)
+
+
+def header_constants(data: bytes) -> tuple[tuple[str, str], ...]:
+    """(name, value) of each string constant and string macro the header defines."""
+    found: list[tuple[str, str]] = []
+    if b"const" in data:
+        for match in _CONSTANT.finditer(data):
+            if _STRING_TYPE.search(match.group(1)):
+                found += _constant(match.group(2), match.group(3))
+    if b"define" in data:
+        for match in _DEFINE.finditer(data):
+            found += _constant(match.group(1), match.group(2))
+    return tuple(sorted(set(found)))
+
+
+def included_paths(data: bytes) -> tuple[str, ...]:
+    """The paths of the file's ``#include`` lines, in order."""
+    return tuple(
+        match.group(1).decode("utf-8", "replace").strip() for match in _INCLUDE.finditer(data)
+    )
+
+
+def _constant(name: bytes, literals: bytes) -> list[tuple[str, str]]:
+    value = macro_literal(literals.decode("utf-8", "replace").strip())
+    return [] if value is None else [(name.decode("ascii"), value)]
