@@ -837,3 +837,24 @@ def test_instance_attributes_every_write_agrees_on_are_followed() -> None:
         "self.alert_topic",
         "self.input_topic",
     ]
+
+
+def test_a_name_bound_to_one_value_on_every_branch_is_followed() -> None:
+    source = (
+        "import rospy\n"
+        "from std_msgs.msg import String\n"
+        "\n"
+        "def main(simulated):\n"
+        "    rospy.init_node('odometry_bridge')\n"
+        "    topic = '/odom'\n"
+        "    if simulated:\n"
+        "        topic = '/odom'  # the simulator publishes the same name\n"
+        "    source = 'wheel_odom'\n"
+        "    if simulated:\n"
+        "        source = 'sim_odom'\n"
+        "    rospy.Subscriber(topic, String, print)\n"
+        "    rospy.Subscriber(source, String, print)\n"
+    )
+    facts = facts_of(source, "odometry_bridge/bridge.py", ros=ROS1)
+    assert [u.value for u in facts.names if u.kind.value == "topic" and not u.dynamic] == ["/odom"]
+    assert dynamic(facts) == ["source"]

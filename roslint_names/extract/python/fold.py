@@ -18,10 +18,11 @@ _MAX_DEPTH = 16  # constants defined through constants; deeper (or cyclic) is dy
 class Folder:
     """The static string value of an expression, or its code marked dynamic.
 
-    Folded: string literals, names bound once to a foldable value (module- or function-
-    level constants), ``self.x`` attributes every write agrees on (``attributes.py``),
-    f-strings, implicit concatenation, ``+`` and ``%`` whose parts all fold. Everything
-    else (a parameter, another object's attribute, a call) is dynamic.
+    Folded: string literals, names bound only to one foldable value (module- or
+    function-level constants, or every branch agreeing), ``self.x`` attributes every
+    write agrees on (``attributes.py``), f-strings, implicit concatenation, ``+`` and
+    ``%`` whose parts all fold. Everything else (a parameter, another object's
+    attribute, a call) is dynamic.
     """
 
     def __init__(self, locator: Locator, attributes: InstanceAttributes | None = None) -> None:
@@ -48,10 +49,13 @@ class Folder:
         if isinstance(expr, cst.BinaryOperation):
             return self._operation(expr, scope, depth)
         if isinstance(expr, cst.Name):
-            binding = scope.constant(expr.value)
-            if binding is None or binding.value is None:
-                return None
-            return self.static(binding.value, binding.scope, depth + 1)
+            # Bound once, or several times to one value (``topic = "scan"`` on each branch)
+            bindings = scope.lookup(expr.value)
+            values = {
+                None if b.value is None else self.static(b.value, b.scope, depth + 1)
+                for b in bindings
+            }
+            return values.pop() if len(values) == 1 else None
         if isinstance(expr, cst.Attribute) and self._attributes is not None:
             return self._attribute(expr, scope, depth)
         return None
