@@ -76,6 +76,9 @@ class PackageGenerations:
         # By directory, as a string: every file of every run is looked up here, and
         # building ``Path.parent`` for each costs more than the lookup.
         self._by_directory: dict[str, _Package] = {}
+        # And by file: a run asks about each file several times (keying it, extracting
+        # it, its package for the graph), and even ``os.path.dirname`` costs more than this.
+        self._by_file: dict[Path, _Package] = {}
         # Every package.xml read, with its text: what a cached run's result depends on.
         self.manifests: dict[Path, str] = {}
 
@@ -93,7 +96,10 @@ class PackageGenerations:
         return self._for_file(path).depends
 
     def _for_file(self, path: Path) -> _Package:
-        return self._for_directory(os.path.dirname(path))
+        found = self._by_file.get(path)
+        if found is None:
+            found = self._by_file[path] = self._for_directory(os.path.dirname(path))
+        return found
 
     def _for_directory(self, directory: str) -> _Package:
         found = self._by_directory.get(directory)

@@ -60,6 +60,7 @@ class RunInputs:
         self._fallback = fallback
         self._digests = ContentDigests.of(cache, _common_directory(checked))
         self._tags: list[str] = []  # per checked file: its facts key, or why it has none
+        self._contents: list[str | None] = []  # per checked file: its digest, as keyed first
         self._keyed_first = False
         self.changed = False  # a file read differs from what the run was keyed by
 
@@ -69,10 +70,12 @@ class RunInputs:
         if not self._digests.remembered():
             return None
         maximum = self._settings.max_file_size
+        summaries = [self._digests.summary(source.path, maximum) for source in self._checked]
         self._tags = [
-            self._tag(source, *self._digests.summary(source.path, maximum))
-            for source in self._checked
+            self._tag(source, *summary)
+            for source, summary in zip(self._checked, summaries, strict=True)
         ]
+        self._contents = [content for content, _, _ in summaries]
         self._keyed_first = True
         return self._key()
 
@@ -93,7 +96,10 @@ class RunInputs:
         data, read_error, skip = read
         if data is not None and content is None:
             content = content_digest(data)
-        tag = self._tag(source, content, read_error, skip)
+        if self._keyed_first and content is not None and content == self._contents[index]:
+            tag = self._tags[index]  # the same bytes as keyed: the same key, not made again
+        else:
+            tag = self._tag(source, content, read_error, skip)
         if self._keyed_first:
             self.changed |= tag != self._tags[index]
         else:

@@ -19,7 +19,7 @@ text inside a string literal also counts, a price worth not parsing twice.
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 
 from .lines import split_lines
@@ -62,12 +62,40 @@ def find_suppressions(text: str, language: Language) -> list[Suppression]:
     ):
         return []  # most files hold no suppression: one substring search, not a regex per line
     found: list[Suppression] = []
-    for index, line in enumerate(split_lines(text)):
-        number = index + 1
-        found.extend(_in_line(line, number, language))
+    if "\r" in text:  # old Mac or mixed line ends: every line, as ``split_lines`` counts them
+        for index, line in enumerate(split_lines(text)):
+            found.extend(_in_line(line, index + 1, language))
+    else:
+        # Only the lines holding the marker can hold a suppression (each pattern needs
+        # it): a file with one NOLINT among thousands of lines is not split into them.
+        number, start = 1, 0
+        searching = _CASELESS_MARKER if language in _NOQA_LANGUAGES else None
+        for at in _marker_positions(text, marker, searching):
+            if at < start:
+                continue  # a second marker on the line just scanned
+            number += text.count("\n", start, at)
+            start = text.rfind("\n", 0, at) + 1
+            end = text.find("\n", at)
+            end = len(text) if end < 0 else end
+            found.extend(_in_line(text[start:end], number, language))
+            number, start = number + 1, end + 1
     if language in _XML_LANGUAGES and any(len(s.lines) > 1 for s in found):
         found = _over_whole_tags(found, text)
     return found
+
+
+_CASELESS_MARKER = re.compile("noqa", re.IGNORECASE)  # as ``NOQA`` matches it
+
+
+def _marker_positions(text: str, marker: str, caseless: re.Pattern[str] | None) -> Iterator[int]:
+    """Where ``marker`` occurs in ``text``, in order (in any case for ``caseless``)."""
+    if caseless is not None:
+        yield from (match.start() for match in caseless.finditer(text))
+        return
+    at = text.find(marker)
+    while at >= 0:
+        yield at
+        at = text.find(marker, at + 1)
 
 
 def _over_whole_tags(found: list[Suppression], text: str) -> list[Suppression]:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from functools import lru_cache
 
 _SEPARATORS = re.compile(r"::|/|\.")
 _INTERFACE_FOLDERS = frozenset({"msg", "srv", "action"})
@@ -24,6 +25,7 @@ class InterfaceType:
         return f"{self.package}/{self.name}" if self.package else self.name
 
 
+@lru_cache(maxsize=4096)  # a pure function of a string, asked again for every use of a type
 def parse_type(spelling: str) -> InterfaceType | None:
     """The canonical type of a spelling, or None when it is not a type name.
 

@@ -121,7 +121,7 @@ def _known_types(
     """Every type a service could be named after, with its snake_case name, sorted."""
     known = _run_types(generation, of_the_run)
     own = {parsed for use in services if use.type_name and (parsed := parse_type(use.type_name))}
-    extra = own - {known_type for known_type, _ in known}
+    extra = own - _run_type_set(generation, of_the_run)
     if not extra:  # the usual case: the run's types include the file's own
         return known
     return _with_names(*(known_type for known_type, _ in known), *extra)
@@ -135,6 +135,12 @@ def _run_types(
     run, not once per file: a large workspace has a thousand."""
     parsed = {found for spelling in of_the_run if (found := parse_type(spelling))}
     return _with_names(*parsed, *WELL_KNOWN_SERVICE_TYPES[generation])
+
+
+@lru_cache(maxsize=4)
+def _run_type_set(generation: Generation, of_the_run: frozenset[str]) -> frozenset[InterfaceType]:
+    """The types of ``_run_types``, as a set: built once per run, not once per file."""
+    return frozenset(known_type for known_type, _ in _run_types(generation, of_the_run))
 
 
 def _with_names(*types: InterfaceType) -> tuple[tuple[InterfaceType, str], ...]:
