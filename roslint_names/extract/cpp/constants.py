@@ -15,8 +15,9 @@ from .source import macro_literal
 HEADER_SUFFIXES = (".h", ".hh", ".hpp", ".hxx", ".h++", ".ipp", ".inl")
 
 _LITERAL = rb'(?:u8|u|U|L)?"(?:[^"\\\n]|\\.)*"'
+_ASSIGNED_LITERAL = re.compile(rb'=\s*(?:u8|u|U|L)?"')
 _CONSTANT = re.compile(
-    rb"(?m)^[ \t]*(?:(?:static|inline|extern)[ \t]+)*(?:const|constexpr)\b([^;{}()=\n]*?)"
+    rb"[ \t]*(?:(?:static|inline|extern)[ \t]+)*(?:const|constexpr)\b([^;{}()=\n]*?)"
     rb"\b([A-Za-z_]\w*)[ \t]*(?:\[[ \t]*\])?\s*=\s*((?:" + _LITERAL + rb"\s*)+);"
 )
 _DEFINE = re.compile(
@@ -34,9 +35,19 @@ def header_constants(data: bytes) -> tuple[tuple[str, str], ...]:
     """(name, value) of each string constant and string macro the header defines."""
     found: list[tuple[str, str]] = []
     if b"const" in data:
-        for match in _CONSTANT.finditer(data):
-            if _STRING_TYPE.search(match.group(1)):
-                found += _constant(match.group(2), match.group(3))
+        # Every header is scanned: find the `= "` of a definition first (a literal search),
+        # then match the declaration from the start of its line, or of the line above
+        # (`static const std::string NAME =` then the literal on the next line).
+        checked: set[int] = set()
+        for assignment in _ASSIGNED_LITERAL.finditer(data):
+            line = data.rfind(b"\n", 0, assignment.start()) + 1
+            for start in (line, data.rfind(b"\n", 0, max(line - 1, 0)) + 1):
+                if start in checked:
+                    continue
+                checked.add(start)
+                match = _CONSTANT.match(data, start)
+                if match is not None and _STRING_TYPE.search(match.group(1)):
+                    found += _constant(match.group(2), match.group(3))
     if b"define" in data:
         for match in _DEFINE.finditer(data):
             found += _constant(match.group(1), match.group(2))
@@ -45,9 +56,7 @@ def header_constants(data: bytes) -> tuple[tuple[str, str], ...]:
 
 def included_paths(data: bytes) -> tuple[str, ...]:
     """The paths of the file's ``#include`` lines, in order."""
-    return tuple(
-        match.group(1).decode("utf-8", "replace").strip() for match in _INCLUDE.finditer(data)
-    )
+    return tuple(path.decode("utf-8", "replace").strip() for path in _INCLUDE.findall(data))
 
 
 def _constant(name: bytes, literals: bytes) -> list[tuple[str, str]]:
