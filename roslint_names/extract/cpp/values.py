@@ -175,6 +175,16 @@ def _constant_string(source: Source, declaration: Node, indirect: bool) -> bool:
     return spelling in _STRING_TYPES or (indirect and spelling in _CHARACTER_TYPES)
 
 
+def _named_identifier(node: Node) -> Node | None:
+    """The identifier a name ends in: ``kTopic``, ``ns::Class::kTopic`` -> ``kTopic``."""
+    while node.type == "qualified_identifier":
+        inner = node.child_by_field_name("name")
+        if inner is None:
+            return None
+        node = inner
+    return node if node.type == "identifier" else None
+
+
 def _string_type(source: Source, declaration: Node) -> bool:
     kind = declaration.child_by_field_name("type")
     spelling = "" if kind is None else compact(source.text(kind))
@@ -258,15 +268,8 @@ class Folder:
         return values[0] if len(values) == 1 else None
 
     def _constant(self, node: Node, depth: int) -> str | None:
-        if depth >= _MAX_DEPTH:
-            return None
-        name_node = node
-        while name_node.type == "qualified_identifier":
-            inner = name_node.child_by_field_name("name")
-            if inner is None:
-                return None
-            name_node = inner
-        if name_node.type != "identifier":
+        name_node = _named_identifier(node)
+        if depth >= _MAX_DEPTH or name_node is None:
             return None
         name = self._source.text(name_node)
         candidates = self.declarations.visible(name, node)
@@ -282,13 +285,8 @@ class Folder:
     def _undeclared(self, expression: Node) -> bool:
         """An identifier the file neither declares nor assigns: maybe another file's
         constant (a constant cannot be written through the calls it is passed to)."""
-        name_node = expression
-        while name_node.type == "qualified_identifier":
-            inner = name_node.child_by_field_name("name")
-            if inner is None:
-                return False
-            name_node = inner
-        if name_node.type != "identifier":
+        name_node = _named_identifier(expression)
+        if name_node is None:
             return False
         name = self._source.text(name_node)
         return not self.declarations.of(name) and not is_assigned(
