@@ -132,3 +132,19 @@ def test_a_constant_two_headers_define_differently_stays_unknown(
     )
     result = run_cli(["check", "--format", "json", "--no-cache", "."], tmp_path)
     assert result.findings() == []
+
+
+def test_the_language_server_resolves_an_edited_buffer_as_the_cli_does(tmp_path: Path) -> None:
+    from roslint_names.config import load_settings
+    from roslint_names.registry import load_registry
+    from roslint_names.session import Session
+
+    workspace(tmp_path)
+    registry = load_registry()
+    session = Session(tmp_path, load_settings(None, tmp_path, registry), registry, None)
+    session.load()
+    path = tmp_path / "src/arm_server/src/plan_capability.cpp"
+    edited = PLAN_CAPABILITY_CPP.replace("this, RECOGNITION_ACTION", "this, RECOGNITION_ACTION ")
+    found = session.check(path, edited) or []
+    assert [(d.code, d.span.line) for d in found] == [("RN202", 17)]
+    assert "'/recognize_objects'" in found[0].message
