@@ -160,6 +160,7 @@ def lint(
         keep_facts=keep_facts,
         progress=run.progress,
         package_of=lambda index: package_display(files[index], packages),
+        read=lambda index: read_file(files[index].path, settings.max_file_size)[0] or b"",
     )
     graph: Graph | None = None
     extract = partial(extract_batch, cache)
@@ -249,10 +250,11 @@ class _FileChecks:
     keep_facts: bool
     progress: Progress | None
     package_of: Callable[[int], str | None]  # the display directory of a file's package
+    read: Callable[[int], bytes]  # a file's bytes, for one the gathering did not read
     per_file: list[list[Diagnostic]] = field(init=False)
     suppressions_of: dict[int, list[Suppression]] = field(default_factory=dict)
     _all_facts: list[FileFacts | None] = field(init=False)
-    _waiting: list[tuple[int, FileFacts, bytes]] = field(default_factory=list)
+    _waiting: list[tuple[int, FileFacts, bytes | None]] = field(default_factory=list)
     _unresolved: list[int] = field(default_factory=list)  # files only the graph reads
     _constants: PackageConstants = field(default_factory=PackageConstants)
     _done: int = 0
@@ -265,7 +267,7 @@ class _FileChecks:
         # service type (those that do wait for ``finish`` and get their own).
         self._contexts = rule_contexts(self.registry, self.settings)
 
-    def take(self, index: int, facts: FileFacts, data: bytes) -> None:
+    def take(self, index: int, facts: FileFacts, data: bytes | None) -> None:
         if self.keep_facts:
             self._all_facts[index] = facts
         types = typed_services(facts)
@@ -303,10 +305,27 @@ class _FileChecks:
         """Every file's facts, in discovery order (when they were kept)."""
         return [facts for facts in self._all_facts if facts is not None]
 
-    def _check(self, index: int, facts: FileFacts, data: bytes, known: frozenset[str]) -> None:
-        self.per_file[index], found = check_file(
+    def _check(
+        self, index: int, facts: FileFacts, data: bytes | None, known: frozenset[str]
+    ) -> None:
+        """``data`` None: the file was not read, as it holds no suppression; its text is
+        needed only for findings (their lines, fixes, whether it is test code)."""
+        text = "" if data is None else decode_for_display(data)
+        diagnostics, found = self._check_text(facts, text, known)
+        if data is None and diagnostics:
+            diagnostics, found = self._check_text(
+                facts, decode_for_display(self.read(index)), known
+            )
+        self.per_file[index] = diagnostics
+        if found:
+            self.suppressions_of[index] = found
+
+    def _check_text(
+        self, facts: FileFacts, text: str, known: frozenset[str]
+    ) -> tuple[list[Diagnostic], list[Suppression]]:
+        return check_file(
             facts,
-            decode_for_display(data),
+            text,
             self.settings,
             self.registry,
             self.enabled,
@@ -314,8 +333,6 @@ class _FileChecks:
             test_rules=self._test_rules,
             contexts=self._contexts if not known else None,
         )
-        if found:
-            self.suppressions_of[index] = found
 
 
 def _stored_result(value: object, files: int) -> LintResult | None:

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import importlib
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from types import ModuleType
 from typing import TYPE_CHECKING, Protocol
 
@@ -26,6 +26,7 @@ from .generation import PackageGenerations
 from .model import FileFacts, Generation, Language, LaunchArguments, ParseError, Span
 from .reading import BINARY, content_digest, read_file
 from .run_inputs import RunInputs
+from .suppress import may_hold_suppression
 from .workers import Dispatcher
 
 if TYPE_CHECKING:
@@ -189,6 +190,8 @@ def extract_batch(cache: FactsCache | None, batch: list[_Item]) -> list[tuple[in
             facts = specialise(job.display, data, *generations, arguments=job.arguments)
         else:
             facts = extractor_for(job.language)(job.display, data, *generations)
+        if may_hold_suppression(data):
+            facts = replace(facts, suppression_marker=True)
         if cache is not None and key is not None:
             cache.store(key, facts)
         results.append((job.index, facts))
@@ -223,8 +226,9 @@ def _file_error(source: SourceFile, message: str) -> FileFacts:
 class Gatherer:
     """Every file of ``files`` as ``(index, facts, bytes)``, in the order facts arrive.
 
-    The bytes are empty for a file that was not read (its facts came from the cache by
-    its remembered digest) and for a file that could not be. Files from ``reported`` on
+    The bytes are None for a file that was not read (its facts came from the cache by its
+    remembered digest: the rest of the workspace, and reported files holding no
+    suppression), and empty for a file that could not be. Files from ``reported`` on
     are the rest of the workspace: only their facts matter. Counts of what came from
     where, and the files skipped (too large), are kept for the run's summary.
     """
@@ -242,11 +246,12 @@ class Gatherer:
     skipped: list[tuple[str, str]] = field(default_factory=list)
     _extracting: dict[int, bytes] = field(default_factory=dict)  # sent to extraction
 
-    def facts(self) -> Iterator[tuple[int, FileFacts, bytes]]:
+    def facts(self) -> Iterator[tuple[int, FileFacts, bytes | None]]:
         for index, source in enumerate(self.files):
             known = self._known(index, source)
-            if known is not None:
-                yield index, known, b""
+            if known is not None and (index >= self.reported or not known[1].suppression_marker):
+                self.cached += 1
+                yield index, known[1], None
                 continue
             key: str | None = None
             if self.inputs is not None:
@@ -262,7 +267,11 @@ class Gatherer:
                 yield index, unreadable(source, read_error), b""
             else:
                 package = self.packages.for_file(source.path)
-                stored = self._stored(key, source)
+                if known is not None and key == known[0]:  # loaded above: the same bytes
+                    self.cached += 1
+                    stored: FileFacts | None = known[1]
+                else:
+                    stored = self._stored(key, source)
                 if stored is not None:
                     yield index, stored, data
                     continue
@@ -272,12 +281,17 @@ class Gatherer:
                 yield from self._arrived(self.dispatcher.put((job, data, key), len(data)))
         yield from self._arrived(self.dispatcher.finish())
 
-    def _known(self, index: int, source: SourceFile) -> FileFacts | None:
-        """A file of the rest of the workspace is only its facts: when they are cached
-        under the key its remembered digest gives, it is not read at all."""
-        if self.inputs is None or index < self.reported:
+    def _known(self, index: int, source: SourceFile) -> tuple[str, FileFacts] | None:
+        """The facts cached under the key the file's remembered digest gives, and that key.
+
+        A file of the rest of the workspace is only its facts, and a reported file
+        holding no suppression is only its facts until it has a finding: such a file is
+        not read (yet)."""
+        key = None if self.inputs is None else self.inputs.known_key(index)
+        if key is None or self.cache is None:
             return None
-        return self._stored(self.inputs.known_key(index), source)
+        facts = self.cache.load(key, source.display)
+        return None if facts is None else (key, facts)
 
     def _stored(self, key: str | None, source: SourceFile) -> FileFacts | None:
         if key is None or self.cache is None:
@@ -289,6 +303,6 @@ class Gatherer:
 
     def _arrived(
         self, results: Iterable[tuple[int, FileFacts]]
-    ) -> Iterator[tuple[int, FileFacts, bytes]]:
+    ) -> Iterator[tuple[int, FileFacts, bytes | None]]:
         for index, facts in results:
             yield index, facts, self._extracting.pop(index)

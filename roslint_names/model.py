@@ -264,6 +264,10 @@ class FileFacts:
     # includes (both only where ``symbols`` may need them).
     constants: tuple[tuple[str, str], ...] = ()
     cpp_includes: tuple[str, ...] = ()
+    # The file's bytes may hold a suppression comment (``suppress``), as extraction found
+    # them: a re-run from cached facts does not read a file that holds none and has no
+    # finding. False by default, so that the facts of most files stay the empty ones.
+    suppression_marker: bool = False
 
 
 @dataclass(frozen=True)

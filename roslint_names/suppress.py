@@ -53,6 +53,16 @@ class Suppression:
     span: Span  # the comment, for RN002 and RN003
 
 
+_BYTE_MARKERS = (b"NOLINT", b"noqa", b"NOQA", b"roslint-names")
+_WIDE_BOMS = (b"\xff\xfe", b"\xfe\xff")  # UTF-16 and UTF-32: ASCII is not its own bytes
+
+
+def may_hold_suppression(data: bytes) -> bool:
+    """Whether ``data`` may hold a suppression of any language (a marker
+    ``find_suppressions`` needs is in it); False only when it surely holds none."""
+    return data.startswith(_WIDE_BOMS) or any(marker in data for marker in _BYTE_MARKERS)
+
+
 def find_suppressions(text: str, language: Language) -> list[Suppression]:
     marker = _MARKER.get(language)
     if marker is None:

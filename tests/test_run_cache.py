@@ -194,7 +194,10 @@ def test_a_file_changed_while_the_run_reads_it_is_not_kept(
 ) -> None:
     # A run of a workspace with digests is keyed by a first pass (through the digests)
     # and extracted from what its second pass reads: when they differ, the result is
-    # nobody's key.
+    # nobody's key. (A file that may hold a suppression is read; the others are not,
+    # their cached facts are those of the keyed bytes.)
+    launch = workspace / "src/robot_base/launch/base.launch"
+    launch.write_text("<!-- checked by roslint-names in CI -->\n" + launch.read_text())
     check()
     [first] = stored_runs(private_cache)
     _edit_code(workspace)  # so that the next run is not the stored one
@@ -409,3 +412,39 @@ def test_only_the_digests_of_the_most_recent_workspaces_are_kept(
         time.sleep(0.05)  # file times tick with the kernel's coarse clock
         run_cli(["check", "."], root)
     assert len(list(private_cache.glob("facts-v*/digests/*"))) == 2
+
+
+def test_a_rerun_from_the_facts_reads_only_the_files_with_findings_or_suppressions(
+    check: Callable[..., Any],
+    workspace: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    private_cache: Path,
+) -> None:
+    write(
+        workspace, "src/robot_base/launch/quiet.launch", "<launch>\n  <arg name='x'/>\n</launch>\n"
+    )
+    write(
+        workspace,
+        "src/robot_base/launch/noted.launch",
+        '<launch>\n  <node name="helper" pkg="robot_base" type="helper"/>'
+        "  <!-- roslint-names: ignore RN404 -->\n</launch>\n",
+    )
+    cold = check()
+    for runs in private_cache.glob("facts-v*/runs"):
+        shutil.rmtree(runs)  # the next run starts from the facts
+    read: list[str] = []
+
+    def recording(real: Callable[..., Any]) -> Callable[..., Any]:
+        def read_file(path: Path, max_size: int) -> Any:
+            read.append(path.name)
+            return real(path, max_size)
+
+        return read_file
+
+    monkeypatch.setattr(run_inputs, "read_file", recording(run_inputs.read_file))
+    monkeypatch.setattr(engine, "read_file", recording(engine.read_file))
+    again = check()
+    assert not reused(again) and again.stdout == cold.stdout
+    # driver.cpp and base.launch have findings (their lines are shown), noted.launch a
+    # suppression; quiet.launch, CMakeLists.txt and package.xml are only their facts.
+    assert sorted(set(read)) == ["base.launch", "driver.cpp", "noted.launch"]
