@@ -615,10 +615,24 @@ def test_extractions_of_one_file_under_several_arguments_share_nothing_but_the_p
     shared = [launch(SPECIALISED, arguments=arguments) for arguments in sets]
     fresh = []
     for arguments in sets:
-        python_extract._prepare.cache_clear()
+        python_extract._LAUNCH_FILES.clear()
         fresh.append(launch(SPECIALISED, arguments=arguments))
     assert shared == fresh
     assert shared[0] == shared[3] != shared[1] != shared[2]
     nav2 = [fixture("nav2_style_bringup.launch.py", arguments) for arguments in sets]
-    python_extract._prepare.cache_clear()
+    python_extract._LAUNCH_FILES.clear()
     assert nav2[2] == fixture("nav2_style_bringup.launch.py", sets[2])
+
+
+def test_only_launch_files_keep_their_tree_for_extractions_under_arguments() -> None:
+    """A library or test module is never extracted again under arguments: its tree (tens
+    of megabytes for a large module) is not kept; a launch file's is."""
+    from roslint_names.extract.python import parsed as python_extract
+    from roslint_names.model import Generation
+
+    node = b"import rclpy\nfrom rclpy.node import Node\n\nclass Talker(Node):\n    pass\n"
+    python_extract.extract_parsed("talker.py", node, None, Generation.ROS2, False)
+    launch(SPECIALISED)
+    kept = python_extract._LAUNCH_FILES
+    assert ((HEADER + SPECIALISED).encode(), Generation.ROS2, Generation.ROS2) in kept
+    assert (node, None, Generation.ROS2) not in kept

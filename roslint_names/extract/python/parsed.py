@@ -5,7 +5,8 @@ Imported by ``python.py`` only after its prefilter passed, because it imports li
 
 from __future__ import annotations
 
-from functools import lru_cache
+import threading
+from collections import OrderedDict
 
 from roslint_names.extract import evidence
 from roslint_names.extract.launch.python_launch import LaunchExtractor
@@ -54,7 +55,8 @@ def extract_parsed(
     arguments: LaunchArguments = (),
 ) -> FileFacts:
     default_language = Language.LAUNCH_PYTHON if launch_path else Language.PYTHON
-    prepared = _prepare(data, package_generation, fallback_generation)
+    key = (data, package_generation, fallback_generation)
+    prepared = _LAUNCH_FILES.get(key) or _prepare(*key)
     if isinstance(prepared, ParseError):
         generation = package_generation or fallback_generation
         return FileFacts(path, default_language, generation, parse_errors=(prepared,))
@@ -67,6 +69,8 @@ def extract_parsed(
     language = (
         Language.LAUNCH_PYTHON if launch_path or defines_root or launch_module else Language.PYTHON
     )
+    if language is Language.LAUNCH_PYTHON:
+        _LAUNCH_FILES.put(key, prepared)
     names = sorted(code.names + launch.names, key=lambda use: (use.span.line, use.span.column))
     return FileFacts(
         path=path,
@@ -81,17 +85,54 @@ def extract_parsed(
 
 
 _Prepared = tuple[Walk, Locator, CodeExtractor, Generation, str]
+_Key = tuple[bytes, Generation | None, Generation]
 
 
-@lru_cache(maxsize=16)
+class _RecentLaunchFiles:
+    """The prepared trees of the last launch files extracted, for their extractions under
+    includers' arguments. Only launch files: a library or test module is never extracted
+    again, and keeping its tree (a large module's is tens of megabytes) only costs memory.
+    Locked: the language server extracts in two threads."""
+
+    def __init__(self, kept: int) -> None:
+        self._kept = kept
+        self._found: OrderedDict[_Key, _Prepared] = OrderedDict()
+        self._lock = threading.Lock()
+
+    def get(self, key: _Key) -> _Prepared | None:
+        with self._lock:
+            found = self._found.get(key)
+            if found is not None:
+                self._found.move_to_end(key)
+            return found
+
+    def clear(self) -> None:
+        with self._lock:
+            self._found.clear()
+
+    def __contains__(self, key: object) -> bool:
+        with self._lock:
+            return key in self._found
+
+    def put(self, key: _Key, prepared: _Prepared) -> None:
+        with self._lock:
+            self._found[key] = prepared
+            self._found.move_to_end(key)
+            while len(self._found) > self._kept:
+                self._found.popitem(last=False)
+
+
+_LAUNCH_FILES = _RecentLaunchFiles(16)
+
+
 def _prepare(
     data: bytes, package_generation: Generation | None, fallback_generation: Generation
 ) -> _Prepared | ParseError:
     """Everything of a file that launch arguments do not change: parsed, walked, and its
     code's names extracted. A launch file that includers hand different arguments is
-    extracted once per set (``extract(arguments=...)``); only its launch part runs again.
-    Nothing here answers differently after it is built (the locator only fills its own
-    memos of where nodes are), so the memo is safe to share.
+    extracted once per set (``extract(arguments=...)``); only its launch part runs again,
+    from ``_LAUNCH_FILES``. Nothing here answers differently after it is built (the
+    locator only fills its own memos of where nodes are), so it is safe to share.
     """
     text = decode(data)
     if isinstance(text, ParseError):
