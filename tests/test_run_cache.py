@@ -429,7 +429,12 @@ def test_a_rerun_from_the_facts_reads_only_the_files_with_findings_or_suppressio
         '<launch>\n  <node name="helper" pkg="robot_base" type="helper"/>'
         "  <!-- roslint-names: ignore RN404 -->\n</launch>\n",
     )
-    cold = check()
+    # No name at all, but a suppression that silences nothing: RN002 needs its text.
+    write(
+        workspace, "src/robot_base/src/util.cpp", "int helper() { return 1; }  // NOLINT(RN202)\n"
+    )
+    cold = check("--extend-select", "RN002")
+    assert "RN002" in cold.codes()
     for runs in private_cache.glob("facts-v*/runs"):
         shutil.rmtree(runs)  # the next run starts from the facts
     read: list[str] = []
@@ -443,8 +448,8 @@ def test_a_rerun_from_the_facts_reads_only_the_files_with_findings_or_suppressio
 
     monkeypatch.setattr(run_inputs, "read_file", recording(run_inputs.read_file))
     monkeypatch.setattr(engine, "read_file", recording(engine.read_file))
-    again = check()
+    again = check("--extend-select", "RN002")
     assert not reused(again) and again.stdout == cold.stdout
-    # driver.cpp and base.launch have findings (their lines are shown), noted.launch a
-    # suppression; quiet.launch, CMakeLists.txt and package.xml are only their facts.
-    assert sorted(set(read)) == ["base.launch", "driver.cpp", "noted.launch"]
+    # driver.cpp and base.launch have findings (their lines are shown), noted.launch and
+    # util.cpp a suppression; quiet.launch, CMakeLists.txt and package.xml are only facts.
+    assert sorted(set(read)) == ["base.launch", "driver.cpp", "noted.launch", "util.cpp"]
