@@ -15,21 +15,17 @@ from dataclasses import dataclass, field
 
 import libcst as cst
 
-from roslint_names.extract.python.scope import AssignSite, ClassSite, Scope, ScopeKind
-
-
-@dataclass(frozen=True)
-class AttributeWrite:
-    value: cst.BaseExpression | None
-    scope: Scope  # where ``value`` is evaluated
+from roslint_names.extract.python.scope import AssignSite, Binding, ClassSite, Scope, ScopeKind
 
 
 @dataclass
 class InstanceAttributes:
     """Every write of every instance attribute of the module's classes."""
 
-    # (class family, attribute) -> writes; a family is the classes related by inheritance
-    writes: dict[tuple[int, str], list[AttributeWrite]] = field(default_factory=dict)
+    # (class family, attribute) -> its writes, as bindings: the value written (None for
+    # anything but a plain expression) and the scope it is evaluated in. A family is the
+    # classes related by inheritance.
+    writes: dict[tuple[int, str], list[Binding]] = field(default_factory=dict)
     families: dict[cst.ClassDef, int] = field(default_factory=dict)
     unknown: set[str] = field(default_factory=set)
 
@@ -45,23 +41,24 @@ class InstanceAttributes:
         for site in sites:
             for name, bindings in site.body.bindings.items():
                 for binding in bindings:
-                    found._add(site.node, name, AttributeWrite(binding.value, binding.scope))
+                    found._add(site.node, name, binding)
         for assignment in assignments:
             name = assignment.target.attr.value
             owner = instance_class(assignment.target.value, assignment.context.scope)
             if owner is None:
                 found.unknown.add(name)
             else:
-                found._add(owner, name, AttributeWrite(assignment.value, assignment.context.scope))
+                scope = assignment.context.scope
+                found._add(owner, name, Binding(scope, value=assignment.value))
         return found
 
-    def of_instance(self, owner: cst.ClassDef, name: str) -> list[AttributeWrite]:
+    def of_instance(self, owner: cst.ClassDef, name: str) -> list[Binding]:
         """The writes that may give ``self.name`` its value; empty when unknown."""
         if name in self.unknown:
             return []
         return self.writes.get((self.families.get(owner, id(owner)), name), [])
 
-    def _add(self, owner: cst.ClassDef, name: str, write: AttributeWrite) -> None:
+    def _add(self, owner: cst.ClassDef, name: str, write: Binding) -> None:
         key = (self.families.get(owner, id(owner)), name)
         self.writes.setdefault(key, []).append(write)
 

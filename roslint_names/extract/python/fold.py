@@ -4,12 +4,13 @@ from __future__ import annotations
 
 import ast
 import warnings
+from collections.abc import Sequence
 
 import libcst as cst
 
 from roslint_names.extract.launch.substitution import Value, without_surrogates
 from roslint_names.extract.python.attributes import InstanceAttributes, instance_class
-from roslint_names.extract.python.scope import Scope
+from roslint_names.extract.python.scope import Binding, Scope
 from roslint_names.extract.python.spans import Locator
 
 _MAX_DEPTH = 16  # constants defined through constants; deeper (or cyclic) is dynamic
@@ -50,26 +51,18 @@ class Folder:
             return self._operation(expr, scope, depth)
         if isinstance(expr, cst.Name):
             # Bound once, or several times to one value (``topic = "scan"`` on each branch)
-            bindings = scope.lookup(expr.value)
-            values = {
-                None if b.value is None else self.static(b.value, b.scope, depth + 1)
-                for b in bindings
-            }
-            return values.pop() if len(values) == 1 else None
+            return self._agreed(scope.lookup(expr.value), depth)
         if isinstance(expr, cst.Attribute) and self._attributes is not None:
-            return self._attribute(expr, scope, depth)
+            owner = instance_class(expr.value, scope)  # ``self.topic``
+            if owner is not None:
+                return self._agreed(self._attributes.of_instance(owner, expr.attr.value), depth)
         return None
 
-    def _attribute(self, expr: cst.Attribute, scope: Scope, depth: int) -> str | None:
-        """``self.topic``: the value every write of the attribute agrees on."""
-        assert self._attributes is not None
-        owner = instance_class(expr.value, scope)
-        if owner is None:
-            return None
-        writes = self._attributes.of_instance(owner, expr.attr.value)
+    def _agreed(self, bindings: Sequence[Binding], depth: int) -> str | None:
+        """The value every binding gives, when they all give the same static one."""
         values = {
-            None if write.value is None else self.static(write.value, write.scope, depth + 1)
-            for write in writes
+            None if binding.value is None else self.static(binding.value, binding.scope, depth + 1)
+            for binding in bindings
         }
         return values.pop() if len(values) == 1 else None
 
