@@ -211,6 +211,11 @@ def enclosing_functions(node: Node) -> list[Node]:
     return found
 
 
+def contains(outer: Node, inner: Node) -> bool:
+    """Whether ``inner`` lies within ``outer`` (or is it)."""
+    return outer.start_byte <= inner.start_byte and inner.end_byte <= outer.end_byte
+
+
 def enclosing(node: Node, types: frozenset[str]) -> Node | None:
     """The nearest ancestor of one of ``types`` (within ``MAX_CLIMB`` levels)."""
     return next((parent for parent in _ancestors(node) if parent.type in types), None)

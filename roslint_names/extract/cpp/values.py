@@ -21,6 +21,7 @@ from .source import (
     Source,
     arguments,
     compact,
+    contains,
     enclosing_functions,
     is_field,
     literal_value,
@@ -71,6 +72,7 @@ class Declaration:
     function: Node | None  # innermost enclosing function or lambda; None at file level
     constant: bool  # const (or a macro) and of a string type
     macro: bool
+    string: bool = True  # a variable or member of a string type, const or not (or a macro)
 
 
 class Declarations:
@@ -147,13 +149,13 @@ class Declarations:
         if parent.type == "field_declaration":
             value = parent.child_by_field_name("default_value")
         functions = enclosing_functions(parent)
-        constant = parent.type in ("declaration", "field_declaration") and _constant_string(
+        string = parent.type in ("declaration", "field_declaration") and _string_typed(
             self._source, parent, indirect
         )
+        constant = string and _const_qualified(self._source, parent)
         name = self._source.text(node)
-        return Declaration(
-            name, parent, value, functions[0] if functions else None, constant, False
-        )
+        function = functions[0] if functions else None
+        return Declaration(name, parent, value, function, constant, False, string)
 
 
 def _wraps_declarator(parent: Node, child: Node) -> bool:
@@ -164,12 +166,14 @@ def _wraps_declarator(parent: Node, child: Node) -> bool:
     return False
 
 
-def _constant_string(source: Source, declaration: Node, indirect: bool) -> bool:
+def _const_qualified(source: Source, declaration: Node) -> bool:
     qualifiers = {
         source.text(child) for child in declaration.children if child.type == "type_qualifier"
     }
-    if not qualifiers & {"const", "constexpr"}:
-        return False
+    return bool(qualifiers & {"const", "constexpr"})
+
+
+def _string_typed(source: Source, declaration: Node, indirect: bool) -> bool:
     kind = declaration.child_by_field_name("type")
     spelling = "" if kind is None else compact(source.text(kind))
     return spelling in _STRING_TYPES or (indirect and spelling in _CHARACTER_TYPES)
@@ -183,16 +187,6 @@ def _named_identifier(node: Node) -> Node | None:
             return None
         node = inner
     return node if node.type == "identifier" else None
-
-
-def _string_type(source: Source, declaration: Node) -> bool:
-    kind = declaration.child_by_field_name("type")
-    spelling = "" if kind is None else compact(source.text(kind))
-    return spelling in _STRING_TYPES or spelling in _CHARACTER_TYPES
-
-
-def _inside(outer: Node, inner: Node) -> bool:
-    return outer.start_byte <= inner.start_byte and inner.end_byte <= outer.end_byte
 
 
 def _is_mutation(node: Node) -> bool:
@@ -302,10 +296,7 @@ class Folder:
         if len(candidates) > 1 or any(candidate.macro for candidate in candidates):
             return None
         declared = candidates[0] if candidates else None
-        if declared is not None and (
-            declared.node.type not in ("declaration", "field_declaration")
-            or not _string_type(self._source, declared.node)
-        ):
+        if declared is not None and not declared.string:
             return None  # a parameter, or not a string
         function = declared.function if declared is not None else None
         if declared is None and not enclosing_functions(use):
@@ -313,10 +304,12 @@ class Folder:
         occurrences = self._source.occurrences(name)
         if declared is not None and function is not None:  # a local
             start = declared.node.start_byte
-            occurrences = [o for o in occurrences if _inside(function, o) and o.start_byte >= start]
+            occurrences = [
+                o for o in occurrences if contains(function, o) and o.start_byte >= start
+            ]
         else:  # a member or a global, where no function declares its own
             shadowing = [d.function for d in self.declarations.of(name) if d.function is not None]
-            occurrences = [o for o in occurrences if not any(_inside(f, o) for f in shadowing)]
+            occurrences = [o for o in occurrences if not any(contains(f, o) for f in shadowing)]
         writes = known_writes(self._source, occurrences)
         if writes is not None and function is None:
             writes = [w for w in writes if w.value is not None]  # `std::string topic_;`

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from tree_sitter import Node
 
 from .apis import ACTION_FUNCTIONS, ENDPOINTS, WAIT_FOR_MESSAGE
-from .source import Source, compact, is_field
+from .source import Source, compact, contains, is_field
 
 # Calls that take a name by value or const reference: the APIs the extractor reads, and
 # the string wrappers.
@@ -99,7 +99,7 @@ def reaching(writes: list[Write], use: Node, function: Node) -> Write | None:
         return None
     last = before[-1]
     statement = _statement(last.occurrence, function)
-    if statement is None or not _contains(statement.parent, use):
+    if statement is None or statement.parent is None or not contains(statement.parent, use):
         return None  # inside an `if` or a loop the use may not go through
     for write in writes:
         if write.occurrence.start_byte > use.start_byte and _shares_loop(write, use, function):
@@ -203,18 +203,10 @@ def _statement(node: Node, function: Node) -> Node | None:
     return None
 
 
-def _contains(outer: Node | None, inner: Node) -> bool:
-    return (
-        outer is not None
-        and outer.start_byte <= inner.start_byte
-        and inner.end_byte <= outer.end_byte
-    )
-
-
 def _shares_loop(write: Write, use: Node, function: Node) -> bool:
     node = use.parent
     while node is not None and node != function:
-        if node.type in _LOOPS and _contains(node, write.occurrence):
+        if node.type in _LOOPS and contains(node, write.occurrence):
             return True
         node = node.parent
     return False
