@@ -41,7 +41,7 @@ from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
 from .run_inputs import RunInputs
 from .suppress import Suppression, find_suppressions, is_our_code
-from .symbols import PackageConstants
+from .symbols import PackageConstants, uses_constants
 from .test_code import is_test_code
 from .types import parse_type
 from .workers import Dispatcher
@@ -273,7 +273,7 @@ class _FileChecks:
         types = typed_services(facts)
         self.service_types.update((facts.generation, spelling) for spelling in types)
         self._constants.add(facts)
-        symbols = any(use.symbol for use in facts.names)
+        symbols = uses_constants(facts)
         if index < self.reported:
             if types or symbols:
                 self._waiting.append((index, facts, data))

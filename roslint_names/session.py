@@ -45,7 +45,7 @@ from .generation import PackageGenerations, service_types
 from .model import Diagnostic, FileFacts, Generation
 from .registry import Registry
 from .suppress import Suppression
-from .symbols import PackageConstants
+from .symbols import PackageConstants, uses_constants
 from .workers import Dispatcher
 from .workspace.build import build
 from .workspace.graph import Graph
@@ -143,11 +143,10 @@ class Session:
         data = text.encode("utf-8")
         extract = extractor_for(language)
         facts = extract(display, data, self._packages.for_file(path), self._fallback)
-        if any(use.symbol for use in facts.names):
+        if uses_constants(facts):
             constants = PackageConstants()
             for other in self._facts.values():
                 constants.add(other)
-            constants.add(facts)
             facts = constants.resolve(facts, package_display(source, self._packages))
         self._facts[display] = facts
         if self._specialiser is not None:

@@ -17,6 +17,11 @@ from dataclasses import replace
 from roslint_names.model import FileFacts, NameUse
 
 
+def uses_constants(facts: FileFacts) -> bool:
+    """Whether a name of ``facts`` waits for another file's constant."""
+    return any(use.symbol for use in facts.names)
+
+
 class PackageConstants:
     """The constants and includes of every C++ file of a run that has either."""
 
@@ -34,7 +39,7 @@ class PackageConstants:
         ``package`` is the display directory of the file's package; without one nothing
         is resolved.
         """
-        if package is None or not any(use.symbol for use in facts.names):
+        if package is None or not uses_constants(facts):
             return facts
         constants = self._reachable_constants(facts, f"{package}/" if package else "")
         names = tuple(_resolved(use, constants) for use in facts.names)
