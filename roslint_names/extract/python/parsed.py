@@ -110,10 +110,6 @@ class _RecentLaunchFiles:
         with self._lock:
             self._found.clear()
 
-    def __contains__(self, key: object) -> bool:
-        with self._lock:
-            return key in self._found
-
     def put(self, key: _Key, prepared: _Prepared) -> None:
         with self._lock:
             self._found[key] = prepared
