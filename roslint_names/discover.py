@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import os
 import re
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from enum import Enum
 from pathlib import Path
@@ -71,7 +71,7 @@ def classify(path: Path) -> Language | None:
     return _decide(path, _by_name(path.name))
 
 
-def _decide(path: Path, by_name: Language | _Sniff | None) -> Language | None:
+def _decide(path: str | Path, by_name: Language | _Sniff | None) -> Language | None:
     if by_name is _Sniff.XML:
         return _sniff_xml(path)
     if by_name is _Sniff.YAML:
@@ -112,7 +112,7 @@ def _by_name(file_name: str) -> Language | _Sniff | None:
     return None
 
 
-def _sniff_xml(path: Path) -> Language | None:
+def _sniff_xml(path: str | Path) -> Language | None:
     from .extract.launch.xmlsafe import root_tag  # lxml is imported only when an .xml file is seen
 
     tag = root_tag(_head(path))
@@ -123,9 +123,9 @@ def _sniff_xml(path: Path) -> Language | None:
     return None
 
 
-def _head(path: Path, size: int = SNIFF_BYTES) -> bytes:
+def _head(path: str | Path, size: int = SNIFF_BYTES) -> bytes:
     try:
-        with path.open("rb") as stream:
+        with open(path, "rb") as stream:
             return stream.read(size)
     except OSError:
         return b""  # unreadable: classified by name only, and reported when read for real
@@ -137,12 +137,18 @@ def display_path(path: Path, cwd: Path) -> str:
     A file name that is not UTF-8 (``caf\\xe9.launch`` from a Latin-1 system) shows its
     undecodable bytes as ``\\xe9`` escapes: every report format must stay valid UTF-8.
     """
-    # String operations, not ``relative_to``: this runs for every file of the workspace.
-    text, prefix = os.fspath(path), os.path.join(os.fspath(cwd), "")
-    if text.startswith(prefix):
-        text = text[len(prefix) :]
+    return _displayed(os.fspath(path), os.path.join(os.fspath(cwd), ""))
+
+
+def _displayed(path: str, prefix: str) -> str:
+    """``display_path`` of a path string, ``prefix`` the current directory ending in a
+    separator. String operations, not ``relative_to``: this runs for every file of the
+    workspace."""
+    text = path[len(prefix) :] if path.startswith(prefix) else path
     if os.sep != "/":
         text = text.replace(os.sep, "/")
+    if text.isascii():  # nothing to escape: most paths
+        return text
     return os.fsencode(text).decode("utf-8", errors="backslashreplace")
 
 
@@ -154,19 +160,20 @@ class _IgnoreRules:
     """
 
     def __init__(self, exclude: Sequence[str], exclude_root: Path) -> None:
+        # Each spec with the directory its patterns are relative to, ending in a separator.
         self._specs: list[tuple[str, _Spec]] = []
         if exclude:
-            self._specs.append((os.fspath(exclude_root), _Spec(exclude)))
+            self._specs.append((_directory_prefix(os.fspath(exclude_root)), _Spec(exclude)))
         self._exclude_count = len(self._specs)
 
     def excluded_by_config(self, path: Path, is_dir: bool) -> bool:
         return any(
-            _matches(spec, base, os.fspath(path), is_dir)
-            for base, spec in self._specs[: self._exclude_count]
+            _matches(spec, prefix, os.fspath(path), is_dir)
+            for prefix, spec in self._specs[: self._exclude_count]
         )
 
     def ignored(self, path: str, is_dir: bool) -> bool:
-        return any(_matches(spec, base, path, is_dir) for base, spec in self._specs)
+        return any(_matches(spec, prefix, path, is_dir) for prefix, spec in self._specs)
 
     def enter(self, directory: str | Path) -> int:
         """Read ``directory/.gitignore``; returns how many rules to pop on leaving it."""
@@ -177,7 +184,7 @@ class _IgnoreRules:
                 lines = f.read().splitlines()
         except OSError:
             return 0
-        self._specs.append((os.fspath(directory), _Spec(lines)))
+        self._specs.append((_directory_prefix(os.fspath(directory)), _Spec(lines)))
         return 1
 
     def leave(self, count: int) -> None:
@@ -215,8 +222,11 @@ class _Spec:
 _NAMED_GROUP = re.compile(r"\(\?P<\w+>")
 
 
-def _matches(spec: _Spec, base: str, path: str, is_dir: bool) -> bool:
-    prefix = base.rstrip(os.sep) + os.sep
+def _directory_prefix(directory: str) -> str:
+    return directory.rstrip(os.sep) + os.sep
+
+
+def _matches(spec: _Spec, prefix: str, path: str, is_dir: bool) -> bool:
     if not path.startswith(prefix):
         return False
     relative = path[len(prefix) :].replace(os.sep, "/")
@@ -229,17 +239,16 @@ def discover(
     """Every lintable file under ``paths``, sorted by display path, each once."""
     rules = _IgnoreRules(exclude, exclude_root)
     found: dict[str, SourceFile] = {}
+    prefix = os.path.join(os.fspath(cwd), "")
     for given in paths:
         absolute = (cwd / given).absolute()
         if not os.path.lexists(absolute):
             raise DiscoveryError(f"{given}: no such file or directory")
         if absolute.is_dir():
-            walked: Iterator[tuple[str, Language | _Sniff]]
-            walked = _walk_named(absolute, rules, _by_name)
-            for path, by_name in walked:
-                _add(found, Path(path), by_name, cwd)
+            for path, by_name in _walk_named(absolute, rules, _by_name):
+                _add(found, path, by_name, prefix)
         elif not rules.excluded_by_config(absolute, is_dir=False):
-            _add(found, absolute, _by_name(absolute.name), cwd)
+            _add(found, os.fspath(absolute), _by_name(absolute.name), prefix)
     return sorted(found.values(), key=lambda source: source.display)
 
 
@@ -303,26 +312,34 @@ def _repository_ancestors(directory: Path) -> list[Path]:
 
 
 def _add(
-    found: dict[str, SourceFile], path: Path, by_name: Language | _Sniff | None, cwd: Path
+    found: dict[str, SourceFile], path: str, by_name: Language | _Sniff | None, prefix: str
 ) -> None:
+    """Add the file at ``path`` if it is lintable, shown relative to ``prefix``."""
     language = _decide(path, by_name)
     if language is not None:  # package.xml too: the workspace model needs every package
-        found[os.fspath(path)] = SourceFile(path, display_path(path, cwd), language)
+        found[path] = SourceFile(Path(path), _displayed(path, prefix), language)
 
 
 def _walk_named(
     directory: Path, rules: _IgnoreRules, select: Callable[[str], _T | None]
-) -> Iterator[tuple[str, _T]]:
+) -> list[tuple[str, _T]]:
     """The walk of a directory named by the user, under the ``.gitignore`` files of its
     repository above it, as git applies them."""
     pushed = sum(rules.enter(ancestor) for ancestor in _repository_ancestors(directory))
-    yield from _walk(os.fspath(directory), rules, select)
+    found: list[tuple[str, _T]] = []
+    _walk(os.fspath(directory), rules, select, found)
     rules.leave(pushed)
+    return found
 
 
 def _walk(
-    top: str, rules: _IgnoreRules, select: Callable[[str], _T | None]
-) -> Iterator[tuple[str, _T]]:
+    top: str,
+    rules: _IgnoreRules,
+    select: Callable[[str], _T | None],
+    found: list[tuple[str, _T]],
+) -> None:
+    """Append the selected files under ``top`` to ``found``, in name order. A list, not a
+    generator: every file found would pass up through one generator per level."""
     try:
         entries = sorted(os.scandir(top), key=lambda entry: entry.name)
     except OSError:
@@ -337,13 +354,13 @@ def _walk(
         if entry.is_dir(follow_symlinks=False):
             if entry.name in SKIPPED_DIRECTORIES or rules.ignored(entry.path, is_dir=True):
                 continue
-            yield from _walk(entry.path, rules, select)
+            _walk(entry.path, rules, select, found)
         elif (
             (by_name := select(entry.name)) is not None
             and _is_file(entry)
             and not rules.ignored(entry.path, is_dir=False)
         ):
-            yield entry.path, by_name
+            found.append((entry.path, by_name))
     rules.leave(pushed)
 
 

@@ -160,8 +160,9 @@ def _text_bytes(text: str) -> bytes:
 def _common_directory(sources: Sequence[SourceFile]) -> Path:
     """The deepest directory holding every source: what the run's digests are kept for."""
     # ``os.path.commonpath`` splits every path: too slow for every file of a re-run. The
-    # common string prefix of the directories, each ending in a separator, cut after its
-    # last separator, is the same directory ("a/b-c/" and "a/b/" share "a/", not "a/b").
-    directories = [os.path.join(os.path.dirname(source.path), "") for source in sources]
-    prefix = os.path.commonprefix(directories)  # noqa: RUF071 - by character, on purpose
+    # common string prefix of the paths, cut after its last separator, is the same
+    # directory ("a/b-c/x" and "a/b/y" share "a/", not "a/b"): a file name holds no
+    # separator, so what ends in one and starts every path starts every directory.
+    paths = [os.fspath(source.path) for source in sources]
+    prefix = os.path.commonprefix(paths)  # noqa: RUF071 - by character, on purpose
     return Path(prefix[: prefix.rfind(os.sep) + 1] or os.sep)
