@@ -21,6 +21,7 @@ the values the include hands over, to get its nodes as this includer starts them
 
 from __future__ import annotations
 
+import functools
 from abc import ABC, abstractmethod
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -110,26 +111,39 @@ class Entity(Protocol):
 
 
 class XmlEntity:
-    """An lxml element seen as an ``Entity``."""
+    """An lxml element seen as an ``Entity``.
+
+    Its attributes and children are read once and kept: a walk asks for the same ones
+    many times (``if``, ``unless``, ``name``...), and the entities of a file extracted
+    under several includers' arguments are shared by those extractions (``_parsed``).
+    """
 
     def __init__(self, document: xmlsafe.XmlDocument, element: etree._Element) -> None:
         self._document = document
         self._element = element
         self._kind = etree.QName(element).localname
+        self._attributes: dict[str, Located | None] = {}
+        self._children: list[Entity] | None = None
 
     @property
     def kind(self) -> str:
         return self._kind
 
     def get(self, name: str) -> Located | None:
-        return self._document.attribute(self._element, name)
+        try:
+            return self._attributes[name]
+        except KeyError:
+            found = self._attributes[name] = self._document.attribute(self._element, name)
+            return found
 
     def children(self) -> list[Entity]:
-        return [
-            XmlEntity(self._document, child)
-            for child in self._element
-            if isinstance(child.tag, str)
-        ]
+        if self._children is None:
+            self._children = [
+                XmlEntity(self._document, child)
+                for child in self._element
+                if isinstance(child.tag, str)
+            ]
+        return self._children
 
     def nested(self, name: str) -> list[Entity]:
         return [child for child in self.children() if child.kind == name]
@@ -829,6 +843,31 @@ def too_deep(path: str, language: Language, generation: Generation) -> FileFacts
     return FileFacts(path, language, generation, parse_errors=(error,))
 
 
+@dataclass(frozen=True)
+class _Parsed:
+    """What a launch XML file is whatever arguments it is handed: its entities (which
+    keep the parsed document) and the generation its own markers point to."""
+
+    root: XmlEntity
+    evidence: Generation | None
+
+
+def _parse(data: bytes) -> _Parsed | ParseError:
+    document = xmlsafe.parse(data)
+    if isinstance(document, ParseError):
+        return document
+    return _Parsed(XmlEntity(document, document.root), evidence.launch_xml_evidence(document.root))
+
+
+# A file included with arguments is extracted once per argument set, its sets spread over
+# the depths of the launch trees: parsed once and kept for the next set. Nothing in
+# ``_Parsed`` changes after it is built but the entities' own memos of what they read
+# (the same answers), so extractions (in the language server's threads too) share it.
+# Bounded for the language server, which extracts for as long as it runs: 128 of the
+# launch files of the 28-repository workspace hold about 10 MB.
+_parsed_again = functools.lru_cache(maxsize=128)(_parse)
+
+
 def extract(
     path: str,
     data: bytes,
@@ -844,16 +883,15 @@ def extract(
     that includer starts them.
     """
     default = evidence.extension_generation(path)
-    document = xmlsafe.parse(data)
-    if isinstance(document, ParseError):
+    parsed = _parsed_again(data) if arguments else _parse(data)
+    if isinstance(parsed, ParseError):
         generation = evidence.decide(package_generation, None, default, fallback_generation)
-        return FileFacts(path, Language.LAUNCH_XML, generation, parse_errors=(document,))
-    found = evidence.launch_xml_evidence(document.root)
+        return FileFacts(path, Language.LAUNCH_XML, generation, parse_errors=(parsed,))
     # The file's own markers, when they agree, decide both syntax and grammar: only
     # roslaunch runs a file with <node type=> or $(arg), even one left in a ROS 2 package
     # (moveit2's generate_state_database.launch), and only ros2 launch one with exec=.
-    generation = evidence.decide(found, package_generation, default, fallback_generation)
-    root = XmlEntity(document, document.root)
+    generation = evidence.decide(parsed.evidence, package_generation, default, fallback_generation)
+    root = parsed.root
     if root.kind != "launch":
         return FileFacts(path, Language.LAUNCH_XML, generation)
     walker: Ros1Launch | Ros2Launch
