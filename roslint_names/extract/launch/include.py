@@ -13,6 +13,7 @@ Parser-free (no lxml), like ``launch_common``, so that the Python launch walker 
 from __future__ import annotations
 
 import posixpath
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -146,17 +147,15 @@ class _Unfolder:
     def unfold(self, raw: str, depth: int) -> str | None:
         out: list[str] = []
         i = 0
-        while i < len(raw):
-            if not raw.startswith("$(", i):
-                out.append(raw[i])
-                i += 1
-                continue
-            end = closing_bracket(raw, i + 2)
-            replaced = None if end is None else self.replace(raw[i + 2 : end], depth)
+        while (found := raw.find("$(", i)) >= 0:  # text up to the next "$(" stays as it is
+            out.append(raw[i:found])
+            end = closing_bracket(raw, found + 2)
+            replaced = None if end is None else self.replace(raw[found + 2 : end], depth)
             if end is None or replaced is None:
                 return None
             out.append(replaced)
             i = end + 1
+        out.append(raw[i:])
         return "".join(out)
 
     def replace(self, body: str, depth: int) -> str | None:
@@ -189,4 +188,7 @@ def _unquote(text: str) -> str:
 
 
 def _spaced(text: str) -> bool:
-    return any(char.isspace() for char in text)
+    return _WHITESPACE.search(text) is not None
+
+
+_WHITESPACE = re.compile(r"\s")  # the characters str.isspace() accepts, every one

@@ -15,6 +15,7 @@ names that never exist at run time.
 
 from __future__ import annotations
 
+import functools
 import re
 from bisect import bisect_right
 from collections.abc import Callable, Iterable, Mapping, Sequence
@@ -135,6 +136,7 @@ PROPERTY = "property"  # ${x} in XACRO
 
 _LOOKUP_COMMAND = {Dialect.ROS1: "arg", Dialect.ROS2: "var", Dialect.XACRO: "arg"}
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+_WHITESPACE = re.compile(r"\s")  # the characters str.isspace() accepts, every one
 
 
 @dataclass(frozen=True)
@@ -165,7 +167,9 @@ def substitute(raw: str, dialect: Dialect, lookup: Lookup) -> Value:
 def _expand(raw: str, dialect: Dialect, lookup: Lookup) -> str:
     out: list[str] = []
     i = 0
-    while i < len(raw):
+    while (dollar := raw.find("$", i)) >= 0:  # text up to the next '$' is kept as it is
+        out.append(raw[i:dollar])
+        i = dollar
         if dialect is Dialect.XACRO and raw.startswith(("$${", "$$("), i):
             out.append(raw[i + 1 : i + 3])  # XACRO's escape for a literal ${ or $(
             i += 3
@@ -178,8 +182,9 @@ def _expand(raw: str, dialect: Dialect, lookup: Lookup) -> str:
             out.append(_property(raw[i + 2 : end].strip(), lookup))
             i = end + 1
         else:
-            out.append(raw[i])
+            out.append("$")
             i += 1
+    out.append(raw[i:])
     return "".join(out)
 
 
@@ -194,8 +199,8 @@ def closing_bracket(raw: str, start: int, opening: str = "(", closing: str = ")"
     """Index of the bracket closing the one just before ``start``; quotes hide brackets.
     None when it is never closed."""
     depth, quote = 1, ""
-    for i in range(start, len(raw)):
-        char = raw[i]
+    for match in _bracket_or_quote(opening, closing).finditer(raw, start):
+        char, i = match.group(), match.start()
         if quote:
             quote = "" if char == quote else quote
         elif char in "'\"":
@@ -209,12 +214,18 @@ def closing_bracket(raw: str, start: int, opening: str = "(", closing: str = ")"
     return None
 
 
+@functools.cache
+def _bracket_or_quote(opening: str, closing: str) -> re.Pattern[str]:
+    """The characters ``closing_bracket`` acts on: every other one leaves it as it is."""
+    return re.compile(f"[{re.escape(opening + closing)}'\"]")
+
+
 def _command(body: str, dialect: Dialect, lookup: Lookup) -> str:
     command, _, argument = body.strip().partition(" ")
     if command != _LOOKUP_COMMAND[dialect]:
         raise _NotStaticError  # find, env, optenv, anon, eval, dirname, command, find-pkg-share...
     name = _unquote(_expand(argument.strip(), dialect, lookup).strip())
-    if not name or any(char.isspace() for char in name):
+    if not name or _WHITESPACE.search(name):
         raise _NotStaticError
     value = lookup(ARG, name)
     if value is None or value.dynamic:
