@@ -13,11 +13,17 @@ Parser-free (no lxml), like ``launch_common``, so that the Python launch walker 
 from __future__ import annotations
 
 import posixpath
-import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from roslint_names.extract.launch.substitution import ARG, Dialect, Lookup, Value, closing_bracket
+from roslint_names.extract.launch.substitution import (
+    ARG,
+    WHITESPACE,
+    Dialect,
+    Lookup,
+    Value,
+    closing_bracket,
+)
 from roslint_names.model import LaunchArguments
 
 
@@ -188,7 +194,4 @@ def _unquote(text: str) -> str:
 
 
 def _spaced(text: str) -> bool:
-    return _WHITESPACE.search(text) is not None
-
-
-_WHITESPACE = re.compile(r"\s")  # the characters str.isspace() accepts, every one
+    return WHITESPACE.search(text) is not None

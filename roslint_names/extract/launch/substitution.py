@@ -136,7 +136,7 @@ PROPERTY = "property"  # ${x} in XACRO
 
 _LOOKUP_COMMAND = {Dialect.ROS1: "arg", Dialect.ROS2: "var", Dialect.XACRO: "arg"}
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
-_WHITESPACE = re.compile(r"\s")  # the characters str.isspace() accepts, every one
+WHITESPACE = re.compile(r"\s")  # the characters str.isspace() accepts, every one
 
 
 @dataclass(frozen=True)
@@ -225,7 +225,7 @@ def _command(body: str, dialect: Dialect, lookup: Lookup) -> str:
     if command != _LOOKUP_COMMAND[dialect]:
         raise _NotStaticError  # find, env, optenv, anon, eval, dirname, command, find-pkg-share...
     name = _unquote(_expand(argument.strip(), dialect, lookup).strip())
-    if not name or _WHITESPACE.search(name):
+    if not name or WHITESPACE.search(name):
         raise _NotStaticError
     value = lookup(ARG, name)
     if value is None or value.dynamic:
