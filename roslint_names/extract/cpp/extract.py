@@ -45,7 +45,7 @@ from .objects import (
     member_constructions,
 )
 from .sites import Sites
-from .source import Source, trie_regex, word_pattern
+from .source import Source, word_pattern
 from .types import Types
 from .values import Declarations, Folder
 
@@ -84,21 +84,57 @@ MARKERS: dict[str, bytes | None] = {
     "message_filters": None,
     "Subscriber": rb"\s*<",  # message_filters::Subscriber<T>
 }
-_MARKER_WORDS = re.compile(trie_regex(MARKERS).encode("ascii"))
-_MARKER_CONTEXT = {
-    word.encode("ascii"): None if follows is None else re.compile(follows)
-    for word, follows in MARKERS.items()
-}
+# Most C++ files hold no marker, and a regular expression of alternatives scans them
+# slowly (re tries the alternatives at nearly every offset): bytes.find is some twenty
+# times faster. So each marker is looked for on its own, and only in files holding a part
+# it shares with others; few files hold any part.
+_MARKER_PARTS = (
+    b"Node",
+    b"ubscribe",
+    b"::init",
+    b"create_",
+    b"advertise",
+    b"aram",
+    b"ervice",
+    b"ransform",
+    b"Action",
+    b"frame_id",
+    b"Stamped",
+    b"message_filters",
+)
+_Marker = tuple[bytes, "re.Pattern[bytes] | None"]  # its word, what must follow it
+
+
+def _markers_by_part(markers: dict[str, bytes | None]) -> dict[bytes, list[_Marker]]:
+    by_part: dict[bytes, list[_Marker]] = {part: [] for part in _MARKER_PARTS}
+    for word, follows in markers.items():
+        encoded = word.encode("ascii")
+        part = next((part for part in _MARKER_PARTS if part in encoded), None)
+        if part is None:
+            raise ValueError(f"the marker {word} holds none of _MARKER_PARTS")
+        by_part[part].append((encoded, None if follows is None else re.compile(follows)))
+    return by_part
+
+
+_MARKERS_BY_PART = _markers_by_part(MARKERS)
 
 
 def has_ros_marker(data: bytes) -> bool:
-    """Whether the bytes hold a marker; one regex scan for the words, then the context."""
-    position = 0
-    while (match := _MARKER_WORDS.search(data, position)) is not None:
-        context = _MARKER_CONTEXT[match.group()]
-        if context is None or context.match(data, match.end()):
+    """Whether the bytes hold a marker followed by what must follow it."""
+    return any(
+        part in data and any(_follows(data, word, context) for word, context in markers)
+        for part, markers in _MARKERS_BY_PART.items()
+    )
+
+
+def _follows(data: bytes, word: bytes, context: re.Pattern[bytes] | None) -> bool:
+    if context is None:
+        return word in data
+    position = data.find(word)
+    while position >= 0:
+        if context.match(data, position + len(word)):
             return True
-        position = match.start() + 1  # a longer marker may start inside this one
+        position = data.find(word, position + 1)
     return False
 
 
