@@ -62,9 +62,7 @@ def _end(source: Source, node: Node) -> Position:
 
 def _macro_arguments(source: Source) -> list[tuple[Position, Position]]:
     found: list[tuple[Position, Position]] = []
-    if not any(marker in source.data for marker in _MARKERS):
-        return found  # nearly every file: the regex is not run at all
-    for _, word in source.words(_EXPECTING):
+    for word in source.words_holding(_MARKERS, _EXPECTING):
         call = word.parent
         if call is None or call.type != "call_expression" or field(call, "function") != word:
             continue
