@@ -9,6 +9,7 @@ constant of an included header of the same package its value.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 
 from .source import macro_literal
 
@@ -20,11 +21,14 @@ _CONSTANT = re.compile(
     rb"[ \t]*(?:(?:static|inline|extern)[ \t]+)*(?:const|constexpr)\b([^;{}()=\n]*?)"
     rb"\b([A-Za-z_]\w*)[ \t]*(?:\[[ \t]*\])?\s*=\s*((?:" + _LITERAL + rb"\s*)+);"
 )
+# Directives, found from their `#`: a pattern starting with (?m)^[ \t]* is tried at every
+# offset, one starting with `#` only at each `#`; those with more than blanks before them
+# on their line are dropped (`_directives`).
 _DEFINE = re.compile(
-    rb"(?m)^[ \t]*#[ \t]*define[ \t]+([A-Za-z_]\w*)[ \t]+((?:" + _LITERAL + rb"[ \t]*)+)$"
+    rb"(?m)#[ \t]*define[ \t]+([A-Za-z_]\w*)[ \t]+((?:" + _LITERAL + rb"[ \t]*)+)$"
 )
 _STRING_TYPE = re.compile(rb"\b(?:string|string_view|char)\b")
-_INCLUDE = re.compile(rb'(?m)^[ \t]*#[ \t]*include[ \t]*[<"]([^>"\n]+)[>"]')
+_INCLUDE = re.compile(rb'#[ \t]*include[ \t]*[<"]([^>"\n]+)[>"]')
 
 
 def is_header(path: str) -> bool:
@@ -49,14 +53,24 @@ def header_constants(data: bytes) -> tuple[tuple[str, str], ...]:
                 if match is not None and _STRING_TYPE.search(match.group(1)):
                     found += _constant(match.group(2), match.group(3))
     if b"define" in data:
-        for match in _DEFINE.finditer(data):
+        for match in _directives(_DEFINE, data):
             found += _constant(match.group(1), match.group(2))
     return tuple(sorted(set(found)))
 
 
 def included_paths(data: bytes) -> tuple[str, ...]:
     """The paths of the file's ``#include`` lines, in order."""
-    return tuple(path.decode("utf-8", "replace").strip() for path in _INCLUDE.findall(data))
+    return tuple(
+        match.group(1).decode("utf-8", "replace").strip() for match in _directives(_INCLUDE, data)
+    )
+
+
+def _directives(pattern: re.Pattern[bytes], data: bytes) -> Iterator[re.Match[bytes]]:
+    """The matches of ``pattern`` (one line each) with only blanks before them on their line."""
+    for match in pattern.finditer(data):
+        line = data.rfind(b"\n", 0, match.start()) + 1
+        if not data[line : match.start()].strip(b" \t"):
+            yield match
 
 
 def _constant(name: bytes, literals: bytes) -> list[tuple[str, str]]:
