@@ -12,8 +12,11 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 
-# A quoted relative, private (``~``, ``~/``) or absolute name of at most nine tokens.
-_NAME = r"""["']((?:~/?|/)?[A-Za-z_][A-Za-z0-9_]{0,63}(?:/[A-Za-z0-9_]{1,64}){0,8}/?)["']"""
+# A quoted relative, private (``~``, ``~/``) or absolute name of at most nine tokens, its
+# quotes either `"` or `'`: searched for with every `'` made a `"` first (no quote can be
+# part of a name, so the matches are the same), as re finds a literal first character many
+# times faster than one of a set.
+_NAME = r'"((?:~/?|/)?[A-Za-z_][A-Za-z0-9_]{0,63}(?:/[A-Za-z0-9_]{1,64}){0,8}/?)"'
 _QUOTED = re.compile(_NAME)
 _QUOTED_BYTES = re.compile(_NAME.encode("ascii"))
 
@@ -21,12 +24,13 @@ _QUOTED_BYTES = re.compile(_NAME.encode("ascii"))
 def name_literals(text: str | bytes) -> tuple[str, ...]:
     """Every distinct name-shaped string literal of ``text`` (UTF-8 if bytes), sorted."""
     if isinstance(text, bytes):
-        return tuple(sorted({found.decode("ascii") for found in _QUOTED_BYTES.findall(text)}))
-    return tuple(sorted(set(_QUOTED.findall(text))))
+        found = _QUOTED_BYTES.findall(text.replace(b"'", b'"'))
+        return tuple(sorted({name.decode("ascii") for name in found}))
+    return tuple(sorted(set(_QUOTED.findall(text.replace("'", '"')))))
 
 
 def name_literal_spans(text: str) -> Iterator[tuple[int, int]]:
     """Where each name-shaped string literal's name is in ``text``: (start, end) offsets,
     quotes excluded; every occurrence, in order."""
-    for found in _QUOTED.finditer(text):
+    for found in _QUOTED.finditer(text.replace("'", '"')):
         yield found.span(1)
