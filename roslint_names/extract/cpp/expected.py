@@ -62,7 +62,7 @@ def _end(source: Source, node: Node) -> Position:
 
 def _macro_arguments(source: Source) -> list[tuple[Position, Position]]:
     found: list[tuple[Position, Position]] = []
-    for word in source.words_holding(_MARKERS, _EXPECTING):
+    for _, word in source.words(_EXPECTING, _MARKERS):
         call = word.parent
         if call is None or call.type != "call_expression" or field(call, "function") != word:
             continue

@@ -88,19 +88,9 @@ MARKERS: dict[str, bytes | None] = {
 # slowly (re tries the alternatives at nearly every offset): bytes.find is some twenty
 # times faster. So each marker is looked for on its own, and only in files holding a part
 # it shares with others; few files hold any part.
-_MARKER_PARTS = (
-    b"Node",
-    b"ubscribe",
-    b"::init",
-    b"create_",
-    b"advertise",
-    b"aram",
-    b"ervice",
-    b"ransform",
-    b"Action",
-    b"frame_id",
-    b"Stamped",
-    b"message_filters",
+_MARKER_PARTS = tuple(
+    b"Node ubscribe ::init create_ advertise aram ervice ransform Action frame_id Stamped"
+    b" message_filters".split()
 )
 _Marker = tuple[bytes, "re.Pattern[bytes] | None"]  # its word, what must follow it
 
@@ -184,7 +174,7 @@ def extract(
 
 def facts_of(source: Source) -> tuple[list[NameUse], list[RuntimeEvent]]:
     """Every name and runtime event of a parsed file."""
-    anchors = list(source.words(_ANCHORS))  # one scan of the file for every site's word
+    anchors = source.words(_ANCHORS, _ANCHOR_PARTS)  # every site's word, in order
     folder = Folder(source, Declarations(source))
     classes = Classes(source)
     constructions = _constructions(source, classes, anchors)
@@ -226,7 +216,16 @@ def _present(event: RuntimeEvent | None) -> list[RuntimeEvent]:
     return [] if event is None else [event]
 
 
-_ANCHORS = word_pattern(CALL_WORDS | FRAME_FIELDS | INIT_WORDS | CONSTRUCTED_TYPES)
+_ANCHOR_WORDS = CALL_WORDS | FRAME_FIELDS | INIT_WORDS | CONSTRUCTED_TYPES
+_ANCHORS = word_pattern(_ANCHOR_WORDS)
+# What Source.words finds the anchor words by: each holds one of these parts, which few
+# other identifiers hold.
+_ANCHOR_PARTS = tuple(
+    b"Node aram ervice create_ Action Stamped Transform transform ubscribe advertise frame_id"
+    b" init ForMessage _for_message".split()
+)
+if unfound := [w for w in _ANCHOR_WORDS if not any(p in w.encode() for p in _ANCHOR_PARTS)]:
+    raise ValueError(f"anchor words holding none of _ANCHOR_PARTS: {unfound}")
 
 
 # ---------------------------------------------------------------------------------------
