@@ -74,7 +74,7 @@ class Source:
 
     def words(self, pattern: re.Pattern[bytes], parts: Iterable[bytes]) -> list[tuple[str, Node]]:
         """Each identifier ``pattern`` matches whole, in source order, with its node; every
-        identifier it can match holds one of ``parts``.
+        identifier it can match holds one of ``parts`` (identifier characters only).
 
         Matches inside comments, strings and macro bodies have no identifier node of their
         own and are dropped. The identifiers are found from their parts by bytes.find, in a
