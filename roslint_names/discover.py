@@ -245,7 +245,9 @@ def discover(
         if not os.path.lexists(absolute):
             raise DiscoveryError(f"{given}: no such file or directory")
         if absolute.is_dir():
-            for path, by_name in _walk_named(absolute, rules, _by_name):
+            walked: list[tuple[str, Language | _Sniff]]
+            walked = _walk_named(absolute, rules, _by_name)
+            for path, by_name in walked:
                 _add(found, path, by_name, prefix)
         elif not rules.excluded_by_config(absolute, is_dir=False):
             _add(found, os.fspath(absolute), _by_name(absolute.name), prefix)
