@@ -40,6 +40,7 @@ from roslint_names.extract.launch.python_paths import IncludePaths
 from roslint_names.extract.launch.python_values import (
     Action,
     ActionCall,
+    LaunchCalls,
     LaunchScope,
     LaunchValues,
     Written,
@@ -78,10 +79,12 @@ class LaunchExtractor(LaunchValues):
         locator: Locator,
         file_name: str = "",
         arguments: LaunchArguments = (),
+        calls: LaunchCalls | None = None,
     ) -> None:
         """``arguments``: launch configurations set before the description runs (what an
-        including file hands over); ``file_name`` is what ``__file__`` ends with."""
-        super().__init__(walk, locator)
+        including file hands over); ``file_name`` is what ``__file__`` ends with;
+        ``calls``: ``LaunchCalls.of(walk)``, when already at hand."""
+        super().__init__(walk, locator, calls)
         self.paths = IncludePaths(self, file_name)
         self.arguments = passed_values(arguments)
         self.names: list[NameUse] = []
@@ -104,9 +107,8 @@ class LaunchExtractor(LaunchValues):
         # description, a helper's alternatives) are not one launch that starts them all,
         # so their nodes are as undecided as a condition's (never RN402 twins).
         self.undecided_depth += 1
-        for site in self.walk.calls:
-            kind = self.action_kind(site.call, site.context.scope)
-            if kind is not None and id(site.call) not in self._reached:
+        for site, kind in self.calls.actions:
+            if id(site.call) not in self._reached:
                 self.found_actions = True
                 unknown = LaunchScope(None, variables=dict(self.arguments))
                 self.visit(ActionCall(kind, site.call, site.context), unknown)

@@ -22,7 +22,7 @@ import libcst as cst
 from roslint_names.extract.launch.substitution import Value
 from roslint_names.extract.python.apis import arg, argument
 from roslint_names.extract.python.fold import Folder, string_literal
-from roslint_names.extract.python.scope import Context, Scope, argument_context
+from roslint_names.extract.python.scope import CallSite, Context, Scope, argument_context
 from roslint_names.extract.python.spans import Locator, Where
 from roslint_names.extract.python.walk import Walk
 from roslint_names.model import Remap
@@ -66,6 +66,7 @@ _ACTIONS: dict[tuple[str, str], Action] = {
     ("launch", "DeclareLaunchArgument"): Action.DECLARE,
     ("launch", "SetLaunchConfiguration"): Action.LET,
 }
+_LAUNCH_PACKAGES = frozenset(package for package, _ in _ACTIONS)
 _CONFIGURATION = ("launch", "LaunchConfiguration")
 _TEXT = ("launch", "TextSubstitution")
 # Methods that add actions to a list or a description, in statement order.
@@ -144,25 +145,50 @@ class LaunchScope:
         return LaunchScope(self.namespace, list(self.remaps), dict(self.variables), self.anchored)
 
 
+@dataclass(frozen=True)
+class LaunchCalls:
+    """What of a module's calls no launch argument changes, found once per module and
+    shared by its extractions under each includer's arguments: the calls that build an
+    action, ``add_action``-like calls per variable, ``DeclareLaunchArgument`` defaults.
+
+    An action or a declaration is a class of the launch packages, named through the
+    file's imports: a module importing neither has none, and its calls are not asked.
+    """
+
+    actions: list[tuple[CallSite, Action]]
+    adders: dict[tuple[int, str], list[Written]]
+    declarations: dict[str, list[Written | None]]
+
+    @classmethod
+    def of(cls, walk: Walk) -> LaunchCalls:
+        if not walk.packages & _LAUNCH_PACKAGES:
+            return cls([], _adder_calls(walk), {})
+        actions = [
+            (site, kind)
+            for site in walk.calls
+            if (kind := action_kind(site.call, site.context.scope)) is not None
+        ]
+        return cls(actions, _adder_calls(walk), _declarations(walk))
+
+
 class LaunchValues:
     """Evaluates the static part of a module's launch actions and values."""
 
-    def __init__(self, walk: Walk, locator: Locator) -> None:
+    def __init__(self, walk: Walk, locator: Locator, calls: LaunchCalls | None = None) -> None:
+        """``calls``: ``LaunchCalls.of(walk)``, when already at hand."""
         self.walk = walk
         self.locator = locator
         self.folder = Folder(locator)
-        self.adders = _adder_calls(walk)
-        self._declarations = _declarations(walk)
+        self.calls = LaunchCalls.of(walk) if calls is None else calls
+        self.adders = self.calls.adders
+        self._declarations = self.calls.declarations
         self._resolving: set[str] = set()
         self.frames: Frames = ()  # of the action being evaluated
 
     # -- evaluating lists of actions ----------------------------------------------------
 
     def action_kind(self, call: cst.Call, scope: Scope) -> Action | None:
-        for name in scope.qualified(call.func):
-            if class_key(name) in _ACTIONS:
-                return _ACTIONS[class_key(name)]
-        return None
+        return action_kind(call, scope)
 
     def actions(self, located: Written, depth: int = 0) -> list[ActionCall]:
         """The actions an expression evaluates to, in order; [] when unknown."""
@@ -440,6 +466,13 @@ def string_parts(located: Written) -> list[Written | str] | None:
         else:
             parts.append(Written(part.expression, located.context))
     return parts
+
+
+def action_kind(call: cst.Call, scope: Scope) -> Action | None:
+    for name in scope.qualified(call.func):
+        if class_key(name) in _ACTIONS:
+            return _ACTIONS[class_key(name)]
+    return None
 
 
 def class_key(name: str) -> tuple[str, str]:

@@ -10,6 +10,7 @@ from collections import OrderedDict
 
 from roslint_names.extract import evidence
 from roslint_names.extract.launch.python_launch import LaunchExtractor
+from roslint_names.extract.launch.python_values import LaunchCalls
 from roslint_names.extract.literals import name_literals
 from roslint_names.extract.python.code import CodeExtractor
 from roslint_names.extract.python.source import decode, parse
@@ -60,9 +61,9 @@ def extract_parsed(
     if isinstance(prepared, ParseError):
         generation = package_generation or fallback_generation
         return FileFacts(path, default_language, generation, parse_errors=(prepared,))
-    walk, locator, code, generation, text = prepared
+    walk, locator, code, launch_calls, generation, text = prepared
     file_name = path.replace("\\", "/").rpartition("/")[2]
-    launch = LaunchExtractor(walk, locator, file_name, arguments)
+    launch = LaunchExtractor(walk, locator, file_name, arguments, launch_calls)
     launch.run()
     defines_root = any(function.name.value in _ROOTS for function in walk.functions)
     launch_module = launch.found_actions and not (walk.packages & _NODE_PACKAGES)
@@ -84,7 +85,7 @@ def extract_parsed(
     )
 
 
-_Prepared = tuple[Walk, Locator, CodeExtractor, Generation, str]
+_Prepared = tuple[Walk, Locator, CodeExtractor, LaunchCalls, Generation, str]
 _Key = tuple[bytes, Generation | None, Generation]
 
 
@@ -124,11 +125,12 @@ _LAUNCH_FILES = _RecentLaunchFiles(16)
 def _prepare(
     data: bytes, package_generation: Generation | None, fallback_generation: Generation
 ) -> _Prepared | ParseError:
-    """Everything of a file that launch arguments do not change: parsed, walked, and its
-    code's names extracted. A launch file that includers hand different arguments is
-    extracted once per set (``extract(arguments=...)``); only its launch part runs again,
-    from ``_LAUNCH_FILES``. Nothing here answers differently after it is built (the
-    locator only fills its own memos of where nodes are), so it is safe to share.
+    """Everything of a file that launch arguments do not change: parsed, walked, its
+    code's names extracted and its launch calls found. A launch file that includers hand
+    different arguments is extracted once per set (``extract(arguments=...)``); only its
+    launch part runs again, from ``_LAUNCH_FILES``. Nothing here answers differently
+    after it is built (the locator and the scopes only fill their own memos), so it is
+    safe to share.
     """
     text = decode(data)
     if isinstance(text, ParseError):
@@ -146,4 +148,4 @@ def _prepare(
     locator = Locator(module, text, walk.anchor_indents)
     code = CodeExtractor(walk, locator, generation)
     code.run()
-    return walk, locator, code, generation, text
+    return walk, locator, code, LaunchCalls.of(walk), generation, text
