@@ -33,18 +33,22 @@ from roslint_names.reading import WIDE_ENCODINGS, bom_encoding
 _ROS_MODULE = (
     rb"(?:rospy|rclpy|actionlib\w*|tf2?(?:_\w+)?|launch_ros|message_filters|\w+_(?:msgs|srvs))"
 )
-_PREFILTER = re.compile(
-    rb"^(?:\xef\xbb\xbf)?[ \t]*from[ \t]+" + _ROS_MODULE + rb"\b"
-    rb"|^(?:\xef\xbb\xbf)?[ \t]*import[ \t]+[^\n#]*?\b" + _ROS_MODULE + rb"\b"
-    rb"|\bgenerate_(?:launch|test)_description\b",
+# Two searches, not one regex of three alternatives: the description's, which may start
+# anywhere and not only at a line, made that one three times slower over real files.
+_ROS_IMPORT = re.compile(
+    rb"^(?:\xef\xbb\xbf)?[ \t]*(?:from[ \t]+" + _ROS_MODULE + rb"\b"
+    rb"|import[ \t]+[^\n#]*?\b" + _ROS_MODULE + rb"\b)",
     re.MULTILINE,
 )
+_DESCRIPTION = re.compile(rb"\bgenerate_(?:launch|test)_description\b")
 _LAUNCH_SUFFIXES = (".launch.py", "_launch.py")
 
 
 def may_hold_names(data: bytes) -> bool:
     """The prefilter: False when the file cannot hold a ROS name we extract."""
-    return _PREFILTER.search(data) is not None
+    return _ROS_IMPORT.search(data) is not None or (
+        b"_description" in data and _DESCRIPTION.search(data) is not None
+    )
 
 
 def is_launch_path(path: str) -> bool:
