@@ -5,6 +5,7 @@ from __future__ import annotations
 import ast
 import warnings
 from collections.abc import Sequence
+from typing import cast
 
 import libcst as cst
 
@@ -39,19 +40,22 @@ class Folder:
     def static(self, expr: cst.BaseExpression, scope: Scope, depth: int = 0) -> str | None:
         if depth > _MAX_DEPTH:
             return None
-        if isinstance(expr, cst.SimpleString):
-            return string_literal(expr)
-        if isinstance(expr, cst.ConcatenatedString):
+        kind = type(expr)  # not isinstance: libcst's node classes are ABCs, slow to ask
+        if kind is cst.SimpleString:
+            return string_literal(cast(cst.SimpleString, expr))
+        if kind is cst.ConcatenatedString:
+            concatenated = cast(cst.ConcatenatedString, expr)
             return _join(
-                self.static(expr.left, scope, depth), self.static(expr.right, scope, depth)
+                self.static(concatenated.left, scope, depth),
+                self.static(concatenated.right, scope, depth),
             )
-        if isinstance(expr, cst.FormattedString):
-            return self._formatted(expr, scope, depth)
-        if isinstance(expr, cst.BinaryOperation):
-            return self._operation(expr, scope, depth)
-        if isinstance(expr, cst.Name):
+        if kind is cst.FormattedString:
+            return self._formatted(cast(cst.FormattedString, expr), scope, depth)
+        if kind is cst.BinaryOperation:
+            return self._operation(cast(cst.BinaryOperation, expr), scope, depth)
+        if kind is cst.Name:
             # Bound once, or several times to one value (``topic = "scan"`` on each branch)
-            return self._agreed(scope.lookup(expr.value), depth)
+            return self._agreed(scope.lookup(cast(cst.Name, expr).value), depth)
         if isinstance(expr, cst.Attribute) and self._attributes is not None:
             owner = instance_class(expr.value, scope)  # ``self.topic``
             if owner is not None:
@@ -107,6 +111,9 @@ class Folder:
 
 def string_literal(node: cst.SimpleString) -> str | None:
     """The literal's value; None for bytes, or escapes Python rejects (libcst does not)."""
+    plain = _plain_literal(node.value)
+    if plain is not None:
+        return without_surrogates(plain)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # "invalid escape sequence '\\d'": not ours to say
@@ -114,6 +121,16 @@ def string_literal(node: cst.SimpleString) -> str | None:
     except (SyntaxError, ValueError, MemoryError, RecursionError):
         return None
     return without_surrogates(value) if isinstance(value, str) else None
+
+
+def _plain_literal(literal: str) -> str | None:
+    """The value of a literal without prefix, escape or carriage return (most of them):
+    what is between its quotes, as Python reads it, without asking Python's compiler.
+    None for any other literal."""
+    if literal[0] not in "'\"" or "\\" in literal or "\r" in literal:
+        return None  # a prefix (bytes, raw...), an escape, or a newline Python translates
+    quote = 3 if literal.startswith(literal[0] * 3) else 1
+    return literal[quote:-quote]
 
 
 def _join(left: str | None, right: str | None) -> str | None:
