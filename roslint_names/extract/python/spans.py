@@ -10,7 +10,9 @@ not is placed inside its nearest enclosing anchor (argument, call, statement) th
 from __future__ import annotations
 
 from collections.abc import Sequence
+from contextlib import AbstractContextManager, nullcontext
 from dataclasses import dataclass
+from itertools import accumulate
 
 import libcst as cst
 
@@ -68,7 +70,7 @@ class Locator:
         self._source = Source(text)
         self._offsets: dict[int, int | None] = {}
         self._codes: dict[tuple[int, tuple[str, ...]], str] = {}
-        self._starts: dict[int, dict[int, int]] = {}
+        self._starts: dict[int, _Starts] = {}
         self._positions: dict[cst.CSTNode, Span] | None = None
         self._offsets[id(module)] = 0
         # The module and its statements are written at no indentation: whatever the
@@ -110,14 +112,14 @@ class Locator:
         self._offsets[id(node)] = found
         return found
 
-    def _starts_in(self, anchor: cst.CSTNode, indents: tuple[str, ...]) -> dict[int, int]:
+    def _starts_in(self, anchor: cst.CSTNode, indents: tuple[str, ...]) -> _Starts:
         """Where each node inside ``anchor`` starts in its code, and that code (an anchor
         is placed by its code, then the node inside it by these), from one codegen."""
         starts = self._starts.get(id(anchor))
         if starts is None:
             own = self._indents(anchor, indents)
             recorded = _recorded(self._module, _bare(anchor), own)
-            starts = {}
+            starts = _Starts([], {})
             if recorded is not None:
                 self._codes[(id(anchor), own)], starts = recorded
             self._starts[id(anchor)] = starts
@@ -136,7 +138,7 @@ class Locator:
             return None if first is None else first - indentation
         parens = _parens(node)
         # A parenthesised node starts at its '('; its span starts after the last one.
-        return starts.get(id(parens[-1]) if parens else id(node), None)
+        return starts.get(id(parens[-1]) if parens else id(node))
 
     def _indents(self, node: cst.CSTNode, indents: tuple[str, ...]) -> tuple[str, ...]:
         if id(node) in self._unindented:
@@ -188,34 +190,61 @@ def _code(module: cst.Module, node: cst.CSTNode, indents: tuple[str, ...]) -> st
     """
     if isinstance(node, cst.SimpleString):
         return node.value
-    if _CodegenState is None or not indents:
-        return module.code_for_node(node)
-    state = _CodegenState(module.default_indent, module.default_newline, None, list(indents))
+    if _QuickState is None:
+        return module.code_for_node(node)  # no indentation: then only by PositionProvider
+    state = _QuickState(module.default_indent, module.default_newline, None, list(indents))
     node._codegen(state)
     return "".join(state.tokens)
 
 
+class _Starts:
+    """Where each node inside an anchor starts in its code (for a '(', where it ends: see
+    ``Locator._start_in``). Noted by token while the code is written, and turned into a
+    character offset only when asked: most of them never are."""
+
+    def __init__(self, tokens: Sequence[str], by_token: dict[int, int]) -> None:
+        self._by_token = by_token
+        self._offsets = list(accumulate(map(len, tokens), initial=0))
+
+    def get(self, node_id: int) -> int | None:
+        index = self._by_token.get(node_id)
+        return None if index is None else self._offsets[index]
+
+
 def _recorded(
     module: cst.Module, node: cst.CSTNode, indents: tuple[str, ...]
-) -> tuple[str, dict[int, int]] | None:
-    """``node``'s code, and the offsets into it where each node inside it starts (for a
-    '(', where it ends: see ``Locator._start_in``); None without libcst's codegen state."""
+) -> tuple[str, _Starts] | None:
+    """``node``'s code, and where each node inside it starts; None without libcst's
+    codegen state."""
     if _RecordingState is None:
         return None
     state = _RecordingState(module.default_indent, module.default_newline, None, list(indents))
     node._codegen(state)
-    return "".join(state.tokens), state.offsets
+    return "".join(state.tokens), _Starts(state.tokens, state.starts)
 
 
-if _CodegenState is None:  # pragma: no cover - a libcst that moved its internals
-    _RecordingState = None
-else:
+if _CodegenState is not None:
+    _NO_POSITION = nullcontext()
 
-    class _RecordingState(_CodegenState):  # type: ignore[no-redef]
+    class _QuickState(_CodegenState):
+        """libcst's codegen state, without its generator-based context manager for
+        syntactic positions, which only yields when no position provider is set (as
+        here): a quarter of the codegen's time, for nothing."""
+
+        def record_syntactic_position(  # type: ignore[override]  # any context manager
+            self,
+            node: cst.CSTNode,
+            *,
+            start_node: cst.CSTNode | None = None,
+            end_node: cst.CSTNode | None = None,
+        ) -> AbstractContextManager[None]:
+            return _NO_POSITION
+
+    class _RecordingState(_QuickState):
         """libcst's codegen state, noting where each node's code starts.
 
-        ``offsets`` maps a node's id to where its code starts; a '(' to where it ends,
-        which is where the span of the node it parenthesises starts.
+        ``starts`` maps a node's id to the index of its first token; a '(' to the index
+        after its last, which is where the span of the node it parenthesises starts.
         """
 
         def __init__(
@@ -226,20 +255,14 @@ else:
             indent_tokens: list[str],
         ) -> None:
             super().__init__(default_indent, default_newline, provider, indent_tokens, [])
-            self.length = 0
-            self.offsets: dict[int, int] = {}
-
-        def add_token(self, value: str) -> None:
-            self.tokens.append(value)
-            self.length += len(value)
-
-        def add_indent_tokens(self) -> None:
-            for token in self.indent_tokens:
-                self.add_token(token)
+            self.starts: dict[int, int] = {}
 
         def before_codegen(self, node: cst.CSTNode) -> None:
-            self.offsets[id(node)] = self.length
+            self.starts[id(node)] = len(self.tokens)
 
         def after_codegen(self, node: cst.CSTNode) -> None:
             if type(node) is cst.LeftParen:  # not isinstance: an ABC, slow to ask
-                self.offsets[id(node)] = self.length
+                self.starts[id(node)] = len(self.tokens)
+else:  # pragma: no cover - a libcst that moved its internals
+    _QuickState = None  # type: ignore[assignment,misc]
+    _RecordingState = None  # type: ignore[assignment,misc]
