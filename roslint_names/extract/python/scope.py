@@ -11,6 +11,7 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass, field
 from enum import Enum
+from typing import cast
 
 import libcst as cst
 
@@ -61,6 +62,14 @@ class Scope:
     bindings: dict[str, list[Binding]] = field(default_factory=dict)
     star_imports: list[str] = field(default_factory=list)
     globals: set[str] = field(default_factory=set)
+    # Set on the module scope once the walk has bound every name: from then on no
+    # binding changes, and ``qualified`` (asked for most calls, several times) keeps its
+    # answers, by the expression's id (with the expression, so that an id is never
+    # mistaken for another's).
+    complete: bool = field(default=False, init=False, repr=False)
+    _qualified: dict[int, tuple[cst.BaseExpression, tuple[str, ...]]] = field(
+        default_factory=dict, init=False, repr=False
+    )
 
     @property
     def module(self) -> Scope:
@@ -88,24 +97,35 @@ class Scope:
             scope = scope.parent
         return []
 
-    def qualified(self, expr: cst.BaseExpression) -> list[str]:
+    def qualified(self, expr: cst.BaseExpression) -> tuple[str, ...]:
         """What a dotted expression names through the imports: ``rp.Publisher`` ->
         ``rospy.Publisher``. Several candidates only through ``from x import *``."""
+        kept = self._qualified.get(id(expr))
+        if kept is not None and kept[0] is expr:
+            return kept[1]
+        found = self._qualify(expr)
+        if self.module.complete:
+            self._qualified[id(expr)] = (expr, found)
+        return found
+
+    def _qualify(self, expr: cst.BaseExpression) -> tuple[str, ...]:
         # By type, not isinstance: libcst's node classes are ABCs, slow to isinstance.
         kind = type(expr)
         if kind is cst.Attribute:
-            assert isinstance(expr, cst.Attribute)
-            return [f"{base}.{expr.attr.value}" for base in self.qualified(expr.value)]
+            attribute = cast(cst.Attribute, expr)
+            return tuple(
+                f"{base}.{attribute.attr.value}" for base in self.qualified(attribute.value)
+            )
         if kind is not cst.Name:
-            return []
-        assert isinstance(expr, cst.Name)
-        bindings = self.lookup(expr.value)
+            return ()
+        name = cast(cst.Name, expr).value
+        bindings = self.lookup(name)
         imported = {binding.imported for binding in bindings if binding.imported}
         if len(imported) == 1:
-            return list(imported)  # try/except fallbacks rebinding it do not count
+            return tuple(imported)  # try/except fallbacks rebinding it do not count
         if bindings:
-            return []
-        return [f"{module}.{expr.value}" for module in self.module.star_imports]
+            return ()
+        return tuple(f"{module}.{name}" for module in self.module.star_imports)
 
     def constant(self, name: str) -> Binding | None:
         """The single plain assignment of ``name``, when it has exactly one binding."""

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Iterator, Sequence
+from typing import cast
 
 import libcst as cst
 
@@ -153,13 +154,15 @@ class Walk:
         self.packages: set[str] = set()  # top-level packages imported anywhere
         self._order = 0
         self._top: tuple[cst.CSTNode, ...] = ()  # the module-level statement being walked
-        # The functions around the statement being walked, innermost first (below the top
-        # statement), and the indentation each is written at: anchors for spans between
-        # its line and the whole top-level class.
-        self._functions: tuple[cst.FunctionDef, ...] = ()
+        # The compound statements around the statement being walked, innermost first
+        # (below the top statement), and the indentation each is written at: anchors for
+        # spans between its line and the whole top-level statement, so that a line whose
+        # code repeats is placed by regenerating its ``if`` or ``for``, not its class.
+        self._compounds: tuple[cst.BaseCompoundStatement, ...] = ()
         self.anchor_indents: dict[int, tuple[str, ...]] = {}
         self._keys: dict[str, int] = {}
         self.statements(module.body, Context(self.root))
+        self.root.complete = True
 
     # -- statements ---------------------------------------------------------------------
 
@@ -170,17 +173,33 @@ class Walk:
             if module_level:
                 # Spans are found inside the top-level statement when nothing nearer helps.
                 self._top = (statement,)
-            here = context.anchored((*self._functions, *self._top))
-            if isinstance(statement, cst.SimpleStatementLine):
-                inner = here.inside(statement)
+            if type(statement) is cst.SimpleStatementLine:
+                inner = context.anchored((statement, *self._compounds, *self._top))
                 for small in statement.body:
                     self.small(small, inner)
-            elif isinstance(statement, cst.FunctionDef):
-                self.function(statement, here)
-            elif isinstance(statement, cst.ClassDef):
-                self.klass(statement, here)
+            elif module_level:
+                self.compound_statement(statement, context.anchored(self._top))
             else:
-                self.compound(statement, here)
+                self.nested(statement, context)
+
+    def nested(self, statement: cst.CSTNode, context: Context) -> None:
+        """A compound statement below the top one: the innermost anchor of what it holds,
+        its header included, written at the indentation of the block it is in."""
+        self.anchor_indents[id(statement)] = context.indents
+        compound = cast(cst.BaseCompoundStatement, statement)  # what is not a line
+        outer, self._compounds = self._compounds, (compound, *self._compounds)
+        try:
+            self.compound_statement(statement, context.anchored((*self._compounds, *self._top)))
+        finally:
+            self._compounds = outer
+
+    def compound_statement(self, statement: cst.CSTNode, context: Context) -> None:
+        if type(statement) is cst.FunctionDef:
+            self.function(statement, context)
+        elif type(statement) is cst.ClassDef:
+            self.klass(statement, context)
+        else:
+            self.compound(statement, context)
 
     def block(self, suite: cst.BaseSuite, context: Context) -> None:
         if isinstance(suite, cst.IndentedBlock):
@@ -236,16 +255,7 @@ class Walk:
         inner = Scope(ScopeKind.FUNCTION, name, scope, self._key(name), owner, node)
         self.function_scopes[node] = inner
         _bind_parameters(node.params, inner)
-        body = dataclasses.replace(context, scope=inner, expected_failure=False)
-        if self._top and self._top[0] is node:  # the top statement: an anchor already
-            self.block(node.body, body)
-            return
-        self.anchor_indents[id(node)] = context.indents
-        outer, self._functions = self._functions, (node, *self._functions)
-        try:
-            self.block(node.body, body)
-        finally:
-            self._functions = outer
+        self.block(node.body, dataclasses.replace(context, scope=inner, expected_failure=False))
 
     def klass(self, node: cst.ClassDef, context: Context) -> None:
         scope = context.scope
@@ -268,35 +278,36 @@ class Walk:
     # -- small statements ---------------------------------------------------------------
 
     def small(self, node: cst.BaseSmallStatement, context: Context) -> None:
+        # By type, not isinstance (an ABC's, slow): the walk asks for every statement.
         if type(node) is cst.Expr:  # most lines: a call; skip the checks below
             self.expression(node, context)
             return
         scope = context.scope
-        if isinstance(node, cst.Assign):
+        if type(node) is cst.Assign:
             self.expression(node.value, context)
             for target in node.targets:
                 self.store(target.target, node.value, context)
-        elif isinstance(node, cst.AnnAssign):
+        elif type(node) is cst.AnnAssign:
             if node.value is not None:
                 self.expression(node.value, context)
                 self.store(node.target, node.value, context)
-        elif isinstance(node, cst.AugAssign):
+        elif type(node) is cst.AugAssign:
             self.expression(node.value, context)
             self.bind_target(node.target, None, scope)
-        elif isinstance(node, cst.Import):
+        elif type(node) is cst.Import:
             for alias in node.names:
                 self.bind_import(alias, None, scope)
-        elif isinstance(node, cst.ImportFrom):
+        elif type(node) is cst.ImportFrom:
             self.import_from(node, scope)
-        elif isinstance(node, cst.Global):
+        elif type(node) is cst.Global:
             scope.globals.update(item.name.value for item in node.names)
-        elif isinstance(node, cst.Nonlocal):
+        elif type(node) is cst.Nonlocal:
             outer = scope.parent or scope
             for item in node.names:
                 outer.bind(item.name.value, Binding(outer))  # rebound from inside: not constant
-        elif isinstance(node, cst.Del):
+        elif type(node) is cst.Del:
             self.bind_target(node.target, None, scope)
-        elif isinstance(node, cst.Return) and node.value is not None:
+        elif type(node) is cst.Return and node.value is not None:
             self.expression(node.value, context)
             if scope.function is not None and scope.kind is ScopeKind.FUNCTION:
                 self.returns.setdefault(scope.function, []).append((node.value, context))
@@ -360,38 +371,50 @@ class Walk:
     # -- expressions --------------------------------------------------------------------
 
     def expression(self, node: cst.CSTNode, context: Context) -> None:
+        # By type and ``cast``, not isinstance: libcst's node classes are ABCs, slow to ask,
+        # and this is the walk's hot spot (leaves are skipped before the call).
         kind = type(node)
-        if kind in _LEAVES:
-            return  # most nodes: nothing below them (a fast path, the walk's hot spot)
-        if kind is cst.Attribute:
-            assert isinstance(node, cst.Attribute)
-            self.expression(node.value, context)
+        if kind is cst.Arg or kind is cst.Element:  # their keyword or comma holds nothing
+            value = cast(cst.Arg | cst.Element, node).value
+            if type(value) not in _LEAVES:
+                self.expression(value, context)
+        elif kind in _LEAVES:
+            return
+        elif kind is cst.Attribute:
+            self.expression(cast(cst.Attribute, node).value, context)
         elif kind is cst.Call:
-            assert isinstance(node, cst.Call)
-            self.calls.append(CallSite(node, context, self._order))
-            within = context.inside(node)
-            if not context.expected_failure and _probes_failure(node):
-                within = dataclasses.replace(within, expected_failure=True)
-            for child in _children(node):
-                self.expression(child, within)
+            self.call(cast(cst.Call, node), context)
         elif kind is cst.Lambda:
-            assert isinstance(node, cst.Lambda)
-            self.expression(node.params, context)
-            outer = context.scope
-            key = self._key(f"{outer.name}.<lambda>")
-            scope = Scope(ScopeKind.FUNCTION, "<lambda>", outer, key)
-            _bind_parameters(node.params, scope)
-            self.expression(node.body, dataclasses.replace(context, scope=scope))
+            self.lambda_(cast(cst.Lambda, node), context)
         elif kind in _COMPREHENSIONS:
-            assert isinstance(node, cst.ListComp | cst.SetComp | cst.GeneratorExp | cst.DictComp)
-            self.comprehension(node, context)
+            comprehension = cast(cst.ListComp | cst.SetComp | cst.GeneratorExp | cst.DictComp, node)
+            self.comprehension(comprehension, context)
         elif kind is cst.NamedExpr:
-            assert isinstance(node, cst.NamedExpr)
-            self.expression(node.value, context)
-            self.bind_target(node.target, node.value, _function_scope(context.scope), context)
+            named = cast(cst.NamedExpr, node)
+            self.expression(named.value, context)
+            self.bind_target(named.target, named.value, _function_scope(context.scope), context)
         else:
             for child in _children(node):
-                self.expression(child, context)
+                if type(child) not in _LEAVES:
+                    self.expression(child, context)
+
+    def call(self, node: cst.Call, context: Context) -> None:
+        self.calls.append(CallSite(node, context, self._order))
+        within = context.inside(node)
+        if not context.expected_failure and _probes_failure(node):
+            within = dataclasses.replace(within, expected_failure=True)
+        self.expression(node.func, within)
+        for argument in node.args:  # an argument's keyword is a name: nothing below it
+            if type(argument.value) not in _LEAVES:
+                self.expression(argument.value, within)
+
+    def lambda_(self, node: cst.Lambda, context: Context) -> None:
+        self.expression(node.params, context)
+        outer = context.scope
+        key = self._key(f"{outer.name}.<lambda>")
+        scope = Scope(ScopeKind.FUNCTION, "<lambda>", outer, key)
+        _bind_parameters(node.params, scope)
+        self.expression(node.body, dataclasses.replace(context, scope=scope))
 
     def comprehension(
         self, node: cst.ListComp | cst.SetComp | cst.GeneratorExp | cst.DictComp, context: Context
@@ -448,7 +471,7 @@ def _probes_failure(call: cst.Call) -> bool:
     """``self.assertFalse(rospy.has_param('non-existent'))``: the call must come out false,
     a probe of what is refused or absent, not a use of the name."""
     func = call.func
-    return isinstance(func, cst.Attribute) and func.attr.value in _PROBES
+    return type(func) is cst.Attribute and func.attr.value in _PROBES
 
 
 def _test_catches(statement: cst.Try, scope: Scope) -> bool:
