@@ -19,6 +19,7 @@ call) still get their names checked, in an unknown namespace.
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Iterator, Sequence
 
 import libcst as cst
@@ -85,7 +86,9 @@ class LaunchExtractor(LaunchValues):
         including file hands over); ``file_name`` is what ``__file__`` ends with;
         ``calls``: ``LaunchCalls.of(walk)``, when already at hand."""
         super().__init__(walk, locator, calls)
-        self.paths = IncludePaths(self, file_name)
+        # A proxy, not the extractor itself: the two would make a cycle, which keeps the
+        # file's tree alive until the cycle collector walks it (see ``Walk.release``).
+        self.paths = IncludePaths(weakref.proxy(self), file_name)
         self.arguments = passed_values(arguments)
         self.names: list[NameUse] = []
         self.nodes: list[LaunchNode] = []

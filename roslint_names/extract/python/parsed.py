@@ -73,6 +73,8 @@ def extract_parsed(
     if language is Language.LAUNCH_PYTHON:
         _LAUNCH_FILES.put(key, prepared)
     names = sorted(code.names + launch.names, key=lambda use: (use.span.line, use.span.column))
+    if language is not Language.LAUNCH_PYTHON:
+        walk.release()  # extracted once: its tree can go now (see ``Walk.release``)
     return FileFacts(
         path=path,
         language=language,

@@ -143,6 +143,7 @@ class Walk:
     def __init__(self, module: cst.Module) -> None:
         self.module = module
         self.root = Scope(ScopeKind.MODULE, "", None, "")
+        self.scopes: list[Scope] = [self.root]  # every scope of the module (``release``)
         self.calls: list[CallSite] = []
         self.assignments: list[AssignSite] = []
         # Attributes written other than by ``x.attr = value`` (``+=``, tuple targets, del)
@@ -163,6 +164,14 @@ class Walk:
         self._keys: dict[str, int] = {}
         self.statements(module.body, Context(self.root))
         self.root.complete = True
+
+    def release(self) -> None:
+        """Break the cycles of the walk (a scope holds its bindings, each binding its
+        scope) once nothing asks it any more. Reference counting then frees the file's
+        tree as soon as its extraction is done; left to the cycle collector, the whole
+        tree would be walked first (a seventh of a cold run's time on realws)."""
+        for scope in self.scopes:
+            scope.bindings.clear()
 
     # -- statements ---------------------------------------------------------------------
 
@@ -253,6 +262,7 @@ class Walk:
         owner = _owner(scope)
         name = f"{scope.name}.{node.name.value}" if scope.name else node.name.value
         inner = Scope(ScopeKind.FUNCTION, name, scope, self._key(name), owner, node)
+        self.scopes.append(inner)
         self.function_scopes[node] = inner
         _bind_parameters(node.params, inner)
         self.block(node.body, dataclasses.replace(context, scope=inner, expected_failure=False))
@@ -267,6 +277,7 @@ class Walk:
         name = f"{scope.name}.{node.name.value}" if scope.name else node.name.value
         # A class body runs where the class statement runs: same RN301 key.
         body = Scope(ScopeKind.CLASS, name, scope, scope.key, node)
+        self.scopes.append(body)
         self.classes.append(ClassSite(node, scope, body))
         self.block(node.body, dataclasses.replace(context, scope=body))
 
@@ -413,6 +424,7 @@ class Walk:
         outer = context.scope
         key = self._key(f"{outer.name}.<lambda>")
         scope = Scope(ScopeKind.FUNCTION, "<lambda>", outer, key)
+        self.scopes.append(scope)
         _bind_parameters(node.params, scope)
         self.expression(node.body, dataclasses.replace(context, scope=scope))
 
@@ -424,6 +436,7 @@ class Walk:
         scope = Scope(
             ScopeKind.COMPREHENSION, outer.name, outer, outer.key, outer.owner, outer.function
         )
+        self.scopes.append(scope)
         inner = dataclasses.replace(context, scope=scope)
         clause: cst.CompFor | None = node.for_in
         while clause is not None:
