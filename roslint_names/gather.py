@@ -21,6 +21,7 @@ from dataclasses import dataclass, field, replace
 from types import ModuleType
 from typing import TYPE_CHECKING, Protocol
 
+from .collection import no_collections
 from .discover import SourceFile
 from .generation import PackageGenerations
 from .model import FileFacts, Generation, Language, LaunchArguments, ParseError, Span
@@ -185,11 +186,12 @@ def extract_batch(cache: FactsCache | None, batch: list[_Item]) -> list[tuple[in
     results: list[tuple[int, FileFacts]] = []
     for job, data, key in batch:
         generations = (job.package_generation, job.fallback_generation)
-        if job.arguments:
-            specialise: _ExtractWithArguments = _extractor_module(job.language).extract
-            facts = specialise(job.display, data, *generations, arguments=job.arguments)
-        else:
-            facts = extractor_for(job.language)(job.display, data, *generations)
+        with no_collections():  # a file's parse tree is freed when it is done
+            if job.arguments:
+                specialise: _ExtractWithArguments = _extractor_module(job.language).extract
+                facts = specialise(job.display, data, *generations, arguments=job.arguments)
+            else:
+                facts = extractor_for(job.language)(job.display, data, *generations)
         if may_hold_suppression(data):
             facts = replace(facts, suppression_marker=True)
         if cache is not None and key is not None:

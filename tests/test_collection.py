@@ -9,8 +9,8 @@ from typing import Any
 
 import pytest
 
-from roslint_names import engine
-from roslint_names.collection import THRESHOLDS
+from roslint_names import engine, gather
+from roslint_names.collection import THRESHOLDS, no_collections
 from roslint_names.workers import Dispatcher
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -45,3 +45,34 @@ def test_worker_processes_collect_rarely() -> None:
         results += dispatcher.finish()
         assert dispatcher.workers == 2
     assert results == [THRESHOLDS] * 4
+
+
+def test_files_are_extracted_without_collections_and_the_collector_comes_back(
+    run_cli: Any, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """No collection while a file is extracted (its tree goes by reference counting);
+    the collector is on again after each file, and left off when it was off."""
+    shutil.copytree(EXAMPLES / "src" / "turtle_bringup", tmp_path / "ws")
+    during: list[bool] = []
+    real = gather.extractor_for
+
+    def observing(language: Any) -> Any:
+        extract = real(language)
+
+        def extracting(*arguments: Any) -> Any:
+            during.append(gc.isenabled())
+            return extract(*arguments)
+
+        return extracting
+
+    monkeypatch.setattr(gather, "extractor_for", observing)
+    run_cli(["check", "--no-cache", "--jobs", "1", "."], tmp_path / "ws")
+    assert during and not any(during)
+    assert gc.isenabled()
+    gc.disable()
+    try:
+        with no_collections():
+            pass
+        assert not gc.isenabled()
+    finally:
+        gc.enable()
