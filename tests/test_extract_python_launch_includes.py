@@ -6,12 +6,13 @@ turtlebot3_gazebo (ROBOTIS-GIT); short sources pin one form or one semantic each
 
 from __future__ import annotations
 
+import gc
 from pathlib import Path
 
 import pytest
 
 from roslint_names.extract.python.extract import extract
-from roslint_names.model import FileFacts, Generation, LaunchInclude, Span
+from roslint_names.model import FileFacts, Generation, LaunchInclude, ParseError, Span
 
 FIXTURES = Path(__file__).parent / "fixtures" / "python"
 HEADER = """import os
@@ -634,5 +635,44 @@ def test_only_launch_files_keep_their_tree_for_extractions_under_arguments() -> 
     python_extract.extract_parsed("talker.py", node, None, Generation.ROS2, False)
     launch(SPECIALISED)
     kept = python_extract._LAUNCH_FILES
-    assert kept.get(((HEADER + SPECIALISED).encode(), Generation.ROS2, Generation.ROS2))
-    assert kept.get((node, None, Generation.ROS2)) is None
+    assert ((HEADER + SPECIALISED).encode(), Generation.ROS2, Generation.ROS2) in kept
+    assert (node, None, Generation.ROS2) not in kept
+
+
+def test_launch_trees_pushed_out_of_the_memo_leave_no_cycle_for_the_collector() -> None:
+    """The memo keeps the last 16 launch files' trees; one pushed out must be freed by
+    reference counting, not left as cyclic garbage for the collector to walk (a third of
+    a cold run's collection work on realws)."""
+    from roslint_names.extract.python import parsed as python_extract
+
+    python_extract._LAUNCH_FILES.clear()
+    launch(SPECIALISED)  # imports and module-level caches stay out of the count
+    gc.collect()
+    gc.disable()
+    try:
+        for copy in range(20):  # more than the memo keeps
+            launch(f"{SPECIALISED}\n# copy {copy}\n")
+        python_extract._LAUNCH_FILES.clear()
+        assert gc.collect() == 0
+    finally:
+        gc.enable()
+
+
+def test_a_launch_tree_being_extracted_is_not_released_when_pushed_out() -> None:
+    """The language server extracts in two threads: a tree another extraction pushes out
+    of the memo stays whole until the extraction using it ends."""
+    from roslint_names.extract.python import parsed as python_extract
+
+    memo = python_extract._LAUNCH_FILES
+    key = ((HEADER + SPECIALISED).encode(), Generation.ROS2, Generation.ROS2)
+    memo.clear()
+    launch(SPECIALISED)
+    prepared = memo.begin(key)  # one thread starts on the kept tree...
+    assert not isinstance(prepared, ParseError)
+    walk = prepared[0]
+    for copy in range(20):  # ...while the other pushes it out
+        launch(f"{SPECIALISED}\n# copy {copy}\n")
+    assert key not in memo
+    assert walk.root.bindings  # still whole for the first thread
+    memo.end(key, prepared, keep=False)
+    assert not walk.root.bindings  # released once its last extraction ended

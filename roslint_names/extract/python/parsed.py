@@ -57,24 +57,24 @@ def extract_parsed(
 ) -> FileFacts:
     default_language = Language.LAUNCH_PYTHON if launch_path else Language.PYTHON
     key = (data, package_generation, fallback_generation)
-    prepared = _LAUNCH_FILES.get(key) or _prepare(*key)
+    prepared = _LAUNCH_FILES.begin(key)
     if isinstance(prepared, ParseError):
         generation = package_generation or fallback_generation
         return FileFacts(path, default_language, generation, parse_errors=(prepared,))
-    walk, locator, code, launch_calls, generation, text = prepared
-    file_name = path.replace("\\", "/").rpartition("/")[2]
-    launch = LaunchExtractor(walk, locator, file_name, arguments, launch_calls)
-    launch.run()
-    defines_root = any(function.name.value in _ROOTS for function in walk.functions)
-    launch_module = launch.found_actions and not (walk.packages & _NODE_PACKAGES)
-    language = (
-        Language.LAUNCH_PYTHON if launch_path or defines_root or launch_module else Language.PYTHON
-    )
-    if language is Language.LAUNCH_PYTHON:
-        _LAUNCH_FILES.put(key, prepared)
-    names = sorted(code.names + launch.names, key=lambda use: (use.span.line, use.span.column))
-    if language is not Language.LAUNCH_PYTHON:
-        walk.release()  # extracted once: its tree can go now (see ``Walk.release``)
+    language = default_language
+    try:
+        walk, locator, code, launch_calls, generation, text = prepared
+        file_name = path.replace("\\", "/").rpartition("/")[2]
+        launch = LaunchExtractor(walk, locator, file_name, arguments, launch_calls)
+        launch.run()
+        defines_root = any(function.name.value in _ROOTS for function in walk.functions)
+        launch_module = launch.found_actions and not (walk.packages & _NODE_PACKAGES)
+        if launch_path or defines_root or launch_module:
+            language = Language.LAUNCH_PYTHON
+        names = sorted(code.names + launch.names, key=lambda use: (use.span.line, use.span.column))
+    finally:
+        # Only a launch file is extracted again (under its includers' arguments).
+        _LAUNCH_FILES.end(key, prepared, keep=language is Language.LAUNCH_PYTHON)
     return FileFacts(
         path=path,
         language=language,
@@ -95,30 +95,68 @@ class _RecentLaunchFiles:
     """The prepared trees of the last launch files extracted, for their extractions under
     includers' arguments. Only launch files: a library or test module is never extracted
     again, and keeping its tree (a large module's is tens of megabytes) only costs memory.
-    Locked: the language server extracts in two threads."""
+
+    A tree neither kept here nor being extracted is released (``Walk.release``) at once,
+    so that reference counting frees it: left to the cycle collector, the trees of the
+    launch files pushed out were a third of a cold run's collections' work. Locked and
+    counting its users: the language server extracts in two threads, which may share a
+    tree."""
 
     def __init__(self, kept: int) -> None:
         self._kept = kept
         self._found: OrderedDict[_Key, _Prepared] = OrderedDict()
+        self._users: dict[int, int] = {}  # extractions under way, by ``id`` of their walk
         self._lock = threading.Lock()
 
-    def get(self, key: _Key) -> _Prepared | None:
+    def begin(self, key: _Key) -> _Prepared | ParseError:
+        """The file prepared (kept, else now), for one extraction that calls ``end``."""
         with self._lock:
             found = self._found.get(key)
             if found is not None:
                 self._found.move_to_end(key)
-            return found
+                self._use(found, 1)
+                return found
+        prepared = _prepare(*key)  # outside the lock: the parse is the long part
+        if not isinstance(prepared, ParseError):
+            with self._lock:
+                self._use(prepared, 1)
+        return prepared
+
+    def end(self, key: _Key, prepared: _Prepared, *, keep: bool) -> None:
+        """One extraction of ``prepared`` is done; ``keep``: it is a launch file's."""
+        with self._lock:
+            if keep:
+                replaced = self._found.get(key)
+                self._found[key] = prepared
+                self._found.move_to_end(key)
+                if replaced is not None and replaced is not prepared:
+                    self._release_unused(replaced)
+                while len(self._found) > self._kept:
+                    self._release_unused(self._found.popitem(last=False)[1])
+            self._use(prepared, -1)
+            if self._found.get(key) is not prepared:
+                self._release_unused(prepared)
+
+    def __contains__(self, key: _Key) -> bool:
+        with self._lock:
+            return key in self._found
 
     def clear(self) -> None:
         with self._lock:
-            self._found.clear()
+            while self._found:
+                self._release_unused(self._found.popitem()[1])
 
-    def put(self, key: _Key, prepared: _Prepared) -> None:
-        with self._lock:
-            self._found[key] = prepared
-            self._found.move_to_end(key)
-            while len(self._found) > self._kept:
-                self._found.popitem(last=False)
+    def _use(self, prepared: _Prepared, change: int) -> None:
+        walk = id(prepared[0])
+        users = self._users.get(walk, 0) + change
+        if users:
+            self._users[walk] = users
+        else:
+            self._users.pop(walk, None)
+
+    def _release_unused(self, prepared: _Prepared) -> None:
+        if id(prepared[0]) not in self._users:
+            prepared[0].release()
 
 
 _LAUNCH_FILES = _RecentLaunchFiles(16)
