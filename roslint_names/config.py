@@ -13,16 +13,20 @@ Every problem names the file and the key and ends the run with exit 2.
 
 from __future__ import annotations
 
+import functools
 import re
 import sys
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .model import Generation, Kind, Severity
 from .registry import Registry
 from .rule import NamingPolicy, OptionValue, Rule
+
+if TYPE_CHECKING:
+    import pathspec
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -235,15 +239,20 @@ def ignored_for_path(settings: Settings, relative_path: str, registry: Registry)
     """Codes that ``per-file-ignores`` turns off for one path (relative to ``settings.root``)."""
     if not settings.per_file_ignores:
         return frozenset()
-    import pathspec  # only runs that configure per-file-ignores pay for it
-
     codes: set[str] = set()
     for pattern, selectors in settings.per_file_ignores:
-        spec = pathspec.GitIgnoreSpec.from_lines([pattern])
-        if spec.match_file(relative_path):
+        if _path_pattern(pattern).match_file(relative_path):
             for selector in selectors:
                 codes.update(rule.code for rule in registry.matching(selector))
     return frozenset(codes)
+
+
+@functools.lru_cache(maxsize=256)
+def _path_pattern(pattern: str) -> pathspec.GitIgnoreSpec:
+    """A ``per-file-ignores`` pattern compiled once per run, not once per file."""
+    import pathspec  # only runs that configure per-file-ignores pay for it
+
+    return pathspec.GitIgnoreSpec.from_lines([pattern])
 
 
 def _specificity(code: str, name: str, selectors: Sequence[str]) -> int:

@@ -354,10 +354,12 @@ def workspace_packages(
     """Every package holding a file of the run, by name and display directory."""
     found: dict[Path, Package] = {}
     for source in sources:
-        name = packages.package_name(source.path)
         directory = packages.package_directory(source.path)
+        if directory is None or directory in found:
+            continue  # the display directory is worked out once per package, not per file
+        name = packages.package_name(source.path)
         display = package_display(source, packages)
-        if name is None or directory is None or display is None or directory in found:
+        if name is None or display is None:
             continue
         found[directory] = Package(name, display, packages.package_depends(source.path))
     return list(found.values())
@@ -401,15 +403,14 @@ def report_graph(
     for index, items in sorted(found.items()):
         source = reported[index]
         file_facts = facts_of[source.display]
-        relative = _relative_to_root(source.display, settings)
-        ignored = ignored_for_path(settings, relative, registry)
+        ignored = _per_file_ignored(source.display, settings, registry)
         if texts is not None and source.display in texts:
             text = texts[source.display]
         else:
             data, _, _ = read_file(source.path, settings.max_file_size)
             text = decode_for_display(data or b"")
         to_diagnostic = _DiagnosticFactory(file_facts, settings, text)
-        judging = _TestCodeFilter(file_facts, text, relative, settings, test_rules)
+        judging = _TestCodeFilter(file_facts, text, settings, test_rules)
         fresh = [
             to_diagnostic(rule, item.finding.span, item.finding.message, item.finding.related)
             for rule, item in items
@@ -446,8 +447,7 @@ def check_file(
     ``test_rules``: the rules that judge test code (``test_code_codes``), when the caller
     has them already; ``contexts``: each rule's context (``rule_contexts``) for these
     settings and service types, when the caller checks many files with the same."""
-    relative = _relative_to_root(facts.path, settings)
-    active = enabled - ignored_for_path(settings, relative, registry)
+    active = enabled - _per_file_ignored(facts.path, settings, registry)
     if contexts is None:
         contexts = rule_contexts(registry, settings, known_service_types)
     to_diagnostic = _DiagnosticFactory(facts, settings, text)
@@ -461,7 +461,7 @@ def check_file(
     # Whether the file is test code is asked only when the answer can change something.
     if test_rules is None:
         test_rules = test_code_codes(settings, registry)
-    judging = _TestCodeFilter(facts, text, relative, settings, test_rules)
+    judging = _TestCodeFilter(facts, text, settings, test_rules)
     if suppressions or any(judging.spared(d.code) for d in diagnostics):
         enabled = judging.rules(enabled)
         active = judging.rules(active)
@@ -492,14 +492,9 @@ class _TestCodeFilter:
     ``[test-code]`` selects (``test_code``). The file is classified on first need."""
 
     def __init__(
-        self,
-        facts: FileFacts,
-        text: str,
-        relative: str,
-        settings: Settings,
-        judging: frozenset[str],
+        self, facts: FileFacts, text: str, settings: Settings, judging: frozenset[str]
     ) -> None:
-        self._facts, self._text, self._relative = facts, text, relative
+        self._facts, self._text = facts, text
         self._settings = settings
         self._judging = judging
         self._test: bool | None = None
@@ -510,9 +505,8 @@ class _TestCodeFilter:
 
     def is_test(self) -> bool:
         if self._test is None:
-            self._test = is_test_code(
-                self._relative, self._facts.language, self._text, self._settings
-            )
+            relative = _relative_to_root(self._facts.path, self._settings)
+            self._test = is_test_code(relative, self._facts.language, self._text, self._settings)
         return self._test
 
     def rules(self, codes: frozenset[str]) -> frozenset[str]:
@@ -638,6 +632,15 @@ class _DiagnosticFactory:
             edit=None if fix is None or fix.tokens else located(fix, span, source_line),
             renaming=fix if fix is not None and fix.tokens else None,
         )
+
+
+def _per_file_ignored(display: str, settings: Settings, registry: Registry) -> frozenset[str]:
+    """The codes ``per-file-ignores`` turns off in one file. The file's path below the
+    root is worked out only when some are configured: ``os.getcwd`` for every file of a
+    run took a twentieth of a re-run from cached facts."""
+    if not settings.per_file_ignores:
+        return frozenset()
+    return ignored_for_path(settings, _relative_to_root(display, settings), registry)
 
 
 def _relative_to_root(display: str, settings: Settings) -> str:
