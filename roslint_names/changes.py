@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import os
 import re
-import subprocess
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -92,6 +91,8 @@ def _unquote(name: str) -> str:
 
 
 def _git(arguments: list[str], cwd: Path, revision: str | None = None) -> str:
+    import subprocess  # only --changed-since runs git: other runs do not pay for the import
+
     try:
         done = subprocess.run(
             ["git", *arguments], cwd=cwd, capture_output=True, text=True, check=False

@@ -15,7 +15,6 @@ bytes.
 from __future__ import annotations
 
 import re
-import xml.etree.ElementTree as ET
 from collections import defaultdict
 from collections.abc import Sequence
 from dataclasses import replace
@@ -36,6 +35,8 @@ _NOT_XML = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ufffe\uffff]")
 def render_junit(
     diagnostics: Sequence[Diagnostic], rules: Sequence[RuleMeta], context: ReportContext
 ) -> str:
+    import xml.etree.ElementTree as ET  # only a JUnit report pays for the import
+
     by_file: dict[str, list[Diagnostic]] = defaultdict(list)
     for diagnostic in visible(diagnostics):
         by_file[diagnostic.path].append(diagnostic)
