@@ -236,9 +236,8 @@ def _selected(
 
 
 def ignored_for_path(settings: Settings, relative_path: str, registry: Registry) -> frozenset[str]:
-    """Codes that ``per-file-ignores`` turns off for one path (relative to ``settings.root``)."""
-    if not settings.per_file_ignores:
-        return frozenset()
+    """Codes that ``per-file-ignores`` turns off for one path (relative to ``settings.root``);
+    the engine asks only when some are configured."""
     codes: set[str] = set()
     for pattern, selectors in settings.per_file_ignores:
         if _path_pattern(pattern).match_file(relative_path):

@@ -645,7 +645,8 @@ def _per_file_ignored(display: str, settings: Settings, registry: Registry) -> f
 
 def _relative_to_root(display: str, settings: Settings) -> str:
     """Where per-file ignores look: the file's path below the root, else its absolute
-    path. String operations, not ``Path.relative_to``: this runs for every file."""
+    path. String operations, not ``Path.relative_to``: with per-file-ignores configured
+    this runs for every file."""
     absolute = display if os.path.isabs(display) else os.path.join(os.getcwd(), display)
     root = os.path.join(os.fspath(settings.root), "")
     relative = absolute[len(root) :] if absolute.startswith(root) else absolute
