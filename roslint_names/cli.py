@@ -13,12 +13,10 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import NoReturn, TextIO
 
-from . import __version__, baseline, fixing, renames
-from .baseline import BaselineError
+from . import __version__
 from .cache import FactsCache
 from .cache import default_directory as default_cache_directory
 from .catalog import CatalogError, load_doc, rule_meta
-from .changes import ChangesError, changed_lines, gate
 from .collection import rare_collections
 from .config import (
     ConfigError,
@@ -37,14 +35,17 @@ from .discover import (
     text_files,
     workspace_root,
 )
+from .editing import baseline, fixing, renames
+from .editing.baseline import BaselineError
+from .editing.changes import ChangesError, changed_lines, gate
+from .editing.files import Snapshot, WriteError, write_new
+from .editing.noqa import add_noqa
 from .engine import LintResult, RunOptions, lint, lintable, recheck
 from .generation import PackageGenerations
 from .model import Diagnostic, FileFacts, Generation, Kind
 from .names import Problem, check_name
-from .noqa import add_noqa
 from .progress import ProgressBar
 from .progress import wanted as progress_wanted
-from .reading import read_file
 from .registry import Registry, RegistryError, load_registry
 from .report import FORMATS, ReportContext, render, statistics, summary
 
@@ -75,6 +76,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         CatalogError,
         BaselineError,
         ChangesError,
+        WriteError,
     ) as error:
         _fail(str(error))
     except KeyboardInterrupt:
@@ -255,21 +257,33 @@ def _run_check(options: argparse.Namespace) -> int:
     registry, settings, sources, workspace = _prepare(options, overrides)
     cwd = Path.cwd()
     cache = _facts_cache(options)
+    # Renames are offered when unsafe fixes are asked for: they need every file's facts
+    # and a search of the workspace's text (``renames``), which a warm run must not pay
+    # for; kept from the start when no cache can give them again.
+    renaming = options.unsafe_fixes
+    writing = options.fix or options.diff or options.add_noqa
+    snapshot: Snapshot | None = None
+    if writing or renaming:
+        snapshot = Snapshot(cwd, _linted_roots(options.paths, cwd, renaming=renaming))
+    if writing:
+        assert snapshot is not None
+        # The bytes the edits will be computed from, as the run reads them first: a file
+        # edited while the run goes on is then refused, never spliced.
+        snapshot.remember(source.display for source in lintable(sources))
+        if renaming:
+            snapshot.remember(source.display for source in lintable(workspace))
     try:
         run = RunOptions(jobs=options.jobs, cache=cache, progress=bar)
-        # Renames are offered when unsafe fixes are asked for: they need every file's
-        # facts and a search of the workspace's text (``renames``), which a warm run must
-        # not pay for; kept from the start when no cache can give them again.
-        renaming = options.unsafe_fixes
         want_facts = renaming and cache is None
         result = lint(sources, settings, registry, run, context=workspace, want_facts=want_facts)
         diagnostics: Sequence[Diagnostic] = result.diagnostics
         if renaming and any(diagnostic.renaming for diagnostic in diagnostics):
+            assert snapshot is not None
             facts = (
                 result.facts
                 or lint(sources, settings, registry, run, context=workspace, want_facts=True).facts
             )
-            diagnostics = _resolve_renames(options.paths, settings, diagnostics, facts, cwd)
+            diagnostics = _resolve_renames(snapshot, settings, diagnostics, facts)
     finally:
         bar.close()  # erased before the report and the summary are written
     if options.verbose:
@@ -283,12 +297,14 @@ def _run_check(options: argparse.Namespace) -> int:
     if options.baseline is not None:
         diagnostics = _apply_baseline(options, diagnostics, cwd)
     if options.add_noqa:
-        return _add_noqa(diagnostics, cwd)
+        assert snapshot is not None
+        return _add_noqa(diagnostics, snapshot)
     if options.fix or options.diff:
+        assert snapshot is not None
         fixed = fixing.plan(
             diagnostics,
             unsafe=options.unsafe_fixes,
-            cwd=cwd,
+            snapshot=snapshot,
             verify=_verifier(settings, registry, cwd),
         )
         for path, why in fixed.refused:
@@ -296,7 +312,9 @@ def _run_check(options: argparse.Namespace) -> int:
         if options.diff:
             _write(fixed.diff(), options.output)
             return EXIT_FINDINGS if fixed.changes else EXIT_CLEAN
-        fixing.write(fixed, cwd)
+        fixing.write(fixed, snapshot)
+        for change in fixed.writes:
+            print(f"roslint-names: wrote {change.display}", file=sys.stderr)
         files = len(fixed.changes)
         print(f"roslint-names: fixed {fixed.fixed} findings in {files} files", file=sys.stderr)
         # What is left, as a run after the fixes reports it.
@@ -334,26 +352,38 @@ def _checked_files(sources: Sequence[SourceFile], result: LintResult) -> tuple[s
     return tuple(source.display for source in lintable(sources) if source.display not in skipped)
 
 
+def _linted_roots(paths: Sequence[Path], cwd: Path, *, renaming: bool) -> list[Path]:
+    """Where a fix may write: the paths named and, for a rename, the workspace of each
+    file named (a rename reaches every use of the name in it)."""
+    absolute = [(cwd / path).absolute() for path in paths]
+    if not renaming:
+        return absolute
+    return sorted(
+        {
+            path if path.is_dir() else workspace_root(path) or path
+            for path in absolute
+            if path.exists()
+        }
+    )
+
+
 def _resolve_renames(
-    paths: Sequence[Path],
+    snapshot: Snapshot,
     settings: Settings,
     diagnostics: Sequence[Diagnostic],
     facts: Sequence[FileFacts],
-    cwd: Path,
 ) -> list[Diagnostic]:
     """The diagnostics with each rename offered or dropped, after a search of the
-    workspaces of ``paths`` (the directories named, the workspace of each file named)."""
-    roots = sorted(
-        {
-            absolute if absolute.is_dir() else workspace_root(absolute) or absolute
-            for path in paths
-            if (absolute := (cwd / path).absolute()).exists()
-        }
-    )
-    files = text_files(roots, settings.exclude, settings.root, cwd)
+    workspaces the snapshot may write in (the directories named, the workspace of each
+    file named)."""
+    cwd = snapshot.cwd
+    files = text_files(list(snapshot.roots), settings.exclude, settings.root, cwd)
 
     def read(display: str) -> bytes | None:
-        return read_file(cwd / display, settings.max_file_size)[0]
+        data, _ = snapshot.read(display)
+        if data is not None and len(data) > settings.max_file_size:
+            return None  # as ``read_file`` has it: too large to be searched
+        return data
 
     displays = [display_path(file, cwd) for file in files]
     return renames.resolve(diagnostics, facts, displays, read)
@@ -371,10 +401,11 @@ def _verifier(settings: Settings, registry: Registry, cwd: Path) -> fixing.Verif
     return verify
 
 
-def _add_noqa(diagnostics: Sequence[Diagnostic], cwd: Path) -> int:
+def _add_noqa(diagnostics: Sequence[Diagnostic], snapshot: Snapshot) -> int:
     """Write a suppression for every reported diagnostic; 1 when some could not be."""
-    languages = {d.path: classify(cwd / d.path) for d in diagnostics}
-    outcome = add_noqa(diagnostics, languages, cwd)
+    languages = {d.path: classify(snapshot.cwd / d.path) for d in diagnostics}
+    outcome = add_noqa(diagnostics, languages, snapshot)
+    snapshot.replace_all(outcome.writes)
     print(
         f"roslint-names: added {outcome.added} suppression comments in {outcome.files} files",
         file=sys.stderr,
@@ -511,12 +542,9 @@ def _write(report: str, output: Path | None) -> None:
     if output is None:
         _print(report, end="")
         return
-    try:
-        # A CI's results directory may not exist yet (catkin's, colcon's per package).
-        output.parent.mkdir(parents=True, exist_ok=True)
-        output.write_text(report, encoding="utf-8")
-    except OSError as error:
-        raise UsageError(f"{output}: cannot write the report: {error.strerror}") from error
+    # A CI's results directory may not exist yet (catkin's, colcon's per package):
+    # ``write_new`` makes it.
+    write_new(output, report.encode("utf-8"), "the report")
 
 
 def _print(text: str, end: str = "\n") -> None:

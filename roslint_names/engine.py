@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 
 from .config import Settings, enabled_codes, ignored_for_path, test_code_codes
 from .discover import SourceFile, classify
-from .fixing import located
+from .editing.fixing import located
 from .gather import (
     DEFAULT_GENERATION,
     EXTRACTOR_MODULES,

@@ -32,9 +32,9 @@ from .cache import default_directory as default_cache_directory
 from .catalog import CatalogError, load_doc
 from .config import ConfigError, load_settings
 from .discover import classify
+from .editing.noqa import with_suppressions
 from .lines import split_lines
 from .model import Diagnostic, Edit, Severity, Span
-from .noqa import with_suppressions
 from .registry import load_registry
 from .session import Session
 

@@ -9,7 +9,8 @@ from typing import Any
 from conftest import Run, write, write_package
 from lxml import etree
 
-from roslint_names import fixing
+from roslint_names.editing import fixing
+from roslint_names.editing.files import Snapshot
 from roslint_names.model import Diagnostic, Edit, Severity, Span
 
 # A ROS 1 SLAM node as gmapping writes it: camelCase private parameters, read in two places.
@@ -292,7 +293,9 @@ def test_a_fix_is_all_its_edits_or_none(tmp_path: Path) -> None:
     def verify(path: str, data: bytes) -> tuple[int, set[tuple[str, int]]]:
         return (1 if path == "b.launch" and b"ABC" in data else 0), set()
 
-    planned = fixing.plan([rename, alone], unsafe=True, cwd=tmp_path, verify=verify)
+    planned = fixing.plan(
+        [rename, alone], unsafe=True, snapshot=Snapshot(tmp_path, [tmp_path]), verify=verify
+    )
     assert planned.changes == (("b.launch", "abc\nxyz\n", "abc\nXYZ\n"),)
     assert planned.fixed == 1
     assert planned.refused == (("b.launch", "renames not applied: it would no longer parse"),)
@@ -300,7 +303,10 @@ def test_a_fix_is_all_its_edits_or_none(tmp_path: Path) -> None:
     # Two fixes writing one span with different text: only the first is made.
     other = _diagnostic("b.launch", 1, "Abc")
     planned = fixing.plan(
-        [rename, other], unsafe=True, cwd=tmp_path, verify=lambda p, d: (0, set())
+        [rename, other],
+        unsafe=True,
+        snapshot=Snapshot(tmp_path, [tmp_path]),
+        verify=lambda p, d: (0, set()),
     )
     assert [(path, after) for path, _, after in planned.changes] == [
         ("a.launch", "ABC\n"),

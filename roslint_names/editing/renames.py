@@ -26,12 +26,12 @@ import re
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 
-from .extract.literals import name_literal_spans
+from ..extract.literals import name_literal_spans
+from ..lines import line_starts, split_lines
+from ..model import Diagnostic, Edit, FileFacts, Fix, Kind, Language, NameUse
+from ..names import rename_tokens, token_pattern
+from ..reading import decode_for_display
 from .fixing import located
-from .lines import line_starts, split_lines
-from .model import Diagnostic, Edit, FileFacts, Fix, Kind, Language, NameUse
-from .names import rename_tokens, token_pattern
-from .reading import decode_for_display
 
 # Files whose names are string literals: elsewhere in them a word is an identifier.
 _CODE = frozenset({Language.CPP, Language.PYTHON, Language.LAUNCH_PYTHON, Language.SETUP_PY})

@@ -21,8 +21,9 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 
-from .fingerprint import line_fingerprint, spelled_name
-from .model import Diagnostic
+from ..fingerprint import line_fingerprint, spelled_name
+from ..model import Diagnostic
+from .files import WriteError, read_regular, write_new
 
 FORMAT = 1
 
@@ -66,18 +67,19 @@ def write(path: Path, diagnostics: Iterable[Diagnostic], cwd: Path) -> int:
     }
     text = json.dumps(document, indent=2, ensure_ascii=False) + "\n"
     try:
-        path.write_text(text, encoding="utf-8")
-    except OSError as error:
-        raise BaselineError(f"{path}: cannot write baseline: {error.strerror}") from error
+        write_new(path, text.encode("utf-8"), "the baseline")
+    except WriteError as error:
+        raise BaselineError(str(error)) from error
     return len(entries)
 
 
 def load(path: Path) -> Counter[Entry]:
     """The entries of a baseline file, counted."""
+    data, why = read_regular(path)
+    if data is None:
+        raise BaselineError(f"{path}: cannot read baseline: {why}")
     try:
-        document = json.loads(path.read_text(encoding="utf-8"))
-    except OSError as error:
-        raise BaselineError(f"{path}: cannot read baseline: {error.strerror}") from error
+        document = json.loads(data.decode("utf-8"))
     except (UnicodeDecodeError, json.JSONDecodeError) as error:
         raise BaselineError(f"{path}: not a roslint-names baseline: {error}") from error
     if not isinstance(document, dict) or document.get("roslint-names-baseline") != FORMAT:

@@ -6,6 +6,10 @@ are. Within a file edits are applied from the end; one that overlaps another is 
 the next run. A file is written only if, re-read, it parses no worse than before and
 none of the fixed findings is still there (``Verify``); else it is left untouched and
 named. Applying twice changes nothing the second time: a fixed name has no finding.
+
+The edits are made on the bytes the run first read (``files.Snapshot``): a file edited
+since, a read-only one or one reached through a link leading out of the linted paths is
+refused with every fix that touches it, and ``write`` writes all the files or none.
 """
 
 from __future__ import annotations
@@ -15,10 +19,10 @@ import difflib
 from collections import defaultdict
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from pathlib import Path
 
-from .lines import split_lines_keeping_ends
-from .model import Diagnostic, Edit, Fix, Span
+from ..lines import split_lines_keeping_ends
+from ..model import Diagnostic, Edit, Fix, Span
+from .files import Change, Snapshot
 
 # (path, new bytes) -> the file's parse errors and its findings as (code, line), re-read
 Verify = Callable[[str, bytes], tuple[int, set[tuple[str, int]]]]
@@ -31,6 +35,7 @@ class Fixed:
     changes: tuple[tuple[str, str, str], ...]  # (path, before, after)
     fixed: int  # findings fixed
     refused: tuple[tuple[str, str], ...]  # (path, why)
+    writes: tuple[Change, ...] = ()  # the bytes of ``changes``, each file's mark kept
 
     def diff(self) -> str:
         return "".join(
@@ -46,7 +51,9 @@ class Fixed:
         )
 
 
-def plan(diagnostics: Iterable[Diagnostic], *, unsafe: bool, cwd: Path, verify: Verify) -> Fixed:
+def plan(
+    diagnostics: Iterable[Diagnostic], *, unsafe: bool, snapshot: Snapshot, verify: Verify
+) -> Fixed:
     """The fixes to make, verified, without writing anything.
 
     A fix is all its edits or none: a rename's edits in other files (``Diagnostic.also``)
@@ -60,21 +67,23 @@ def plan(diagnostics: Iterable[Diagnostic], *, unsafe: bool, cwd: Path, verify: 
         and not diagnostic.baselined
     )
     refused: list[tuple[str, str]] = []
-    texts: dict[str, str | None] = {}
+    texts: dict[str, tuple[bytes, str] | str] = {}  # the bytes and text, or why not
     while True:
         by_file: dict[str, dict[tuple[int, int, int], Edit]] = defaultdict(dict)
         for diagnostic in chosen:
             for path, edit in _edits(diagnostic):
                 by_file[path][(edit.span.line, edit.span.column, edit.span.end_column)] = edit
         changes: list[tuple[str, str, str]] = []
+        writes: list[Change] = []
         failed: dict[str, str] = {}
         for path, edits in sorted(by_file.items()):
             if path not in texts:
-                texts[path] = _read(cwd / path)
-            before = texts[path]
-            if before is None:
-                failed[path] = "not a UTF-8 file that can be read"
+                texts[path] = _read(snapshot, path)
+            read = texts[path]
+            if isinstance(read, str):
+                failed[path] = read
                 continue
+            data, before = read
             after = _apply(before, edits.values())
             errors_before, _ = verify(path, before.encode("utf-8"))
             errors_after, remaining = verify(path, after.encode("utf-8"))
@@ -84,8 +93,10 @@ def plan(diagnostics: Iterable[Diagnostic], *, unsafe: bool, cwd: Path, verify: 
                 failed[path] = "no effect"
             else:
                 changes.append((path, before, after))
+                mark = codecs.BOM_UTF8 if data.startswith(codecs.BOM_UTF8) else b""
+                writes.append(Change(path, data, mark + after.encode("utf-8")))
         if not failed:
-            return Fixed(tuple(changes), len(chosen), tuple(refused))
+            return Fixed(tuple(changes), len(chosen), tuple(refused), tuple(writes))
         for path, why in failed.items():
             # A rename reaching into the file goes first: the file's own fixes may pass.
             touching = [d for d in chosen if path in {p for p, _ in _edits(d)}]
@@ -125,19 +136,21 @@ def _overlap(one: Edit, other: Edit) -> bool:
     return one.span.column < other.span.end_column and other.span.column < one.span.end_column
 
 
-def _read(file: Path) -> str | None:
+def _read(snapshot: Snapshot, path: str) -> tuple[bytes, str] | str:
+    """The file's bytes and text to edit, or why it may not be edited."""
+    data, why = snapshot.for_edit(path)
+    if data is None:
+        return why
     try:
         # utf-8-sig: a byte order mark is no column of line 1 for the extractors
-        return file.read_bytes().decode("utf-8-sig")
-    except (OSError, UnicodeDecodeError):
-        return None
+        return data, data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        return "not a UTF-8 file"
 
 
-def write(fixed: Fixed, cwd: Path) -> None:
-    for path, _, after in fixed.changes:
-        file = cwd / path
-        mark = codecs.BOM_UTF8 if file.read_bytes().startswith(codecs.BOM_UTF8) else b""
-        file.write_bytes(mark + after.encode("utf-8"))
+def write(fixed: Fixed, snapshot: Snapshot) -> None:
+    """Every changed file written, or none (``files.WriteError`` says why)."""
+    snapshot.replace_all(fixed.writes)
 
 
 def _apply(text: str, edits: Iterable[Edit]) -> str:

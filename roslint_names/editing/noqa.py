@@ -9,8 +9,10 @@
 - launch YAML: ``  # roslint-names: ignore RN202``.
 
 A line whose end is not free for a comment (inside a Python string, after a C++ line
-continuation) is left alone and named, as is a file that is not UTF-8. Line endings and
-everything else of the file are kept byte for byte.
+continuation) is left alone and named, as is a file that is not UTF-8, one edited since
+the run read it, a read-only one and one reached through a link leading out of the
+linted paths. Line endings and everything else of the file are kept byte for byte. The
+comments of all files are written together or not at all (``files.replace_all``).
 """
 
 from __future__ import annotations
@@ -21,11 +23,11 @@ import tokenize
 from collections import defaultdict
 from collections.abc import Iterable
 from dataclasses import dataclass
-from pathlib import Path
 
-from .lines import split_lines, split_lines_keeping_ends
-from .model import Diagnostic, Language
-from .suppress import NOLINT, NOQA, XML_IGNORE, YAML_IGNORE, split_keys
+from ..lines import split_lines, split_lines_keeping_ends
+from ..model import Diagnostic, Language
+from ..suppress import NOLINT, NOQA, XML_IGNORE, YAML_IGNORE, split_keys
+from .files import Change, Snapshot
 
 
 @dataclass(frozen=True)
@@ -33,12 +35,14 @@ class Outcome:
     added: int  # comments written or extended
     files: int  # files changed
     left: tuple[tuple[str, int, str], ...]  # (path, line, why) of findings not suppressed
+    writes: tuple[Change, ...] = ()  # what to write: every file's new bytes
 
 
 def add_noqa(
-    diagnostics: Iterable[Diagnostic], languages: dict[str, Language | None], cwd: Path
+    diagnostics: Iterable[Diagnostic], languages: dict[str, Language | None], snapshot: Snapshot
 ) -> Outcome:
-    """Suppress each reported (not suppressed, not baselined) diagnostic in its file.
+    """The suppression of each reported (not suppressed, not baselined) diagnostic in its
+    file, to be written (``Snapshot.replace_all(outcome.writes)``).
 
     ``languages`` gives each diagnostic path's language (``discover.classify``)."""
     wanted: dict[str, dict[int, set[str]]] = defaultdict(lambda: defaultdict(set))
@@ -47,13 +51,12 @@ def add_noqa(
             wanted[diagnostic.path][diagnostic.span.line].add(diagnostic.code)
     added = files = 0
     left: list[tuple[str, int, str]] = []
+    writes: list[Change] = []
     for path, by_line in sorted(wanted.items()):
         language = languages.get(path)
-        file = cwd / path
-        try:
-            data = file.read_bytes()
-        except OSError as error:
-            left.extend((path, line, f"cannot read it: {error.strerror}") for line in by_line)
+        data, why = snapshot.for_edit(path)
+        if data is None:
+            left.extend((path, line, why) for line in by_line)
             continue
         try:
             text = data.decode("utf-8")
@@ -67,10 +70,10 @@ def add_noqa(
         after, count, refused = suppressed
         left.extend((path, line, why) for line, why in refused)
         if count:
-            file.write_bytes(after.encode("utf-8"))
+            writes.append(Change(path, data, after.encode("utf-8")))
             added += count
             files += 1
-    return Outcome(added, files, tuple(left))
+    return Outcome(added, files, tuple(left), tuple(writes))
 
 
 def with_suppressions(
@@ -174,7 +177,7 @@ def _yaml(lines: list[str], text: str, by_line: dict[int, set[str]]) -> _Edit:
 def _xml(lines: list[str], text: str, by_line: dict[int, set[str]]) -> _Edit:
     """After the markup on the line; inside a start tag over several lines, alone on the
     line before the tag (``suppress`` gives such a comment the whole tag)."""
-    from .extract.launch.xmlsafe import scan_start_tags
+    from ..extract.launch.xmlsafe import scan_start_tags
 
     offsets = [0]
     for line in lines:
