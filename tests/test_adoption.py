@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import json
+import os
 import subprocess
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -243,6 +245,36 @@ def test_changed_since_reports_only_what_the_change_brought_in(
     ]
     assert _found(gated) == [("src/robot_bringup/launch/robot.launch", 6, "RN101"), *recorder]
     assert _found(_check(run_cli, tmp_path, "--changed-since", "HEAD")) == recorder
+
+
+@pytest.mark.skipif(sys.platform == "darwin", reason="macOS file names must be UTF-8")
+def test_changed_since_keeps_a_new_error_in_a_file_whose_name_is_not_utf8(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """A launch file named in Latin-1 (``caf\xe9.launch``, from an old system): git quotes
+    its name in the diff, and prints it raw for an untracked file; both must still match
+    the file the run reports, or its new error is filtered out and the gate passes."""
+    write_package(tmp_path / "src/robot_bringup", 1)
+    committed = os.fsdecode(os.fsencode(tmp_path) + b"/src/robot_bringup/launch/caf\xe9.launch")
+    write(tmp_path, committed, LEGACY_LAUNCH)
+    git(tmp_path, "init", "-q")
+    git(tmp_path, "add", "-A")
+    git(tmp_path, "commit", "-qm", "the robot as it was")
+    Path(committed).write_text(
+        LEGACY_LAUNCH.replace(
+            "</launch>", '  <node name="imu-driver" pkg="i" type="i"/>\n</launch>'
+        ),
+        encoding="utf-8",
+    )
+    untracked = os.fsdecode(os.fsencode(tmp_path) + b"/src/robot_bringup/launch/gr\xfcn.launch")
+    write(
+        tmp_path, untracked, '<launch>\n  <node name="gps-driver" pkg="g" type="g"/>\n</launch>\n'
+    )
+    gated = _check(run_cli, tmp_path, "--changed-since", "HEAD")
+    assert [(path, code) for path, _, code in _found(gated)] == [
+        ("src/robot_bringup/launch/caf\\xe9.launch", "RN101"),
+        ("src/robot_bringup/launch/gr\\xfcn.launch", "RN101"),
+    ]
 
 
 @pytest.mark.parametrize(

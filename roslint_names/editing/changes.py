@@ -17,7 +17,8 @@ from pathlib import Path
 from ..model import Diagnostic, Span
 
 _HUNK = re.compile(r"^@@ -\d+(?:,\d+)? \+(\d+)(?:,(\d+))? @@")
-_NEW_FILE = re.compile(r"^\+\+\+ b/(.*)$")
+# "+++ b/x", or '+++ "b/caf\\351.launch"' when git quotes an unusual name whole
+_NEW_FILE = re.compile(r'^\+\+\+ (?:b/(.*)|("b/.*"))$')
 
 
 class ChangesError(Exception):
@@ -31,7 +32,7 @@ class ChangedLines:
     lines: dict[str, frozenset[int] | None]
 
     def touches(self, path: str, span: Span, cwd: Path) -> bool:
-        absolute = os.path.normpath(os.path.join(cwd, path))
+        absolute = _displayed(os.path.normpath(os.path.join(_displayed(os.fspath(cwd)), path)))
         if absolute not in self.lines:
             return False
         changed = self.lines[absolute]
@@ -57,7 +58,8 @@ def changed_lines(revision: str, cwd: Path) -> ChangedLines:
         elif in_header and text.startswith("+++ "):
             match = _NEW_FILE.match(text)  # "+++ /dev/null": deleted, nothing to report
             if match is not None:
-                current = found.setdefault(os.path.normpath(root / _unquote(match.group(1))), set())
+                name = match.group(1) or _unquote('"' + match.group(2)[3:])
+                current = found.setdefault(_displayed(os.path.normpath(root / name)), set())
         elif (hunk := _HUNK.match(text)) is not None:
             in_header = False
             if current is not None:
@@ -67,7 +69,7 @@ def changed_lines(revision: str, cwd: Path) -> ChangedLines:
     untracked = _git(["ls-files", "--others", "--exclude-standard", "-z"], root)
     for name in untracked.split("\0"):
         if name:
-            lines[os.path.normpath(root / name)] = None
+            lines[_displayed(os.path.normpath(root / name))] = None
     return ChangedLines(lines)
 
 
@@ -82,26 +84,35 @@ def gate(diagnostics: Sequence[Diagnostic], changes: ChangedLines, cwd: Path) ->
     ]
 
 
+def _displayed(path: str) -> str:
+    """A path as findings name it (``discover.display_path``): the bytes of a name that is
+    not UTF-8 as ``\\xe9`` escapes. Both sides are compared in that form."""
+    return path if path.isascii() else os.fsencode(path).decode("utf-8", "backslashreplace")
+
+
 def _unquote(name: str) -> str:
-    """git quotes paths with unusual characters in C style."""
+    """git quotes paths with unusual characters in C style (``"caf\\351.launch"``): the
+    bytes it stands for, named as Python names that file (``os.fsdecode``), so that a name
+    that is not UTF-8 matches the path the run reports."""
     if not (name.startswith('"') and name.endswith('"')):
         return name
-    raw = name[1:-1].encode("latin-1", "backslashreplace").decode("unicode_escape")
-    return raw.encode("latin-1").decode("utf-8", "replace")
+    raw = os.fsencode(name[1:-1]).decode("latin-1").encode("latin-1", "backslashreplace")
+    return os.fsdecode(raw.decode("unicode_escape").encode("latin-1"))
 
 
 def _git(arguments: list[str], cwd: Path, revision: str | None = None) -> str:
     import subprocess  # only --changed-since runs git: other runs do not pay for the import
 
     try:
-        done = subprocess.run(
-            ["git", *arguments], cwd=cwd, capture_output=True, text=True, check=False
-        )
+        done = subprocess.run(["git", *arguments], cwd=cwd, capture_output=True, check=False)
     except OSError as error:
         raise ChangesError(f"--changed-since needs git: {error.strerror}") from error
     if done.returncode != 0:
         if revision is not None:
             raise ChangesError(f"--changed-since: {revision!r} is not a commit git knows here")
-        reason = done.stderr.strip().splitlines()[-1] if done.stderr.strip() else "git failed"
+        errors = done.stderr.decode("utf-8", "replace").strip()
+        reason = errors.splitlines()[-1] if errors else "git failed"
         raise ChangesError(f"--changed-since: {reason}")
-    return done.stdout
+    # As Python names files: a name that is not UTF-8 (``ls-files -z`` prints it raw)
+    # keeps its bytes, and so the same str as the run's own paths.
+    return os.fsdecode(done.stdout)
