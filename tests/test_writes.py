@@ -139,8 +139,21 @@ def _temporaries(root: Path) -> list[Path]:
 # The write path itself
 
 
-def test_a_failed_replace_puts_back_the_files_already_replaced(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+@pytest.mark.parametrize(
+    ("fault", "expected", "message"),
+    [
+        # A replace refused: the error names the file and says nothing changed.
+        (OSError(errno.EIO, "Input/output error"), WriteError, "input/output error: nothing"),
+        # Ctrl-C between two replaces: the first file is put back too.
+        (KeyboardInterrupt(), KeyboardInterrupt, None),
+    ],
+)
+def test_a_fault_between_replaces_puts_back_the_files_already_replaced(
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    fault: BaseException,
+    expected: type[BaseException],
+    message: str | None,
 ) -> None:
     paths = _launch_files(tmp_path, 3)
     before = [path.read_bytes() for path in paths]
@@ -150,33 +163,11 @@ def test_a_failed_replace_puts_back_the_files_already_replaced(
     def replace_failing_second(source: Any, target: Any) -> None:
         calls.append(target)
         if len(calls) == 2:
-            raise OSError(errno.EIO, "Input/output error")
+            raise fault
         real_replace(source, target)
 
     monkeypatch.setattr(os, "replace", replace_failing_second)
-    with pytest.raises(WriteError, match=r"ekf_001\.launch\.xml: input/output error: nothing was"):
-        replace_all(_changes(tmp_path, paths), cwd=tmp_path, roots=[tmp_path])
-    assert [path.read_bytes() for path in paths] == before
-    assert _temporaries(tmp_path) == []
-
-
-def test_a_kill_between_replaces_leaves_every_file_old_or_new(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    """A Ctrl-C between two replaces: the first file is put back, none is short."""
-    paths = _launch_files(tmp_path, 3)
-    before = [path.read_bytes() for path in paths]
-    real_replace = os.replace
-    calls = []
-
-    def interrupted_at_second(source: Any, target: Any) -> None:
-        calls.append(target)
-        if len(calls) == 2:
-            raise KeyboardInterrupt
-        real_replace(source, target)
-
-    monkeypatch.setattr(os, "replace", interrupted_at_second)
-    with pytest.raises(KeyboardInterrupt):
+    with pytest.raises(expected, match=message):
         replace_all(_changes(tmp_path, paths), cwd=tmp_path, roots=[tmp_path])
     assert [path.read_bytes() for path in paths] == before
     assert _temporaries(tmp_path) == []
