@@ -96,6 +96,11 @@ class _Protocol(LanguageServerProtocol):
     """
 
     _server: RoslintServer
+    _hints: dict[str, _LineHint]
+
+    def __init__(self, server: RoslintServer, converter: cattrs.Converter) -> None:
+        super().__init__(server, converter)
+        self._hints = {}
 
     def structure_message(self, data: dict[str, Any]) -> Any:
         try:
@@ -123,13 +128,30 @@ class _Protocol(LanguageServerProtocol):
     def lsp_text_document__did_change(
         self, params: types.DidChangeTextDocumentParams
     ) -> Generator[Any, Any, None]:
-        if self._is_open(params.text_document.uri, "an edit"):
-            yield from super().lsp_text_document__did_change(params)
+        """pygls's, but with the edits applied by ``_apply``: pygls splits the whole text
+        into lines for every keystroke (half a second in a 50 MB document), and at more
+        characters than LSP's CR, LF and CRLF (a form feed moved every later edit)."""
+        uri = params.text_document.uri
+        if not self._is_open(uri, "an edit"):
+            return
+        document = self.workspace.text_documents[unquote(uri)]
+        hint = self._hints.setdefault(uri, _LineHint())
+        encoding = self._server.encoding
+        for change in params.content_changes:
+            document.apply_change(
+                types.TextDocumentContentChangeWholeDocument(
+                    _apply(document.source, change, encoding, hint)
+                )
+            )
+        document.version = params.text_document.version
+        if (handler := self.fm.features.get(types.TEXT_DOCUMENT_DID_CHANGE)) is not None:
+            yield handler, (params,), None
 
     @lsp_method(types.TEXT_DOCUMENT_DID_CLOSE)
     def lsp_text_document__did_close(
         self, params: types.DidCloseTextDocumentParams
     ) -> Generator[Any, Any, None]:
+        self._hints.pop(params.text_document.uri, None)
         if self._is_open(params.text_document.uri, "a close"):
             yield from super().lsp_text_document__did_close(params)
 
@@ -459,6 +481,90 @@ def _diagnostic(diagnostic: Diagnostic, positions: _Positions) -> types.Diagnost
         ]
         or None,
     )
+
+
+# ---------------------------------------------------------------------------------------
+# A client's incremental edits, applied at the cost of the distance from the last one
+
+
+@dataclass
+class _LineHint:
+    """Where one line of a document starts: the last place an edit was made. Typing edits
+    near the previous edit, so finding the next one costs that distance, not the text."""
+
+    line: int = 0
+    start: int = 0
+
+
+def _apply(
+    text: str, change: types.TextDocumentContentChangeEvent, encoding: str, hint: _LineHint
+) -> str:
+    """``text`` after ``change``, its range counted in ``encoding``."""
+    if not isinstance(change, types.TextDocumentContentChangePartial):
+        hint.line, hint.start = 0, 0
+        return change.text
+    start = _offset(text, change.range.start, encoding, hint)
+    kept = _LineHint(hint.line, hint.start)  # before the edit: still right after it,
+    if kept.start > 0 and text[kept.start - 1] == "\r":  # unless a LF joins that CR
+        kept = _LineHint(kept.line - 1, _previous_line_start(text, kept.start))
+    end = _offset(text, change.range.end, encoding, hint)
+    if end < start:  # a range given backwards
+        start, end = end, start
+        hint.line, hint.start = 0, 0
+    else:
+        hint.line, hint.start = kept.line, kept.start
+    return text[:start] + change.text + text[end:]
+
+
+def _offset(text: str, position: types.Position, encoding: str, hint: _LineHint) -> int:
+    """The index in ``text`` of a client's position; past a line's end is its end."""
+    start = _line_start(text, position.line, hint)
+    line = text[start : _line_end(text, start)]
+    if encoding == types.PositionEncodingKind.Utf32.value or line.isascii():
+        return start + min(position.character, len(line))
+    units = 0
+    for index, character in enumerate(line):
+        if units >= position.character:
+            return start + index
+        units += _units(character, encoding)
+    return start + len(line)
+
+
+def _line_start(text: str, line: int, hint: _LineHint) -> int:
+    if line < hint.line - line:  # nearer the top than the hint: from the top
+        hint.line, hint.start = 0, 0
+    while hint.line > line:
+        hint.start = _previous_line_start(text, hint.start)
+        hint.line -= 1
+    while hint.line < line:
+        following = _next_line_start(text, hint.start)
+        if following < 0:  # past the last line: its end
+            return len(text)
+        hint.line, hint.start = hint.line + 1, following
+    return hint.start
+
+
+def _line_end(text: str, start: int) -> int:
+    newline = text.find("\n", start)
+    limit = len(text) if newline < 0 else newline
+    carriage = text.find("\r", start, limit)
+    return limit if carriage < 0 else carriage
+
+
+def _next_line_start(text: str, start: int) -> int:
+    """Where the line after the one at ``start`` starts; -1 if it is the last."""
+    end = _line_end(text, start)
+    if end == len(text):
+        return -1
+    return end + 2 if text.startswith("\r\n", end) else end + 1
+
+
+def _previous_line_start(text: str, start: int) -> int:
+    """Where the line before the one at ``start`` (not the first) starts."""
+    end = start - 2 if start >= 2 and text.startswith("\r\n", start - 2) else start - 1
+    newline = text.rfind("\n", 0, end)
+    carriage = text.rfind("\r", newline + 1, end)
+    return max(newline, carriage) + 1
 
 
 def _overlaps(one: types.Range, other: types.Range) -> bool:

@@ -389,10 +389,10 @@ def test_malformed_messages_and_unknown_documents_are_logged_not_shown(
     assert "KeyError" not in logged
 
 
-def _big_driver(size: int) -> str:
+def _big_driver(size: int, head: str = DRIVER) -> str:
     """A generated C++ file of about ``size`` bytes, every line of it a finding."""
     line = '  ros::Publisher pub{0} = nh.advertise<std_msgs::String>("/Generated_{0}", 1);\n'
-    lines = [DRIVER.split("  ros::spin", maxsplit=1)[0]]
+    lines = [head.split("  ros::spin", maxsplit=1)[0]]
     total = len(lines[0])
     index = 0
     while total < size:
@@ -473,29 +473,68 @@ def test_200_edits_in_a_row_make_one_check_of_the_last_text(
     lsp: WireServer = server()
     uri = workspace[1]
     lsp.initialize(["utf-8"])
-    lsp.open(uri, DRIVER, "cpp")
+    # A form feed is no line break to LSP (nor to the parsers): the lines below it keep
+    # their numbers.
+    text = DRIVER.replace(
+        "#include <geometry_msgs/Twist.h>\n", "#include <geometry_msgs/Twist.h>\f\n"
+    )
+    lsp.open(uri, text, "cpp")
     lsp.diagnostics(uri, _rn202)
     before = len(lsp.notifications("textDocument/publishDiagnostics"))
     # The user types 200 letters into the topic, after the emoji: incremental edits whose
     # columns count UTF-8 bytes.
-    line = DRIVER.splitlines()[ADVERTISE_LINE]
+    line = text.split("\n")[ADVERTISE_LINE]
     column = _units(line[: line.index('"/cmd_vel"') + len('"/cmd_vel')], "utf-8")
     typed = "".join("abcdefghijklmnopqrstuvwxyz"[i % 26] for i in range(200))
     for version, letter in enumerate(typed, start=2):
-        at = {"line": ADVERTISE_LINE, "character": column + version - 2}
-        lsp.notify(
-            "textDocument/didChange",
-            {
-                "textDocument": {"uri": uri, "version": version},
-                "contentChanges": [{"range": {"start": at, "end": at}, "text": letter}],
-            },
-        )
-    position = {"line": ADVERTISE_LINE, "character": 0}
+        lsp.notify("textDocument/didChange", _typed(uri, version, ADVERTISE_LINE, column, letter))
+        column += 1
     started = time.monotonic()
-    lsp.call("textDocument/hover", {"textDocument": {"uri": uri}, "position": position}, 5)
+    lsp.call("textDocument/hover", {"textDocument": {"uri": uri}, "position": ON_THE_LITERAL}, 5)
     assert time.monotonic() - started < 5
     name = f"/cmd_vel{typed}"
     found = lsp.diagnostics(uri, lambda d: any(name in x["message"] for x in d), timeout=30)
     assert [d["code"] for d in found] == ["RN202"]
     published = lsp.notifications("textDocument/publishDiagnostics")[before:]
     assert len(published) <= 3, f"{len(published)} publications for one burst of typing"
+
+
+def _typed(uri: str, version: int, line: int, column: int, letter: str) -> Message:
+    """A didChange that types ``letter`` at ``line``, ``column``."""
+    at = {"line": line, "character": column}
+    return {
+        "textDocument": {"uri": uri, "version": version},
+        "contentChanges": [{"range": {"start": at, "end": at}, "text": letter}],
+    }
+
+
+def test_typing_in_a_20_mb_document_costs_the_edit_not_the_document(
+    server: Any, workspace: tuple[Path, str]
+) -> None:
+    lsp: WireServer = server()
+    uri = workspace[1]
+    lsp.initialize()
+    # ASCII, as generated files are: a str of one byte a character (an emoji anywhere makes
+    # it four, and every edit's copy of the text four times as long).
+    huge = _big_driver(20 * 1024 * 1024, head=DRIVER.replace(" 😀 café", ""))
+    last_line = huge.count("\n") - 2
+    lsp.open(uri, huge, "cpp")
+    lsp.diagnostics(uri, lambda found: not found, timeout=10)  # above max-file-size
+    for version in range(2, 102):  # 100 keystrokes near the end of the file
+        lsp.notify("textDocument/didChange", _typed(uri, version, last_line, version, "x"))
+    started = time.monotonic()
+    lsp.call("textDocument/hover", {"textDocument": {"uri": uri}, "position": ON_THE_LITERAL}, 10)
+    assert time.monotonic() - started < 3
+    # Cut back to the driver by a range edit: the text the server kept is the client's.
+    end = {"line": last_line + 2, "character": 0}
+    lsp.notify(
+        "textDocument/didChange",
+        {
+            "textDocument": {"uri": uri, "version": 102},
+            "contentChanges": [
+                {"range": {"start": {"line": 0, "character": 0}, "end": end}, "text": DRIVER},
+            ],
+        },
+    )
+    (found,) = lsp.diagnostics(uri, _rn202, timeout=10)
+    assert found["range"]["start"] == {"line": ADVERTISE_LINE, "character": 79}
