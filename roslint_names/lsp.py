@@ -23,6 +23,8 @@ What the server guarantees, whatever the client sends:
 - the session's work (loading, checks, graph builds) runs in one worker thread, so the
   event loop always reads the next message: ``shutdown`` and ``exit`` are honoured at
   once, whatever check is running (the worker is a daemon thread: exit does not wait);
+- an incremental edit costs the distance from the previous one and one copy of the text,
+  lines counted as LSP counts them (CR, LF, CRLF);
 - a document above ``max-file-size`` is not checked: its diagnostics are cleared and one
   log line says why, and the server's own code neither encodes nor splits its text.
 """
@@ -146,6 +148,13 @@ class _Protocol(LanguageServerProtocol):
         document.version = params.text_document.version
         if (handler := self.fm.features.get(types.TEXT_DOCUMENT_DID_CHANGE)) is not None:
             yield handler, (params,), None
+
+    @lsp_method(types.TEXT_DOCUMENT_DID_OPEN)
+    def lsp_text_document__did_open(
+        self, params: types.DidOpenTextDocumentParams
+    ) -> Generator[Any, Any, None]:
+        self._hints.pop(params.text_document.uri, None)  # a new text: no place known in it
+        yield from super().lsp_text_document__did_open(params)
 
     @lsp_method(types.TEXT_DOCUMENT_DID_CLOSE)
     def lsp_text_document__did_close(
@@ -513,7 +522,7 @@ def _apply(
         hint.line, hint.start = 0, 0
     else:
         hint.line, hint.start = kept.line, kept.start
-    return text[:start] + change.text + text[end:]
+    return "".join((text[:start], change.text, text[end:]))  # one copy of the text, not two
 
 
 def _offset(text: str, position: types.Position, encoding: str, hint: _LineHint) -> int:
