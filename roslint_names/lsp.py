@@ -10,20 +10,44 @@ cache, so a second start is quick). Then, for each open document:
 
 Code actions offer each finding's fix (the same edit ``--fix`` makes, marked unsafe where
 it is) and a suppression of the finding on its line in the file's own comment form;
-hovering a finding shows its rule's catalog page. Positions are converted between the
-linter's code points and the UTF-16 units LSP counts by default.
+hovering a finding shows its rule's catalog page.
+
+What the server guarantees, whatever the client sends:
+
+- every position it sends or reads is counted in the encoding negotiated at ``initialize``
+  (UTF-8, UTF-16 or UTF-32 code units; the linter's columns are code points);
+- every request is answered: one whose parameters cannot be read gets an InvalidParams
+  error, one after ``shutdown`` an InvalidRequest error;
+- a malformed message, or an edit of a document never opened, is a log line
+  (``window/logMessage``), never a pop-up;
+- the session's work (loading, checks, graph builds) runs in one worker thread, so the
+  event loop always reads the next message: ``shutdown`` and ``exit`` are honoured at
+  once, whatever check is running (the worker is a daemon thread: exit does not wait);
+- an incremental edit costs the distance from the previous one and one copy of the text,
+  lines counted as LSP counts them (CR, LF, CRLF);
+- a document above ``max-file-size`` is not checked: its diagnostics are cleared and one
+  log line says why, and the server's own code neither encodes nor splits its text.
 """
 
 from __future__ import annotations
 
 import asyncio
+import concurrent.futures
 import logging
 import os
-from dataclasses import dataclass
+import queue
+import threading
+from collections.abc import Callable, Generator
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any, TypeVar
+from urllib.parse import unquote
 
+import cattrs
 from lsprotocol import types
+from pygls.exceptions import JsonRpcException, JsonRpcInvalidParams, JsonRpcInvalidRequest
 from pygls.lsp.server import LanguageServer
+from pygls.protocol import LanguageServerProtocol, lsp_method
 from pygls.uris import from_fs_path, to_fs_path
 
 from . import __version__
@@ -44,6 +68,7 @@ SOURCE = "roslint-names"
 SUPPRESS = "suppress"
 
 log = logging.getLogger(__name__)
+T = TypeVar("T")
 
 
 @dataclass
@@ -52,16 +77,163 @@ class _Published:
 
     text: str
     diagnostics: list[Diagnostic]
+    positions: _Positions
+
+
+@dataclass(frozen=True)
+class _Unreadable:
+    """A request whose parameters could not be read: answered with an error."""
+
+    id: int | str
+    method: str
+    error: JsonRpcException
+
+
+class _Protocol(LanguageServerProtocol):
+    """pygls's protocol, answering every request and ignoring edits of unknown documents.
+
+    pygls reads a request's parameters while it parses the JSON; when they do not fit the
+    method's type it raises out of the parser, and the request, its id lost, is never
+    answered. Here the failure becomes an ``_Unreadable`` that ``handle_message`` answers.
+    """
+
+    _server: RoslintServer
+    _hints: dict[str, _LineHint]
+
+    def __init__(self, server: RoslintServer, converter: cattrs.Converter) -> None:
+        super().__init__(server, converter)
+        self._hints = {}
+
+    def structure_message(self, data: dict[str, Any]) -> Any:
+        try:
+            return super().structure_message(data)
+        except JsonRpcException as error:
+            if "id" in data and isinstance(data.get("method"), str):
+                return _Unreadable(data["id"], data["method"], error)
+            raise
+
+    def handle_message(self, message: Any) -> None:
+        if isinstance(message, _Unreadable):
+            reason = f"invalid params for {message.method}: {_why(message.error)}"
+            self._server.log_line(f"request {message.id!r}: {reason}", types.MessageType.Warning)
+            self._send_response(message.id, None, JsonRpcInvalidParams(reason).to_response_error())
+            return
+        method = getattr(message, "method", types.EXIT)
+        if self._shutdown and method != types.EXIT and hasattr(message, "id"):
+            # pygls would drop a request after shutdown: the client waits for its answer.
+            refused = JsonRpcInvalidRequest("the server is shutting down")
+            self._send_response(message.id, None, refused.to_response_error())
+            return
+        super().handle_message(message)
+
+    @lsp_method(types.TEXT_DOCUMENT_DID_CHANGE)
+    def lsp_text_document__did_change(
+        self, params: types.DidChangeTextDocumentParams
+    ) -> Generator[Any, Any, None]:
+        """pygls's, but with the edits applied by ``_apply``: pygls splits the whole text
+        into lines for every keystroke (half a second in a 50 MB document), and at more
+        characters than LSP's CR, LF and CRLF (a form feed moved every later edit)."""
+        uri = params.text_document.uri
+        if not self._is_open(uri, "an edit"):
+            return
+        document = self.workspace.text_documents[unquote(uri)]
+        hint = self._hints.setdefault(uri, _LineHint())
+        encoding = self._server.encoding
+        for change in params.content_changes:
+            document.apply_change(
+                types.TextDocumentContentChangeWholeDocument(
+                    _apply(document.source, change, encoding, hint)
+                )
+            )
+        document.version = params.text_document.version
+        if (handler := self.fm.features.get(types.TEXT_DOCUMENT_DID_CHANGE)) is not None:
+            yield handler, (params,), None
+
+    @lsp_method(types.TEXT_DOCUMENT_DID_OPEN)
+    def lsp_text_document__did_open(
+        self, params: types.DidOpenTextDocumentParams
+    ) -> Generator[Any, Any, None]:
+        self._hints.pop(params.text_document.uri, None)  # a new text: no place known in it
+        yield from super().lsp_text_document__did_open(params)
+
+    @lsp_method(types.TEXT_DOCUMENT_DID_CLOSE)
+    def lsp_text_document__did_close(
+        self, params: types.DidCloseTextDocumentParams
+    ) -> Generator[Any, Any, None]:
+        self._hints.pop(params.text_document.uri, None)
+        if self._is_open(params.text_document.uri, "a close"):
+            yield from super().lsp_text_document__did_close(params)
+
+    def _is_open(self, uri: str, what: str) -> bool:
+        if unquote(uri) in self.workspace.text_documents:
+            return True
+        self._server.log_line(f"ignored {what} of {uri}: the document is not open")
+        return False
+
+
+class _Worker:
+    """One daemon thread that runs the session's work, one job at a time, in order.
+
+    A session is not thread-safe, and a check of a large document takes seconds: it must
+    not run on the event loop. A daemon thread, unlike an executor's, does not hold the
+    process once the client says exit. A job cancelled before it starts is not run.
+    """
+
+    def __init__(self) -> None:
+        self._jobs: queue.SimpleQueue[tuple[Callable[[], Any], concurrent.futures.Future[Any]]]
+        self._jobs = queue.SimpleQueue()
+        self._thread: threading.Thread | None = None
+
+    def run(self, job: Callable[[], T]) -> asyncio.Future[T]:
+        if self._thread is None:
+            self._thread = threading.Thread(target=self._serve, name="session", daemon=True)
+            self._thread.start()
+        done: concurrent.futures.Future[T] = concurrent.futures.Future()
+        self._jobs.put((job, done))
+        return asyncio.wrap_future(done)
+
+    def _serve(self) -> None:
+        while True:
+            job, done = self._jobs.get()
+            if not done.set_running_or_notify_cancel():
+                continue
+            try:
+                done.set_result(job())
+            except BaseException as error:  # handed to whoever awaits the job
+                done.set_exception(error)
 
 
 class RoslintServer(LanguageServer):
     def __init__(self) -> None:
-        super().__init__("roslint-names", __version__)
+        super().__init__("roslint-names", __version__, protocol_cls=_Protocol)
         self.session: Session | None = None
         self.published: dict[str, _Published] = {}
         self._pending: dict[str, asyncio.Task[None]] = {}
         self._graph: asyncio.Task[None] | None = None
         self._loading: asyncio.Task[Session | None] | None = None
+        self._worker = _Worker()
+        self._skipped: set[str] = set()  # documents above max-file-size, logged once
+
+    def log_line(self, message: str, kind: types.MessageType = types.MessageType.Info) -> None:
+        """A line in the client's log (and the server's): never a pop-up."""
+        log.info("%s", message)
+        self.window_log_message(types.LogMessageParams(kind, f"roslint-names: {message}"))
+
+    def report_server_error(self, error: Exception, source: type[Exception]) -> None:
+        """A message pygls could not read is logged; other errors are pygls's to report."""
+        if source is JsonRpcException:
+            self.log_line(f"ignored a message: {_why(error)}", types.MessageType.Warning)
+            return
+        super().report_server_error(error, source)  # type: ignore[arg-type]
+
+    @property
+    def encoding(self) -> str:
+        """The position encoding negotiated at ``initialize``: LSP's UTF-16 until then."""
+        try:
+            negotiated = self.workspace.position_encoding
+        except RuntimeError:  # not initialized
+            return types.PositionEncodingKind.Utf16.value
+        return str(getattr(negotiated, "value", negotiated or "utf-16"))
 
     async def ready_session(self) -> Session | None:
         if self._loading is None:
@@ -82,7 +254,7 @@ class RoslintServer(LanguageServer):
         cache = None if directory is None else FactsCache(directory.absolute())
         os.chdir(root)  # the engine shows and matches paths relative to the workspace
         session = Session(root, settings, registry, cache)
-        await asyncio.get_running_loop().run_in_executor(None, session.load)
+        await self._worker.run(session.load)
         self.session = session
         return session
 
@@ -97,10 +269,26 @@ class RoslintServer(LanguageServer):
         await asyncio.sleep(delay)
         session = await self.ready_session()
         path = to_fs_path(uri)
-        if session is None or path is None:
+        document = self.workspace.text_documents.get(unquote(uri))
+        if session is None or path is None or document is None:
             return
-        text = self.workspace.get_text_document(uri).source
-        found = session.check(Path(path), text)
+        text = document.source
+        too_large = session.skip_reason(text)
+        if too_large is not None:
+            await self._worker.run(lambda: session.skip(Path(path)))
+            if uri not in self._skipped:
+                self._skipped.add(uri)
+                self.log_line(f"not checked: {session.display(Path(path))}: {too_large}")
+            self.publish(uri, text, [])
+            return
+        self._skipped.discard(uri)
+        try:
+            found = await self._worker.run(lambda: session.check(Path(path), text))
+        except Exception as error:  # a bug of the linter: said in the log, the editor goes on
+            log.exception("checking %s", uri)
+            failed = f"checking {session.display(Path(path))} failed: {error!r}"
+            self.log_line(failed, types.MessageType.Error)
+            return
         if found is None:
             return
         self.publish(uri, text, found)
@@ -116,29 +304,31 @@ class RoslintServer(LanguageServer):
         session = self.session
         if session is None:
             return
-        job = session.graph_job()
-        graph = await asyncio.get_running_loop().run_in_executor(None, job.build)
-        for display, found in session.apply_graph(job, graph).items():
+        for display, found in (await self._worker.run(session.check_graph)).items():
             uri = from_fs_path(str(session.root / display))
             if uri is not None and uri in self.published:
                 self.publish(uri, self.published[uri].text, found)
 
     def publish(self, uri: str, text: str, found: list[Diagnostic]) -> None:
         shown = [d for d in found if not d.suppressed]
-        self.published[uri] = _Published(text, shown)
-        lines = split_lines(text)
+        # The lines only where there is something to place on them: a document too large to
+        # check is not split.
+        positions = _Positions(split_lines(text) if shown else [], self.encoding)
+        self.published[uri] = _Published(text, shown, positions)
         self.text_document_publish_diagnostics(
-            types.PublishDiagnosticsParams(uri, [_diagnostic(d, lines) for d in shown])
+            types.PublishDiagnosticsParams(uri, [_diagnostic(d, positions) for d in shown])
         )
 
     def forget(self, uri: str) -> None:
         self.published.pop(uri, None)
+        self._skipped.discard(uri)
         pending = self._pending.pop(uri, None)
         if pending is not None:
             pending.cancel()
         path = to_fs_path(uri)
-        if self.session is not None and path is not None:
-            self.session.close(Path(path))
+        session = self.session
+        if session is not None and path is not None:
+            self._worker.run(lambda: session.close(Path(path)))
         self.text_document_publish_diagnostics(types.PublishDiagnosticsParams(uri, []))
 
 
@@ -180,16 +370,16 @@ def code_action(ls: RoslintServer, params: types.CodeActionParams) -> list[types
     path = to_fs_path(uri)
     if published is None or path is None or ls.session is None:
         return []
-    lines = split_lines(published.text)
-    wanted = params.range
+    positions = published.positions
+    wanted = params.range  # in the client's units, as the ranges it is compared with
     actions: list[types.CodeAction] = []
     for diagnostic in published.diagnostics:
-        shown = _range(diagnostic.span, lines)
+        shown = positions.range(diagnostic.span)
         if not _overlaps(shown, wanted):
             continue
-        lsp_diagnostic = _diagnostic(diagnostic, lines)
+        lsp_diagnostic = _diagnostic(diagnostic, positions)
         if diagnostic.edit is not None:
-            actions.append(_fix_action(ls.session, uri, diagnostic, lines, lsp_diagnostic))
+            actions.append(_fix_action(ls.session, uri, diagnostic, positions, lsp_diagnostic))
         suppress = _suppress_action(Path(path), uri, published.text, diagnostic, lsp_diagnostic)
         if suppress is not None:
             actions.append(suppress)
@@ -201,10 +391,9 @@ def hover(ls: RoslintServer, params: types.HoverParams) -> types.Hover | None:
     published = ls.published.get(params.text_document.uri)
     if published is None:
         return None
-    lines = split_lines(published.text)
     pages: list[str] = []
     for diagnostic in published.diagnostics:
-        shown = _range(diagnostic.span, lines)
+        shown = published.positions.range(diagnostic.span)
         if _contains(shown, params.position):
             try:
                 pages.append(load_doc(diagnostic.code, diagnostic.rule_name).markdown)
@@ -223,29 +412,60 @@ def serve() -> None:
 
 
 # ---------------------------------------------------------------------------------------
-# From the linter's spans (1-based lines, code point columns) to LSP's (0-based, UTF-16)
+# From the linter's spans (1-based lines, code point columns) to LSP's (0-based lines,
+# columns in code units of the negotiated encoding)
 
 
-def _position(line: int, column: int, lines: list[str]) -> types.Position:
-    text = lines[line - 1] if 0 < line <= len(lines) else ""
-    prefix = text[: max(column - 1, 0)]
-    return types.Position(max(line - 1, 0), len(prefix.encode("utf-16-le")) // 2)
+@dataclass
+class _Positions:
+    """A document's lines, and how its client counts columns."""
+
+    lines: list[str]
+    encoding: str
+    _others: dict[str, _Positions] = field(default_factory=dict)
+
+    def position(self, line: int, column: int) -> types.Position:
+        text = self.lines[line - 1] if 0 < line <= len(self.lines) else ""
+        return types.Position(max(line - 1, 0), _units(text[: max(column - 1, 0)], self.encoding))
+
+    def range(self, span: Span) -> types.Range:
+        return types.Range(
+            self.position(span.line, span.column), self.position(span.end_line, span.end_column)
+        )
+
+    def of(self, path: Path) -> _Positions:
+        """Another file's positions, as it is on disk (read once)."""
+        key = str(path)
+        if key not in self._others:
+            self._others[key] = _Positions(_disk_lines(path), self.encoding)
+        return self._others[key]
 
 
-def _range(span: Span, lines: list[str]) -> types.Range:
-    return types.Range(
-        _position(span.line, span.column, lines), _position(span.end_line, span.end_column, lines)
-    )
+def _units(text: str, encoding: str) -> int:
+    """How many code units of ``encoding`` ``text`` takes."""
+    if encoding == types.PositionEncodingKind.Utf32.value:
+        return len(text)
+    if encoding == types.PositionEncodingKind.Utf8.value:
+        return len(text.encode("utf-8", errors="surrogatepass"))
+    return len(text.encode("utf-16-le", errors="surrogatepass")) // 2
 
 
-def _diagnostic(diagnostic: Diagnostic, lines: list[str]) -> types.Diagnostic:
+def _why(error: Exception) -> str:
+    """What was wrong with a message, in a line: cattrs's own words for bad parameters."""
+    cause = error.__cause__
+    if isinstance(cause, cattrs.ClassValidationError):
+        return "; ".join(cattrs.transform_error(cause))
+    return str(error) or type(error).__name__
+
+
+def _diagnostic(diagnostic: Diagnostic, positions: _Positions) -> types.Diagnostic:
     severity = (
         types.DiagnosticSeverity.Error
         if diagnostic.severity is Severity.ERROR
         else types.DiagnosticSeverity.Warning
     )
     return types.Diagnostic(
-        range=_range(diagnostic.span, lines),
+        range=positions.range(diagnostic.span),
         message=diagnostic.message,
         severity=severity,
         code=diagnostic.code,
@@ -258,10 +478,11 @@ def _diagnostic(diagnostic: Diagnostic, lines: list[str]) -> types.Diagnostic:
             types.DiagnosticRelatedInformation(
                 types.Location(
                     from_fs_path(os.path.abspath(related.path)) or related.path,
-                    types.Range(
-                        types.Position(related.span.line - 1, related.span.column - 1),
-                        types.Position(related.span.end_line - 1, related.span.end_column - 1),
-                    ),
+                    (
+                        positions
+                        if related.path == diagnostic.path
+                        else positions.of(Path(os.path.abspath(related.path)))
+                    ).range(related.span),
                 ),
                 related.message,
             )
@@ -269,6 +490,90 @@ def _diagnostic(diagnostic: Diagnostic, lines: list[str]) -> types.Diagnostic:
         ]
         or None,
     )
+
+
+# ---------------------------------------------------------------------------------------
+# A client's incremental edits, applied at the cost of the distance from the last one
+
+
+@dataclass
+class _LineHint:
+    """Where one line of a document starts: the last place an edit was made. Typing edits
+    near the previous edit, so finding the next one costs that distance, not the text."""
+
+    line: int = 0
+    start: int = 0
+
+
+def _apply(
+    text: str, change: types.TextDocumentContentChangeEvent, encoding: str, hint: _LineHint
+) -> str:
+    """``text`` after ``change``, its range counted in ``encoding``."""
+    if not isinstance(change, types.TextDocumentContentChangePartial):
+        hint.line, hint.start = 0, 0
+        return change.text
+    start = _offset(text, change.range.start, encoding, hint)
+    kept = _LineHint(hint.line, hint.start)  # before the edit: still right after it,
+    if kept.start > 0 and text[kept.start - 1] == "\r":  # unless a LF joins that CR
+        kept = _LineHint(kept.line - 1, _previous_line_start(text, kept.start))
+    end = _offset(text, change.range.end, encoding, hint)
+    if end < start:  # a range given backwards
+        start, end = end, start
+        hint.line, hint.start = 0, 0
+    else:
+        hint.line, hint.start = kept.line, kept.start
+    return "".join((text[:start], change.text, text[end:]))  # one copy of the text, not two
+
+
+def _offset(text: str, position: types.Position, encoding: str, hint: _LineHint) -> int:
+    """The index in ``text`` of a client's position; past a line's end is its end."""
+    start = _line_start(text, position.line, hint)
+    line = text[start : _line_end(text, start)]
+    if encoding == types.PositionEncodingKind.Utf32.value or line.isascii():
+        return start + min(position.character, len(line))
+    units = 0
+    for index, character in enumerate(line):
+        if units >= position.character:
+            return start + index
+        units += _units(character, encoding)
+    return start + len(line)
+
+
+def _line_start(text: str, line: int, hint: _LineHint) -> int:
+    if line < hint.line - line:  # nearer the top than the hint: from the top
+        hint.line, hint.start = 0, 0
+    while hint.line > line:
+        hint.start = _previous_line_start(text, hint.start)
+        hint.line -= 1
+    while hint.line < line:
+        following = _next_line_start(text, hint.start)
+        if following < 0:  # past the last line: its end
+            return len(text)
+        hint.line, hint.start = hint.line + 1, following
+    return hint.start
+
+
+def _line_end(text: str, start: int) -> int:
+    newline = text.find("\n", start)
+    limit = len(text) if newline < 0 else newline
+    carriage = text.find("\r", start, limit)
+    return limit if carriage < 0 else carriage
+
+
+def _next_line_start(text: str, start: int) -> int:
+    """Where the line after the one at ``start`` starts; -1 if it is the last."""
+    end = _line_end(text, start)
+    if end == len(text):
+        return -1
+    return end + 2 if text.startswith("\r\n", end) else end + 1
+
+
+def _previous_line_start(text: str, start: int) -> int:
+    """Where the line before the one at ``start`` (not the first) starts."""
+    end = start - 2 if start >= 2 and text.startswith("\r\n", start - 2) else start - 1
+    newline = text.rfind("\n", 0, end)
+    carriage = text.rfind("\r", newline + 1, end)
+    return max(newline, carriage) + 1
 
 
 def _overlaps(one: types.Range, other: types.Range) -> bool:
@@ -287,16 +592,18 @@ def _fix_action(
     session: Session,
     uri: str,
     diagnostic: Diagnostic,
-    lines: list[str],
+    positions: _Positions,
     lsp_diagnostic: types.Diagnostic,
 ) -> types.CodeAction:
     edit = diagnostic.edit
     assert edit is not None
-    changes: dict[str, list[types.TextEdit]] = {uri: [_text_edit(edit, lines)]}
+    changes: dict[str, list[types.TextEdit]] = {uri: [_text_edit(edit, positions)]}
     for other in diagnostic.also:
         other_uri = from_fs_path(str(session.root / (other.path or diagnostic.path))) or uri
-        other_lines = lines if other_uri == uri else _disk_lines(session.root / (other.path or ""))
-        changes.setdefault(other_uri, []).append(_text_edit(other, other_lines))
+        other_positions = (
+            positions if other_uri == uri else positions.of(session.root / (other.path or ""))
+        )
+        changes.setdefault(other_uri, []).append(_text_edit(other, other_positions))
     safety = "" if edit.safe else " (unsafe: may change what the system does)"
     return types.CodeAction(
         title=f"{diagnostic.code}: write '{edit.text}'{safety}",
@@ -307,8 +614,8 @@ def _fix_action(
     )
 
 
-def _text_edit(edit: Edit, lines: list[str]) -> types.TextEdit:
-    return types.TextEdit(_range(edit.span, lines), edit.text)
+def _text_edit(edit: Edit, positions: _Positions) -> types.TextEdit:
+    return types.TextEdit(positions.range(edit.span), edit.text)
 
 
 def _disk_lines(path: Path) -> list[str]:

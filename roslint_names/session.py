@@ -11,6 +11,10 @@ two steps of very different cost:
 - ``check_graph``: the workspace graph built again over the facts in memory (the edited
   documents' included) and the graph rules run for the open documents: about a second on
   a workspace of ten thousand files, run once typing pauses.
+
+A document above ``max-file-size`` is what ``check`` skips on disk: ``skip_reason`` says
+so without copying its text, and ``skip`` leaves it with no facts. A session is not
+thread-safe: one thread at a time calls it (the language server's session worker).
 """
 
 from __future__ import annotations
@@ -43,6 +47,7 @@ from .gather import (
 )
 from .generation import PackageGenerations, service_types
 from .model import Diagnostic, FileFacts, Generation
+from .reading import read_file, too_large
 from .registry import Registry
 from .suppress import Suppression
 from .symbols import PackageConstants, uses_constants
@@ -140,7 +145,9 @@ class Session:
         display = self.display(path)
         source = self._sources.get(display) or SourceFile(path, display, language)
         self._sources[display] = source
-        data = text.encode("utf-8")
+        # A lone surrogate (JSON can carry one) becomes one replacement character: one code
+        # point for one, so that the columns of the findings stay the document's.
+        data = text.encode("utf-8", errors="replace")
         extract = extractor_for(language)
         facts = extract(display, data, self._packages.for_file(path), self._fallback)
         if uses_constants(facts):
@@ -165,16 +172,37 @@ class Session:
         self._open[display] = _Checked(source, text, found, suppressions)
         return self._with_graph(display)
 
+    def skip_reason(self, text: str) -> str | None:
+        """Why a document of ``text`` is not checked (above ``max-file-size``, as ``check``
+        skips such a file on disk), or None. Counts its UTF-8 bytes without encoding it
+        whole: the text may be tens of megabytes."""
+        maximum = self._settings.max_file_size
+        if len(text) <= maximum and text.isascii():
+            return None
+        size = len(text) if text.isascii() else _utf8_size(text)
+        return too_large(size, maximum) if size > maximum else None
+
+    def skip(self, path: Path) -> None:
+        """The document is not checked: no facts, no diagnostics, until it is again."""
+        display = self.display(path)
+        self._open.pop(display, None)
+        self._graph_found.pop(display, None)
+        if display in self._facts:
+            self._facts[display] = FileFacts(display, self._facts[display].language, self._fallback)
+        if self._specialiser is not None:
+            self._specialiser.forget(display)
+
     def close(self, path: Path) -> None:
         """The editor closed the document: its facts are the file's on disk again."""
         display = self.display(path)
         self._open.pop(display, None)
         self._graph_found.pop(display, None)
         source = self._sources.get(display)
-        if source is None or not path.is_file():
+        data, _, skip = read_file(path, self._settings.max_file_size)
+        if source is None or data is None or skip is not None:
             self._facts.pop(display, None)
             return
-        self.check(path, path.read_bytes().decode("utf-8", errors="replace"))
+        self.check(path, data.decode("utf-8", errors="replace"))
         self._open.pop(display, None)
 
     def check_graph(self) -> dict[str, list[Diagnostic]]:
@@ -221,6 +249,14 @@ class Session:
         checked = self._open[display]
         found = checked.diagnostics + self._graph_found.get(display, [])
         return sorted(found, key=Diagnostic.sort_key)
+
+
+def _utf8_size(text: str, chunk: int = 1 << 20) -> int:
+    """The length of ``text`` in UTF-8, encoded a megabyte at a time."""
+    return sum(
+        len(text[start : start + chunk].encode("utf-8", errors="replace"))
+        for start in range(0, len(text), chunk)
+    )
 
 
 @dataclass(frozen=True)
