@@ -38,6 +38,13 @@ those values; it cannot import a module or call anything else, so a tampered ent
 worst yield wrong findings. The directory is created private to the user (0700), like the
 rest of ``~/.cache``.
 
+Deleting: the cache deletes only what it can tell is its own. Every entry directory it
+creates holds a ``CACHEDIR.TAG`` of its own wording (``_CACHEDIR_TAG``), and the pruning
+of stale directories passes over any ``facts-v*`` directory without one, whoever made
+it: ``--cache-dir`` may name a folder the user keeps other things in. The folder itself
+is tagged only when the cache created it (a tag tells backup tools to skip everything
+under it).
+
 A run over inputs a recent run had (every file's bytes, the package manifests read, the
 settings, all of the tool's code: the engine makes the key, ``load_run``/``store_run`` keep
 the value) is served whole from ``runs/``: applying the rules again is cheap next to
@@ -63,7 +70,7 @@ from pathlib import Path
 
 from . import __version__, model
 from .model import FileFacts, Generation, Language
-from .reading import content_digest
+from .reading import content_digest, open_regular
 
 FORMAT_VERSION = 2  # 2: facts in one pack; whole-run results; digests
 _MAGIC = b"RNFACTS\x01"
@@ -81,6 +88,7 @@ _RUNS = "runs"
 DIGESTS = "digests"  # the directory of ``digests.ContentDigests``, one file per workspace
 RUNS_KEPT = 64  # whole-run results: one per recent (file set, settings) of each checkout
 _LOG_BATCH = 512  # lines buffered before an append; and every batch of extraction ends one
+_TAG_NAME = "CACHEDIR.TAG"
 _CACHEDIR_TAG = (
     "Signature: 8a477f597d28d172789f06886806bc55\n"
     "# This file is a cache directory tag created by roslint-names.\n"
@@ -239,7 +247,7 @@ class FactsCache:
         """The value ``store_run`` kept under ``key``, or None (absent or corrupt)."""
         entry = os.path.join(self.directory, _RUNS, key)
         try:
-            with open(entry, "rb") as stream:
+            with open_regular(entry) as stream:
                 blob = stream.read()
         except OSError:
             return None
@@ -292,7 +300,8 @@ class FactsCache:
     def _append(self, name: str, data: bytes) -> int:
         """Append ``data`` to ``name`` in one write; how many bytes were written."""
         try:
-            flags = os.O_WRONLY | os.O_APPEND | os.O_CREAT
+            # Non-blocking: a FIFO in its place fails the open rather than waits on it.
+            flags = os.O_WRONLY | os.O_APPEND | os.O_CREAT | getattr(os, "O_NONBLOCK", 0)
             descriptor = os.open(os.path.join(self.directory, name), flags, 0o600)
             try:
                 return os.write(descriptor, data)
@@ -336,11 +345,12 @@ class FactsCache:
         directory = self.directory
         try:
             # exist_ok everywhere: another run may be creating the same directories.
-            self.root.mkdir(parents=True, mode=0o700, exist_ok=True)
-            tag = self.root / "CACHEDIR.TAG"  # tells backup tools to skip the cache
-            if not tag.exists():
-                tag.write_text(_CACHEDIR_TAG, encoding="ascii")
-            directory.mkdir(mode=0o700, exist_ok=True)
+            if _created(self.root, parents=True):  # not a folder the user had already
+                _tag(self.root)
+            _created(directory)
+            # Also in a directory of this name made before tags were: the fingerprint in
+            # its name says it is this version's.
+            _tag(directory)
         except OSError as error:
             reason = error.strerror or str(error)
             self._problem(f"cache disabled: cannot create {directory}: {reason}")
@@ -424,7 +434,7 @@ def _size(path: Path) -> int:
 
 def _read_bytes(path: str) -> bytes:
     try:
-        with open(path, "rb") as stream:
+        with open_regular(path) as stream:
             return stream.read()
     except OSError:  # absent (nothing stored yet) or unreadable: everything misses
         return b""
@@ -445,7 +455,7 @@ _GENERATIONS = {str(generation.value): generation for generation in Generation}
 
 def _read_log(path: str) -> dict[str, tuple[Language, Generation]]:
     try:
-        with open(path, "rb") as stream:
+        with open_regular(path) as stream:
             data = stream.read()
     except OSError:
         return {}
@@ -598,22 +608,54 @@ def _parser_stamp() -> bytes:
     return "\n".join(stamp).encode("utf-8", errors="surrogateescape")
 
 
+def _created(directory: Path, parents: bool = False) -> bool:
+    """Make ``directory`` (0700); whether this call made it rather than finding it."""
+    try:
+        directory.mkdir(parents=parents, mode=0o700)
+    except FileExistsError:
+        if not directory.is_dir():
+            raise
+        return False
+    return True
+
+
+def _tag(directory: Path) -> None:
+    """Mark ``directory`` as this cache's: backup tools skip it, and pruning may delete
+    it (``_is_own``)."""
+    tag = directory / _TAG_NAME
+    if not tag.exists():
+        tag.write_text(_CACHEDIR_TAG, encoding="ascii")
+
+
+def _is_own(directory: str) -> bool:
+    """Whether ``directory`` holds the tag this cache writes into what it creates."""
+    try:
+        with open_regular(os.path.join(directory, _TAG_NAME)) as stream:
+            return stream.read(len(_CACHEDIR_TAG) + 1) == _CACHEDIR_TAG.encode("ascii")
+    except OSError:
+        return False
+
+
 def _prune(root: Path, keep: str) -> None:
-    """Delete other versions' entry directories that no run has used for a day."""
+    """Delete other versions' entry directories that no run has used for a day; only
+    those that carry this cache's tag, never a folder it did not create."""
     now = time.time()
     try:
         candidates = [
             entry
             for entry in os.scandir(root)
-            if entry.name.startswith(_PREFIX) and entry.name != keep and entry.is_dir()
+            if entry.name.startswith(_PREFIX)
+            and entry.name != keep
+            and entry.is_dir(follow_symlinks=False)
+        ]
+        stale = [
+            entry.path
+            for entry in candidates
+            if now - entry.stat(follow_symlinks=False).st_mtime > STALE_AFTER_SECONDS
+            and _is_own(entry.path)
         ]
     except OSError:
         return
-    stale = [
-        entry.path
-        for entry in candidates
-        if now - entry.stat(follow_symlinks=False).st_mtime > STALE_AFTER_SECONDS
-    ]
     if stale:
         import shutil
 

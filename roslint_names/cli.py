@@ -444,7 +444,10 @@ def _prepare(
     cwd = Path.cwd()
     start = config_search_start(options.paths, cwd)
     settings = apply_overrides(load_settings(options.config, start, registry), overrides, registry)
-    sources = discover(options.paths, settings.exclude, settings.root, cwd)
+    warnings: list[str] = []  # what the walk passed over: said, never skipped in silence
+    sources = discover(options.paths, settings.exclude, settings.root, cwd, warnings)
+    for warning in warnings:
+        print(f"roslint-names: warning: {warning}", file=sys.stderr)
     workspace = _workspace_context(options.paths, settings, registry, cwd, for_graph=for_graph)
     return registry, settings, sources, workspace
 

@@ -8,20 +8,28 @@ over its parents'; within one directory in this order):
   table is passed over, so a Python package inside a ROS workspace does not hide the
   workspace's own file).
 
-Every problem names the file and the key and ends the run with exit 2.
+Every problem names the file and the key and ends the run with exit 2: a pattern
+(``exclude``, ``per-file-ignores``, ``[test-code] paths``) git would not accept, and a
+``[naming]`` regular expression that could backtrack without bound
+(``regex_safety``), are refused here, before any file is read.
 """
 
 from __future__ import annotations
 
 import functools
+import os
 import re
+import stat
 import sys
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .discover import pattern_error
 from .model import Generation, Kind, Severity
+from .reading import NotRegularFileError, open_regular
+from .regex_safety import UnboundedBacktrackingError, check_backtracking
 from .registry import Registry
 from .rule import NamingPolicy, OptionValue, Rule
 
@@ -92,9 +100,41 @@ def find_config(start: Path) -> Path | None:
     for directory in (start, *start.parents):
         for filename in CONFIG_FILENAMES:
             candidate = directory / filename
-            if candidate.is_file() and (filename != "pyproject.toml" or _has_tool_table(candidate)):
+            if _is_config_file(candidate) and (
+                filename != "pyproject.toml" or _has_tool_table(candidate)
+            ):
                 return candidate
     return None
+
+
+def _is_config_file(candidate: Path) -> bool:
+    """A regular file; False where there is none. A FIFO, socket or device of a config
+    file's name is an error: passing over it would quietly use another configuration,
+    and opening it could block."""
+    try:
+        mode = os.stat(candidate).st_mode
+    except OSError:
+        return False
+    if stat.S_ISREG(mode):
+        return True
+    if stat.S_ISDIR(mode):
+        return False
+    reason = NotRegularFileError(candidate, mode).strerror
+    raise ConfigError(f"{candidate}: cannot read config file: {reason}")
+
+
+def _check_named_config(path: Path) -> None:
+    """``--config``'s file exists and is a regular file: anything else is never opened
+    (a FIFO would block the run, a device could act on the open)."""
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        raise ConfigError(f"{path}: config file not found") from None
+    except OSError as error:
+        raise ConfigError(f"{path}: cannot read config file: {error.strerror}") from None
+    if not stat.S_ISREG(mode):
+        reason = NotRegularFileError(path, mode).strerror
+        raise ConfigError(f"{path}: cannot read config file: {reason}")
 
 
 def load_settings(config_file: Path | None, start: Path, registry: Registry) -> Settings:
@@ -103,8 +143,8 @@ def load_settings(config_file: Path | None, start: Path, registry: Registry) -> 
         config_file = find_config(start.resolve())
         if config_file is None:
             return Settings(root=start.resolve())
-    elif not config_file.is_file():
-        raise ConfigError(f"{config_file}: config file not found")
+    else:
+        _check_named_config(config_file)
     table = _read_table(config_file)
     return parse_settings(table, config_file.resolve(), registry)
 
@@ -137,7 +177,7 @@ def parse_settings(table: Mapping[str, Any], source: Path, registry: Registry) -
         extend_select=reader.selectors("extend-select", table.get("extend-select", [])),
         ignore=reader.selectors("ignore", table.get("ignore", [])),
         per_file_ignores=reader.per_file_ignores(table.get("per-file-ignores", {})),
-        exclude=reader.strings("exclude", table.get("exclude", [])),
+        exclude=reader.patterns("exclude", table.get("exclude", [])),
         max_depth=reader.max_depth("max-depth", table.get("max-depth", DEFAULT_MAX_DEPTH)),
         max_file_size=reader.positive(
             "max-file-size", table.get("max-file-size", DEFAULT_MAX_FILE_SIZE), "bytes"
@@ -172,6 +212,10 @@ def apply_overrides(settings: Settings, overrides: Overrides, registry: Registry
                 raise ConfigError(f"{option}: {selector!r} matches no rule code, prefix or name")
     if overrides.max_depth is not None and overrides.max_depth < 1:
         raise ConfigError(f"--max-depth: must be at least 1, got {overrides.max_depth}")
+    for pattern in overrides.extend_exclude:
+        reason = pattern_error(pattern)
+        if reason is not None:
+            raise ConfigError(f"--extend-exclude: invalid pattern {pattern!r}: {reason}")
     return replace(
         settings,
         ros=overrides.ros if overrides.ros is not None else settings.ros,
@@ -287,7 +331,7 @@ def _read_table(path: Path) -> Mapping[str, Any]:
 
 def _load_toml(path: Path) -> dict[str, Any]:
     try:
-        with path.open("rb") as stream:
+        with open_regular(path) as stream:  # a FIFO is refused, never waited on
             data: dict[str, Any] = tomllib.load(stream)
             return data
     except OSError as error:
@@ -322,6 +366,15 @@ class _Reader:
             raise self.error(key, f"must be a list of strings, got {value!r}")
         return tuple(value)
 
+    def patterns(self, key: str, value: object) -> tuple[str, ...]:
+        """Gitignore-style patterns, each one git accepts."""
+        patterns = self.strings(key, value)
+        for pattern in patterns:
+            reason = pattern_error(pattern)
+            if reason is not None:
+                raise self.error(key, f"invalid pattern {pattern!r}: {reason}")
+        return patterns
+
     def selectors(self, key: str, value: object) -> tuple[str, ...]:
         selectors = self.strings(key, value)
         for selector in selectors:
@@ -341,7 +394,10 @@ class _Reader:
         if not isinstance(value, dict):
             raise self.error("per-file-ignores", "must be a table of glob = [codes]")
         return tuple(
-            (pattern, self.selectors(f"per-file-ignores.{pattern!r}", selectors))
+            (
+                self.patterns("per-file-ignores", [pattern])[0],
+                self.selectors(f"per-file-ignores.{pattern!r}", selectors),
+            )
             for pattern, selectors in value.items()
         )
 
@@ -359,7 +415,7 @@ class _Reader:
             select=None if select is None else self.selectors("test-code.select", select),
             extend_select=self.selectors("test-code.extend-select", value.get("extend-select", [])),
             ignore=self.selectors("test-code.ignore", value.get("ignore", [])),
-            paths=self.strings("test-code.paths", value.get("paths", [])),
+            paths=self.patterns("test-code.paths", value.get("paths", [])),
         )
 
     def _rule_key(self, key: str, table_key: str) -> str:
@@ -445,6 +501,10 @@ class _Reader:
             re.compile(pattern)
         except re.error as error:
             raise self.error(f"{key}.{form}", f"invalid regular expression: {error}") from error
+        try:
+            check_backtracking(pattern)
+        except UnboundedBacktrackingError as error:
+            raise self.error(f"{key}.{form}", str(error)) from None
         return pattern, text
 
 

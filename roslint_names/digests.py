@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .cache import DIGESTS, FactsCache, keep_newest
-from .reading import BINARY, Read, content_digest, read_file, too_large
+from .reading import BINARY, Read, content_digest, open_regular, read_file, too_large
 
 KEPT = 64  # digest files: one per recently linted workspace
 
@@ -105,7 +105,7 @@ class ContentDigests:
 
     def _load(self) -> dict[str, tuple[_Status, str, bool]]:
         try:
-            with open(self.path, "rb") as stream:
+            with open_regular(self.path) as stream:
                 self._present = True
                 loaded = _DigestUnpickler(stream).load()
         except Exception:  # absent, unreadable or damaged: every file is read again

@@ -6,12 +6,21 @@ directory holding ``COLCON_IGNORE``, ``CATKIN_IGNORE`` or ``AMENT_IGNORE`` is sk
 also keeps colcon's ``build/``, ``install/`` and ``log/`` copies of launch files out.
 Files named on the command line are linted even when ``.gitignore`` matches them, but not
 when ``exclude`` does (pre-commit passes every staged file; ``exclude`` must still hold).
+
+No input stops the walk or passes in silence. Only regular files are opened (the
+``.gitignore`` files and the heads sniffed too, through ``reading.open_regular``): a FIFO
+never blocks the run. What the walk passes over for a reason the user should hear of (a
+directory it cannot read, a FIFO or device named like a source, a ``.gitignore`` it
+cannot read or a pattern of it that is invalid, a named path that yields no file) is one
+line of the ``warnings`` the caller prints. A named path that cannot be linted at all (a
+missing one, a FIFO, a directory that cannot be read) is a ``DiscoveryError``.
 """
 
 from __future__ import annotations
 
 import os
 import re
+import stat
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from enum import Enum
@@ -19,6 +28,7 @@ from pathlib import Path
 from typing import TypeVar
 
 from .model import Language
+from .reading import NotRegularFileError, open_regular
 
 IGNORE_MARKERS = ("COLCON_IGNORE", "CATKIN_IGNORE", "AMENT_IGNORE")
 SKIPPED_DIRECTORIES = frozenset({".git", ".hg", ".svn", "__pycache__", ".mypy_cache", ".tox"})
@@ -41,6 +51,21 @@ _SHEBANG_BYTES = 128
 
 class DiscoveryError(Exception):
     """A path named by the user that cannot be linted."""
+
+
+@dataclass(frozen=True)
+class _Notes:
+    """Where the walk writes what it passed over, each line naming its path as reports
+    show it (relative to ``prefix``, the current directory ending in a separator)."""
+
+    prefix: str
+    lines: list[str]
+
+    def shown(self, path: str) -> str:
+        return _displayed(path, self.prefix)
+
+    def add(self, line: str) -> None:
+        self.lines.append(line)
 
 
 @dataclass(frozen=True)
@@ -125,7 +150,7 @@ def _sniff_xml(path: str | Path) -> Language | None:
 
 def _head(path: str | Path, size: int = SNIFF_BYTES) -> bytes:
     try:
-        with open(path, "rb") as stream:
+        with open_regular(path) as stream:
             return stream.read(size)
     except OSError:
         return b""  # unreadable: classified by name only, and reported when read for real
@@ -159,7 +184,8 @@ class _IgnoreRules:
     ``Path`` for each costs more than the matching.
     """
 
-    def __init__(self, exclude: Sequence[str], exclude_root: Path) -> None:
+    def __init__(self, exclude: Sequence[str], exclude_root: Path, notes: _Notes) -> None:
+        self._notes = notes
         # Each spec with the directory its patterns are relative to, ending in a separator.
         self._specs: list[tuple[str, _Spec]] = []
         if exclude:
@@ -177,15 +203,35 @@ class _IgnoreRules:
 
     def enter(self, directory: str | Path) -> int:
         """Read ``directory/.gitignore``; returns how many rules to pop on leaving it."""
+        path = os.path.join(directory, ".gitignore")
         try:
-            with open(
-                os.path.join(directory, ".gitignore"), encoding="utf-8", errors="replace"
-            ) as f:
-                lines = f.read().splitlines()
-        except OSError:
+            with open_regular(path) as stream:
+                lines = stream.read().decode("utf-8", errors="replace").splitlines()
+        except (FileNotFoundError, NotADirectoryError):
+            return 0  # the usual case above a named directory: none there
+        except OSError as error:
+            reason = error.strerror or str(error)
+            shown = self._notes.shown(path)
+            self._notes.add(f"cannot read {shown}: {reason}; its patterns are not applied")
             return 0
-        self._specs.append((_directory_prefix(os.fspath(directory)), _Spec(lines)))
+        self._specs.append((_directory_prefix(os.fspath(directory)), self._spec(path, lines)))
         return 1
+
+    def _spec(self, path: str, lines: list[str]) -> _Spec:
+        """The patterns of ``lines``; an invalid one is left out, as git leaves it, and said."""
+        try:
+            return _Spec(lines)
+        except _INVALID_PATTERN:
+            pass
+        valid = []
+        for number, line in enumerate(lines, start=1):
+            reason = pattern_error(line)
+            if reason is None:
+                valid.append(line)
+            else:
+                shown = self._notes.shown(path)
+                self._notes.add(f"{shown}:{number}: invalid pattern {line!r} not applied: {reason}")
+        return _Spec(valid)
 
     def leave(self, count: int) -> None:
         del self._specs[len(self._specs) - count :]
@@ -220,6 +266,22 @@ class _Spec:
 
 
 _NAMED_GROUP = re.compile(r"\(\?P<\w+>")
+# What pathspec raises for a pattern it cannot compile: its own ValueError ('!' alone, a
+# trailing backslash) or the regular expression's (a range such as '[z-a]').
+_INVALID_PATTERN = (ValueError, re.error)
+
+
+def pattern_error(pattern: str) -> str | None:
+    """Why ``pattern`` is not a valid gitignore pattern, or None when it is."""
+    import pathspec
+
+    try:
+        pathspec.GitIgnoreSpec.from_lines([pattern])
+    except re.error as error:
+        return error.msg  # without the position, which is in pathspec's translation
+    except ValueError:
+        return "git does not accept it"
+    return None
 
 
 def _directory_prefix(directory: str) -> str:
@@ -234,24 +296,56 @@ def _matches(spec: _Spec, prefix: str, path: str, is_dir: bool) -> bool:
 
 
 def discover(
-    paths: Sequence[Path], exclude: Sequence[str], exclude_root: Path, cwd: Path
+    paths: Sequence[Path],
+    exclude: Sequence[str],
+    exclude_root: Path,
+    cwd: Path,
+    warnings: list[str] | None = None,
 ) -> list[SourceFile]:
-    """Every lintable file under ``paths``, sorted by display path, each once."""
-    rules = _IgnoreRules(exclude, exclude_root)
-    found: dict[str, SourceFile] = {}
+    """Every lintable file under ``paths``, sorted by display path, each once.
+
+    What was passed over and why, one line each, is appended to ``warnings``; the
+    paths named that cannot be linted at all raise ``DiscoveryError``.
+    """
     prefix = os.path.join(os.fspath(cwd), "")
+    notes = _Notes(prefix, [] if warnings is None else warnings)
+    rules = _IgnoreRules(exclude, exclude_root, notes)
+    found: dict[str, SourceFile] = {}
     for given in paths:
         absolute = (cwd / given).absolute()
-        if not os.path.lexists(absolute):
-            raise DiscoveryError(f"{given}: no such file or directory")
-        if absolute.is_dir():
+        mode, unfollowable = _named_status(given, absolute)
+        if mode is not None and stat.S_ISDIR(mode):
             walked: list[tuple[str, Language | _Sniff]]
-            walked = _walk_named(absolute, rules, _by_name)
-            for path, by_name in walked:
-                _add(found, path, by_name, prefix)
+            try:
+                walked = _walk_named(absolute, rules, _by_name, notes)
+            except OSError as error:
+                reason = error.strerror or str(error)
+                raise DiscoveryError(f"{given}: cannot read directory: {reason}") from None
+            lintable = [_add(found, path, by_name, prefix) for path, by_name in walked]
+            if not any(lintable):
+                notes.add(f"{given}: no file to lint in this directory")
         elif not rules.excluded_by_config(absolute, is_dir=False):
-            _add(found, os.fspath(absolute), _by_name(absolute.name), prefix)
+            added_file = _add(found, os.fspath(absolute), _by_name(absolute.name), prefix)
+            if unfollowable is not None and not added_file:
+                notes.add(f"{given}: not linted: {unfollowable}")
     return sorted(found.values(), key=lambda source: source.display)
+
+
+def _named_status(given: Path, absolute: Path) -> tuple[int | None, str | None]:
+    """The mode of a path the user named (links followed), or why it cannot be followed
+    (a link in a loop, or to nothing): such a link is linted as a file, where its name
+    says it is one, and reading it then says why, as one finding. A missing path, and
+    a FIFO, socket or device (never opened: a FIFO would block), raise
+    ``DiscoveryError``."""
+    try:
+        mode = os.stat(absolute).st_mode
+    except OSError as error:
+        if not os.path.lexists(absolute):
+            raise DiscoveryError(f"{given}: no such file or directory") from None
+        return None, error.strerror or str(error)
+    if not (stat.S_ISDIR(mode) or stat.S_ISREG(mode)):
+        raise DiscoveryError(f"{given}: {NotRegularFileError(absolute, mode).strerror}")
+    return mode, None
 
 
 def text_files(
@@ -261,12 +355,19 @@ def text_files(
     the configuration no extractor reads (parameter files, rviz and dynamic_reconfigure
     configs, scripts). What a rename must search before it is offered (``renames``);
     documentation is left out, it does not break when a name changes."""
-    rules = _IgnoreRules(exclude, exclude_root)
+    # Quiet: what the walk passes over is the lint run's to say (``discover``), and a
+    # rename's search comes after one over the same tree.
+    notes = _Notes(os.path.join(os.fspath(cwd), ""), [])
+    rules = _IgnoreRules(exclude, exclude_root, notes)
     found: set[Path] = set()
     for given in paths:
         absolute = (cwd / given).absolute()
         if absolute.is_dir():
-            found.update(Path(path) for path, _ in _walk_named(absolute, rules, _holds_names))
+            try:
+                walked = _walk_named(absolute, rules, _holds_names, notes)
+            except OSError:
+                continue
+            found.update(Path(path) for path, _ in walked)
         elif absolute.is_file() and not rules.excluded_by_config(absolute, is_dir=False):
             found.add(absolute)
     return sorted(found)
@@ -315,23 +416,34 @@ def _repository_ancestors(directory: Path) -> list[Path]:
 
 def _add(
     found: dict[str, SourceFile], path: str, by_name: Language | _Sniff | None, prefix: str
-) -> None:
-    """Add the file at ``path`` if it is lintable, shown relative to ``prefix``."""
+) -> bool:
+    """Add the file at ``path`` if it is lintable, shown relative to ``prefix``; whether
+    it is."""
     language = _decide(path, by_name)
-    if language is not None:  # package.xml too: the workspace model needs every package
-        found[path] = SourceFile(Path(path), _displayed(path, prefix), language)
+    if language is None:
+        return False
+    # package.xml too: the workspace model needs every package
+    found[path] = SourceFile(Path(path), _displayed(path, prefix), language)
+    return True
 
 
 def _walk_named(
-    directory: Path, rules: _IgnoreRules, select: Callable[[str], _T | None]
+    directory: Path, rules: _IgnoreRules, select: Callable[[str], _T | None], notes: _Notes
 ) -> list[tuple[str, _T]]:
     """The walk of a directory named by the user, under the ``.gitignore`` files of its
-    repository above it, as git applies them."""
+    repository above it, as git applies them. Raises ``OSError`` when ``directory``
+    itself cannot be read."""
+    top = os.fspath(directory)
+    entries = _listing(top)
     pushed = sum(rules.enter(ancestor) for ancestor in _repository_ancestors(directory))
     found: list[tuple[str, _T]] = []
-    _walk(os.fspath(directory), rules, select, found)
+    _walk_listed(top, entries, rules, select, found, notes=notes)
     rules.leave(pushed)
     return found
+
+
+def _listing(directory: str) -> list[os.DirEntry[str]]:
+    return sorted(os.scandir(directory), key=lambda entry: entry.name)
 
 
 def _walk(
@@ -339,13 +451,31 @@ def _walk(
     rules: _IgnoreRules,
     select: Callable[[str], _T | None],
     found: list[tuple[str, _T]],
+    *,
+    notes: _Notes,
 ) -> None:
     """Append the selected files under ``top`` to ``found``, in name order. A list, not a
     generator: every file found would pass up through one generator per level."""
     try:
-        entries = sorted(os.scandir(top), key=lambda entry: entry.name)
-    except OSError:
-        return  # an unreadable directory holds nothing we can lint
+        entries = _listing(top)
+    except OSError as error:
+        # Said, not passed over: the files in it are not linted, and the user should know.
+        reason = error.strerror or str(error)
+        notes.add(f"cannot read directory {notes.shown(top)}: {reason}")
+        return
+    _walk_listed(top, entries, rules, select, found, notes=notes)
+
+
+def _walk_listed(
+    top: str,
+    entries: list[os.DirEntry[str]],
+    rules: _IgnoreRules,
+    select: Callable[[str], _T | None],
+    found: list[tuple[str, _T]],
+    *,
+    notes: _Notes,
+) -> None:
+    """``_walk`` once ``top``'s ``entries`` are listed."""
     names = {entry.name for entry in entries}
     if not names.isdisjoint(IGNORE_MARKERS):
         return
@@ -356,20 +486,30 @@ def _walk(
         if entry.is_dir(follow_symlinks=False):
             if entry.name in SKIPPED_DIRECTORIES or rules.ignored(entry.path, is_dir=True):
                 continue
-            _walk(entry.path, rules, select, found)
+            _walk(entry.path, rules, select, found, notes=notes)
         elif (
             (by_name := select(entry.name)) is not None
-            and _is_file(entry)
             and not rules.ignored(entry.path, is_dir=False)
+            and _is_file(entry, notes)
         ):
             found.append((entry.path, by_name))
     rules.leave(pushed)
 
 
-def _is_file(entry: os.DirEntry[str]) -> bool:
+def _is_file(entry: os.DirEntry[str], notes: _Notes) -> bool:
     """A file, or a link that cannot be followed (to itself, in a loop): reading it then
-    says why, as one finding, rather than the walk stopping."""
+    says why, as one finding, rather than the walk stopping. A FIFO, socket or device
+    named like a source is passed over, and said (a link to a directory, not followed,
+    and a link to nothing are passed over as they always were)."""
     try:
-        return entry.is_file()
+        if entry.is_file():
+            return True
+        mode = entry.stat().st_mode
+    except FileNotFoundError:
+        return False  # a link to nothing
     except OSError:
         return True
+    if not stat.S_ISDIR(mode):
+        reason = NotRegularFileError(entry.path, mode).strerror
+        notes.add(f"skipped {notes.shown(entry.path)}: {reason}")
+    return False

@@ -1,11 +1,19 @@
-"""Read a file to lint, or say why not: too large, binary, or unreadable."""
+"""Read a file to lint, or say why not: too large, binary, unreadable, or not a file.
+
+Every file the tool reads is opened through ``open_regular``: a FIFO, socket or device
+met in a tree or named by the user is refused with a reason, never opened for a read
+that would block the run forever (a FIFO without a writer) or act on a device.
+"""
 
 from __future__ import annotations
 
 import codecs
+import errno
 import hashlib
 import os
+import stat
 from pathlib import Path
+from typing import BinaryIO
 
 Read = tuple["bytes | None", str, "str | None"]  # the bytes, why unreadable, why skipped
 
@@ -23,6 +31,53 @@ BOMS = (
 WIDE_ENCODINGS = frozenset({"utf-16", "utf-32"})
 
 
+class NotRegularFileError(OSError):
+    """A path that is a FIFO, socket, device or directory where a file was expected;
+    ``strerror`` says which (``not a regular file (a FIFO)``)."""
+
+    def __init__(self, path: str | os.PathLike[str], mode: int) -> None:
+        super().__init__(errno.EINVAL, f"not a regular file ({file_kind(mode)})", os.fspath(path))
+
+
+_KINDS = (
+    (stat.S_ISFIFO, "a FIFO"),
+    (stat.S_ISSOCK, "a socket"),
+    (stat.S_ISCHR, "a character device"),
+    (stat.S_ISBLK, "a block device"),
+    (stat.S_ISDIR, "a directory"),
+)
+
+
+# Non-blocking only matters for the open: reads of a regular file never wait on it.
+_READ_FLAGS = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_BINARY", 0)
+
+
+def file_kind(mode: int) -> str:
+    """What a status's mode says the path is, for messages: ``a FIFO``, ``a socket``..."""
+    return next((kind for test, kind in _KINDS if test(mode)), "an unknown kind of file")
+
+
+def open_regular(path: str | os.PathLike[str]) -> BinaryIO:
+    """``path`` opened for reading in binary, if it is a regular file (links followed);
+    anything else raises ``NotRegularFileError``.
+
+    The open does not block (a FIFO would wait for a writer that may never come), and the
+    status is taken on the open descriptor, so no file swapped in between gets through.
+    No status is taken before: this runs for every file of every run, and the walk and
+    the paths named (``discover``) only hand over regular files, so that a device is
+    never opened.
+    """
+    descriptor = os.open(path, _READ_FLAGS)
+    try:
+        mode = os.fstat(descriptor).st_mode
+        if not stat.S_ISREG(mode):
+            raise NotRegularFileError(path, mode)
+        return os.fdopen(descriptor, "rb")
+    except BaseException:
+        os.close(descriptor)
+        raise
+
+
 def read_file(path: Path, max_size: int) -> Read:
     """The file's bytes, else why it cannot be read; and why it is skipped, if it is.
 
@@ -33,7 +88,7 @@ def read_file(path: Path, max_size: int) -> Read:
     """
     # One open, then the size of what was opened: this runs for every file of every run.
     try:
-        with open(path, "rb") as stream:
+        with open_regular(path) as stream:
             size = os.fstat(stream.fileno()).st_size
             if size > max_size:
                 return None, "", too_large(size, max_size)

@@ -370,18 +370,50 @@ def test_the_fingerprint_covers_the_extractors_and_the_model() -> None:
     assert cache_module.run_fingerprint() == cache_module.run_fingerprint()
 
 
-def test_stale_directories_of_other_versions_are_pruned(tmp_path: Path) -> None:
-    old = tmp_path / "facts-v0-0123456789abcdef"
-    recent = tmp_path / "facts-v0-fedcba9876543210"
+def test_stale_directories_of_other_versions_are_pruned(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Directories the cache made for other versions (another fingerprint), tagged as
+    its own when they were made: deleted once unused for a day."""
+    directories = {}
+    for fingerprint in ("0123456789abcdef", "fedcba9876543210"):
+        monkeypatch.setattr(cache_module, "run_fingerprint", lambda f=fingerprint: f)
+        other_version = FactsCache(tmp_path)
+        assert other_version.writable()
+        directories[fingerprint] = other_version.directory
+    monkeypatch.undo()
+    old, recent = directories["0123456789abcdef"], directories["fedcba9876543210"]
     unrelated = tmp_path / "my-notes"
-    for directory in (old, recent, unrelated):
-        (directory / "ab").mkdir(parents=True)
+    (unrelated / "ab").mkdir(parents=True)
     long_ago = 1_000_000_000
     os.utime(old, (long_ago, long_ago))
     os.utime(unrelated, (long_ago, long_ago))
     assert FactsCache(tmp_path).writable()
     assert not old.exists()
     assert recent.exists() and unrelated.exists()
+
+
+def test_pruning_spares_folders_the_cache_did_not_create(
+    check: Callable[..., Any], tmp_path: Path
+) -> None:
+    """``--cache-dir`` on a folder the user keeps things in: its ``facts-v1`` (untagged),
+    older than a day, was deleted with everything in it; and the folder itself got a
+    CACHEDIR.TAG, which tells backup tools to skip all of it."""
+    mine = tmp_path / "mine"
+    thesis = write(mine, "facts-v1/chapter-1/results.csv", "run,error\n1,0.25\n")
+    symlinked = tmp_path / "elsewhere" / "facts-v2-0123456789abcdef"
+    write(symlinked, "CACHEDIR.TAG", cache_module._CACHEDIR_TAG)
+    (mine / "facts-v2-0123456789abcdef").symlink_to(symlinked, target_is_directory=True)
+    long_ago = 1_000_000_000
+    for directory in (thesis.parent.parent, symlinked):
+        os.utime(directory, (long_ago, long_ago))
+    write(tmp_path / "ws", "robot.launch", LAUNCH)
+    assert check("--cache-dir", str(mine)).exit_code == 1
+    assert thesis.read_text() == "run,error\n1,0.25\n"
+    assert symlinked.is_dir()  # a link is never followed into, whatever it holds
+    assert not (mine / "CACHEDIR.TAG").exists()
+    [entries] = (path for path in mine.glob("facts-v2-*") if not path.is_symlink())
+    assert (entries / "CACHEDIR.TAG").read_text() == cache_module._CACHEDIR_TAG
 
 
 def test_a_cache_sent_to_a_worker_carries_where_it_is_not_what_was_read(tmp_path: Path) -> None:

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import random
 import re
+import time
 from pathlib import Path
 from typing import Any
 
@@ -112,6 +114,14 @@ def test_default_selection_leaves_off_by_default_rules_out(tmp_path: Path) -> No
         ('[naming]\nrobot = "[a-z]+"\n', "naming.robot"),
         ('[naming]\ntopic = { glob = "*" }\n', "naming.topic"),
         ('per-file-ignores = { "test/**" = ["RN1000"] }\n', "per-file-ignores"),
+        # Patterns git would not accept: they stopped the run with an "internal error".
+        ('exclude = ["!"]\n', "exclude: invalid pattern '!'"),
+        ('exclude = ["vendor/[z-a]*"]\n', "exclude: invalid pattern 'vendor/[z-a]*'"),
+        ('per-file-ignores = { "test/\\\\" = ["RN2"] }\n', "per-file-ignores: invalid pattern"),
+        ('[test-code]\npaths = ["!"]\n', "test-code.paths: invalid pattern '!'"),
+        # Nested quantifiers: a name they do not match takes minutes to reject.
+        ('[naming]\nnode = "(a+)+$"\n', "naming.node.regex: '(a+)+$' repeats a part"),
+        ("[naming]\ntopic = { regex = '^/([a-z][a-z0-9_]*)+$' }\n", "naming.topic.regex"),
     ],
 )
 def test_bad_values_name_the_key_and_the_file(tmp_path: Path, text: str, key: str) -> None:
@@ -171,3 +181,79 @@ def test_template_fields_are_snake_case_tokens() -> None:
     assert pattern.fullmatch("/warehouse_a/amr_07/cmd_vel")
     assert not pattern.fullmatch("/warehouse_a/AMR/cmd_vel")
     assert not pattern.fullmatch("/warehouse_a/amr_07/extra/cmd_vel")
+
+
+def test_invalid_exclude_pattern_exits_2_naming_the_key(run_cli: Any, tmp_path: Path) -> None:
+    configured = tmp_path / "configured"
+    write(configured, "roslint-names.toml", 'exclude = ["third_party/", "[z-a]"]\n')
+    write(configured, "launch/robot.launch", LAUNCH)
+    result = run_cli(["check", "."], configured)
+    assert result.exit_code == 2
+    assert result.stderr == (
+        f"roslint-names: error: {configured / 'roslint-names.toml'}: exclude: "
+        "invalid pattern '[z-a]': bad character range z-a\n"
+    )
+    write(tmp_path, "plain/launch/robot.launch", LAUNCH)
+    option = run_cli(["check", "--extend-exclude", "!", "."], tmp_path / "plain")
+    assert option.exit_code == 2
+    assert option.stderr == (
+        "roslint-names: error: --extend-exclude: invalid pattern '!': git does not accept it\n"
+    )
+
+
+# Repetitions of a part that matches one way: each repetition starts or ends with a
+# character the varying part inside cannot match, or its branches start apart.
+LINEAR_POLICIES = [
+    template_to_regex("/{site}/{robot}/{function}"),
+    "[a-z][a-z0-9_]*",
+    "^[a-z][a-z0-9]*(_[a-z0-9]+)*$",
+    "(/[a-z_]+)+",
+    "([a-z]+_)*[a-z]+",
+    "^(/[a-z]+(_[a-z]+)*)+$",
+    "(?:/(?:left|right)_arm_[0-9]+)+",
+    "(foo|bar|baz)+",
+    "(a|ab)+",
+    "(a++)+",
+]
+# Each can share one text among its repetitions in many ways: exponential on a miss.
+BACKTRACKING_POLICIES = [
+    "(a+)+$",
+    "(a*)*",
+    "(a|aa)+",
+    "(?:a|a)*x",
+    "(a|b|ab)+",
+    "(a?)+",
+    "(.*)+",
+    r"(\w+_?)+",
+    r"(_\w+)*",
+    r"(\d+\s?)+",
+    "^/([a-z][a-z0-9_]*)+$",
+    "(?:[a-z]+/?)+",
+    "(?i)(A[a-z]+)+",
+    "((ab)*)+",
+    "(|foo)+",
+]
+
+
+@pytest.mark.parametrize("pattern", BACKTRACKING_POLICIES)
+def test_policies_that_backtrack_without_bound_are_refused(tmp_path: Path, pattern: str) -> None:
+    write(tmp_path, "roslint-names.toml", f"[naming]\nnode = '{pattern}'\n")
+    with pytest.raises(ConfigError, match=re.escape(f"naming.node.regex: {pattern!r} repeats")):
+        load_settings(None, tmp_path, REGISTRY)
+
+
+@pytest.mark.parametrize("pattern", LINEAR_POLICIES)
+def test_policies_that_match_one_way_are_kept_and_fail_fast(tmp_path: Path, pattern: str) -> None:
+    """Accepted, and quick to reject the names most likely to make them backtrack: a
+    run of each of their characters, and random mixes of them, ending in a misfit."""
+    write(tmp_path, "roslint-names.toml", f"[naming]\nnode = '{pattern}'\n")
+    [policy] = load_settings(None, tmp_path, REGISTRY).policies
+    compiled = re.compile(policy.pattern)
+    alphabet = sorted({c for c in pattern if c.isalnum() or c in "_/"})
+    chooser = random.Random(206)
+    names = [c * 34 + "!" for c in alphabet]
+    names += ["".join(chooser.choices(alphabet, k=34)) + "!" for _ in range(300)]
+    started = time.perf_counter()
+    for name in names:
+        compiled.fullmatch(name)
+    assert time.perf_counter() - started < 1.0

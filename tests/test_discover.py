@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import errno
 import os
+import re
 from pathlib import Path
+from typing import Any
 
 import pytest
 from conftest import write
@@ -183,4 +186,93 @@ def test_extension_less_scripts_are_found_by_shebang_walked_or_named(tmp_path: P
     named = [Path("src/teleop/scripts/teleop_keyboard"), Path("src/teleop/Makefile")]
     assert [s.display for s in discover(named, (), tmp_path, tmp_path)] == [
         "src/teleop/scripts/teleop_keyboard"
+    ]
+
+
+# ---------------------------------------------------------------------------------------
+# Nothing passed over in silence: what the walk cannot read or will not open is said.
+
+TELEOP_LAUNCH = """\
+<launch>
+  <node pkg="teleop_twist_keyboard" type="teleop_twist_keyboard.py" name="teleop"/>
+</launch>
+"""
+
+
+def refuse_to_list(monkeypatch: pytest.MonkeyPatch, refused: Path) -> None:
+    """``os.scandir`` of ``refused`` fails as a directory of mode 000 does for a user
+    (root reads it all the same, and the suite runs as root)."""
+    listing = os.scandir
+
+    def scandir(path: str) -> Any:
+        if os.fspath(path) == os.fspath(refused):
+            raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), os.fspath(path))
+        return listing(path)
+
+    monkeypatch.setattr(os, "scandir", scandir)
+
+
+def test_unreadable_directory_in_the_walk_is_a_warning(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """It was passed over without a word, and its launch files with it."""
+    write(tmp_path, "src/teleop/launch/teleop.launch", TELEOP_LAUNCH)
+    write(tmp_path, "src/secret/launch/robot.launch", TELEOP_LAUNCH)
+    refuse_to_list(monkeypatch, tmp_path / "src" / "secret")
+    warnings: list[str] = []
+    found = discover([Path("src")], (), tmp_path, tmp_path, warnings)
+    assert [source.display for source in found] == ["src/teleop/launch/teleop.launch"]
+    assert warnings == [f"cannot read directory src/secret: {os.strerror(errno.EACCES)}"]
+
+
+def test_unreadable_directory_named_is_an_error(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    write(tmp_path, "src/secret/launch/robot.launch", TELEOP_LAUNCH)
+    refuse_to_list(monkeypatch, tmp_path / "src" / "secret")
+    message = f"src/secret: cannot read directory: {os.strerror(errno.EACCES)}"
+    with pytest.raises(DiscoveryError, match=re.escape(message)):
+        discover([Path("src/secret")], (), tmp_path, tmp_path, [])
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs FIFOs (POSIX)")
+def test_fifo_named_like_a_source_in_the_tree_is_a_warning_never_opened(tmp_path: Path) -> None:
+    write(tmp_path, "src/teleop/launch/teleop.launch", TELEOP_LAUNCH)
+    os.mkfifo(tmp_path / "src" / "teleop" / "launch" / "pipe.launch")
+    os.mkfifo(tmp_path / "src" / "teleop" / "ignored.launch")
+    write(tmp_path, "src/teleop/.gitignore", "ignored.launch\n")
+    warnings: list[str] = []
+    found = discover([Path("src")], (), tmp_path, tmp_path, warnings)
+    assert [source.display for source in found] == ["src/teleop/launch/teleop.launch"]
+    assert warnings == ["skipped src/teleop/launch/pipe.launch: not a regular file (a FIFO)"]
+
+
+def test_named_paths_that_yield_no_file_are_said(tmp_path: Path) -> None:
+    """A link loop and an empty directory both said 'All checks passed: 0 files'."""
+    (tmp_path / "empty").mkdir()
+    os.symlink("loop_b", tmp_path / "loop_a")
+    os.symlink("loop_a", tmp_path / "loop_b")
+    write(tmp_path, "README.md", "# teleop\n")  # not lintable, and not a failure: quiet
+    warnings: list[str] = []
+    named = [Path("empty"), Path("loop_a"), Path("README.md")]
+    assert discover(named, (), tmp_path, tmp_path, warnings) == []
+    assert warnings == [
+        "empty: no file to lint in this directory",
+        f"loop_a: not linted: {os.strerror(errno.ELOOP)}",
+    ]
+
+
+def test_invalid_gitignore_patterns_are_said_and_the_others_kept(tmp_path: Path) -> None:
+    """A '!' alone or a range such as '[z-a]' stopped the run with an internal error."""
+    write(tmp_path, "src/teleop/.gitignore", "build/\n!\n[z-a].launch\n*.bak.launch\n")
+    write(tmp_path, "src/teleop/launch/teleop.launch", TELEOP_LAUNCH)
+    write(tmp_path, "src/teleop/launch/teleop.bak.launch", TELEOP_LAUNCH)
+    write(tmp_path, "src/teleop/build/teleop.launch", TELEOP_LAUNCH)
+    warnings: list[str] = []
+    found = discover([Path("src")], (), tmp_path, tmp_path, warnings)
+    assert [source.display for source in found] == ["src/teleop/launch/teleop.launch"]
+    assert warnings == [
+        "src/teleop/.gitignore:2: invalid pattern '!' not applied: git does not accept it",
+        "src/teleop/.gitignore:3: invalid pattern '[z-a].launch' not applied: "
+        "bad character range z-a",
     ]

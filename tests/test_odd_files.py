@@ -123,6 +123,52 @@ def test_file_whose_read_fails_is_one_parse_error(run_cli: Any, tmp_path: Path) 
     ]
 
 
+def refuse_to_list(monkeypatch: pytest.MonkeyPatch, refused: Path) -> None:
+    """``os.scandir`` of ``refused`` fails with EACCES: what a directory of mode 000 does
+    to a user who is not root (root lists it all the same)."""
+    listing = os.scandir
+
+    def scandir(path: Any) -> Any:
+        if os.fspath(path) == os.fspath(refused):
+            raise PermissionError(errno.EACCES, os.strerror(errno.EACCES), os.fspath(path))
+        return listing(path)
+
+    monkeypatch.setattr(os, "scandir", scandir)
+
+
+def test_unreadable_directory_is_one_warning_line(
+    run_cli: Any, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Its files were left out without a word."""
+    write(tmp_path, "src/bringup/launch/robot.launch", BAD_LAUNCH)
+    write(tmp_path, "src/secret/launch/robot.launch", BAD_LAUNCH)
+    refuse_to_list(monkeypatch, tmp_path / "src" / "secret")
+    result = check(run_cli, tmp_path, ".")
+    assert result.exit_code == 1
+    assert found(result) == [("src/bringup/launch/robot.launch", 2, 63, "RN101")]
+    assert result.stderr.splitlines()[0] == (
+        f"roslint-names: warning: cannot read directory src/secret: {os.strerror(errno.EACCES)}"
+    )
+    named = check(run_cli, tmp_path, "src/secret")  # named, it cannot be linted at all
+    assert named.exit_code == 2
+    assert named.stderr == (
+        f"roslint-names: error: src/secret: cannot read directory: {os.strerror(errno.EACCES)}\n"
+    )
+
+
+def test_named_link_loop_and_empty_directory_are_said(run_cli: Any, tmp_path: Path) -> None:
+    """Both said 'All checks passed: 0 files, no problems.' and nothing else."""
+    (tmp_path / "launch").mkdir()
+    (tmp_path / "scripts").symlink_to("scripts")
+    result: Run = run_cli(["check", "--no-cache", "launch", "scripts"], tmp_path)
+    assert result.exit_code == 0
+    assert result.stderr.splitlines() == [
+        "roslint-names: warning: launch: no file to lint in this directory",
+        f"roslint-names: warning: scripts: not linted: {os.strerror(errno.ELOOP)}",
+        "All checks passed: 0 files, no problems.",
+    ]
+
+
 def test_directories_named_like_source_files_are_walked_not_read(
     run_cli: Any, tmp_path: Path
 ) -> None:
