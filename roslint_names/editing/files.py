@@ -30,6 +30,8 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..reading import open_regular
+
 LOCK_WAIT_SECONDS = 10.0  # another run of this tool writing the same files
 TEMPORARY_SUFFIX = ".roslint-names.tmp"
 
@@ -89,31 +91,12 @@ class Snapshot:
 
 
 def read_regular(path: Path) -> tuple[bytes | None, str]:
-    """A regular file's bytes, or None and why not; never blocks on a FIFO or a device
-    (opened without blocking, refused by its type before any read)."""
+    """A regular file's bytes, or None and why not; never blocks on a FIFO or a device."""
     try:
-        descriptor = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        with open_regular(path) as stream:
+            return stream.read(), ""
     except OSError as error:
         return None, _reason(error)
-    with os.fdopen(descriptor, "rb") as stream:
-        mode = os.fstat(descriptor).st_mode
-        if not stat.S_ISREG(mode):
-            return None, f"not a regular file ({_kind(mode)})"
-        try:
-            return stream.read(), ""
-        except OSError as error:
-            return None, _reason(error)
-
-
-def _kind(mode: int) -> str:
-    kinds = [
-        (stat.S_ISDIR, "a directory"),
-        (stat.S_ISFIFO, "a FIFO"),
-        (stat.S_ISSOCK, "a socket"),
-        (stat.S_ISCHR, "a character device"),
-        (stat.S_ISBLK, "a block device"),
-    ]
-    return next((name for test, name in kinds if test(mode)), "not a file")
 
 
 def replace_all(changes: Sequence[Change], *, cwd: Path, roots: Sequence[Path]) -> None:
@@ -361,4 +344,5 @@ def _failure(display: str, error: OSError) -> str:
 
 def _reason(error: OSError) -> str:
     """``Permission denied`` as ``permission denied``: the middle of a sentence."""
-    return error.strerror.lower() if error.strerror else str(error)
+    text = error.strerror or str(error)
+    return text[:1].lower() + text[1:]
