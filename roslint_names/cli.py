@@ -444,11 +444,13 @@ def _prepare(
     cwd = Path.cwd()
     start = config_search_start(options.paths, cwd)
     settings = apply_overrides(load_settings(options.config, start, registry), overrides, registry)
-    warnings: list[str] = []  # what the walk passed over: said, never skipped in silence
+    warnings: list[str] = []  # what the walks passed over: said, never skipped in silence
     sources = discover(options.paths, settings.exclude, settings.root, cwd, warnings)
-    for warning in warnings:
+    workspace = _workspace_context(
+        options.paths, settings, registry, cwd, warnings, for_graph=for_graph
+    )
+    for warning in dict.fromkeys(warnings):  # a directory both walks pass over: said once
         print(f"roslint-names: warning: {warning}", file=sys.stderr)
-    workspace = _workspace_context(options.paths, settings, registry, cwd, for_graph=for_graph)
     return registry, settings, sources, workspace
 
 
@@ -457,19 +459,21 @@ def _workspace_context(
     settings: Settings,
     registry: Registry,
     cwd: Path,
+    warnings: list[str],
     *,
     for_graph: bool = False,
 ) -> list[SourceFile]:
     """For a run over files (what pre-commit does): the rest of their workspaces, which
-    the graph rules need to see. Nothing is reported in them. A run over directories is
-    taken to name its workspace."""
+    the graph rules need to see. Nothing is reported in them, but what their walk passes
+    over joins ``warnings``: the graph does not see it. A run over directories is taken
+    to name its workspace."""
     enabled = enabled_codes(settings, registry)
     graph_rules = any(rule.check_workspace and rule.code in enabled for rule in registry.rules)
     if not (graph_rules or for_graph):
         return []
     files = [(cwd / path).absolute() for path in paths if (cwd / path).is_file()]
     roots = sorted({root for path in files if (root := workspace_root(path)) is not None})
-    return discover(roots, settings.exclude, settings.root, cwd) if roots else []
+    return discover(roots, settings.exclude, settings.root, cwd, warnings) if roots else []
 
 
 def _run_server(options: argparse.Namespace) -> int:

@@ -76,6 +76,22 @@ def test_fifo_named_gitignore_in_the_tree_does_not_block_the_walk(tmp_path: Path
     )
 
 
+def test_fifo_in_the_rest_of_the_workspace_of_a_pre_commit_run_is_said(tmp_path: Path) -> None:
+    """A run over one file (pre-commit's) walks the rest of its workspace for the graph
+    rules: what that walk passes over is said too, once, since the graph does not see it."""
+    bringup_package(tmp_path)
+    other = tmp_path / "src" / "robot_description"
+    write_package(other, 1, "robot_description")
+    os.mkfifo(other / ".gitignore")
+    code, _, stderr, _ = roslint(tmp_path, "src/robot_bringup/launch/bringup.launch")
+    assert code == 1, stderr
+    warning = (
+        "roslint-names: warning: cannot read src/robot_description/.gitignore: "
+        "not a regular file (a FIFO); its patterns are not applied"
+    )
+    assert stderr.splitlines().count(warning) == 1
+
+
 def test_fifo_named_on_the_command_line_is_an_error_naming_it(tmp_path: Path) -> None:
     """A FIFO named like a launch file was opened to be read: the run never ended."""
     package = bringup_package(tmp_path)
