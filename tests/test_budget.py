@@ -7,17 +7,27 @@ the whole process with it) run as subprocesses with a timeout of their own.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
+import shutil
+import signal
 import subprocess
 import sys
+import threading
+import time
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
 import pytest
 from conftest import AMENT_PACKAGE, write
 
+from roslint_names import workers
 from roslint_names.extract.python.shape import longest_chain
+from roslint_names.gather import extract_file
+from roslint_names.model import Generation, Language
+from roslint_names.workers import Dispatcher
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -136,3 +146,171 @@ def test_the_chain_check_counts_binary_operators_of_one_expression_only() -> Non
         "one expression chains 1200 '+' operators",
         4,
     )
+
+
+def slow_node(publishers: int = 8000) -> str:
+    """A valid node whose extraction takes seconds in Python code (3.7 s here): many
+    publishers, as a generated bridge node has them."""
+    created = "".join(
+        f"        self.pub_{index} = self.create_publisher(String, 'joint_{index}/state', 10)\n"
+        for index in range(publishers)
+    )
+    return TALKER.format(index="Bridge").replace(
+        '        self.publisher = self.create_publisher(String, "chatter_Bridge", 10)\n', created
+    )
+
+
+@pytest.mark.parametrize(("jobs", "talkers"), [("1", 1), ("2", 24)])
+def test_a_file_past_the_budget_is_one_finding_stored_like_any_facts(
+    run_cli: Any, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, jobs: str, talkers: int
+) -> None:
+    monkeypatch.setattr(workers, "BUDGET_SECONDS", 0.5)
+    root = workspace(tmp_path / "ws", talkers, table_terms=10)
+    write(root, "src/calibration/calibration/bridge.py", slow_node())
+    cache = ["--cache-dir", str(tmp_path / "cache")]
+    arguments = ["check", "--format", "json", "--jobs", jobs, "--verbose", *cache, "."]
+    result = run_cli(arguments, root)
+    assert result.exit_code == 1, result.stderr
+    if talkers > 20:
+        assert "extracted by 2 worker processes" in result.stderr
+    found = [(f["path"], f["code"], f["message"]) for f in result.findings()]
+    assert found == [
+        (
+            "src/calibration/calibration/bridge.py",
+            "RN001",
+            "gave up after 0.5 s: its extraction takes longer than any file written by hand needs",
+        ),
+        ("src/calibration/launch/driver.launch", "RN101", found[1][2]),
+    ]
+    for runs in (tmp_path / "cache").glob("facts-v*/runs"):
+        shutil.rmtree(runs)  # the next run builds its result from the cached facts
+    again = run_cli(arguments, root)
+    assert again.findings() == result.findings()
+    files = talkers + 3
+    assert f"{files} of {files} files from the cache, 0 extracted" in again.stderr
+
+
+def _square_but_hang_on_seven(items: Iterable[int]) -> list[tuple[int, object]]:
+    """Seven stands for a file that keeps a parser busy in native code, where no alarm
+    signal reaches it: a sleep with the alarm blocked."""
+    results: list[tuple[int, object]] = []
+    for item in items:
+        if item == 7:
+            signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGALRM})
+            time.sleep(60)
+        results.append((item, item * item))
+    return results
+
+
+def _square_but_crash_on_seven(items: Iterable[int]) -> list[tuple[int, object]]:
+    """Seven stands for a file that crashes the parser, as libcst's stack overflow does
+    (SIGKILL rather than SIGSEGV: pytest's fault handler would print a traceback)."""
+    results: list[tuple[int, object]] = []
+    for item in items:
+        if item == 7:
+            os.kill(os.getpid(), signal.SIGKILL)
+        results.append((item, item * item))
+    return results
+
+
+def dispatch_in_thread(work: Any, items: range) -> list[Any]:
+    """Every result of a two-worker dispatcher over ``items``, or a failure after 30 s."""
+    results: list[Any] = []
+
+    def run() -> None:
+        with Dispatcher(
+            work, 2, min_items=2, give_up=lambda item, why: (item, str(why))
+        ) as dispatcher:
+            for item in items:
+                results.extend(dispatcher.put(item, size=1))
+            results.extend(dispatcher.finish())
+
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    thread.join(timeout=30)
+    assert not thread.is_alive(), "the dispatcher hung"
+    return results
+
+
+@pytest.mark.skipif(not hasattr(signal, "pthread_sigmask"), reason="POSIX signals")
+def test_a_worker_past_its_budget_is_killed_and_the_rest_goes_on(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setattr(workers, "BUDGET_SECONDS", 0.3)
+    monkeypatch.setattr(workers, "CHUNK_ITEMS", 4)
+    started = time.monotonic()
+    results = dispatch_in_thread(_square_but_hang_on_seven, range(30))
+    assert sorted(results, key=lambda result: result[0]) == [
+        (item, "gave up after 0.3 s" if item == 7 else item * item) for item in range(30)
+    ]
+    assert time.monotonic() - started < 10
+
+
+def test_a_worker_that_crashes_twice_on_one_item_gives_that_item_up() -> None:
+    results = dispatch_in_thread(_square_but_crash_on_seven, range(30))
+    assert sorted(results, key=lambda result: result[0]) == [
+        (item, "the worker process extracting it died, twice" if item == 7 else item * item)
+        for item in range(30)
+    ]
+
+
+def children(pid: int) -> set[int]:
+    found: set[int] = set()
+    for task in Path(f"/proc/{pid}/task").glob("*/children"):
+        found.update(int(child) for child in task.read_text().split())
+    return found
+
+
+def running(pid: int) -> bool:
+    """Whether ``pid`` is still a live process (a zombie waiting to be reaped is not)."""
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return False
+    return stat.rpartition(")")[2].split()[0] != "Z"
+
+
+@pytest.mark.skipif(sys.platform != "linux", reason="reads /proc for the worker processes")
+def test_workers_end_with_a_killed_main_process_and_free_its_output(tmp_path: Path) -> None:
+    """``roslint-names check . | cat`` after ``kill -9`` of the main process: its workers
+    held the pipe (and waited for work) for ever, so ``cat`` never ended."""
+    root = workspace(tmp_path, talkers=24, table_terms=10)
+    for index in range(3):  # to keep the workers busy while the main process is killed
+        write(root, f"src/calibration/calibration/bridge_{index}.py", slow_node())
+    environment = {**os.environ, "PYTHONPATH": str(ROOT)}
+    command = [sys.executable, "-m", "roslint_names.cli", "check", "--jobs", "2", "--no-cache"]
+    with subprocess.Popen(
+        [*command, "."], cwd=root, env=environment, stdout=subprocess.PIPE
+    ) as main:
+        deadline = time.monotonic() + 30
+        while len(workers_of := children(main.pid)) < 2 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert len(workers_of) >= 2, "no workers started"
+        main.kill()
+        try:
+            output, _ = main.communicate(timeout=10)  # the end of the pipe, as cat sees it
+        except subprocess.TimeoutExpired:
+            for pid in workers_of:  # leave nothing behind
+                with contextlib.suppress(OSError):
+                    os.kill(pid, signal.SIGKILL)
+            pytest.fail("the workers kept the killed process's output open")
+    deadline = time.monotonic() + 5
+    while any(running(pid) for pid in workers_of) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not any(running(pid) for pid in workers_of)
+    assert output == b""
+
+
+def test_one_file_extracted_in_process_keeps_to_the_budget(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """What the language server and ``--fix`` call for one file (``extract_file``)."""
+    monkeypatch.setattr(workers, "BUDGET_SECONDS", 0.5)
+    started = time.monotonic()
+    facts = extract_file(
+        Language.PYTHON, "bridge/bridge.py", slow_node().encode(), Generation.ROS2, Generation.ROS2
+    )
+    assert [error.message for error in facts.parse_errors] == [
+        "gave up after 0.5 s: its extraction takes longer than any file written by hand needs"
+    ]
+    assert time.monotonic() - started < 3  # the whole extraction takes 3.7 s here
