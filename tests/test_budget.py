@@ -314,3 +314,35 @@ def test_one_file_extracted_in_process_keeps_to_the_budget(
         "gave up after 0.5 s: its extraction takes longer than any file written by hand needs"
     ]
     assert time.monotonic() - started < 3  # the whole extraction takes 3.7 s here
+
+
+ORPHANED_WORKER = """\
+import os, time
+from roslint_names import workers
+workers._parent_death_signal = lambda signum: False  # as on a platform without prctl
+child = os.fork()
+if child == 0:
+    workers._die_with(os.getppid())
+    time.sleep(60)
+    os._exit(0)
+print(child, flush=True)
+time.sleep(60)
+"""
+
+
+@pytest.mark.skipif(sys.platform != "linux", reason="forks, and reads /proc")
+def test_without_a_parent_death_signal_a_worker_watches_its_parent(tmp_path: Path) -> None:
+    environment = {**os.environ, "PYTHONPATH": str(ROOT)}
+    with subprocess.Popen(
+        [sys.executable, "-c", ORPHANED_WORKER], env=environment, stdout=subprocess.PIPE, text=True
+    ) as parent:
+        assert parent.stdout is not None
+        child = int(parent.stdout.readline())
+        parent.kill()
+    deadline = time.monotonic() + 5
+    while running(child) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    alive = running(child)
+    if alive:
+        os.kill(child, signal.SIGKILL)
+    assert not alive
