@@ -190,6 +190,32 @@ def test_a_file_past_the_budget_is_one_finding_stored_like_any_facts(
     assert f"{files} of {files} files from the cache, 0 extracted" in again.stderr
 
 
+def test_a_worker_held_by_the_parser_is_killed_and_says_why(
+    run_cli: Any, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Eighty products of 999 factors each: below the chain check, but libcst's native
+    parser spends 8 s on them, where no alarm signal reaches it. The worker is killed at
+    1.5 times the budget, long before; the message names the shape."""
+    monkeypatch.setattr(workers, "BUDGET_SECONDS", 1.0)
+    root = workspace(tmp_path, talkers=24, table_terms=10)
+    product = " * ".join(f"k{index}" for index in range(999))
+    gains = "import rclpy\n\n" + "".join(f"GAIN_{row} = {product}\n" for row in range(80))
+    write(root, "src/calibration/calibration/gains.py", gains)
+    started = time.monotonic()
+    result = run_cli(["check", "--format", "json", "--jobs", "2", "--verbose", "."], root)
+    assert time.monotonic() - started < 6
+    assert "extracted by 2 worker processes" in result.stderr
+    found = [(f["path"], f["code"], f["message"]) for f in result.findings()]
+    assert found == [
+        (
+            "src/calibration/calibration/gains.py",
+            "RN001",
+            "gave up after 1 s: one expression chains 998 '*' operators",
+        ),
+        ("src/calibration/launch/driver.launch", "RN101", found[1][2]),
+    ]
+
+
 def _square_but_hang_on_seven(items: Iterable[int]) -> list[tuple[int, object]]:
     """Seven stands for a file that keeps a parser busy in native code, where no alarm
     signal reaches it: a sleep with the alarm blocked."""
