@@ -346,9 +346,10 @@ ORPHANED_WORKER = """\
 import os, time
 from roslint_names import workers
 workers._parent_death_signal = lambda signum: False  # as on a platform without prctl
+parent = os.getpid()  # as the dispatcher hands it over: known before the fork
 child = os.fork()
 if child == 0:
-    workers._die_with(os.getppid())
+    workers._die_with(parent)
     time.sleep(60)
     os._exit(0)
 print(child, flush=True)
