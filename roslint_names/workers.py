@@ -55,8 +55,10 @@ CHUNK_ITEMS = 8
 CHUNK_BYTES = 256 * 1024
 CHUNKS_PER_WORKER = 3
 
-# Seconds one item's work may take. No file written by hand comes near: the slowest of
-# realws's 8,949 took well under a second. Read at each use, so tests can lower it.
+# Seconds one item's work may take; read at each use, so tests can lower it. Far above
+# what a file written by hand needs: realws's 4,294 files past the prefilters took 9.7 s
+# together (bench/latest-results.json), and a generated node of 8,000 publishers
+# (590 KB) takes 3.7 s.
 BUDGET_SECONDS = 10.0
 # How long past the budget a worker may stay on one item before it is killed: the alarm
 # should have stopped it at the budget, unless native code (a parser) holds it.
@@ -391,8 +393,9 @@ def _die_with(parent: int) -> None:
     """End this worker when ``parent`` ends, however it ends (``kill -9`` included).
 
     Linux: the kernel sends SIGKILL when the process that forked this one dies (checked
-    once more after asking: the parent may have died before). Elsewhere, a thread that
-    watches the parent's pid."""
+    once more after asking: the parent may have died before). Strictly, when the forking
+    *thread* ends: the pool is started, and shut down, by the one thread that runs the
+    dispatcher. Elsewhere, a thread that watches the parent's pid."""
     if sys.platform == "linux" and _parent_death_signal(signal.SIGKILL):
         if os.getppid() != parent:
             os._exit(1)
