@@ -23,7 +23,8 @@ from .gather import (
     Gatherer,
     Specialiser,
     extract_batch,
-    extractor_for,
+    extract_file,
+    gave_up,
 )
 from .generation import PackageGenerations, service_types
 from .lines import split_lines
@@ -164,7 +165,9 @@ def lint(
     )
     graph: Graph | None = None
     extract = partial(extract_batch, cache)
-    with Dispatcher(extract, run.jobs, expected_items=len(files)) as dispatcher:
+    # A file whose worker is killed past its time budget is one RN001 (``gave_up``).
+    give_up = partial(gave_up, cache)
+    with Dispatcher(extract, run.jobs, expected_items=len(files), give_up=give_up) as dispatcher:
         # (2) and (3)
         gathered = Gatherer(
             files=files,
@@ -528,7 +531,7 @@ def recheck(
     if language is None or language not in EXTRACTOR_MODULES:
         return 0, set()
     fallback = settings.ros or DEFAULT_GENERATION
-    facts = extractor_for(language)(display, data, packages.for_file(path), fallback)
+    facts = extract_file(language, display, data, packages.for_file(path), fallback)
     enabled = enabled_codes(settings, registry)
     found, _ = check_file(facts, decode_for_display(data), settings, registry, enabled)
     return len(facts.parse_errors), {(d.code, d.span.line) for d in found if not d.suppressed}

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field, replace
 from types import ModuleType
 from typing import TYPE_CHECKING, Protocol
 
+from . import workers
 from .collection import no_collections
 from .discover import SourceFile
 from .generation import PackageGenerations
@@ -177,21 +178,16 @@ class _Job:
 _Item = tuple[_Job, bytes, str | None]
 
 
-def extract_batch(cache: FactsCache | None, batch: list[_Item]) -> list[tuple[int, FileFacts]]:
+def extract_batch(cache: FactsCache | None, batch: Iterable[_Item]) -> list[tuple[int, FileFacts]]:
     """Extract and store facts: the work of a worker process, or of the main one.
 
     Module-level so that worker processes can run it; extractor modules are imported on
-    first use, in whichever process extracts.
+    first use, in whichever process extracts. Each file has ``workers.BUDGET_SECONDS``:
+    a file past it is one RN001, stored like any facts (``gave_up``).
     """
     results: list[tuple[int, FileFacts]] = []
     for job, data, key in batch:
-        generations = (job.package_generation, job.fallback_generation)
-        with no_collections():  # a file's parse tree is freed when it is done
-            if job.arguments:
-                specialise: _ExtractWithArguments = _extractor_module(job.language).extract
-                facts = specialise(job.display, data, *generations, arguments=job.arguments)
-            else:
-                facts = extractor_for(job.language)(job.display, data, *generations)
+        facts = _extract_within_budget(job, data)
         if may_hold_suppression(data):
             facts = replace(facts, suppression_marker=True)
         if cache is not None and key is not None:
@@ -200,6 +196,77 @@ def extract_batch(cache: FactsCache | None, batch: list[_Item]) -> list[tuple[in
     if cache is not None:
         cache.flush()  # a worker process has no "end of run": every batch ends its writes
     return results
+
+
+def _extract_within_budget(job: _Job, data: bytes) -> FileFacts:
+    generations = (job.package_generation, job.fallback_generation)
+    budget = workers.budget_seconds()
+    try:
+        with workers.time_limit(budget), no_collections():  # a parse tree is freed when done
+            if job.arguments:
+                specialise: _ExtractWithArguments = _extractor_module(job.language).extract
+                return specialise(job.display, data, *generations, arguments=job.arguments)
+            return extractor_for(job.language)(job.display, data, *generations)
+    except workers.OutOfTime:
+        return gave_up_facts(job.display, job.language, data, workers.Stopped(budget))
+
+
+def extract_file(
+    language: Language,
+    display: str,
+    data: bytes,
+    package_generation: Generation | None,
+    fallback_generation: Generation,
+) -> FileFacts:
+    """One file's facts, within the time budget, in this process: for a caller that
+    extracts one file at a time (``--fix`` checking its edit, the language server).
+
+    The budget holds on the main thread only (``workers.time_limit``); a file whose
+    shape is known to keep a parser busy is refused before parsing, in any thread."""
+    job = _Job(0, display, language, package_generation, fallback_generation)
+    return _extract_within_budget(job, data)
+
+
+def gave_up(cache: FactsCache | None, item: _Item, why: workers.Stopped) -> tuple[int, FileFacts]:
+    """The result of a file whose worker was stopped (``Dispatcher``'s ``give_up``):
+    one RN001, stored like any facts. A give-up is a property of the content under this
+    version of the tool (the cache key has both), so the next run does not wait again;
+    ``--no-cache`` tries anew."""
+    job, data, key = item
+    facts = gave_up_facts(job.display, job.language, data, why)
+    if cache is not None and key is not None:
+        cache.store(key, facts)
+    return job.index, facts
+
+
+def gave_up_facts(display: str, language: Language, data: bytes, why: workers.Stopped) -> FileFacts:
+    """One RN001 at the file's start: ``why`` the extraction stopped, and the shape that
+    makes a parser slow, when the file has one."""
+    shape = _slow_shape(language, data)
+    if shape is None:
+        shape = (
+            "a parser crashed on it; please report it with the file"
+            if why.budget is None
+            else "its extraction takes longer than any file written by hand needs"
+        )
+    return FileFacts(
+        path=display,
+        language=language,
+        generation=DEFAULT_GENERATION,
+        parse_errors=(ParseError(f"{why}: {shape}", Span(1, 1, 1, 2)),),
+    )
+
+
+_NOTABLE_CHAIN = 100  # operators; the longest in 2,400 modules of real Python is 24
+
+
+def _slow_shape(language: Language, data: bytes) -> str | None:
+    if language not in (Language.PYTHON, Language.LAUNCH_PYTHON):
+        return None
+    from .extract.python.shape import longest_chain
+
+    chain = longest_chain(data.decode("utf-8", errors="replace"), _NOTABLE_CHAIN)
+    return None if chain is None else chain.describe()
 
 
 def unreadable(source: SourceFile, reason: str) -> FileFacts:

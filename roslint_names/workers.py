@@ -1,4 +1,5 @@
-"""Worker processes for extraction, started only when there is enough work for them.
+"""Worker processes for extraction, started only when there is enough work for them; and
+the time budget every item's work has, in a worker or in this process.
 
 ``Dispatcher`` takes items one at a time (the engine hands over files as it reads them) and
 hands back results as they are ready, in any order. Workers cost tens of milliseconds to
@@ -12,23 +13,38 @@ start and every item they take is pickled across a pipe, so:
 - at most a few chunks per worker are in flight, so the bytes of files waiting to be
   extracted stay bounded however large the workspace is.
 
+No item hangs a run. The work itself keeps to ``BUDGET_SECONDS`` per item where Python
+code is slow (``time_limit``: an alarm signal, in whichever process works, on its main
+thread); a signal cannot stop a long native call (a parser's), so a worker still busy
+with one item ``KILL_GRACE`` past the budget is killed, that item handed to ``give_up``,
+the items of the chunks it took down sent again to fresh workers. A worker that dies on
+its own (a parser's segfault) is found the same way. Workers die with the main process,
+even by ``kill -9`` (the parent death signal, or a watching thread), and never hold its
+standard output: ``check | cat`` ends when the main process does.
+
 ``concurrent.futures`` and ``multiprocessing`` are imported only when workers start.
 """
 
 from __future__ import annotations
 
+import contextlib
 import gc
 import os
 import signal
 import sys
-from collections.abc import Callable, Iterator
-from types import TracebackType
+import threading
+import time
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+from types import FrameType, TracebackType
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 from .collection import THRESHOLDS
 
 if TYPE_CHECKING:
     from concurrent.futures import Future, ProcessPoolExecutor
+    from multiprocessing.sharedctypes import SynchronizedArray
 
 Item = TypeVar("Item")
 Result = TypeVar("Result")
@@ -38,6 +54,17 @@ ITEMS_PER_WORKER = 10  # fewer expected items per worker: fewer workers (forks c
 CHUNK_ITEMS = 8
 CHUNK_BYTES = 256 * 1024
 CHUNKS_PER_WORKER = 3
+
+# Seconds one item's work may take; read at each use, so tests can lower it. Far above
+# what a file written by hand needs: realws's 4,294 files past the prefilters took 9.7 s
+# together (bench/latest-results.json), and a generated node of 8,000 publishers
+# (590 KB) takes 3.7 s.
+BUDGET_SECONDS = 10.0
+# How long past the budget a worker may stay on one item before it is killed: the alarm
+# should have stopped it at the budget, unless native code (a parser) holds it.
+KILL_GRACE = 0.5  # of the budget
+_POLL_SECONDS = 0.5  # how often the main process looks for a worker past its time
+_WATCH_PARENT_SECONDS = 0.5  # without a parent death signal: how often a worker looks
 
 
 def available_cores() -> int:
@@ -52,36 +79,105 @@ def worker_count(jobs: int) -> int:
     return available_cores() if jobs == 0 else jobs
 
 
+def budget_seconds() -> float:
+    return BUDGET_SECONDS
+
+
+class OutOfTime(BaseException):
+    """An item's work ran past its budget. A ``BaseException``, as ``KeyboardInterrupt``
+    is: no ``except Exception`` in an extractor may swallow it."""
+
+
+@contextmanager
+def time_limit(seconds: float) -> Iterator[None]:
+    """Raise ``OutOfTime`` in the block once it has run ``seconds``.
+
+    An alarm signal, so only on the main thread of a platform that has one (elsewhere the
+    block runs unlimited: the language server's threads, Windows); and only between
+    Python bytecodes: a native call is interrupted when it returns. A timer already
+    armed (a test runner's) is set again, less the time spent here, when the block ends.
+    """
+    if (
+        not hasattr(signal, "setitimer")
+        or threading.current_thread() is not threading.main_thread()
+    ):
+        yield
+        return
+
+    def expired(signum: int, frame: FrameType | None) -> None:
+        raise OutOfTime
+
+    previous = signal.signal(signal.SIGALRM, expired)
+    started = time.monotonic()
+    earlier, interval = signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+        if earlier > 0:
+            left = max(earlier - (time.monotonic() - started), 0.001)
+            signal.setitimer(signal.ITIMER_REAL, left, interval)
+
+
+@dataclass(frozen=True)
+class Stopped:
+    """Why an item's work was stopped: it ran past ``budget`` seconds, or (``budget``
+    None) the worker process died on it twice."""
+
+    budget: float | None
+
+    def __str__(self) -> str:
+        if self.budget is None:
+            return "the worker process extracting it died, twice"
+        return f"gave up after {self.budget:g} s"
+
+
+GiveUp = Callable[[Item, Stopped], Result]  # an item whose work was stopped, and why
+
+
 class Dispatcher(Generic[Item, Result]):
-    """Runs ``work`` over chunks of items, in worker processes when that pays off."""
+    """Runs ``work`` over chunks of items, in worker processes when that pays off.
+
+    ``give_up``: the result of an item whose worker was killed past its budget, or died
+    while on it; without it, such a death is an error, as it was before budgets."""
 
     def __init__(
         self,
-        work: Callable[[list[Item]], list[Result]],
+        work: Callable[[Iterable[Item]], list[Result]],
         jobs: int,
         min_items: int | None = None,
         expected_items: int | None = None,
+        *,
+        give_up: GiveUp[Item, Result] | None = None,
     ) -> None:
         self._work = work
+        self._give_up = give_up
         self._workers = worker_count(jobs)
         if expected_items is not None:
             self._workers = min(self._workers, max(1, expected_items // ITEMS_PER_WORKER))
         self._min_items = MIN_ITEMS if min_items is None else min_items
-        self._pending: list[Item] = []
+        self._pending: list[tuple[int, Item]] = []
         self._pending_bytes = 0
+        self._numbered = 0
         self._executor: ProcessPoolExecutor | None = None
-        self._inflight: set[Future[list[Result]]] = set()
+        self._slots: SynchronizedArray[float] | None = None
+        self._inflight: dict[Future[list[Result]], list[tuple[int, Item]]] = {}
+        self._stopped: dict[int, Stopped] = {}  # items killed past their budget: why
+        self._strikes: dict[int, int] = {}  # items busy when a worker died unexplained
+        self._started = False  # since the last close
 
     @property
     def workers(self) -> int:
         """How many worker processes were started (0: everything ran in-process)."""
-        return self._workers if self._executor is not None else 0
+        return self._workers if self._started else 0
 
     def put(self, item: Item, size: int) -> list[Result]:
         """Take one item of ``size`` bytes; return the results that are ready, if any."""
         if self._workers < 2:
             return self._work([item])  # one job: no queue, no bytes held
-        self._pending.append(item)
+        self._pending.append((self._numbered, item))
+        self._numbered += 1
         self._pending_bytes += size
         if self._executor is None:
             if len(self._pending) < self._min_items:
@@ -96,7 +192,7 @@ class Dispatcher(Generic[Item, Result]):
         if self._executor is None:
             if self._pending:
                 pending, self._pending = self._pending, []
-                yield from self._work(pending)
+                yield from self._work([item for _, item in pending])
             return
         if self._pending:
             self._submit()
@@ -104,9 +200,17 @@ class Dispatcher(Generic[Item, Result]):
             yield from self._collect(block=True)
 
     def close(self) -> None:
-        if self._executor is not None:
-            self._executor.shutdown(wait=True, cancel_futures=True)
-            self._executor = None
+        """Shut the workers down: at once, killing them, if work is still in flight (an
+        error or Ctrl-C left it): one stuck in a parser would never return."""
+        self._started = False
+        if self._executor is None:
+            return
+        if self._inflight:
+            self._kill_workers()
+        self._executor.shutdown(wait=True, cancel_futures=True)
+        self._executor = None
+        self._slots = None
+        self._inflight.clear()
 
     def __enter__(self) -> Dispatcher[Item, Result]:
         return self
@@ -126,44 +230,213 @@ class Dispatcher(Generic[Item, Result]):
         # fork on Linux: a worker starts in milliseconds with the modules already loaded,
         # and the engine has not imported any parser yet (workers import their own on
         # first use). Elsewhere the platform's default (spawn on macOS and Windows).
-        context = multiprocessing.get_context("fork") if sys.platform == "linux" else None
+        context = (
+            multiprocessing.get_context("fork")
+            if sys.platform == "linux"
+            else multiprocessing.get_context()
+        )
+        # Per worker: its pid, the number of the item it is on (-1: none), since when.
+        self._slots = context.Array("d", [0.0, -1.0, 0.0] * self._workers)
         self._executor = ProcessPoolExecutor(
             max_workers=self._workers,
             mp_context=context,
             initializer=_initialize,
-            initargs=(self._work,),
+            initargs=(self._work, self._slots, os.getpid()),
         )
+        self._started = True
 
     def _submit(self) -> None:
-        assert self._executor is not None
         chunk, self._pending, self._pending_bytes = self._pending, [], 0
-        self._inflight.add(self._executor.submit(_run, chunk))
+        self._send(chunk)
+
+    def _send(self, chunk: list[tuple[int, Item]]) -> None:
+        assert self._executor is not None
+        self._inflight[self._executor.submit(_run, chunk)] = chunk
 
     def _collect(self, block: bool) -> list[Result]:
         from concurrent.futures import FIRST_COMPLETED, wait
+        from concurrent.futures.process import BrokenProcessPool
 
-        if block:
-            done, _ = wait(self._inflight, return_when=FIRST_COMPLETED)
-        else:
-            done = {future for future in self._inflight if future.done()}
-        self._inflight -= done
-        # result() re-raises a worker's exception here, as in-process work would.
-        return [result for future in done for result in future.result()]
+        while True:
+            timeout = _POLL_SECONDS if block else 0
+            done, _ = wait(self._inflight, timeout=timeout, return_when=FIRST_COMPLETED)
+            results: list[Result] = []
+            broken = False
+            for future in done:
+                error = future.exception()
+                if isinstance(error, BrokenProcessPool):
+                    broken = True
+                    continue  # sent again by ``_recover``, less what stopped it
+                chunk = self._inflight.pop(future)
+                if error is not None:
+                    raise error  # a worker's exception, as in-process work would raise it
+                results.extend(future.result())
+                for number, _ in chunk:
+                    self._strikes.pop(number, None)
+            if broken:
+                results.extend(self._recover())
+            else:
+                self._kill_overdue()
+            if results or not block or not self._inflight:
+                return results
+
+    def _kill_overdue(self) -> None:
+        """Kill each worker that has been on one item for longer than the budget allows;
+        the pool then breaks, and ``_recover`` picks up. Only when an item can be given up."""
+        if self._give_up is None:
+            return
+        budget = budget_seconds()
+        deadline = budget * (1 + KILL_GRACE)
+        now = time.monotonic()
+        for pid, number, since in self._busy():
+            if now - since > deadline:
+                self._stopped[number] = Stopped(budget)
+                _kill(pid)
+
+    def _busy(self) -> list[tuple[int, int, float]]:
+        """Each busy worker: its pid, its item's number, since when."""
+        if self._slots is None:
+            return []
+        with self._slots.get_lock():
+            values = self._slots[:]
+        return [
+            (int(values[i]), int(values[i + 1]), values[i + 2])
+            for i in range(0, len(values), 3)
+            if values[i] > 0 and values[i + 1] >= 0
+        ]
+
+    def _recover(self) -> list[Result]:
+        """The pool broke: a worker was killed past its budget, or died. Keep what the
+        other chunks returned, give up on the items that stopped it, send the rest again
+        to a fresh pool. An item that was busy when a worker died for no known reason
+        is sent again once; if a worker dies on it again, it is given up."""
+        from concurrent.futures import wait
+
+        busy = [number for _, number, _ in self._busy()]
+        wait(self._inflight)  # the pool fails every future it still held
+        results: list[Result] = []
+        again: list[tuple[int, Item]] = []
+        for future, chunk in list(self._inflight.items()):
+            if future.exception() is None:
+                results.extend(future.result())
+            else:
+                again.extend(chunk)
+        self._inflight.clear()
+        if not any(number in self._stopped for number in busy):
+            for number in busy:  # no kill of ours: one of them crashed its worker
+                self._strikes[number] = self._strikes.get(number, 0) + 1
+        assert self._executor is not None
+        self._executor.shutdown(wait=True)
+        self._executor, self._slots = None, None  # their pids are no longer ours to kill
+        retry: list[tuple[int, Item]] = []
+        for number, item in again:
+            why = self._stopped.pop(number, None)
+            if why is None and self._strikes.get(number, 0) >= 2:
+                why = Stopped(None)
+            if why is None:
+                retry.append((number, item))
+            elif self._give_up is None:
+                raise RuntimeError(f"a worker process was stopped: {why}")
+            else:
+                self._strikes.pop(number, None)
+                results.append(self._give_up(item, why))
+        if retry:
+            self._start()
+            # Items a worker died on go alone, so that a second death names its item.
+            suspects = [entry for entry in retry if entry[0] in self._strikes]
+            for entry in suspects:
+                self._send([entry])
+            rest = [entry for entry in retry if entry[0] not in self._strikes]
+            for start in range(0, len(rest), CHUNK_ITEMS):
+                self._send(rest[start : start + CHUNK_ITEMS])
+        return results
+
+    def _kill_workers(self) -> None:
+        for pid, _, _ in self._busy():
+            _kill(pid)
 
 
-# The work function, installed once per worker rather than pickled with every chunk.
-_WORK: Callable[[list[Any]], list[Any]] | None = None
+def _kill(pid: int) -> None:
+    with contextlib.suppress(ProcessLookupError, PermissionError):  # gone already
+        os.kill(pid, signal.SIGKILL)
 
 
-def _initialize(work: Callable[[list[Any]], list[Any]]) -> None:
-    global _WORK  # noqa: PLW0603 - the worker's one piece of state
-    _WORK = work
+# The work function and this worker's slot, installed once per worker rather than
+# pickled with every chunk.
+_WORK: Callable[[Iterable[Any]], list[Any]] | None = None
+_SLOTS: SynchronizedArray[float] | None = None
+_SLOT = -1
+
+
+def _initialize(
+    work: Callable[[Iterable[Any]], list[Any]], slots: SynchronizedArray[float], parent: int
+) -> None:
+    global _WORK, _SLOTS, _SLOT  # noqa: PLW0603 - the worker's one piece of state
+    _die_with(parent)
+    _WORK, _SLOTS = work, slots
+    with slots.get_lock():
+        _SLOT = next(i for i in range(0, len(slots), 3) if slots[i] == 0)
+        slots[_SLOT] = os.getpid()
     gc.set_threshold(*THRESHOLDS)  # inherited when forked, not when spawned
     # Ctrl-C reaches the whole process group; the main process alone decides what to do
     # (cancel and shut down), so workers do not each print a KeyboardInterrupt traceback.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    # Results travel back through the pool's pipe; a worker has nothing to print. Holding
+    # the main process's standard output would keep ``check | cat`` waiting for it, and
+    # a forked worker's copy of unflushed output would be written a second time at exit.
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    os.dup2(devnull, 1)
+    os.close(devnull)
 
 
-def _run(chunk: list[Any]) -> list[Any]:
+def _die_with(parent: int) -> None:
+    """End this worker when ``parent`` ends, however it ends (``kill -9`` included).
+
+    Linux: the kernel sends SIGKILL when the process that forked this one dies (checked
+    once more after asking: the parent may have died before). Strictly, when the forking
+    *thread* ends: the pool is started, and shut down, by the one thread that runs the
+    dispatcher. Elsewhere, a thread that watches the parent's pid."""
+    if sys.platform == "linux" and _parent_death_signal(signal.SIGKILL):
+        if os.getppid() != parent:
+            os._exit(1)
+        return
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(_WATCH_PARENT_SECONDS)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="watch-parent", daemon=True).start()
+
+
+def _parent_death_signal(signum: int) -> bool:
+    """``prctl(PR_SET_PDEATHSIG, signum)``; False where it cannot be had."""
+    import ctypes
+    import ctypes.util
+
+    pr_set_pdeathsig = 1
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6", use_errno=True)
+        return int(libc.prctl(pr_set_pdeathsig, signum, 0, 0, 0)) == 0
+    except (OSError, AttributeError):
+        return False
+
+
+def _run(chunk: list[tuple[int, Any]]) -> list[Any]:
     assert _WORK is not None, "worker used before its initializer ran"
-    return _WORK(chunk)
+    return _WORK(_marked(chunk))
+
+
+def _marked(chunk: list[tuple[int, Any]]) -> Iterator[Any]:
+    """The chunk's items, each marked in this worker's slot as it is taken, so that the
+    main process sees which item a worker is on and since when."""
+    assert _SLOTS is not None
+    try:
+        for number, item in chunk:
+            with _SLOTS.get_lock():
+                _SLOTS[_SLOT + 2] = time.monotonic()
+                _SLOTS[_SLOT + 1] = number
+            yield item
+    finally:
+        with _SLOTS.get_lock():
+            _SLOTS[_SLOT + 1] = -1

@@ -9,7 +9,7 @@ from __future__ import annotations
 import io
 import re
 import shutil
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
@@ -114,14 +114,15 @@ def test_zero_jobs_means_every_core(monkeypatch: pytest.MonkeyPatch) -> None:
     assert (worker_count(0), worker_count(1), worker_count(3)) == (6, 1, 3)
 
 
-def _square_all(items: list[int]) -> list[tuple[int, int]]:
+def _square_all(items: Iterable[int]) -> list[tuple[int, int]]:
     return [(item, item * item) for item in items]
 
 
-def _fail_on_seven(items: list[int]) -> list[int]:
-    if 7 in items:
+def _fail_on_seven(items: Iterable[int]) -> list[int]:
+    taken = list(items)  # work is handed an iterable: a worker marks each item as taken
+    if 7 in taken:
         raise ValueError("seven")
-    return items
+    return taken
 
 
 def run_all(dispatcher: Dispatcher[int, Any], items: range) -> list[Any]:

@@ -72,6 +72,9 @@ def extract_parsed(
         if launch_path or defines_root or launch_module:
             language = Language.LAUNCH_PYTHON
         names = sorted(code.names + launch.names, key=lambda use: (use.span.line, use.span.column))
+    except RecursionError:  # the launch part follows the tree recursively too
+        generation = package_generation or fallback_generation
+        return FileFacts(path, default_language, generation, parse_errors=(_TOO_DEEP,))
     finally:
         # Only a launch file is extracted again (under its includers' arguments).
         _LAUNCH_FILES.end(key, prepared, keep=language is Language.LAUNCH_PYTHON)
@@ -178,14 +181,19 @@ def _prepare(
     module = parse(text)
     if isinstance(module, ParseError):
         return module
+    # Every step follows the tree recursively: a long operator chain as a name's value
+    # (500 '+' terms handed to ``create_publisher``) exhausted the stack in the folding.
     try:
         walk = Walk(module)
+        generation = evidence.decide(
+            package_generation, import_generation(walk.packages), None, fallback_generation
+        )
+        locator = Locator(module, text, walk.anchor_indents)
+        code = CodeExtractor(walk, locator, generation)
+        code.run()
+        return walk, locator, code, LaunchCalls.of(walk), generation, text
     except RecursionError:
-        return ParseError("Python code nested too deeply to analyse", Span(1, 1, 1, 2))
-    generation = evidence.decide(
-        package_generation, import_generation(walk.packages), None, fallback_generation
-    )
-    locator = Locator(module, text, walk.anchor_indents)
-    code = CodeExtractor(walk, locator, generation)
-    code.run()
-    return walk, locator, code, LaunchCalls.of(walk), generation, text
+        return _TOO_DEEP
+
+
+_TOO_DEEP = ParseError("Python code nested too deeply to analyse", Span(1, 1, 1, 2))

@@ -14,6 +14,7 @@ import warnings
 import libcst as cst
 
 from roslint_names.extract.launch.substitution import Source
+from roslint_names.extract.python.shape import CHAIN_LIMIT, longest_chain
 from roslint_names.extract.python.text import decode, source_error
 from roslint_names.model import ParseError
 
@@ -35,6 +36,15 @@ def parse(text: str) -> cst.Module | ParseError:
         line, column = Source(text).position(null)
         return source_error(
             "not valid Python 3: source code cannot contain null bytes", line, column
+        )
+    chain = longest_chain(text)
+    if chain is not None:  # minutes in libcst's parser, or a crash, for nothing (``shape``)
+        line, column = Source(text).position(chain.offset)
+        return source_error(
+            f"gave up before parsing: {chain.describe()}; from {CHAIN_LIMIT:,} on, "
+            "libcst takes minutes or crashes, and the tree is too deep to analyse",
+            line,
+            column,
         )
     if _may_be_too_deep(text):
         # libcst's parser overflows its stack (a segfault, not an exception) on nesting
