@@ -43,7 +43,7 @@ from .gather import (
     EXTRACTOR_MODULES,
     Specialiser,
     extract_batch,
-    extractor_for,
+    extract_file,
 )
 from .generation import PackageGenerations, service_types
 from .model import Diagnostic, FileFacts, Generation
@@ -148,8 +148,9 @@ class Session:
         # A lone surrogate (JSON can carry one) becomes one replacement character: one code
         # point for one, so that the columns of the findings stay the document's.
         data = text.encode("utf-8", errors="replace")
-        extract = extractor_for(language)
-        facts = extract(display, data, self._packages.for_file(path), self._fallback)
+        # Within the time budget where it can hold (the main thread), and a file shaped to
+        # keep a parser busy is refused before it is parsed, in any thread.
+        facts = extract_file(language, display, data, self._packages.for_file(path), self._fallback)
         if uses_constants(facts):
             constants = PackageConstants()
             for other in self._facts.values():

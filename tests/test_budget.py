@@ -373,3 +373,37 @@ def test_without_a_parent_death_signal_a_worker_watches_its_parent(tmp_path: Pat
     if alive:
         os.kill(child, signal.SIGKILL)
     assert not alive
+
+
+def test_the_language_server_refuses_a_long_chain_as_check_does(tmp_path: Path) -> None:
+    """A buffer holding the generated table, as the editor sends it: the server's check
+    went to libcst's parser (at 2149b0f a crash of the whole server past 8,000 terms);
+    it is the same RN001 as ``check``'s. In a process of its own, so that a regression
+    fails the test rather than crashing the suite."""
+    root = workspace(tmp_path, 1, table_terms=10)
+    script = f"""
+from pathlib import Path
+from roslint_names.config import load_settings
+from roslint_names.registry import load_registry
+from roslint_names.session import Session
+
+root = Path({str(root)!r})
+registry = load_registry()
+session = Session(root, load_settings(None, root, registry), registry, None)
+session.load()
+path = root / "src/calibration/calibration/table.py"
+for finding in session.check(path, {generated_table(10_000)!r}) or []:
+    print(finding.code, finding.span.line, finding.message)
+"""
+    done = subprocess.run(
+        [sys.executable, "-c", script],
+        env={**os.environ, "PYTHONPATH": str(ROOT)},
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.startswith(
+        "RN001 4 gave up before parsing: one expression chains 9999 '+' operators"
+    )
