@@ -7,7 +7,9 @@ Test code is judged for what breaks a test, not for style (``Rule.judges_test_co
   package's folder (``test_*``, ``*_tests``: ``test_rclcpp``, ``nav2_system_tests``);
 - a test file's name: ``test_*``, ``*_test``, ``*_tests`` or ``test`` before the first dot
   (``test_node.py``, ``buffer_core_test.cpp``), a rostest ``.test`` file, a launch_testing
-  ``*.test.py``;
+  ``*.test.py``; but not for a launch file, which is test code by its content alone:
+  ``test_rplidar.launch`` is what rplidar's users launch to try the driver, and holds no
+  ``<test>``;
 - a pattern of ``[test-code] paths``;
 
 or when its content does: a gtest, gmock or Catch2 include in C++; an import of pytest,
@@ -34,6 +36,10 @@ _CONTENT = {
     Language.LAUNCH_XML: re.compile(rb"<test[\s>/]"),
 }
 _CONTENT[Language.LAUNCH_PYTHON] = _CONTENT[Language.PYTHON]
+# Launch files are often named for what they let a user try (``test_rplidar.launch``,
+# ``test_camera.launch.py``): their name does not make them tests, a ``<test>`` or a
+# launch_testing import does.
+_NAMED_FOR_USE = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.LAUNCH_PYTHON})
 
 
 def is_test_code(
@@ -45,7 +51,9 @@ def is_test_code(
     if any(_TEST_DIRECTORY.fullmatch(directory) for directory in directories):
         return True
     stem, *suffixes = name.split(".")
-    if _TEST_STEM.fullmatch(stem) or "test" in (suffix.lower() for suffix in suffixes):
+    if "test" in (suffix.lower() for suffix in suffixes):
+        return True
+    if _TEST_STEM.fullmatch(stem) and language not in _NAMED_FOR_USE:
         return True
     if settings.test_code.paths and _configured(relative_path, settings.test_code.paths):
         return True

@@ -169,6 +169,33 @@ if __name__ == "__main__":
     assert all(path == "talker/src/talker.cpp" for path, _ in _codes_by_path(result))
 
 
+# rplidar_ros's launch/test_rplidar.launch: what its README tells users to launch to try
+# the driver with a client; no <test> in it.
+RPLIDAR_TRY = """<!--
+  Used for visualising rplidar in action.
+
+  It requires rplidar.launch.
+ -->
+<launch>
+  <include file="$(find rplidar_ros)/launch/rplidar.launch" />
+
+  <node name="rplidarNodeClient"    pkg="rplidar_ros"  type="rplidarNodeClient" output="screen">
+  </node>
+</launch>
+"""
+
+
+def test_a_launch_file_named_test_but_holding_no_test_is_judged_in_full(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """Its node name's style (RN203, not judged in tests) was passed over before."""
+    write_package(tmp_path / "rplidar_ros", 1, "rplidar_ros")
+    write(tmp_path, "rplidar_ros/launch/test_rplidar.launch", RPLIDAR_TRY)
+    result = run_cli(["check", "--format", "json", "."], tmp_path)
+    found = [(f["path"], f["line"], f["code"]) for f in result.findings()]
+    assert found == [("rplidar_ros/launch/test_rplidar.launch", 9, "RN203")]
+
+
 @pytest.mark.parametrize(
     ("path", "language", "content", "expected"),
     [
@@ -190,6 +217,23 @@ if __name__ == "__main__":
         ("robot/src/latest_scan.cpp", Language.CPP, "", False),
         ("robot/scripts/contest.py", Language.PYTHON, "# unittest-like\n", False),
         ("robot/launch/robot.launch", Language.LAUNCH_XML, "<launch><node/></launch>", False),
+        # Launch files named for what a user tries, holding no test (rplidar_ros's).
+        ("rplidar_ros/launch/test_rplidar.launch", Language.LAUNCH_XML, RPLIDAR_TRY, False),
+        ("camera/launch/test_camera.launch.py", Language.LAUNCH_PYTHON, "import launch\n", False),
+        ("camera/launch/test_camera.launch.yaml", Language.LAUNCH_YAML, "launch: []\n", False),
+        # ... and the same names with a test in them.
+        (
+            "rplidar_ros/launch/test_rplidar.launch",
+            Language.LAUNCH_XML,
+            RPLIDAR_TRY.replace("</launch>", '<test test-name="scan" pkg="r" type="t"/></launch>'),
+            True,
+        ),
+        (
+            "camera/launch/test_camera.launch.py",
+            Language.LAUNCH_PYTHON,
+            "import launch_testing\n",
+            True,
+        ),
     ],
 )
 def test_test_code_conventions(
