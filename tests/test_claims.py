@@ -1,0 +1,136 @@
+"""Rule claims that hold against the ROS source (issue 27, cause 3): RN205 by use, RN204
+within the file's dependencies, RN101 on a child NodeHandle's joined name, and empty
+parameter defaults that mean "unset"."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from conftest import write, write_package
+
+# moveit2's moveit_servo/launch/demo_joint_jog.launch.py, reduced: the static broadcaster
+# is given '/world' and '/panda_link0', which tf2's setTransformImpl strips; the servo node
+# is given a planning frame it looks transforms up with.
+SERVO_LAUNCH = """import launch
+import launch_ros
+from launch_ros.actions import ComposableNodeContainer
+
+
+def generate_launch_description():
+    container = ComposableNodeContainer(
+        name="moveit_servo_demo_container",
+        namespace="/",
+        package="rclcpp_components",
+        executable="component_container_mt",
+        composable_node_descriptions=[
+            launch_ros.descriptions.ComposableNode(
+                package="tf2_ros",
+                plugin="tf2_ros::StaticTransformBroadcasterNode",
+                name="static_tf2_broadcaster",
+                parameters=[{"child_frame_id": "/panda_link0", "frame_id": "/world"}],
+            ),
+        ],
+        output="screen",
+    )
+    servo_node = launch_ros.actions.Node(
+        package="moveit_servo",
+        executable="demo_joint_jog",
+        parameters=[{"planning_frame": "/panda_link0"}],
+        output="screen",
+    )
+    return launch.LaunchDescription([container, servo_node])
+"""
+
+
+def test_rn205_leaves_a_static_broadcasters_frames_alone(run_cli: Any, tmp_path: Any) -> None:
+    write(tmp_path, "src/moveit_servo/launch/demo_joint_jog.launch.py", SERVO_LAUNCH)
+    write_package(tmp_path / "src" / "moveit_servo", 2, name="moveit_servo")
+    result = run_cli(["check", "--format", "json", "--select", "RN205", "src"], tmp_path)
+    found = [(f["line"], f["message"]) for f in result.findings()]
+    # Only the servo's planning frame: the node looks transforms up with it.
+    assert [line for line, _ in found] == [25]
+    assert "lookups refuse it" in found[0][1]
+    assert result.exit_code == 1
+
+
+ROS2_STATIC_XML = """<launch>
+  <node pkg="tf2_ros" exec="static_transform_publisher" name="world_to_map">
+    <param name="frame_id" value="/world"/>
+    <param name="child_frame_id" value="/map"/>
+  </node>
+  <node pkg="robot_localization" exec="ekf_node" name="ekf_filter_node">
+    <param name="world_frame" value="/odom"/>
+    <param name="frame_id" value="/odom"/>
+  </node>
+</launch>
+"""
+
+
+def test_rn205_xml_broadcaster_frames_pass_other_nodes_frames_do_not(
+    run_cli: Any, tmp_path: Any
+) -> None:
+    write(tmp_path, "launch/tf.launch.xml", ROS2_STATIC_XML)
+    write_package(tmp_path, 2)
+    result = run_cli(["check", "--format", "json", "--select", "RN205", "."], tmp_path)
+    assert [(f["line"], f["severity"]) for f in result.findings()] == [
+        (7, "error"),
+        (8, "error"),
+    ]
+
+
+LOOKUP_NODE = """#include <rclcpp/rclcpp.hpp>
+#include <sensor_msgs/msg/laser_scan.hpp>
+#include <tf2_ros/buffer.h>
+
+class ScanMonitor : public rclcpp::Node
+{
+public:
+  ScanMonitor() : Node("scan_monitor"), buffer_(get_clock()) {}
+
+  void check()
+  {
+    if (buffer_.canTransform("/map", "base_link", tf2::TimePointZero)) {
+      auto t = buffer_.lookupTransform("/map", "base_link", tf2::TimePointZero);
+    }
+    sensor_msgs::msg::LaserScan scan;
+    scan.header.frame_id = "/laser";
+  }
+
+private:
+  tf2_ros::Buffer buffer_;
+};
+"""
+
+
+def test_rn205_says_what_fails_at_each_use(run_cli: Any, tmp_path: Any) -> None:
+    write(tmp_path, "src/monitor/src/scan_monitor.cpp", LOOKUP_NODE)
+    write_package(tmp_path / "src" / "monitor", 2, name="monitor")
+    result = run_cli(["check", "--format", "json", "--select", "RN205", "src"], tmp_path)
+    messages = {f["line"]: f["message"] for f in result.findings()}
+    assert sorted(messages) == [12, 13, 16]
+    assert "canTransform returns false" in messages[12]
+    assert "throw InvalidArgumentException" in messages[13]
+    assert "a message stamped with it cannot be transformed" in messages[16]
+
+
+ROS1_TF_BROADCASTER = """#!/usr/bin/env python
+import rospy
+import tf
+
+if __name__ == "__main__":
+    rospy.init_node("turtle_tf_broadcaster")
+    broadcaster = tf.TransformBroadcaster()
+    rate = rospy.Rate(10.0)
+    while not rospy.is_shutdown():
+        broadcaster.sendTransform((0.0, 2.0, 0.0), (0.0, 0.0, 0.0, 1.0),
+                                  rospy.Time.now(), "/carrot1", "/turtle1")
+        rate.sleep()
+"""
+
+
+def test_rn205_leaves_ros1_tf_send_transform_alone(run_cli: Any, tmp_path: Any) -> None:
+    write(tmp_path, "src/turtle_tf/nodes/fixed_tf_broadcaster.py", ROS1_TF_BROADCASTER)
+    write_package(tmp_path / "src" / "turtle_tf", 1, name="turtle_tf")
+    result = run_cli(["check", "--format", "json", "--select", "RN205", "src"], tmp_path)
+    assert result.findings() == []
+    assert result.exit_code == 0
