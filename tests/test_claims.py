@@ -134,3 +134,86 @@ def test_rn205_leaves_ros1_tf_send_transform_alone(run_cli: Any, tmp_path: Any) 
     result = run_cli(["check", "--format", "json", "--select", "RN205", "src"], tmp_path)
     assert result.findings() == []
     assert result.exit_code == 0
+
+
+# autoware.core's behavior_velocity_planner node, reduced: it serves its plugin loader with
+# autoware_internal_debug_msgs/String; the sibling motion_velocity_planner package defines
+# LoadPlugin.srv, which the behavior planner's package.xml does not depend on.
+PLUGIN_LOADER = """#include <rclcpp/rclcpp.hpp>
+#include <autoware_internal_debug_msgs/srv/string.hpp>
+
+class BehaviorVelocityPlannerNode : public rclcpp::Node
+{
+public:
+  explicit BehaviorVelocityPlannerNode(const rclcpp::NodeOptions & node_options)
+  : Node("behavior_velocity_planner_node", node_options)
+  {
+    srv_load_plugin_ = create_service<autoware_internal_debug_msgs::srv::String>(
+      "~/service/load_plugin",
+      [](const autoware_internal_debug_msgs::srv::String::Request::SharedPtr,
+         autoware_internal_debug_msgs::srv::String::Response::SharedPtr) {});
+  }
+
+private:
+  rclcpp::Service<autoware_internal_debug_msgs::srv::String>::SharedPtr srv_load_plugin_;
+};
+"""
+PLANNER_PACKAGE = """<?xml version="1.0"?>
+<package format="3">
+  <name>{name}</name>
+  <version>0.1.0</version>
+  <description>The planner</description>
+  <maintainer email="dev@example.com">Dev</maintainer>
+  <license>Apache License 2.0</license>
+  <buildtool_depend>ament_cmake_auto</buildtool_depend>
+  <depend>autoware_internal_debug_msgs</depend>
+  <depend>rclcpp</depend>{extra}
+  <export><build_type>ament_cmake</build_type></export>
+</package>
+"""
+
+
+def _plugin_workspace(tmp_path: Any, extra: str) -> None:
+    planner = tmp_path / "planning" / "autoware_behavior_velocity_planner"
+    write(planner, "src/node.cpp", PLUGIN_LOADER)
+    write(
+        planner,
+        "package.xml",
+        PLANNER_PACKAGE.format(name="autoware_behavior_velocity_planner", extra=extra),
+    )
+    sibling = tmp_path / "planning" / "autoware_motion_velocity_planner"
+    write(sibling, "srv/LoadPlugin.srv", "string plugin_name\n---\n")
+    write_package(sibling, 2, name="autoware_motion_velocity_planner")
+
+
+def test_rn204_ignores_a_sibling_packages_srv_the_file_does_not_depend_on(
+    run_cli: Any, tmp_path: Any
+) -> None:
+    _plugin_workspace(tmp_path, "")
+    result = run_cli(["check", "--format", "json", "--select", "RN204", "planning"], tmp_path)
+    assert result.findings() == []
+    assert result.exit_code == 0
+
+
+def test_rn204_compares_with_the_srv_of_a_dependency(run_cli: Any, tmp_path: Any) -> None:
+    _plugin_workspace(tmp_path, "\n  <exec_depend>autoware_motion_velocity_planner</exec_depend>")
+    result = run_cli(["check", "--format", "json", "--select", "RN204", "planning"], tmp_path)
+    assert [f["code"] for f in result.findings()] == ["RN204"]
+    assert (
+        "named after autoware_motion_velocity_planner/LoadPlugin"
+        in (result.findings()[0]["message"])
+    )
+
+
+def test_rn204_language_server_keeps_to_the_dependencies_too(tmp_path: Any) -> None:
+    from roslint_names.config import load_settings
+    from roslint_names.registry import load_registry
+    from roslint_names.session import Session
+
+    _plugin_workspace(tmp_path, "")
+    registry = load_registry()
+    session = Session(tmp_path, load_settings(None, tmp_path, registry), registry, None)
+    session.load()
+    path = tmp_path / "planning/autoware_behavior_velocity_planner/src/node.cpp"
+    found = session.check(path, PLUGIN_LOADER) or []
+    assert [d.code for d in found if d.code == "RN204"] == []
