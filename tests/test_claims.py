@@ -217,3 +217,48 @@ def test_rn204_language_server_keeps_to_the_dependencies_too(tmp_path: Any) -> N
     path = tmp_path / "planning/autoware_behavior_velocity_planner/src/node.cpp"
     found = session.check(path, PLUGIN_LOADER) or []
     assert [d.code for d in found if d.code == "RN204"] == []
+
+
+# ros_comm's test_roscpp/test/src/handles.cpp (nodeHandleNames), reduced: roscpp accepts
+# the child handle "2" (it resolves "/internal_ns/2"); a child with a '-' throws whatever
+# its parent (the test's own "illegal_name!!!" is in a try that reaches FAIL(): an expected
+# failure, never reported, so another child stands for it here).
+ROSCPP_HANDLES = """#include <gtest/gtest.h>
+#include <ros/ros.h>
+
+TEST(RoscppHandles, nodeHandleNames)
+{
+  ros::NodeHandle n2("internal_ns");
+  EXPECT_STREQ(n2.resolveName("blah").c_str(), "/internal_ns/blah");
+
+  ros::NodeHandle n3(n2, "2");
+  EXPECT_STREQ(n3.resolveName("blah").c_str(), "/internal_ns/2/blah");
+}
+
+void makeArm(const ros::NodeHandle& parent)
+{
+  ros::NodeHandle joint(parent, "6dof");
+  ros::NodeHandle gripper(parent, "gripper-left");
+  ros::NodeHandle top("6dof");
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "test_handles");
+  return RUN_ALL_TESTS();
+}
+"""
+
+
+def test_rn101_judges_a_child_handle_by_its_joined_name(run_cli: Any, tmp_path: Any) -> None:
+    write(tmp_path, "src/handles_demo/src/handles.cpp", ROSCPP_HANDLES)
+    write_package(tmp_path / "src" / "handles_demo", 1, name="handles_demo")
+    result = run_cli(["check", "--format", "json", "--select", "RN101", "src"], tmp_path)
+    found = [(f["line"], f["message"]) for f in result.findings()]
+    # "2" and "6dof" under a parent (known or not) resolve to '/<ns>/2', '/<ns>/6dof':
+    # legal. "gripper-left" is illegal in any join; "6dof" alone is a name roscpp's
+    # NodeHandle(ns) validates by itself (names::validate: first character a letter).
+    assert [line for line, _ in found] == [16, 17]
+    assert found[0][1].startswith("namespace 'gripper-left' contains '-' at index 7")
+    assert found[1][1].startswith("namespace '6dof' starts with a digit ('6') at index 0")
