@@ -262,3 +262,57 @@ def test_rn101_judges_a_child_handle_by_its_joined_name(run_cli: Any, tmp_path: 
     assert [line for line, _ in found] == [16, 17]
     assert found[0][1].startswith("namespace 'gripper-left' contains '-' at index 7")
     assert found[1][1].startswith("namespace '6dof' starts with a digit ('6') at index 0")
+
+
+# velodyne_pointcloud/launch/transform_nodelet.launch (ROS 1): fixed_frame and
+# target_frame default to "", which the transform nodelet reads as "use the sensor frame".
+VELODYNE_TRANSFORM = """<!-- run velodyne_pointcloud/TransformNodelet in a nodelet manager -->
+<launch>
+  <arg name="model" default="" />
+  <arg name="fixed_frame" default="" />
+  <arg name="target_frame" default="" />
+  <arg name="manager" default="velodyne_nodelet_manager" />
+  <node pkg="nodelet" type="nodelet" name="$(arg manager)_transform"
+        args="load velodyne_pointcloud/TransformNodelet $(arg manager)" >
+    <param name="model" value="$(arg model)"/>
+    <param name="fixed_frame" value="$(arg fixed_frame)"/>
+    <param name="target_frame" value="$(arg target_frame)"/>
+  </node>
+</launch>
+"""
+EMPTY_LOOKUP = """#include <rclcpp/rclcpp.hpp>
+#include <tf2_ros/buffer.h>
+
+class Projector : public rclcpp::Node
+{
+public:
+  Projector() : Node("projector"), buffer_(get_clock()) {}
+
+  void project()
+  {
+    auto t = buffer_.lookupTransform("", "velodyne", tf2::TimePointZero);
+  }
+
+private:
+  tf2_ros::Buffer buffer_;
+};
+"""
+
+
+def test_rn101_an_empty_frame_parameter_is_unset_not_illegal(run_cli: Any, tmp_path: Any) -> None:
+    write(tmp_path, "velodyne_pointcloud/launch/transform_nodelet.launch", VELODYNE_TRANSFORM)
+    write_package(tmp_path / "velodyne_pointcloud", 1, name="velodyne_pointcloud")
+    ros2_params = VELODYNE_TRANSFORM.replace('type="nodelet"', 'exec="velodyne_transform_node"')
+    write(tmp_path, "ros2_driver/launch/transform.launch.xml", ros2_params)
+    write_package(tmp_path / "ros2_driver", 2, name="ros2_driver")
+    result = run_cli(["check", "--format", "json", "--select", "RN101", "."], tmp_path)
+    assert result.findings() == []
+    assert result.exit_code == 0
+
+
+def test_rn101_an_empty_frame_handed_to_tf2_is_still_reported(run_cli: Any, tmp_path: Any) -> None:
+    write(tmp_path, "src/projector/src/projector.cpp", EMPTY_LOOKUP)
+    write_package(tmp_path / "src" / "projector", 2, name="projector")
+    result = run_cli(["check", "--format", "json", "--select", "RN101", "src"], tmp_path)
+    assert [(f["line"], f["code"]) for f in result.findings()] == [(11, "RN101")]
+    assert "must not be empty" in result.findings()[0]["message"]
