@@ -13,8 +13,8 @@ noetic-devel and ros2/geometry2 rolling):
   every frame they are given, refuses a leading '/': ``lookupTransform`` throws
   ``tf2::InvalidArgumentException``, ``canTransform`` returns false.
 
-So a frame a tf2_ros static transform broadcaster is given as a parameter is not reported
-(nothing breaks); every other use (a lookup's argument, a message header whose frame
+So a frame a launch file gives a static transform broadcaster is not reported (nothing
+breaks); every other use (a lookup's argument, a message header whose frame
 someone transforms, a node's frame parameter, a URDF link) is.
 """
 
@@ -26,12 +26,17 @@ from ..model import FileFacts, Finding, Generation, Kind, LaunchNode, NameUse, S
 from ..rule import Rule, RuleContext
 from .common import fix_hint, grammar_problems, suggested_fix
 
-# The parameters of tf2_ros's StaticTransformBroadcasterNode (the component, and the node
-# the static_transform_publisher program starts) that become the broadcast transform's
-# header.frame_id and child_frame_id (ros2/geometry2
-# tf2_ros/src/static_transform_broadcaster_node.cpp, the constructor).
-_BROADCAST_PARAMETERS = frozenset({"frame_id", "child_frame_id"})
-_BROADCASTER_PACKAGE = "tf2_ros"
+# tf2_ros's static transform broadcaster, as a launch file starts it: the component, and
+# the program that runs it (ros2/geometry2 tf2_ros/src/static_transform_broadcaster_node.cpp
+# turns its frame_id/child_frame_id parameters into the broadcast transform's frames), and
+# ROS 1 tf's and tf2_ros's static_transform_publisher. Every frame it is given is broadcast.
+_STATIC_BROADCASTERS = frozenset(
+    {
+        ("tf2_ros", "static_transform_publisher"),
+        ("tf2_ros", "tf2_ros::StaticTransformBroadcasterNode"),
+        ("tf", "static_transform_publisher"),
+    }
+)
 # ROS 1 Python tf's TransformBroadcaster.sendTransform(translation, rotation, time, child,
 # parent): only sends, and tf2's setTransform strips the slash on the receiving side.
 _BROADCAST_APIS = frozenset({"tf sendTransform"})
@@ -69,34 +74,21 @@ def _what_fails(use: NameUse) -> str:
 
 
 def _broadcast_only(facts: FileFacts) -> frozenset[Span]:
-    """The spans of frames only broadcast: a tf2_ros static broadcaster's ``frame_id`` and
-    ``child_frame_id`` parameters, ROS 1 Python tf's ``sendTransform`` frames."""
+    """The spans of frames only broadcast: those a launch file gives a static transform
+    broadcaster, and ROS 1 Python tf's ``sendTransform`` frames."""
     found = {use.span for use in facts.names if use.api in _BROADCAST_APIS}
     if not facts.launch_nodes:
         return frozenset(found)
     nodes = sorted(facts.launch_nodes, key=lambda node: node.span)
-    previous: NameUse | None = None
     for use in facts.names:
-        # A launch extractor emits a parameter's name, then its value when it is a frame.
-        if (
-            use.kind is Kind.FRAME
-            and previous is not None
-            and previous.kind is Kind.PARAMETER
-            and _last_key(previous.value) in _BROADCAST_PARAMETERS
-            and _is_broadcaster(_node_before(nodes, use.span))
-        ):
+        if use.kind is Kind.FRAME and _is_broadcaster(_node_before(nodes, use.span)):
             found.add(use.span)
-        previous = use
     return frozenset(found)
 
 
-def _last_key(parameter: str) -> str:
-    return parameter.replace("/", ".").rsplit(".", 1)[-1]
-
-
 def _node_before(nodes: list[LaunchNode], span: Span) -> LaunchNode | None:
-    """The launch node whose attributes come last before ``span``: the one the parameter
-    is given to (a node's parameters follow its package, name or plugin)."""
+    """The launch node whose attributes come last before ``span``: the one a parameter or
+    argument there is given to (a node's parameters follow its package, name or plugin)."""
     before = None
     for node in nodes:
         if node.span >= span:
@@ -106,7 +98,7 @@ def _node_before(nodes: list[LaunchNode], span: Span) -> LaunchNode | None:
 
 
 def _is_broadcaster(node: LaunchNode | None) -> bool:
-    return node is not None and node.package == _BROADCASTER_PACKAGE
+    return node is not None and (node.package, node.executable) in _STATIC_BROADCASTERS
 
 
 RULE = Rule(
