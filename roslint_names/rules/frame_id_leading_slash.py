@@ -60,17 +60,11 @@ def _what_fails(use: NameUse) -> str:
     """What tf2 does with the frame at this use, from BufferCore::validateFrameId."""
     if use.api.startswith("tf ") or any(word in use.api for word in _LOOKUP_WORDS):
         if "can" in use.api.lower():
-            return "tf2's canTransform returns false for it (BufferCore::validateFrameId)"
+            return "canTransform returns false for it (tf2 BufferCore::validateFrameId)"
         return "tf2's lookups throw InvalidArgumentException for it (BufferCore::validateFrameId)"
     if "frame_id" in use.api and "parameters" not in use.api:
-        return (
-            "a message stamped with it cannot be transformed: tf2's lookups refuse the "
-            "header's frame (BufferCore::validateFrameId)"
-        )
-    return (
-        "the nodes that look transforms up with it fail: tf2's lookups refuse it "
-        "(BufferCore::validateFrameId); only a broadcast transform's frames are stripped"
-    )
+        return "a message stamped with it cannot be transformed (tf2 BufferCore::validateFrameId)"
+    return "the nodes that look transforms up with it fail (tf2 BufferCore::validateFrameId)"
 
 
 def _broadcast_only(facts: FileFacts) -> frozenset[Span]:
