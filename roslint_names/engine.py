@@ -26,7 +26,7 @@ from .gather import (
     extract_file,
     gave_up,
 )
-from .generation import PackageGenerations, service_types
+from .generation import PackageGenerations, service_types, visible_service_types
 from .lines import split_lines
 from .model import (
     Diagnostic,
@@ -161,6 +161,7 @@ def lint(
         keep_facts=keep_facts,
         progress=run.progress,
         package_of=lambda index: package_display(files[index], packages),
+        visible_of=lambda index: packages.visible_packages(files[index].path),
         read=lambda index: read_file(files[index].path, settings.max_file_size)[0] or b"",
     )
     graph: Graph | None = None
@@ -253,6 +254,7 @@ class _FileChecks:
     keep_facts: bool
     progress: Progress | None
     package_of: Callable[[int], str | None]  # the display directory of a file's package
+    visible_of: Callable[[int], frozenset[str] | None]  # its package and dependencies (RN204)
     read: Callable[[int], bytes]  # a file's bytes, for one the gathering did not read
     per_file: list[list[Diagnostic]] = field(init=False)
     suppressions_of: dict[int, list[Suppression]] = field(default_factory=dict)
@@ -299,7 +301,13 @@ class _FileChecks:
             if self.keep_facts:
                 self._all_facts[index] = facts
             typed = bool(typed_services(facts))
-            known = service_types_of(self.service_types, facts.generation) if typed else frozenset()
+            known = (
+                visible_service_types(
+                    service_types_of(self.service_types, facts.generation), self.visible_of(index)
+                )
+                if typed
+                else frozenset()
+            )
             self._check(index, facts, data, known)
         self._waiting.clear()
         self._unresolved.clear()

@@ -95,6 +95,15 @@ class PackageGenerations:
     def package_depends(self, path: Path) -> frozenset[str]:
         return self._for_file(path).depends
 
+    def visible_packages(self, path: Path) -> frozenset[str] | None:
+        """The packages whose interfaces code at ``path`` can use: its own package and
+        every package its package.xml depends on. None outside a named package, where no
+        manifest says what the file can see."""
+        package = self._for_file(path)
+        if package.name is None:
+            return None
+        return package.depends | {package.name}
+
     def _for_file(self, path: Path) -> _Package:
         found = self._by_file.get(path)
         if found is None:
@@ -126,6 +135,20 @@ class PackageGenerations:
             package = self._for_directory(os.path.dirname(directory))
         self._by_directory[directory] = package
         return package
+
+
+def visible_service_types(types: frozenset[str], visible: frozenset[str] | None) -> frozenset[str]:
+    """The ``package/Name`` service types of ``types`` whose package is in ``visible``
+    (``PackageGenerations.visible_packages``); all of them when ``visible`` is None.
+
+    A file can only serve or call a type of a package its package.xml depends on (or of
+    its own package): a sibling package's ``.srv`` it does not depend on is no name its
+    service could be after, whatever the two names share (issue 27: autoware's
+    ``~/service/load_plugin`` held against a sibling planner's ``LoadPlugin``).
+    """
+    if visible is None:
+        return types
+    return frozenset(spelling for spelling in types if spelling.split("/", 1)[0] in visible)
 
 
 def service_types(

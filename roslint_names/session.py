@@ -45,7 +45,7 @@ from .gather import (
     extract_batch,
     extract_file,
 )
-from .generation import PackageGenerations, service_types
+from .generation import PackageGenerations, service_types, visible_service_types
 from .model import Diagnostic, FileFacts, Generation
 from .reading import read_file, too_large
 from .registry import Registry
@@ -160,7 +160,10 @@ class Session:
         if self._specialiser is not None:
             self._specialiser.forget(display)
         self._service_types.update((facts.generation, t) for t in typed_services(facts))
-        known = service_types_of(self._service_types, facts.generation)
+        known = visible_service_types(
+            service_types_of(self._service_types, facts.generation),
+            self._packages.visible_packages(path),
+        )
         found, suppressions = check_file(
             facts,
             text,

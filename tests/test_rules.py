@@ -126,6 +126,14 @@ def test_rn204_sees_the_workspace_srv_files(run_cli: Any, tmp_path: Any) -> None
     assert result.codes() == []
     write(tmp_path, "src/docking_msgs/srv/StartDocking.srv", "---\nbool success\n")
     write_package(tmp_path / "src" / "docking_msgs", 2, name="docking_msgs")
+    # Only once dock depends on docking_msgs can its service be named after that type.
+    manifest = tmp_path / "src" / "dock" / "package.xml"
+    manifest.write_text(
+        manifest.read_text(encoding="utf-8").replace(
+            "</license>", "</license>\n  <depend>docking_msgs</depend>"
+        ),
+        encoding="utf-8",
+    )
     result = run_cli(["check", "--format", "json", "src"], tmp_path)
     assert [(f["code"], f["path"]) for f in result.findings()] == [
         ("RN204", "src/dock/src/dock.cpp")

@@ -127,7 +127,7 @@ def _known_types(
     return _with_names(*(known_type for known_type, _ in known), *extra)
 
 
-@lru_cache(maxsize=4)
+@lru_cache(maxsize=32)
 def _run_types(
     generation: Generation, of_the_run: frozenset[str]
 ) -> tuple[tuple[InterfaceType, str], ...]:
@@ -137,7 +137,7 @@ def _run_types(
     return _with_names(*parsed, *WELL_KNOWN_SERVICE_TYPES[generation])
 
 
-@lru_cache(maxsize=4)
+@lru_cache(maxsize=32)
 def _run_type_set(generation: Generation, of_the_run: frozenset[str]) -> frozenset[InterfaceType]:
     """The types of ``_run_types``, as a set: built once per run, not once per file."""
     return frozenset(known_type for known_type, _ in _run_types(generation, of_the_run))

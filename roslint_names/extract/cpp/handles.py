@@ -27,6 +27,10 @@ from .source import Source, enclosing_functions, unparenthesized
 from .values import Folder
 
 _MAX_DEPTH = 8  # handles built from handles; also stops cycles in broken code
+# The API named on the namespace of ``ros::NodeHandle(parent, ns)``: roscpp validates
+# that namespace only joined to the parent's (absolute) one, so rules judge it apart from
+# ``ros::NodeHandle(ns)``'s, which roscpp validates alone (RN101).
+CHILD_HANDLE_API = "ros::NodeHandle(parent, ns)"
 
 
 @dataclass(frozen=True)

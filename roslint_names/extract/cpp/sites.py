@@ -33,7 +33,7 @@ from .apis import (
     ParameterSite,
     value_fact,
 )
-from .handles import Handles
+from .handles import CHILD_HANDLE_API, Handles
 from .objects import NODE_BASES, Classes, Construction
 from .source import (
     Call,
@@ -324,7 +324,7 @@ class Sites:
         elif len(values) >= 2:
             parent = self.handles.parent_namespace(construction)
             value = self.argument(values, 1)
-            self.emit(Kind.NAMESPACE, Role.NAMESPACE, "ros::NodeHandle", value, namespace=parent)
+            self.emit(Kind.NAMESPACE, Role.NAMESPACE, CHILD_HANDLE_API, value, namespace=parent)
 
     def node(self, values: tuple[Node, ...], api: str, site: Node) -> None:
         """``rclcpp::Node(name[, namespace][, options])`` and its subclasses' base call.
