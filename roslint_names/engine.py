@@ -43,6 +43,7 @@ from .rule import Rule, RuleContext, WorkspaceFinding
 from .run_inputs import RunInputs
 from .suppress import Suppression, find_suppressions, is_our_code
 from .symbols import PackageConstants, uses_constants
+from .templates import is_template, placeholder_lines
 from .test_code import is_test_code
 from .types import parse_type
 from .workers import Dispatcher
@@ -472,6 +473,9 @@ def check_file(
     # Whether the file is test code is asked only when the answer can change something.
     if test_rules is None:
         test_rules = test_code_codes(settings, registry)
+    if diagnostics and is_template(_relative_to_root(facts.path, settings)):
+        holding = placeholder_lines(text)
+        diagnostics = [d for d in diagnostics if d.span.line not in holding]
     judging = _TestCodeFilter(facts, text, settings, test_rules)
     if suppressions or any(judging.spared(d.code) for d in diagnostics):
         enabled = judging.rules(enabled)
