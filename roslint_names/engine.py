@@ -209,6 +209,7 @@ def lint(
             )
 
     # (5)
+    checks.spare_rejected_fixtures([source.display for source in files[:reported]])
     diagnostics = sorted(
         (diagnostic for found in checks.per_file for diagnostic in found), key=Diagnostic.sort_key
     )
@@ -263,6 +264,7 @@ class _FileChecks:
     _waiting: list[tuple[int, FileFacts, bytes | None]] = field(default_factory=list)
     _unresolved: list[int] = field(default_factory=list)  # files only the graph reads
     _constants: PackageConstants = field(default_factory=PackageConstants)
+    _rejected: dict[str, set[str]] = field(default_factory=dict)  # package: fixture names
     _done: int = 0
 
     def __post_init__(self) -> None:
@@ -279,6 +281,8 @@ class _FileChecks:
         types = typed_services(facts)
         self.service_types.update((facts.generation, spelling) for spelling in types)
         self._constants.add(facts)
+        if facts.rejected_fixtures and (package := self.package_of(index)) is not None:
+            self._rejected.setdefault(package, set()).update(facts.rejected_fixtures)
         symbols = uses_constants(facts)
         if index < self.reported:
             if types or symbols:
@@ -290,6 +294,18 @@ class _FileChecks:
         self._done += 1
         if self.progress is not None:
             self.progress(self._done, self.files)
+
+    def spare_rejected_fixtures(self, displays: Sequence[str]) -> None:
+        """No finding in a file that its package's tests load expecting it to be refused
+        (``extract.python.fixtures``): its mistakes are the test's point. ``displays``:
+        the reported files' display paths."""
+        if not self._rejected:
+            return
+        for index, found in enumerate(self.per_file):
+            package = self.package_of(index) if found else None
+            name = displays[index].rpartition("/")[2]
+            if package is not None and name in self._rejected.get(package, ()):
+                self.per_file[index] = []
 
     def finish(self) -> None:
         """Check the files that waited for the run's service types and constants."""

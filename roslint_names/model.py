@@ -268,6 +268,9 @@ class FileFacts:
     # them: a re-run from cached facts does not read a file that holds none and has no
     # finding. False by default, so that the facts of most files stay the empty ones.
     suppression_marker: bool = False
+    # Python test code: the base names of launch, URDF and YAML files it loads expecting
+    # them to be refused (``extract.python.fixtures``); their findings are the test's point.
+    rejected_fixtures: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

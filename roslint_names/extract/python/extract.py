@@ -17,6 +17,7 @@ remaps and parameters then spell names chosen elsewhere, as in launch XML.
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 
 from roslint_names.model import (
     FileFacts,
@@ -27,6 +28,8 @@ from roslint_names.model import (
     Span,
 )
 from roslint_names.reading import WIDE_ENCODINGS, bom_encoding
+
+from .fixtures import rejected_fixtures
 
 # A ROS import (rospy, rclpy, actionlib, tf/tf2, launch_ros, message_filters, any
 # *_msgs/*_srvs package) or a launch description. ``import os, rospy`` counts too.
@@ -70,6 +73,18 @@ def extract(
     what an including file hands over, winning over ``DeclareLaunchArgument`` defaults.
     Code that is not a launch file has no use for them.
     """
+    facts = _extract(path, data, package_generation, fallback_generation, arguments)
+    fixtures = rejected_fixtures(data)
+    return replace(facts, rejected_fixtures=fixtures) if fixtures else facts
+
+
+def _extract(
+    path: str,
+    data: bytes,
+    package_generation: Generation | None,
+    fallback_generation: Generation,
+    arguments: LaunchArguments,
+) -> FileFacts:
     launch_path = is_launch_path(path)
     wide = bom_encoding(data)
     if wide in WIDE_ENCODINGS:  # the prefilter cannot read it, and neither can CPython
