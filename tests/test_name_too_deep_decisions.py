@@ -377,3 +377,47 @@ def test_hidden_tokens_are_ros2s_and_a_transport_is_the_last_token_only() -> Non
     assert chosen_depth("/compressed", Kind.TOPIC, ros2) == 1  # a name of its own
     assert chosen_depth("/camera/compressed/image", Kind.TOPIC, ros2) == 3
     assert chosen_depth("/camera/image/compressed", Kind.SERVICE, ros2) == 3
+
+
+MOTION_PLANNING_LAUNCH_PY = """\
+from launch import LaunchDescription
+from launch.actions import GroupAction
+from launch_ros.actions import Node, PushRosNamespace
+
+
+def generate_launch_description():
+    return LaunchDescription([
+        GroupAction([
+            PushRosNamespace("planning/scenario_planning/lane_driving/motion_planning"),
+            Node(
+                package="autoware_path_optimizer",
+                executable="path_optimizer_node",
+                name="path_optimizer",
+                remappings=[("~/output/path", "path_optimizer/trajectory")],
+            ),
+            Node(
+                package="autoware_motion_velocity_planner",
+                executable="motion_velocity_planner_node",
+                name="motion_velocity_planner",
+                remappings=[("~/input/trajectory", "path_optimizer/trajectory")],
+            ),
+        ]),
+    ])
+"""
+
+
+def test_a_python_launch_files_wired_topic_is_reported_at_the_publishers_target(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    write(tmp_path, "src/planning_launch/package.xml", AMENT_PACKAGE.format(name="planning_launch"))
+    write(
+        tmp_path, "src/planning_launch/launch/motion_planning.launch.py", MOTION_PLANNING_LAUNCH_PY
+    )
+    found = deep_findings(run_cli, tmp_path)
+    target = '"path_optimizer/trajectory"'
+    assert [(f["line"], f["column"]) for f in found] == [
+        (14, column_of(MOTION_PLANNING_LAUNCH_PY, 14, target))
+    ]
+    assert [
+        (r["line"], r["column"]) for r in found[0]["related"] if "subscriber" in r["message"]
+    ] == [(20, column_of(MOTION_PLANNING_LAUNCH_PY, 20, target))]
