@@ -3,6 +3,12 @@
 Deep names are hard to type, to remap and to read in rqt_graph; a name that is already
 deep in a file ends deeper still once launch files push namespaces on it. Parameters are
 left out: their nesting mirrors the configuration structure (``controller.gains.p``).
+
+Only the levels a writer chose count (``common.chosen_depth``: not ROS 2's hidden tokens,
+not a transport plugin's subtopic), and each decision is reported once, where the edit
+goes: one finding per launch site that pushes a node's names past the limit, listing them;
+a topic wired from a publisher's remap to subscribers' remaps at the publisher's, listing
+theirs; a remap's finding at its target (``to``).
 """
 
 from __future__ import annotations
@@ -121,7 +127,7 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
         for remap in instance.remaps:
             remapped.add((instance.root, instance.name, remap.target))
             side = sides[(instance.root, instance.name, remap)]
-            if not _judged_here(instance, remap, side, limit):
+            if not _judged_here(instance, remap, limit):
                 continue
             location = Location(remap.path, remap.target_span or remap.span)
             if side is Side.CONSUMER and _produced(graph, producers, instance, remap.target):
@@ -218,7 +224,7 @@ def _produced(
     return any(graph.can_meet(node, other) for other in producers.get(resource, ()))
 
 
-def _judged_here(node: NodeInstance, remap: NodeRemap, side: Side, limit: int) -> bool:
+def _judged_here(node: NodeInstance, remap: NodeRemap, limit: int) -> bool:
     """A remap target past the limit in the node's namespace, which the file rule left
     to the graph: pushed there by the namespace, or a subscriber's input remap."""
     if not node.launched_at or not is_valid(remap.target, Kind.TOPIC, node.generation):
