@@ -421,3 +421,28 @@ def test_a_python_launch_files_wired_topic_is_reported_at_the_publishers_target(
     assert [
         (r["line"], r["column"]) for r in found[0]["related"] if "subscriber" in r["message"]
     ] == [(20, column_of(MOTION_PLANNING_LAUNCH_PY, 20, target))]
+
+
+def test_an_input_remap_of_a_node_named_by_its_code_is_reported_once(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """The file rule judges the remap of a node the launch file does not name (it cannot
+    tell whether the graph will know the node); the graph rule leaves it alone."""
+    smoother_workspace(tmp_path)
+    launch = (
+        "<launch>\n"
+        '  <node pkg="velocity_smoother" exec="velocity_smoother_node">\n'
+        '    <remap from="~/input/trajectory"\n'
+        '           to="/planning/scenario_planning/lane_driving/motion_planning/trajectory"/>\n'
+        "  </node>\n"
+        "</launch>\n"
+    )
+    write(tmp_path, "src/planning_launch/launch/planning.launch.xml", launch)
+    found = deep_findings(run_cli, tmp_path)
+    assert [(f["line"], f["message"]) for f in found] == [
+        (
+            4,
+            "remap target '/planning/scenario_planning/lane_driving/motion_planning/trajectory'"
+            " has 5 levels; the limit is 4 (max-depth)",
+        )
+    ]

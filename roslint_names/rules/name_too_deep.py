@@ -237,7 +237,8 @@ def _judged_here(node: NodeInstance, remap: NodeRemap, limit: int) -> bool:
         return True  # pushed too deep by the namespace
     # the file rule's deferred remaps (``_deferred_to_graph``)
     return (
-        remap.own
+        node.named_at_launch
+        and remap.own
         and remap.target_span is not None
         and _spelled_at(remap.target_span, remap.written_target)
         and _conventional_side(_after_node(remap.source, node.name)) is Side.CONSUMER

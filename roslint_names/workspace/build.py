@@ -158,6 +158,7 @@ def _launched_instance(
         uses_complete=complete and bool(sources),
         uses_relative=relative,
         conditional=launched.conditional,
+        named_at_launch=launched.node.name is not None,
         test=launched.node.test,
         reach=reach,
     )
