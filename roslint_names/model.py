@@ -118,7 +118,8 @@ class NameUse:
 class Remap:
     source: str
     target: str
-    span: Span
+    span: Span  # the source (``from``): what RN404 says is unused
+    target_span: Span | None = None  # the target (``to``): what RN201 says is too deep
 
 
 @dataclass(frozen=True)

@@ -452,6 +452,6 @@ def test_real_style_include_chain_remap_objects() -> None:
         namespace="/g/h",
         span=Span(1, 62, 1, 80),
         arguments=(("k", "v"),),
-        remaps=(Remap("a", "b", Span(1, 22, 1, 23)),),
+        remaps=(Remap("a", "b", Span(1, 22, 1, 23), Span(1, 29, 1, 30)),),
         anchored=False,
     )

@@ -6,7 +6,7 @@ import re
 from collections.abc import Iterator
 
 from ..model import FileFacts, Fix, Generation, Kind, Language, NameUse, Role
-from ..names import Problem, check_name
+from ..names import Problem, check_name, tokens
 
 GRAPH_KINDS = frozenset({Kind.NODE, Kind.NAMESPACE, Kind.TOPIC, Kind.SERVICE, Kind.ACTION})
 _LAUNCH_LANGUAGES = frozenset(
@@ -16,6 +16,16 @@ CODE_LANGUAGES = frozenset({Language.CPP, Language.PYTHON})
 # The APIs of node code, as the Python extractor names them (``rclpy.node.Node.
 # create_publisher``); a launch description's are its actions' (``Node(remappings=)``).
 _CODE_APIS = ("rclpy.", "rospy.", "actionlib.", "message_filters.")
+
+# The last token of an image or point cloud transport's topic: its plugin's name, which
+# SimplePublisherPlugin::getTopicToAdvertise appends to the base topic (image_transport
+# and point_cloud_transport, `simple_publisher_plugin.hpp`); the plugins' getTransportName
+# in image_transport_plugins and point_cloud_transport_plugins.
+TRANSPORT_SUFFIXES = frozenset({"compressed", "compressedDepth", "theora", "zstd", "draco", "zlib"})
+# ROS 2 hides a name with a token that starts with '_' (rclpy's
+# `topic_or_service_is_hidden`): a library's own services (rclcpp_components'
+# `~/_container/load_node`) and actions' `_action/...` sub-names.
+HIDDEN_PREFIX = "_"
 
 _TYPE_SPELLING = re.compile(r"[A-Z][A-Za-z0-9]*[a-z][A-Za-z0-9]*")
 _LABELS = {
@@ -123,6 +133,24 @@ def spelled_as_type(use: NameUse) -> bool:
         return False
     last = use.value.rstrip("/").rsplit("/", 1)[-1]
     return bool(_TYPE_SPELLING.fullmatch(last))
+
+
+def chosen_depth(name: str, kind: Kind, generation: Generation) -> int:
+    """The levels of ``name`` its writer chose (RN201).
+
+    A transport plugin's last token (``image/compressed``) is the plugin's, not the
+    writer's. In ROS 2 a hidden token and all after it are a library's: rclcpp_components
+    serves ``~/_container/load_node`` under whatever name the launch file gives the
+    container, and hidden names are out of ``ros2 topic list`` and ``rqt_graph`` anyway.
+    """
+    chosen = tokens(name, kind)
+    if kind is Kind.TOPIC and len(chosen) > 1 and chosen[-1] in TRANSPORT_SUFFIXES:
+        chosen = chosen[:-1]
+    if generation is Generation.ROS2:
+        hidden = [i for i, token in enumerate(chosen) if token.startswith(HIDDEN_PREFIX)]
+        if hidden:
+            chosen = chosen[: hidden[0]]
+    return len(chosen)
 
 
 def label(use: NameUse) -> str:

@@ -134,6 +134,7 @@ def _launched_instance(
             _resolve_quietly(remap.source, instance) or remap.source,
             _resolve_quietly(remap.target, instance) or remap.target,
             remap.span,
+            remap.target_span,
             path=path,
             own=own,
             written_target=remap.target,
@@ -157,6 +158,7 @@ def _launched_instance(
         uses_complete=complete and bool(sources),
         uses_relative=relative,
         conditional=launched.conditional,
+        named_at_launch=launched.node.name is not None,
         test=launched.node.test,
         reach=reach,
     )

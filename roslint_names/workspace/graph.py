@@ -104,6 +104,7 @@ class NodeInstance:
     uses_complete: bool = False
     uses_relative: tuple[str, ...] = ()
     conditional: bool = False  # started under a condition the linter cannot decide
+    named_at_launch: bool = False  # the launch file gives its name, not its code
     test: bool = False  # a rostest ``<test>``: run alone, after the nodes are up
     reach: Reach = Reach(Generation.ROS2)
 

@@ -429,7 +429,12 @@ class LaunchExtractor(LaunchValues):
         target_value = self.emit(REMAP_TO, apis[1], target, scope, namespace)
         if source_value.dynamic or target_value.dynamic:
             return None
-        return Remap(source_value.text, target_value.text, self.locator.span(source.where()))
+        return Remap(
+            source_value.text,
+            target_value.text,
+            self.locator.span(source.where()),
+            self.locator.span(target.where()),
+        )
 
     def parameters(
         self, action: ActionCall, scope: LaunchScope, path: str | None, label: str

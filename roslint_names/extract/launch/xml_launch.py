@@ -317,10 +317,10 @@ class LaunchWalker(ABC):
 
     def remap(self, entity: Entity, scope: Scope, namespace: str | None) -> Remap | None:
         """``<remap from to>``: both names, and the remap when both are static."""
-        source = entity.get("from")
+        source, target = entity.get("from"), entity.get("to")
         source_value = self.attribute(entity, "from", scope, REMAP_FROM, namespace)
         target_value = self.attribute(entity, "to", scope, REMAP_TO, namespace)
-        return _static_remap(source, source_value, target_value)
+        return _static_remap(source, source_value, target_value, target)
 
     def frame_value(
         self,
@@ -453,7 +453,7 @@ class LaunchWalker(ABC):
             elif argument.meaning is Meaning.REMAP:
                 self.emit(REMAP_FROM, api, argument.key_at, key, namespace)
                 self.emit(REMAP_TO, api, argument.value_at, value, namespace)
-                remap = _static_remap(argument.key_at, key, value)
+                remap = _static_remap(argument.key_at, key, value, argument.value_at)
                 remaps.extend([remap] if remap else [])
             elif argument.meaning is Meaning.PARAMETER:
                 self.emit(PARAMETER, api, argument.key_at, key, path)
@@ -497,14 +497,18 @@ def _names_node(attribute: Value | None, arguments: Sequence[CommandLineName]) -
 
 
 def _static_remap(
-    source: Located | None, source_value: Value | None, target_value: Value | None
+    source: Located | None,
+    source_value: Value | None,
+    target_value: Value | None,
+    target: Located | None,
 ) -> Remap | None:
     """A remap for ``LaunchNode``; dynamic ones are left out rather than guessed."""
     if source is None or source_value is None or target_value is None:
         return None
     if source_value.dynamic or target_value.dynamic:
         return None
-    return Remap(source_value.text, target_value.text, source.span)
+    target_span = target.span if target is not None else None
+    return Remap(source_value.text, target_value.text, source.span, target_span)
 
 
 # ---------------------------------------------------------------------------------------
