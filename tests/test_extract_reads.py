@@ -7,6 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from roslint_names.extract.cpp import extract as cpp
+from roslint_names.extract.python import extract as python
 from roslint_names.model import FileFacts, Generation, Kind, NameUse, Role
 
 FIXTURES = Path(__file__).parent / "fixtures"
@@ -16,6 +17,10 @@ TOPIC, SERVICE = Kind.TOPIC, Kind.SERVICE
 
 def cpp_fixture(name: str) -> FileFacts:
     return cpp.extract(name, (FIXTURES / "cpp" / name).read_bytes(), None, ROS2)
+
+
+def python_fixture(name: str) -> FileFacts:
+    return python.extract(name, (FIXTURES / "python" / name).read_bytes(), None, ROS2)
 
 
 def known(facts: FileFacts) -> list[NameUse]:
@@ -73,3 +78,41 @@ def test_roscpp_option_objects_name_their_endpoints() -> None:
     ]
     # `nh_.subscribe(ops)` hands over the object: no unknown name is made of `ops`
     assert [u.value for u in facts.names if u.dynamic] == []
+
+
+# ---------------------------------------------------------------------------------------
+# An absolute literal joined at run time
+
+
+def prefixes(facts: FileFacts) -> list[tuple[int, str | None]]:
+    """(line, certain absolute start) of the endpoint names built at run time."""
+    return [(u.span.line, u.absolute_prefix) for u in facts.names if u.dynamic]
+
+
+def test_cpp_absolute_prefix_joined_at_run_time_is_kept() -> None:
+    facts = cpp_fixture("planning_factor_interface.hpp")
+    assert prefixes(facts) == [
+        (23, "/planning/planning_factors/"),
+        (25, "/planning/debug/"),  # through a constant initialised with the sum
+        (27, None),  # "~/debug/" + name: relative, nothing certain about its anchor
+    ]
+
+
+def test_python_absolute_prefix_joined_at_run_time_is_kept() -> None:
+    facts = python_fixture("planning_debug_relay.py")
+    assert prefixes(facts) == [
+        (12, "/planning/planning_factors/"),
+        (14, "/planning/debug/"),
+        (15, "/planning/"),
+        (17, "/planning/status/"),
+        (19, None),
+    ]
+
+
+def test_a_known_prefix_leaves_the_name_unjudged_by_the_grammar() -> None:
+    """The unknown rest may be anything: the use stays dynamic, so no rule that reads
+    ``static_uses`` (every grammar rule) sees it."""
+    facts = python_fixture("planning_debug_relay.py")
+    [factors] = [u for u in facts.names if u.absolute_prefix == "/planning/planning_factors/"]
+    assert factors.dynamic
+    assert factors.value == '"/planning/planning_factors/" + module_name'

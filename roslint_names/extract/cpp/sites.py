@@ -95,6 +95,7 @@ class Sites:
                 type_name=type_name,
                 namespace=namespace,
                 symbol=value.symbol,
+                absolute_prefix=value.prefix if value.dynamic else None,
             )
         )
 

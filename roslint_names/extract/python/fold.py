@@ -24,7 +24,8 @@ class Folder:
     function-level constants, or every branch agreeing), ``self.x`` attributes every
     write agrees on (``attributes.py``), f-strings, implicit concatenation, ``+`` and
     ``%`` whose parts all fold. Everything else (a parameter, another object's
-    attribute, a call) is dynamic.
+    attribute, a call) is dynamic; ``absolute_prefix`` says what absolute start such a
+    name certainly has.
     """
 
     def __init__(self, locator: Locator, attributes: InstanceAttributes | None = None) -> None:
@@ -61,6 +62,55 @@ class Folder:
             if owner is not None:
                 return self._agreed(self._attributes.of_instance(owner, expr.attr.value), depth)
         return None
+
+    def absolute_prefix(self, expr: cst.BaseExpression, scope: Scope) -> str | None:
+        """The absolute start a dynamic name certainly has: ``"/planning/" + name``,
+        ``f"/planning/{name}"``, ``"/planning/%s" % name``, ``"/planning/{}".format(name)``,
+        or a name bound once to one of these."""
+        prefix = self._prefix(expr, scope, 0)
+        return prefix if prefix is not None and prefix.startswith("/") else None
+
+    def _prefix(self, expr: cst.BaseExpression, scope: Scope, depth: int) -> str | None:
+        """The text ``expr`` certainly starts with (all of it when static)."""
+        if depth > _MAX_DEPTH:
+            return None
+        static = self.static(expr, scope, depth)
+        if static is not None:
+            return static
+        if isinstance(expr, cst.BinaryOperation):
+            if isinstance(expr.operator, cst.Add):
+                return self._prefix(expr.left, scope, depth + 1)
+            left = self.static(expr.left, scope, depth + 1)
+            if isinstance(expr.operator, cst.Modulo) and left is not None:
+                return left.partition("%")[0]
+            return None
+        if isinstance(expr, cst.FormattedString):
+            return self._formatted_prefix(expr, scope, depth)
+        if isinstance(expr, cst.Call) and isinstance(expr.func, cst.Attribute):
+            owner = self.static(expr.func.value, scope, depth + 1)  # "/a/{}".format(x)
+            if expr.func.attr.value == "format" and owner is not None:
+                return owner.partition("{")[0]
+            return None
+        if isinstance(expr, cst.Name):
+            bindings = scope.lookup(expr.value)
+            if len(bindings) == 1 and bindings[0].value is not None:
+                return self._prefix(bindings[0].value, bindings[0].scope, depth + 1)
+        return None
+
+    def _formatted_prefix(self, expr: cst.FormattedString, scope: Scope, depth: int) -> str:
+        parts: list[str] = []
+        for part in expr.parts:
+            text = None
+            if isinstance(part, cst.FormattedStringText):
+                text = _fstring_text(expr, part.value)
+            elif isinstance(part, cst.FormattedStringExpression) and not (
+                part.format_spec or part.equal or part.conversion not in (None, "s")
+            ):
+                text = self.static(part.expression, scope, depth + 1)
+            if text is None:
+                break
+            parts.append(text)
+        return "".join(parts)
 
     def _agreed(self, bindings: Sequence[Binding], depth: int) -> str | None:
         """The value every binding gives, when they all give the same static one."""
