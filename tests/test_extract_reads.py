@@ -13,6 +13,7 @@ from roslint_names.model import FileFacts, Generation, Kind, NameUse, Role
 FIXTURES = Path(__file__).parent / "fixtures"
 ROS1, ROS2 = Generation.ROS1, Generation.ROS2
 TOPIC, SERVICE = Kind.TOPIC, Kind.SERVICE
+ENDPOINTS = frozenset({Role.PUBLISH, Role.SUBSCRIBE, Role.SERVE, Role.CALL})
 
 
 def cpp_fixture(name: str) -> FileFacts:
@@ -116,3 +117,50 @@ def test_a_known_prefix_leaves_the_name_unjudged_by_the_grammar() -> None:
     [factors] = [u for u in facts.names if u.absolute_prefix == "/planning/planning_factors/"]
     assert factors.dynamic
     assert factors.value == '"/planning/planning_factors/" + module_name'
+
+
+# ---------------------------------------------------------------------------------------
+# Values followed: lambda captures, repeated assignments, members, constant sums
+
+
+def static_endpoints(facts: FileFacts) -> list[tuple[int, Role, str]]:
+    return [(u.span.line, u.role, u.value) for u in known(facts) if u.role in ENDPOINTS]
+
+
+def test_cpp_constants_members_and_lambda_captures_are_followed() -> None:
+    facts = cpp_fixture("teleop_mux.cpp")
+    assert static_endpoints(facts) == [
+        (22, Role.PUBLISH, "mux_status"),  # this->kStatusTopic
+        (24, Role.PUBLISH, "/robot/cmd_vel"),  # std::string(kRobotNs) + "/cmd_vel"
+        (26, Role.SUBSCRIBE, "joy/cmd_vel"),  # kJoyNs + "/cmd_vel"
+        (33, Role.SUBSCRIBE, "cmd_vel_override"),  # [this, override_topic]
+        (39, Role.PUBLISH, "heartbeat"),  # [=]
+        (53, Role.PUBLISH, "mux_status"),  # mux.kStatusTopic
+    ]
+    assert [u.value for u in facts.names if u.dynamic] == []
+
+
+CAPTURED_BY_REFERENCE_CPP = """\
+#include <rclcpp/rclcpp.hpp>
+void start(rclcpp::Node::SharedPtr node)
+{
+  std::string topic = "scan";
+  auto reconfigure = [&topic](const std::string & name) { topic = name; };
+  auto later = [node, topic]() { node->create_subscription<Scan>(topic, 10, cb); };
+}
+"""
+
+
+def test_cpp_a_local_captured_by_reference_may_change() -> None:
+    facts = cpp.extract("src/start.cpp", CAPTURED_BY_REFERENCE_CPP.encode(), ROS2, ROS2)
+    assert [(u.value, u.dynamic) for u in facts.names] == [("topic", True)]
+
+
+def test_python_local_assigned_twice_is_read_at_its_last_assignment() -> None:
+    facts = python_fixture("battery_monitor.py")
+    assert static_endpoints(facts) == [
+        (12, Role.PUBLISH, "battery_state"),
+        (14, Role.PUBLISH, "/battery_alarm"),
+    ]
+    # after a branch that may assign it, the value is not certain
+    assert [(u.span.line, u.value) for u in facts.names if u.dynamic] == [(18, "topic")]

@@ -329,7 +329,7 @@ class CodeExtractor:
     ) -> str | None:
         """Emit the name an argument holds; its static value, or None when dynamic."""
         scope = site.context.scope
-        value = self.folder.value(expr, scope)
+        value = self.folder.value(expr, scope, at=site.context)
         prefix = self.folder.absolute_prefix(expr, scope) if value.dynamic else None
         self.add(site.where(expr), use, value, type_name, prefix)
         return None if value.dynamic else value.text

@@ -11,7 +11,7 @@ import libcst as cst
 
 from roslint_names.extract.launch.substitution import Value, without_surrogates
 from roslint_names.extract.python.attributes import InstanceAttributes, instance_class
-from roslint_names.extract.python.scope import Binding, Scope
+from roslint_names.extract.python.scope import Binding, Context, Scope, ScopeKind
 from roslint_names.extract.python.spans import Locator
 
 _MAX_DEPTH = 16  # constants defined through constants; deeper (or cyclic) is dynamic
@@ -32,13 +32,21 @@ class Folder:
         self._locator = locator
         self._attributes = attributes
 
-    def value(self, expr: cst.BaseExpression, scope: Scope) -> Value:
-        text = self.static(expr, scope)
+    def value(self, expr: cst.BaseExpression, scope: Scope, at: Context | None = None) -> Value:
+        """``at``: where the expression is read, to take a local assigned several times
+        in straight-line code at its last assignment before that place."""
+        text = self.static(expr, scope, at=at)
         if text is None:
             return Value(self._locator.code(expr), dynamic=True)
         return Value(text)
 
-    def static(self, expr: cst.BaseExpression, scope: Scope, depth: int = 0) -> str | None:
+    def static(
+        self,
+        expr: cst.BaseExpression,
+        scope: Scope,
+        depth: int = 0,
+        at: Context | None = None,
+    ) -> str | None:
         if depth > _MAX_DEPTH:
             return None
         kind = type(expr)  # not isinstance: libcst's node classes are ABCs, slow to ask
@@ -47,16 +55,22 @@ class Folder:
         if kind is cst.ConcatenatedString:
             concatenated = cast(cst.ConcatenatedString, expr)
             return _join(
-                self.static(concatenated.left, scope, depth),
-                self.static(concatenated.right, scope, depth),
+                self.static(concatenated.left, scope, depth, at),
+                self.static(concatenated.right, scope, depth, at),
             )
         if kind is cst.FormattedString:
-            return self._formatted(cast(cst.FormattedString, expr), scope, depth)
+            return self._formatted(cast(cst.FormattedString, expr), scope, depth, at)
         if kind is cst.BinaryOperation:
-            return self._operation(cast(cst.BinaryOperation, expr), scope, depth)
+            return self._operation(cast(cst.BinaryOperation, expr), scope, depth, at)
         if kind is cst.Name:
             # Bound once, or several times to one value (``topic = "scan"`` on each branch)
-            return self._agreed(scope.lookup(cast(cst.Name, expr).value), depth)
+            bindings = scope.lookup(cast(cst.Name, expr).value)
+            agreed = self._agreed(bindings, depth)
+            if agreed is None and at is not None:
+                last = _last_in_straight_line(bindings, scope, at)
+                if last is not None and last.value is not None:
+                    return self.static(last.value, last.scope, depth + 1, last.context)
+            return agreed
         if isinstance(expr, cst.Attribute) and self._attributes is not None:
             owner = instance_class(expr.value, scope)  # ``self.topic``
             if owner is not None:
@@ -120,7 +134,9 @@ class Folder:
         }
         return values.pop() if len(values) == 1 else None
 
-    def _formatted(self, expr: cst.FormattedString, scope: Scope, depth: int) -> str | None:
+    def _formatted(
+        self, expr: cst.FormattedString, scope: Scope, depth: int, at: Context | None
+    ) -> str | None:
         parts: list[str] = []
         for part in expr.parts:
             if isinstance(part, cst.FormattedStringText):
@@ -130,18 +146,20 @@ class Folder:
             ):
                 return None  # formatting we do not reproduce
             else:
-                text = self.static(part.expression, scope, depth)
+                text = self.static(part.expression, scope, depth, at)
             if text is None:
                 return None
             parts.append(text)
         return "".join(parts)
 
-    def _operation(self, expr: cst.BinaryOperation, scope: Scope, depth: int) -> str | None:
-        left = self.static(expr.left, scope, depth)
+    def _operation(
+        self, expr: cst.BinaryOperation, scope: Scope, depth: int, at: Context | None
+    ) -> str | None:
+        left = self.static(expr.left, scope, depth, at)
         if left is None:
             return None
         if isinstance(expr.operator, cst.Add):
-            return _join(left, self.static(expr.right, scope, depth))
+            return _join(left, self.static(expr.right, scope, depth, at))
         if not isinstance(expr.operator, cst.Modulo):
             return None
         right = expr.right
@@ -150,13 +168,51 @@ class Folder:
             if isinstance(right, cst.Tuple)
             else [right]
         )
-        values = [self.static(item, scope, depth) for item in items]
+        values = [self.static(item, scope, depth, at) for item in items]
         if any(value is None for value in values):
             return None
         try:
             return left % tuple(values)
         except (TypeError, ValueError, KeyError):
             return None  # a %d or a mismatch: Python would raise, we do not guess
+
+
+def _last_in_straight_line(
+    bindings: Sequence[Binding], scope: Scope, at: Context
+) -> Binding | None:
+    """The assignment a function's local has where ``at`` reads it, when that is certain:
+    the last one before it among the statements of the function's own body (not inside an
+    ``if``, a loop or a ``try``), with no other binding after it and up to the statement
+    that holds ``at`` (where a branch or a loop could bind it again)."""
+    function = scope.function
+    if scope.kind is not ScopeKind.FUNCTION or function is None:
+        return None
+    body = function.body.body
+    positions = {id(statement): index for index, statement in enumerate(body)}
+    use = _position(at, positions)
+    if use is None or any(binding.scope is not scope for binding in bindings):
+        return None  # a closure's read sees the value at call time
+    last: tuple[int, Binding] | None = None
+    for binding in bindings:  # in source order
+        if binding.context is None:
+            return None  # a parameter, loop target, `+=`: bound where we cannot place it
+        index = _position(binding.context, positions)
+        if index is None or index == use:
+            return None
+        if index < use and (last is None or index >= last[0]):
+            last = (index, binding)
+    if last is None or last[1].context is None or last[1].context.anchors[0] is not body[last[0]]:
+        return None  # bound last inside a branch or loop before the use
+    return last[1]
+
+
+def _position(context: Context, positions: dict[int, int]) -> int | None:
+    """Which statement of the function's body holds what ``context`` is at."""
+    for anchor in context.anchors:
+        index = positions.get(id(anchor))
+        if index is not None:
+            return index
+    return None
 
 
 def string_literal(node: cst.SimpleString) -> str | None:
