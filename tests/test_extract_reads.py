@@ -164,3 +164,25 @@ def test_python_local_assigned_twice_is_read_at_its_last_assignment() -> None:
     ]
     # after a branch that may assign it, the value is not certain
     assert [(u.span.line, u.value) for u in facts.names if u.dynamic] == [(18, "topic")]
+
+
+# ---------------------------------------------------------------------------------------
+# Remapping arguments rename the node they are given to
+
+
+def test_a_remapping_argument_renames_only_the_node_it_configures() -> None:
+    facts = cpp_fixture("fleet_bringup.cpp")
+    names = [
+        (u.span.line, u.kind, u.value, u.dynamic)
+        for u in facts.names
+        if u.role in (Role.NODE_NAME, Role.NAMESPACE)
+    ]
+    assert names == [
+        (16, Kind.NODE, "base_driver", False),
+        (16, Kind.NAMESPACE, "ignored", True),  # __ns:=/robot1 in its options
+        (20, Kind.NODE, "_", True),  # __node:= through the vector its options take
+        (20, Kind.NAMESPACE, "robot2", False),
+        # no remapping reaches the monitor: its names are judged (the trailing slash)
+        (22, Kind.NODE, "fleet_monitor", False),
+        (22, Kind.NAMESPACE, "fleet/", False),
+    ]

@@ -393,11 +393,12 @@ class Sites:
     def node(self, values: tuple[Node, ...], api: str, site: Node) -> None:
         """``rclcpp::Node(name[, namespace][, options])`` and its subclasses' base call.
 
-        Code that builds ``--ros-args -r __node:=...`` next to the node renames it at run
-        time (moveit and nav2 name such helper nodes "_"): the name written is not the
-        one the node gets, so it is dynamic; ``__ns:=`` likewise for the namespace.
+        Code that builds ``--ros-args -r __node:=...`` into the options the node is given
+        renames it at run time (moveit and nav2 name such helper nodes "_"): the name
+        written is not the one the node gets, so it is dynamic; ``__ns:=`` likewise for
+        the namespace. Another node of the same function keeps its names.
         """
-        remapped = _remapped(self.source, site)
+        remapped = _remapped(self.source, site, values)
         name = self.argument(values, 0)
         self.emit(Kind.NODE, Role.NODE_NAME, api, _dynamic_if(name, "node" in remapped))
         namespace = self.static_argument(values, 1)
@@ -451,13 +452,65 @@ class Sites:
 _REMAPS = re.compile(rb'"(?:-r )?__(node|name|ns):=')
 
 
-def _remapped(source: Source, site: Node) -> set[str]:
-    """What ``__node:=``/``__ns:=`` arguments in the enclosing function (or file) rename."""
+def _remapped(source: Source, site: Node, values: tuple[Node, ...]) -> set[str]:
+    """What ``__node:=``/``__ns:=`` arguments rename this node: in its own arguments, or in
+    a statement of its function, before it, that writes or reads a variable its arguments
+    use (``options``, then the ``args`` vector ``options.arguments(args)`` takes): another
+    node's options in the same function rename that node only."""
     functions = enclosing_functions(site)
     scope = functions[-1] if functions else source.root
-    text = source.data[scope.start_byte : scope.end_byte]
-    found = {match.group(1) for match in _REMAPS.finditer(text)}
+    texts = [source.data[value.start_byte : value.end_byte] for value in values]
+    wanted, seen = _variables(source, values), set[str]()
+    for _ in range(_FOLLOWED_VARIABLES):
+        new = wanted - seen
+        seen |= new
+        for name in sorted(new):
+            for occurrence in source.occurrences(name):
+                if occurrence.start_byte >= site.start_byte or not contains(scope, occurrence):
+                    continue
+                statement = _statement_of(occurrence, scope)
+                if statement is not None:
+                    texts.append(source.data[statement.start_byte : statement.end_byte])
+                    wanted |= _variables(source, (statement,))
+    found = {match.group(1) for text in texts for match in _REMAPS.finditer(text)}
     return {"namespace" if key == b"ns" else "node" for key in found}
+
+
+# How many times variables are followed from the node's arguments: options, the argument
+# vector the options take, the strings that vector is built from.
+_FOLLOWED_VARIABLES = 3
+_STATEMENT_HOLDERS = frozenset({"compound_statement", "translation_unit", "field_initializer_list"})
+# Where an identifier names a function or a qualified name's part, not a variable
+_NOT_VARIABLES = frozenset({"qualified_identifier", "template_function", "call_expression"})
+_MAX_WALKED = 2000  # nodes of one statement looked at for variables
+
+
+def _statement_of(node: Node, scope: Node) -> Node | None:
+    """The statement (or member initializer) of ``scope`` holding ``node``; None for a
+    parameter or anything else outside its blocks."""
+    child, parent = node, node.parent
+    while parent is not None and parent != scope:
+        if parent.type in _STATEMENT_HOLDERS:
+            return child
+        child, parent = parent, parent.parent
+    return None
+
+
+def _variables(source: Source, nodes: tuple[Node, ...]) -> set[str]:
+    """The variables ``nodes`` mention: plain identifiers, not the function a call names
+    nor a qualified name's parts (``rclcpp::NodeOptions``, ``std::make_shared``)."""
+    found: set[str] = set()
+    pending, walked = list(nodes), 0
+    while pending and walked < _MAX_WALKED:
+        node = pending.pop()
+        walked += 1
+        if node.type == "identifier":
+            parent = node.parent
+            if parent is None or parent.type not in _NOT_VARIABLES:
+                found.add(source.text(node))
+            continue
+        pending.extend(node.named_children)
+    return found
 
 
 def _takes_options(folder: Folder, call: Call) -> bool:
