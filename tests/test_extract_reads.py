@@ -186,3 +186,31 @@ def test_a_remapping_argument_renames_only_the_node_it_configures() -> None:
         (22, Kind.NODE, "fleet_monitor", False),
         (22, Kind.NAMESPACE, "fleet/", False),
     ]
+
+
+PLANNING_PIPELINE_CPP = """\
+#include <rclcpp/rclcpp.hpp>
+namespace
+{
+const std::string UNDEFINED = "<undefined>";
+const std::string PLANNING_SCENE_MONITOR_NS = "planning_scene_monitor_options.";
+}  // namespace
+
+bool MoveItPlanningPipeline::initialize(const std::shared_ptr<rclcpp::Node>& node)
+{
+  node->declare_parameter<std::string>(PLANNING_SCENE_MONITOR_NS + "joint_state_topic", UNDEFINED);
+  node->declare_parameter<std::string>(PLANNING_SCENE_MONITOR_NS + "scene_topic", "scene");
+  return true;
+}
+"""
+
+
+def test_a_constant_sum_names_a_parameter_whose_placeholder_default_is_no_topic() -> None:
+    """moveit's hybrid planner: the parameter name is two constants; "<undefined>" is the
+    default that means "not set", not a topic someone chose."""
+    facts = cpp.extract("src/pipeline.cpp", PLANNING_PIPELINE_CPP.encode(), ROS2, ROS2)
+    assert [(u.kind, u.value) for u in known(facts)] == [
+        (Kind.PARAMETER, "planning_scene_monitor_options.joint_state_topic"),
+        (Kind.PARAMETER, "planning_scene_monitor_options.scene_topic"),
+        (TOPIC, "scene"),
+    ]

@@ -305,10 +305,13 @@ class Sites:
     def parameter_value(
         self, name: str, values: tuple[Node, ...], index: int, api: str, namespace: str | None
     ) -> None:
-        """A string default or value that names something, judged by the parameter name."""
+        """A string default or value that names something, judged by the parameter name;
+        not a placeholder meaning "unset" (moveit's ``"<undefined>"``)."""
         fact = value_fact(name)
         value = self.static_argument(values, index)
         if fact is None or value is None or not value.text or re.search(r"\s", value.text):
+            return
+        if value.text.startswith("<") and value.text.endswith(">"):
             return
         self.emit(fact[0], fact[1], api, value, namespace=namespace)
 
