@@ -112,6 +112,10 @@ class NameUse:
     # A dynamic C++ name that is an identifier the file does not declare: a constant an
     # included header may define (``symbols`` gives it its value there).
     symbol: str | None = None
+    # A dynamic name whose start is certain: the absolute literal it is joined from at run
+    # time (``"/planning/" + name``, ``f"/planning/{name}"``). It stays dynamic, so that no
+    # grammar rule judges the unknown rest; RN202 may judge the anchor the prefix fixes.
+    absolute_prefix: str | None = None
 
 
 @dataclass(frozen=True)

@@ -131,6 +131,17 @@ ACTIONLIB = {"SimpleActionServer": Role.ACTION_SERVE, "ActionServer": Role.ACTIO
 ACTIONLIB |= {"SimpleActionClient": Role.ACTION_CALL, "ActionClient": Role.ACTION_CALL}
 ACTIONLIB_QUALIFIERS = frozenset({"actionlib", "nav2_util", "nav2", ""})
 SERVICE_WRAPPERS = {"ServiceClient": Role.CALL, "ServiceServer": Role.SERVE}  # nav2
+# roscpp's option objects take the name first, in the static ``create<M>(topic, queue, cb,
+# tracked, queue_ptr)`` and the member ``init<M>(topic, queue, cb)`` alike (roscpp's
+# subscribe_options.h, advertise_options.h, advertise_service_options.h); the handle's
+# one-argument ``subscribe(ops)``, ``advertise(ops)``, ``advertiseService(ops)`` then uses it.
+OPTIONS = {
+    "SubscribeOptions": Endpoint(Kind.TOPIC, Role.SUBSCRIBE, "ros::SubscribeOptions"),
+    "AdvertiseOptions": Endpoint(Kind.TOPIC, Role.PUBLISH, "ros::AdvertiseOptions"),
+    "AdvertiseServiceOptions": Endpoint(Kind.SERVICE, Role.SERVE, "ros::AdvertiseServiceOptions"),
+}
+OPTIONS_METHODS = frozenset({"create", "init"})
+OPTIONS_USERS = frozenset({"subscribe", "advertise", "advertiseService"})
 
 CALL_WORDS = frozenset(
     {
@@ -145,6 +156,7 @@ CALL_WORDS = frozenset(
         "service",  # ros::service::call
         *WAIT_FOR_MESSAGE,
         "create_sub_node",
+        *OPTIONS,
         # `param` (above) also anchors ros::param::get
     }
 )

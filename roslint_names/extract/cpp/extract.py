@@ -66,6 +66,7 @@ MARKERS: dict[str, bytes | None] = {
     "rclcpp::Node": _POINTER_TYPEDEF,
     "LifecycleNode": _POINTER_TYPEDEF,
     **dict.fromkeys(("advertise", "subscribe", "serviceClient"), None),
+    **dict.fromkeys(("SubscribeOptions", "AdvertiseOptions"), None),
     **dict.fromkeys(("getParam", "setParam", "hasParam", "deleteParam", "searchParam"), None),
     "param": rb"\s*[<(]",  # nh.param(...), nh.param<T>(...)
     **dict.fromkeys(f"create_{what}" for what in ("publisher", "subscription", "service")),
@@ -89,7 +90,7 @@ MARKERS: dict[str, bytes | None] = {
 # times faster. So each marker is looked for on its own, and only in files holding a part
 # it shares with others; few files hold any part.
 _MARKER_PARTS = tuple(
-    b"Node ubscribe ::init create_ advertise aram ervice ransform Action frame_id Stamped"
+    b"Node ubscribe ::init create_ dvertise aram ervice ransform Action frame_id Stamped"
     b" message_filters".split()
 )
 _Marker = tuple[bytes, "re.Pattern[bytes] | None"]  # its word, what must follow it
@@ -221,7 +222,7 @@ _ANCHORS = word_pattern(_ANCHOR_WORDS)
 # What Source.words finds the anchor words by: each holds one of these parts, which few
 # other identifiers hold.
 _ANCHOR_PARTS = tuple(
-    b"Node aram ervice create_ Action Stamped Transform transform ubscribe advertise frame_id"
+    b"Node aram ervice create_ Action Stamped Transform transform ubscribe dvertise frame_id"
     b" init ForMessage _for_message".split()
 )
 if unfound := [w for w in _ANCHOR_WORDS if not any(p in w.encode() for p in _ANCHOR_PARTS)]:

@@ -23,6 +23,8 @@ from .apis import (
     FRAME_CONSTRUCTIONS,
     FRAME_FUNCTIONS,
     MAX_FRAME_ARGUMENTS,
+    OPTIONS,
+    OPTIONS_USERS,
     ROS1_PARAMETER_FUNCTIONS,
     ROS1_PARAMETERS,
     ROS2_PARAMETERS,
@@ -34,15 +36,17 @@ from .apis import (
     value_fact,
 )
 from .handles import CHILD_HANDLE_API, Handles
-from .objects import NODE_BASES, Classes, Construction
+from .objects import NODE_BASES, Classes, Construction, variable_name
 from .source import (
     Call,
     Source,
     arguments,
     call_named_by,
+    contains,
     enclosing_functions,
     is_field,
     template_types,
+    unparenthesized,
 )
 from .types import Types
 from .values import Folder, Value
@@ -91,6 +95,7 @@ class Sites:
                 type_name=type_name,
                 namespace=namespace,
                 symbol=value.symbol,
+                absolute_prefix=value.prefix if value.dynamic else None,
             )
         )
 
@@ -104,6 +109,9 @@ class Sites:
     # -- calls --------------------------------------------------------------------------
 
     def call(self, word: str, node: Node) -> None:
+        if word in OPTIONS:
+            self.options_create(word, node)
+            return
         if word in ("param", "service") and node.type == "namespace_identifier":
             node = _qualified_member(node) or node  # ros::param::get, ros::service::call
         call = call_named_by(self.source, node)
@@ -111,6 +119,10 @@ class Sites:
             return
         if call.name == "init" and call.qualifier == "ros":
             self.ros_init(call)
+        elif call.name == "init" and call.receiver is not None:
+            self.options_init(call)
+        elif _takes_options(self.folder, call):
+            return  # nh.subscribe(ops): the name was read where ops got it
         elif call.qualifier.endswith("rclcpp_action") and call.name in ACTION_FUNCTIONS:
             self.action_function(call)
         elif call.name in ENDPOINTS:
@@ -145,6 +157,58 @@ class Sites:
         values = call.arguments
         index = 1 if self.static_argument(values, 1) is not None or len(values) == 2 else 2
         self.emit(Kind.NODE, Role.NODE_NAME, "ros::init", self.argument(values, index))
+
+    def options_create(self, word: str, node: Node) -> None:
+        """``ros::SubscribeOptions::create<M>("scan", 1, cb, tracked, &queue)``."""
+        member = _qualified_member(node)
+        call = None if member is None else call_named_by(self.source, member)
+        if call is not None and call.name == "create":
+            self.options(OPTIONS[word], call, _options_variable(call.node))
+
+    def options_init(self, call: Call) -> None:
+        """``ops.init<M>("scan", 1, cb)`` on a variable declared as an options object."""
+        receiver = unparenthesized(call.receiver) if call.receiver is not None else None
+        name = None if receiver is None else variable_name(self.source, receiver)
+        if receiver is None or name is None:
+            return
+        declarations = self.folder.declarations.visible(name, receiver)
+        declared = self.types.declared_type([declaration.node for declaration in declarations])
+        site = OPTIONS.get((declared or "").rpartition("::")[2].partition("<")[0])
+        if site is not None:
+            self.options(site, call, receiver)
+
+    def options(self, site: Endpoint, call: Call, variable: Node | None) -> None:
+        """The name an options object carries, under the namespace of the handle that
+        ``subscribe(ops)`` (or ``advertise``, ``advertiseService``) is called on."""
+        types = template_types(self.source, call.template)
+        # init<MReq, MRes> names a service's request and response, not the service
+        type_name = self.types.resolve(types[0]) if len(types) == 1 else None
+        namespace = None
+        if variable is not None:
+            namespaces = {self.handles.namespace_of(user) for user in self._options_users(variable)}
+            namespace = namespaces.pop() if len(namespaces) == 1 else None
+        api = f"{site.api}::{call.name}"
+        value = self.argument(call.arguments, 0)
+        self.emit(site.kind, site.role, api, value, type_name, namespace=namespace)
+
+    def _options_users(self, variable: Node) -> list[Node]:
+        """The handles ``variable`` (an options object, or the call making one) is handed to."""
+        if variable.type == "call_expression":
+            holders = [variable]
+        else:
+            name = variable_name(self.source, variable)
+            functions = enclosing_functions(variable)
+            holders = [
+                occurrence
+                for occurrence in self.source.occurrences(name or "")
+                if not functions or contains(functions[-1], occurrence)
+            ]
+        users = []
+        for holder in holders:
+            call = _called_with(holder)
+            if call is not None and call[0] in OPTIONS_USERS:
+                users.append(call[1])
+        return users
 
     def endpoint(self, call: Call, site: Endpoint) -> None:
         """A member call (``nh.advertise``, ``create_publisher``) or its free form
@@ -241,10 +305,13 @@ class Sites:
     def parameter_value(
         self, name: str, values: tuple[Node, ...], index: int, api: str, namespace: str | None
     ) -> None:
-        """A string default or value that names something, judged by the parameter name."""
+        """A string default or value that names something, judged by the parameter name;
+        not a placeholder meaning "unset" (moveit's ``"<undefined>"``)."""
         fact = value_fact(name)
         value = self.static_argument(values, index)
         if fact is None or value is None or not value.text or re.search(r"\s", value.text):
+            return
+        if value.text.startswith("<") and value.text.endswith(">"):
             return
         self.emit(fact[0], fact[1], api, value, namespace=namespace)
 
@@ -329,11 +396,12 @@ class Sites:
     def node(self, values: tuple[Node, ...], api: str, site: Node) -> None:
         """``rclcpp::Node(name[, namespace][, options])`` and its subclasses' base call.
 
-        Code that builds ``--ros-args -r __node:=...`` next to the node renames it at run
-        time (moveit and nav2 name such helper nodes "_"): the name written is not the
-        one the node gets, so it is dynamic; ``__ns:=`` likewise for the namespace.
+        Code that builds ``--ros-args -r __node:=...`` into the options the node is given
+        renames it at run time (moveit and nav2 name such helper nodes "_"): the name
+        written is not the one the node gets, so it is dynamic; ``__ns:=`` likewise for
+        the namespace. Another node of the same function keeps its names.
         """
-        remapped = _remapped(self.source, site)
+        remapped = _remapped(self.source, site, values)
         name = self.argument(values, 0)
         self.emit(Kind.NODE, Role.NODE_NAME, api, _dynamic_if(name, "node" in remapped))
         namespace = self.static_argument(values, 1)
@@ -387,13 +455,105 @@ class Sites:
 _REMAPS = re.compile(rb'"(?:-r )?__(node|name|ns):=')
 
 
-def _remapped(source: Source, site: Node) -> set[str]:
-    """What ``__node:=``/``__ns:=`` arguments in the enclosing function (or file) rename."""
+def _remapped(source: Source, site: Node, values: tuple[Node, ...]) -> set[str]:
+    """What ``__node:=``/``__ns:=`` arguments rename this node: in its own arguments, or in
+    a statement of its function, before it, that writes or reads a variable its arguments
+    use (``options``, then the ``args`` vector ``options.arguments(args)`` takes): another
+    node's options in the same function rename that node only."""
     functions = enclosing_functions(site)
     scope = functions[-1] if functions else source.root
-    text = source.data[scope.start_byte : scope.end_byte]
-    found = {match.group(1) for match in _REMAPS.finditer(text)}
+    texts = [source.data[value.start_byte : value.end_byte] for value in values]
+    wanted, seen = _variables(source, values), set[str]()
+    for _ in range(_FOLLOWED_VARIABLES):
+        new = wanted - seen
+        seen |= new
+        for name in sorted(new):
+            for occurrence in source.occurrences(name):
+                if occurrence.start_byte >= site.start_byte or not contains(scope, occurrence):
+                    continue
+                statement = _statement_of(occurrence, scope)
+                if statement is not None:
+                    texts.append(source.data[statement.start_byte : statement.end_byte])
+                    wanted |= _variables(source, (statement,))
+    found = {match.group(1) for text in texts for match in _REMAPS.finditer(text)}
     return {"namespace" if key == b"ns" else "node" for key in found}
+
+
+# How many times variables are followed from the node's arguments: options, the argument
+# vector the options take, the strings that vector is built from.
+_FOLLOWED_VARIABLES = 3
+_STATEMENT_HOLDERS = frozenset({"compound_statement", "translation_unit", "field_initializer_list"})
+# Where an identifier names a function or a qualified name's part, not a variable
+_NOT_VARIABLES = frozenset({"qualified_identifier", "template_function", "call_expression"})
+_MAX_WALKED = 2000  # nodes of one statement looked at for variables
+
+
+def _statement_of(node: Node, scope: Node) -> Node | None:
+    """The statement (or member initializer) of ``scope`` holding ``node``; None for a
+    parameter or anything else outside its blocks."""
+    child, parent = node, node.parent
+    while parent is not None and parent != scope:
+        if parent.type in _STATEMENT_HOLDERS:
+            return child
+        child, parent = parent, parent.parent
+    return None
+
+
+def _variables(source: Source, nodes: tuple[Node, ...]) -> set[str]:
+    """The variables ``nodes`` mention: plain identifiers, not the function a call names
+    nor a qualified name's parts (``rclcpp::NodeOptions``, ``std::make_shared``)."""
+    found: set[str] = set()
+    pending, walked = list(nodes), 0
+    while pending and walked < _MAX_WALKED:
+        node = pending.pop()
+        walked += 1
+        if node.type == "identifier":
+            parent = node.parent
+            if parent is None or parent.type not in _NOT_VARIABLES:
+                found.add(source.text(node))
+            continue
+        pending.extend(node.named_children)
+    return found
+
+
+def _takes_options(folder: Folder, call: Call) -> bool:
+    """``nh.subscribe(ops)``: roscpp's one-argument form takes an options object."""
+    values = call.arguments
+    return (
+        call.name in OPTIONS_USERS
+        and call.receiver is not None
+        and len(values) == 1
+        and folder.fold(values[0]).dynamic
+    )
+
+
+def _options_variable(create: Node) -> Node | None:
+    """What a ``create<M>(...)`` call's result goes into: the variable it initialises or is
+    assigned to, or the call itself when it is handed on directly."""
+    parent = create.parent
+    if parent is not None and parent.type == "init_declarator":
+        return parent.child_by_field_name("declarator")
+    if parent is not None and parent.type == "assignment_expression":
+        return parent.child_by_field_name("left")
+    return create
+
+
+def _called_with(argument: Node) -> tuple[str, Node] | None:
+    """(method, receiver) of a call ``receiver.method(argument)`` taking only ``argument``."""
+    arguments_node = argument.parent
+    if arguments_node is None or arguments_node.type != "argument_list":
+        return None
+    if len([c for c in arguments_node.named_children if c.type != "comment"]) != 1:
+        return None
+    call = arguments_node.parent
+    callee = None if call is None else call.child_by_field_name("function")
+    if callee is None or callee.type != "field_expression":
+        return None
+    method = callee.child_by_field_name("field")
+    receiver = callee.child_by_field_name("argument")
+    if method is None or receiver is None:
+        return None
+    return method.text.decode("utf-8", "replace") if method.text else "", receiver
 
 
 def _dynamic_if(value: Value | None, condition: bool) -> Value | None:
@@ -412,6 +572,8 @@ def _qualified_member(scope: Node) -> Node | None:
     ):
         return None
     name = parent.child_by_field_name("name")
+    if name is not None and name.type == "template_function":  # SubscribeOptions::create<M>
+        name = name.child_by_field_name("name")
     return name if name is not None and name.type == "identifier" else None
 
 

@@ -294,6 +294,8 @@ def call_named_by(source: Source, word: Node) -> Call | None:
         if not is_field(parent, "name", node):
             return None
         template, node, parent = parent.child_by_field_name("arguments"), parent, parent.parent
+    if parent is not None and parent.type == "dependent_name":
+        node, parent = parent, parent.parent  # ops.template init<M>(...)
     receiver = None
     qualifiers: list[str] = []
     if parent is not None and parent.type == "field_expression":

@@ -4,10 +4,14 @@ A name is folded when the whole argument is a string literal, adjacent literals
 (``"a" "b"``), ``std::string("a")``, or an identifier bound to a constant of the same file:
 a ``const``/``constexpr`` ``std::string``, ``std::string_view``, ``char*``, ``char[]`` or
 ``auto`` (namespace scope, class member or local), or a ``#define`` of literals; or to a
-mutable variable whose value there is certain (``variables.py``). Anything else is
-dynamic: ``prefix + "/cmd"``, a function result, a ternary, a string the code may change.
+mutable variable whose value there is certain (``variables.py``); a constant member read
+through an instance (``this->kTopic``, ``mux.kTopic``); a ``+`` of two of these
+(``kNs + "/cmd"``). Anything else is dynamic: ``prefix + "/cmd"`` of a parameter, a
+function result, a ternary, a string the code may change.
 A constant that is assigned anywhere in the file, or set in a constructor's initializer
-list, is not a constant.
+list, is not a constant. A dynamic ``std::string`` sum that starts with an absolute literal
+(``"/planning/" + name``, or a string initialised once with one) keeps that literal as its
+``prefix``: the name is still unknown, but certain to be absolute.
 """
 
 from __future__ import annotations
@@ -49,6 +53,8 @@ STRING_WRAPPERS = frozenset(
         "ParameterValue",
     }
 )
+# Operands that make ``"literal" + x`` pointer arithmetic, not a string
+_NOT_STRINGS = frozenset({"number_literal", "char_literal", "true", "false"})
 _MAX_DEPTH = 8  # constants defined through constants; also stops cycles in broken code
 
 
@@ -60,6 +66,8 @@ class Value:
     dynamic: bool
     node: Node
     symbol: str | None = None  # a dynamic identifier no declaration of the file binds
+    # a dynamic value's certain absolute start: the literal of ``"/planning/" + name``
+    prefix: str | None = None
 
 
 @dataclass(frozen=True)
@@ -227,13 +235,72 @@ class Folder:
             if text is None and depth == 0 and self._undeclared(expression):
                 spelling = compact(self._source.text(node))
                 return Value(spelling, True, node, symbol=compact(self._source.text(expression)))
+            if text is None:
+                prefix = self._identifier_prefix(expression, depth)
+                return Value(compact(self._source.text(node)), True, node, prefix=prefix)
         elif kind in ("call_expression", "compound_literal_expression"):
             wrapped = self._wrapped(expression)
             if wrapped is not None:
                 return self._fold(wrapped, depth)
+        elif kind == "binary_expression":
+            return self._sum(node, expression, depth)
+        elif kind == "field_expression":
+            text = self._member_constant(expression, depth)
         if text is None:
             return Value(compact(self._source.text(node)), True, node)
         return Value(text, False, expression)
+
+    def _sum(self, node: Node, expression: Node, depth: int) -> Value:
+        """``"/planning/" + name``: dynamic, but certain to start with its absolute literal
+        (a ``std::string`` sum; a number added to a literal is pointer arithmetic)."""
+        spelling = Value(compact(self._source.text(node)), True, node)
+        operator = expression.child_by_field_name("operator")
+        left = expression.child_by_field_name("left")
+        right = expression.child_by_field_name("right")
+        if operator is None or left is None or right is None or self._source.text(operator) != "+":
+            return spelling
+        if unparenthesized(right).type in _NOT_STRINGS or depth >= _MAX_DEPTH:
+            return spelling
+        start = self._fold(left, depth + 1)
+        if not start.dynamic:
+            end = self._fold(right, depth + 1)
+            if not end.dynamic:  # kNs + "/cmd" of two constants
+                return Value(start.text + end.text, False, expression)
+        prefix = start.prefix if start.dynamic else start.text
+        if prefix is None or not prefix.startswith("/"):
+            return spelling
+        return Value(spelling.text, True, node, prefix=prefix)
+
+    def _member_constant(self, access: Node, depth: int) -> str | None:
+        """``this->kTopic``, ``driver.kTopic``: a constant member of the file's classes, the
+        same in every class that declares one of that name."""
+        field = access.child_by_field_name("field")
+        if field is None or field.type != "field_identifier" or depth >= _MAX_DEPTH:
+            return None
+        name = self._source.text(field)
+        members = [d for d in self.declarations.of(name) if d.function is None and not d.macro]
+        if any(d.value is not None for d in members):
+            members = [d for d in members if d.value is not None]  # `static const` defined later
+        if not members or not all(d.constant for d in members) or self.declarations.mutated(name):
+            return None
+        values = {self._declaration_value(member, depth + 1) for member in members}
+        return values.pop() if len(values) == 1 else None
+
+    def _identifier_prefix(self, expression: Node, depth: int) -> str | None:
+        """The absolute start of a string written once, where it is declared:
+        ``const std::string topic = "/planning/" + name;``."""
+        name_node = _named_identifier(expression)
+        if name_node is None or depth >= _MAX_DEPTH:
+            return None
+        name = self._source.text(name_node)
+        candidates = self.declarations.visible(name, expression)
+        if len(candidates) != 1 or candidates[0].macro or not candidates[0].string:
+            return None
+        writes = known_writes(self._source, self._source.occurrences(name))
+        if writes is None or len(writes) != 1 or writes[0].value is None:
+            return None
+        value = self._fold(writes[0].value, depth + 1)
+        return value.prefix if value.dynamic else None
 
     def _concatenation(self, node: Node, depth: int) -> str | None:
         parts: list[str] = []

@@ -8,7 +8,8 @@ every other occurrence only reads it; then its value at a use is the one all wri
 on, or, for a local, the last write before the use when that write runs on every path to
 it. An occurrence that may write through a reference makes the value unknown: an argument
 of a call not known to only read it (``nh.param("topic", topic, topic)`` stores the
-parameter in ``topic``), ``&topic``, ``stream >> topic``, ``topic.append(...)``.
+parameter in ``topic``), ``&topic``, ``stream >> topic``, ``topic.append(...)``, a
+lambda's ``[&topic]``; a lambda's ``[topic]`` or ``[=]`` copies it.
 """
 
 from __future__ import annotations
@@ -153,13 +154,25 @@ def _classify(source: Source, occurrence: Node) -> tuple[str, Node | None]:
         if operator is not None and source.text(operator) == ">>":
             return "unknown", None  # stream >> topic
         return "read", None
-    if kind in ("for_range_loop", "lambda_capture_specifier", "structured_binding_declarator"):
-        return "unknown", None  # bound or captured by reference here
+    if kind == "lambda_capture_specifier":
+        return _capture(occurrence)
+    if kind == "lambda_capture_initializer":
+        if is_field(parent, "right", target) and parent.children[0].type != "&":
+            return "read", None  # [name = topic]: a copy
+        return "unknown", None
+    if kind in ("for_range_loop", "structured_binding_declarator"):
+        return "unknown", None  # bound by reference here
     if kind in ("reference_declarator", "pointer_declarator", "array_declarator"):
         return "unknown", None  # a declaration we do not follow (std::string& topic = ...)
     if kind in ("parameter_declaration", "optional_parameter_declaration"):
         return "unknown", None  # a parameter: its value comes from the caller
     return "read", None
+
+
+def _capture(occurrence: Node) -> tuple[str, Node | None]:
+    """``[topic]`` copies the string into the lambda; ``[&topic]`` lets it write."""
+    previous = occurrence.prev_sibling
+    return ("unknown", None) if previous is not None and previous.type == "&" else ("read", None)
 
 
 def _method_use(source: Source, field_expression: Node) -> tuple[str, Node | None]:

@@ -328,11 +328,20 @@ class CodeExtractor:
         self, site: CallSite, expr: cst.BaseExpression, use: Use, type_name: str | None = None
     ) -> str | None:
         """Emit the name an argument holds; its static value, or None when dynamic."""
-        value = self.folder.value(expr, site.context.scope)
-        self.add(site.where(expr), use, value, type_name)
+        scope = site.context.scope
+        value = self.folder.value(expr, scope, at=site.context)
+        prefix = self.folder.absolute_prefix(expr, scope) if value.dynamic else None
+        self.add(site.where(expr), use, value, type_name, prefix)
         return None if value.dynamic else value.text
 
-    def add(self, where: Where, use: Use, value: Value, type_name: str | None = None) -> None:
+    def add(
+        self,
+        where: Where,
+        use: Use,
+        value: Value,
+        type_name: str | None = None,
+        absolute_prefix: str | None = None,
+    ) -> None:
         """One fact per node and kind: ``lookup_transform(target_frame="map")`` is both a
         tf lookup and a frame keyword."""
         key = (id(where.node), use.kind, use.role)
@@ -341,7 +350,16 @@ class CodeExtractor:
         self._emitted.add(key)
         span = self.locator.span(where)
         self.names.append(
-            NameUse(use.kind, value.text, span, use.role, use.api, value.dynamic, type_name)
+            NameUse(
+                use.kind,
+                value.text,
+                span,
+                use.role,
+                use.api,
+                value.dynamic,
+                type_name,
+                absolute_prefix=absolute_prefix,
+            )
         )
 
     def type_name(self, expr: cst.BaseExpression, scope: Scope, kind: Kind) -> str | None:
