@@ -169,3 +169,16 @@ def test_rn204_a_name_ending_in_its_own_type_is_named_after_it() -> None:
     assert len(list(rn204.check(bad, context))) == 1
     strict = RuleContext(options={"strict": True})
     assert list(rn204.check(tutorial, strict)) == []  # strict is about equal names only
+
+
+def test_rn202_reports_a_name_joined_from_an_absolute_literal() -> None:
+    """autoware.core's ``"/planning/planning_factors/" + name``: dynamic, but certainly
+    absolute; reported by its literal start, with no fix (the rest is not known)."""
+    joined = use("", Role.PUBLISH, dynamic=True, absolute_prefix="/planning/planning_factors/")
+    relative = use("", Role.PUBLISH, dynamic=True)  # "~/debug/" + name
+    found = list(hard_coded_absolute_name.check(facts(joined, relative), RuleContext()))
+    assert [(f.span, f.fix) for f in found] == [(joined.span, None)]
+    assert "built from the absolute '/planning/planning_factors/'" in found[0].message
+    # A global interface the project allows, by its name without the trailing '/'.
+    allowed = RuleContext(options={"extend-allow": ["/planning/planning_factors"]})
+    assert list(hard_coded_absolute_name.check(facts(joined), allowed)) == []

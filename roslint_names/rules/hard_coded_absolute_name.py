@@ -4,6 +4,10 @@ An absolute name escapes the node's namespace: ``<group ns="robot1">`` and ``__n
 longer separate robots, and two of them fight over one topic. Launch files and URDF are
 not judged: there an absolute name is a deliberate wiring decision made where the robot
 is assembled, not a default baked into a reusable node.
+
+A name joined at run time from an absolute literal (``"/planning/planning_factors/" +
+name``) is as certainly absolute (``NameUse.absolute_prefix``): it is reported by that
+literal, without a fix, since the rest of the name is not known.
 """
 
 from __future__ import annotations
@@ -32,6 +36,7 @@ _ENDPOINT_KINDS = frozenset({Kind.TOPIC, Kind.SERVICE, Kind.ACTION})
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
     allowed = set(_names(context.options.get("allow", GLOBAL_BY_DESIGN)))
     allowed.update(_names(context.options.get("extend-allow", ())))
+    yield from _joined_at_run_time(facts, allowed)
     for use in static_uses(facts):
         if (
             not in_code(use, facts)
@@ -50,6 +55,27 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             # Unsafe: under a namespace the name then resolves elsewhere, which is the
             # point, but whoever used the absolute name must follow.
             fix=Fix(use.value, relative, safe=False),
+        )
+
+
+def _joined_at_run_time(facts: FileFacts, allowed: set[str]) -> Iterator[Finding]:
+    """Names built at run time whose absolute start is a literal: certain to escape."""
+    for use in facts.names:
+        prefix = use.absolute_prefix
+        if (
+            not use.dynamic
+            or prefix is None
+            or not in_code(use, facts)
+            or use.role not in ENDPOINT_ROLES
+            or use.kind not in _ENDPOINT_KINDS
+            or any(name == prefix.rstrip("/") for name in allowed)
+        ):
+            continue
+        yield Finding(
+            use.span,
+            f"{label(use)} built from the absolute '{prefix}' and passed to {use.api} "
+            "escapes the node's namespace, so <group ns> and __ns:= cannot separate robots; "
+            "drop the leading '/'",
         )
 
 
