@@ -89,6 +89,7 @@ def build(
         tuple(sorted(set(endpoints), key=Endpoint.sort_key)),
         index.companions(),
         _mentions(index, nodes),
+        index.service_definitions(),
     )
 
 

@@ -13,6 +13,7 @@ from enum import Enum
 from typing import Protocol
 
 from roslint_names.model import Generation, Kind, Remap, Span
+from roslint_names.workspace.interfaces import ServiceDefinition
 
 
 @dataclass(frozen=True, order=True)
@@ -156,6 +157,9 @@ class Graph:
     # package -> name-shaped string literals of its code, for the packages of nodes with
     # remaps of their own: evidence of names used through APIs the linter does not know
     mentions: Mapping[str, frozenset[str]] = field(default_factory=dict)
+    # ``package/Name`` -> the definition of a ROS 1 service type (RN403 compares ROS 1
+    # services by it, as roscpp and rospy do by its md5sum)
+    service_definitions: Mapping[str, ServiceDefinition] = field(default_factory=dict)
 
     def can_meet(self, one: Placed, other: Placed) -> bool:
         """Whether two nodes (or their endpoints) can be in one ROS graph at run time.
