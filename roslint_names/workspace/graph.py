@@ -104,6 +104,10 @@ class NodeInstance:
     uses: tuple[str, ...] = ()
     uses_complete: bool = False
     uses_relative: tuple[str, ...] = ()
+    # ROS 2 only: the parameter names the code shows statically. No remap renames one
+    # (rcl remaps topics, services, the node's name and namespace), so they are no
+    # ``uses``; they show that the linter sees the node's code (RN404).
+    parameters: tuple[str, ...] = ()
     conditional: bool = False  # started under a condition the linter cannot decide
     test: bool = False  # a rostest ``<test>``: run alone, after the nodes are up
     reach: Reach = Reach(Generation.ROS2)
