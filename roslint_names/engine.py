@@ -50,6 +50,7 @@ from .workers import Dispatcher
 from .workspace.build import build
 from .workspace.graph import Graph
 from .workspace.index import Package
+from .workspace.interfaces import service_definitions
 
 if TYPE_CHECKING:
     from .cache import FactsCache  # imported by the caller that wants a cache
@@ -381,6 +382,7 @@ def workspace_packages(
 ) -> list[Package]:
     """Every package holding a file of the run, by name and display directory."""
     found: dict[Path, Package] = {}
+    services = service_definitions(sources, packages)  # its ROS 1 .srv files (RN403)
     for source in sources:
         directory = packages.package_directory(source.path)
         if directory is None or directory in found:
@@ -389,7 +391,8 @@ def workspace_packages(
         display = package_display(source, packages)
         if name is None or display is None:
             continue
-        found[directory] = Package(name, display, packages.package_depends(source.path))
+        depends = packages.package_depends(source.path)
+        found[directory] = Package(name, display, depends, services.get(directory, ()))
     return list(found.values())
 
 

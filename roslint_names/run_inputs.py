@@ -3,9 +3,10 @@
 A run's result is a function of: every linted file's bytes (through its facts key, which
 also holds its path, language and generations), where each file is (per-file ignores are
 relative paths), which files are reported, the files read without being linted (a
-``.srv`` file's name is a service type; every package.xml read), the settings, and the
-code of the tool and of every rule. ``RunInputs`` keys a run by all of that, so that
-``FactsCache.load_run`` can serve the result of an earlier run over the same inputs.
+``.srv`` file's name is a service type, its text a ROS 1 service's definition; every
+package.xml read), the settings, and the code of the tool and of every rule.
+``RunInputs`` keys a run by all of that, so that ``FactsCache.load_run`` can serve the
+result of an earlier run over the same inputs.
 
 Files are keyed through the workspace's ``ContentDigests``. When an earlier run of the
 workspace left them, the whole run is keyed before any file is extracted
@@ -27,7 +28,7 @@ from .config import Settings, settings_fingerprint
 from .digests import ContentDigests
 from .discover import SourceFile
 from .generation import PackageGenerations
-from .model import Generation
+from .model import Generation, Language
 from .reading import Read, content_digest, read_file
 from .registry import Registry
 
@@ -144,6 +145,9 @@ class RunInputs:
             self._packages.for_file(source.path)  # so every manifest a run reads is read now
             if source.path not in linted:
                 digest.update(_text_bytes(f"{_where(source)}\n"))
+            if source.language is Language.SERVICE_DEFINITION:  # RN403 reads its text too
+                content = self._digests.summary(source.path, self._settings.max_file_size)[0]
+                digest.update(_text_bytes(f"{content}\n"))
         for manifest, text in sorted(self._packages.manifests.items()):
             digest.update(_text_bytes(f"{manifest}\0{len(text)}\0{text}"))
         return digest.hexdigest()

@@ -6,17 +6,24 @@ fails loudly. Only endpoints that can be in one ROS graph are compared (``Graph.
 one launch tree, or packages meant to run together), and only names the linter knows.
 Types are compared in one canonical spelling (``std_msgs::msg::String``, ``std_msgs/String``
 and ``std_msgs.msg.String`` are one type); a type the code names without its package
-matches any package's type of that name.
+matches any package's type of that name. ROS 1 services are compared by their definition,
+as roscpp and rospy compare the md5sum of it (``workspace.interfaces``): two names of one
+definition connect, and a type whose definition the workspace does not hold is no mismatch.
+
+Code that uses one name with two types on one side (two publishers, one chosen at run time)
+leaves only those endpoints out: its other endpoints, and the other side of that name, are
+compared like any other.
 """
 
 from __future__ import annotations
 
 from collections import defaultdict
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 
 from ..model import Generation, Kind, Severity
 from ..rule import Rule, RuleContext, WorkspaceFinding
 from ..workspace.graph import EdgeKind, Endpoint, Graph, Location
+from ..workspace.interfaces import ServiceDefinition
 from .graph_common import finding, where
 
 
@@ -25,30 +32,28 @@ def _comparable(endpoint: Endpoint) -> bool:
 
     Not one the code names without its package: in C++ that is nearly always an alias or
     a template parameter (``using Action = nav2_msgs::action::FollowPath``, ``ActionT``)
-    declared where we do not look. Not a ROS 1 service: rosservice connects on the md5 of
-    the definition alone, and tutorials serve one definition under two names
-    (``roscpp_tutorials/TwoInts``, ``rospy_tutorials/AddTwoInts``).
+    declared where we do not look.
     """
-    if not endpoint.certain or endpoint.type_name is None or "/" not in endpoint.type_name:
-        return False
-    ros1 = endpoint.reach.generation is Generation.ROS1
-    return not (ros1 and endpoint.resource_kind is Kind.SERVICE)
+    return endpoint.certain and endpoint.type_name is not None and "/" in endpoint.type_name
 
 
-def _alternatives(endpoints: list[Endpoint]) -> set[tuple[str, str, str]]:
-    """(root, node, file) of code that uses the name with two types itself: code that
-    picks one at run time (``TwistStamped`` on Jazzy, ``Twist`` before), not a mismatch."""
-    types: dict[tuple[str, str, str], set[str]] = defaultdict(set)
+def _alternatives(endpoints: list[Endpoint]) -> set[tuple[str, str, str, EdgeKind]]:
+    """(root, node, file, side) of code that uses the name with two types on one side
+    itself: code that picks one at run time (``TwistStamped`` on Jazzy, ``Twist``
+    before), not a mismatch. Only those endpoints are ambiguous: a subscriber of the same
+    code, or a publisher with another type than its own subscriber of the name (the
+    publisher never reaches it), is certain."""
+    types: dict[tuple[str, str, str, EdgeKind], set[str]] = defaultdict(set)
     for endpoint in endpoints:
         types[_code_of(endpoint)].add(endpoint.type_name or "")
     return {code for code, found in types.items() if len(found) > 1}
 
 
-def _code_of(endpoint: Endpoint) -> tuple[str, str, str]:
-    return (endpoint.root, endpoint.node, endpoint.location.path)
+def _code_of(endpoint: Endpoint) -> tuple[str, str, str, EdgeKind]:
+    return (endpoint.root, endpoint.node, endpoint.location.path, endpoint.edge)
 
 
-def _compatible(one: str, other: str) -> bool:
+def _same_type(one: str, other: str) -> bool:
     if one == other:
         return True
     if "/" in one and "/" in other:
@@ -56,9 +61,46 @@ def _compatible(one: str, other: str) -> bool:
     return one.rpartition("/")[2] == other.rpartition("/")[2]
 
 
-def _mismatches(endpoints: list[Endpoint]) -> bool:
-    types = sorted({e.type_name for e in endpoints if e.type_name})
-    return any(not _compatible(a, b) for i, a in enumerate(types) for b in types[i + 1 :])
+# ROS 1 types that connect to any type: their md5sum is "*", which roscpp's publisher
+# accepts (``Publication::validateHeader`` in ``clients/roscpp/src/libros/publication.cpp``):
+# topic_tools' ``ShapeShifter`` (``MD5Sum<ShapeShifter>`` in ``shape_shifter.h``) and
+# rospy's ``AnyMsg`` (``_md5sum = TOPIC_ANYTYPE`` in ``clients/rospy/src/rospy/msg.py``).
+_ANY_TYPE_ROS1 = frozenset({"topic_tools/ShapeShifter", "rospy/AnyMsg"})
+
+
+class _Types:
+    """Whether two endpoints' types connect: by name, and a ROS 1 service's by its
+    definition (roscpp's ``ServiceClientLink::handleHeader`` and rospy's
+    ``service_connection_handler`` refuse a client whose md5sum differs, whatever the
+    type is called)."""
+
+    def __init__(self, definitions: Mapping[str, ServiceDefinition]) -> None:
+        self._definitions = definitions
+
+    def compatible(self, one: Endpoint, other: Endpoint) -> bool:
+        mine, theirs = one.type_name or "", other.type_name or ""
+        if mine == theirs:
+            return True
+        if one.reach.generation is Generation.ROS1 and _ANY_TYPE_ROS1 & {mine, theirs}:
+            return True
+        if _ros1_service(one) and _ros1_service(other):
+            known = self._definitions.get(mine), self._definitions.get(theirs)
+            if known[0] is None or known[1] is None:
+                return True  # a definition the workspace does not hold: nothing is known
+            return known[0].same_md5(known[1]) is not False
+        return _same_type(mine, theirs)
+
+    def mismatch(self, endpoints: list[Endpoint]) -> bool:
+        """Any two of the endpoints that do not connect (the types of one name and
+        generation are few: one endpoint of each is enough)."""
+        one_each = list({(e.type_name, e.reach.generation): e for e in endpoints}.values())
+        return any(
+            not self.compatible(a, b) for i, a in enumerate(one_each) for b in one_each[i + 1 :]
+        )
+
+
+def _ros1_service(endpoint: Endpoint) -> bool:
+    return endpoint.reach.generation is Generation.ROS1 and endpoint.resource_kind is Kind.SERVICE
 
 
 _OPPOSITE = {
@@ -90,8 +132,15 @@ _DONE = {
 }
 
 
+_WHY = {
+    False: "the two never connect",
+    True: "their definitions differ, and a server refuses a client whose md5sum is not its own",
+}
+
+
 def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFinding]:
     del context
+    types = _Types(graph.service_definitions)
     by_resource: dict[tuple[Kind, str], list[Endpoint]] = defaultdict(list)
     for endpoint in graph.endpoints:
         if _comparable(endpoint):
@@ -100,7 +149,7 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
     for (kind, resource), found in sorted(by_resource.items()):
         switching = _alternatives(found)
         endpoints = [e for e in found if _code_of(e) not in switching]
-        if not _mismatches(endpoints):
+        if not types.mismatch(endpoints):
             continue
         for endpoint in sorted(endpoints, key=Endpoint.sort_key):
             mine = endpoint.type_name or ""
@@ -108,8 +157,7 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
                 {
                     other
                     for other in endpoints
-                    if other.type_name
-                    and not _compatible(other.type_name, mine)
+                    if not types.compatible(endpoint, other)
                     and _facing(endpoint, other)
                     and graph.can_meet(endpoint, other)
                 },
@@ -124,7 +172,7 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
             message = (
                 f"{kind.value} '{resource}' is {_DONE[endpoint.edge]} here as '{mine}' but "
                 f"{_DONE[first.edge]} as '{first.type_name}' at {where(first.location)}{more}; "
-                "the two never connect"
+                f"{_WHY[_ros1_service(endpoint)]}"
             )
             related = [
                 (o.location, f"{_DONE[o.edge]} as '{o.type_name}' by {o.node}") for o in conflicting

@@ -4,7 +4,9 @@ A remap that matches nothing is silently ignored: usually the name was misspelle
 (``<remap from="cmd_vel" .../>`` for a node that publishes ``cmd_vel_out``), changed in
 the code later, or written relative when the code uses a private name. Only a node's own
 remaps are judged (a group's remap is meant for whichever of its nodes uses the name),
-only when the node's code is in the workspace and every name it uses is known statically.
+only when the node's code is in the workspace and every name it uses that a remap could
+rename is known statically: in ROS 2 not its parameters, which rcl never remaps (a remap
+of one is reported, saying so).
 A remap of a name's parent or child counts as used: actions and image_transport derive
 sub-topics (``move_base/goal``, ``image/compressed``) from the name the code gives; so does
 a ``camera_info`` beside a topic the node uses (image_transport's camera publishers). So does
@@ -45,6 +47,8 @@ def _used(remap: NodeRemap, node: NodeInstance, mentions: frozenset[str]) -> boo
     # Through a handle whose namespace the code does not show, a name may sit anywhere.
     if any(f"/{written.strip('/~')}/" in f"{source}/" for written in node.uses_relative):
         return True
+    if _parameter_named(source, node) is not None:
+        return False  # the literal that spells it is the parameter's name: rcl remaps none
     # A name-shaped literal of the package's code, passed to an API we do not know,
     # resolves to the name when it is the name, a private or relative ending of it.
     if source in mentions or any(
@@ -81,11 +85,13 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
     del context
     verdicts: dict[Location, list[tuple[bool, NodeRemap, NodeInstance]]] = defaultdict(list)
     for node in graph.nodes:
-        if not node.uses_complete or not node.uses or "::" in (node.executable or ""):
+        if not node.uses_complete or "::" in (node.executable or ""):
             # Code we cannot see all of: a remap may rename what we miss. A component
             # plugin's names are spread over its library (autoware's planners), which
             # the build files do not tie to the class.
             continue
+        if not node.uses and not node.parameters:
+            continue  # code that shows no name at all: it uses APIs we do not know
         for remap in node.remaps:
             if remap.own:
                 location = Location(remap.path, remap.span)
@@ -95,18 +101,49 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
         if any(used for used, _, _ in seen):
             continue  # used by one start of the node: the remap does its job there
         _, remap, node = seen[0]
-        listed = ", ".join(f"'{use}'" for use in node.uses[:_MAX_LISTED])
-        more = f" and {len(node.uses) - _MAX_LISTED} more" if len(node.uses) > _MAX_LISTED else ""
-        message = (
-            f"remap from '{remap.source}' renames nothing: node '{node.name}' "
-            f"({', '.join(node.sources)}) never uses that name; it uses {listed}{more}"
-        )
+        parameter = _parameter_named(remap.source, node)
+        if parameter is not None:
+            message = (
+                f"remap from '{remap.source}' renames nothing: '{parameter}' is a parameter "
+                f"of node '{node.name}' ({', '.join(node.sources)}), and ROS 2 remaps "
+                "topic and service names, never parameters; set the parameter instead"
+            )
+        else:
+            message = (
+                f"remap from '{remap.source}' renames nothing: node '{node.name}' "
+                f"({', '.join(node.sources)}) never uses that name{_what_it_uses(node)}"
+            )
         related = [
             (endpoint.location, f"{endpoint.resource_kind.value} '{endpoint.written}'")
             for endpoint in graph.endpoints
             if endpoint.node == node.name and endpoint.root == node.root
         ]
         yield finding(location, message, related)
+
+
+def _parameter_named(source: str, node: NodeInstance) -> str | None:
+    """The ROS 2 parameter of the node a remap's ``from`` names (a ROS 1 habit:
+    ``<remap from="~output_folder" .../>``), if any: rcl never remaps one."""
+    namespace = node.name.rpartition("/")[0]
+    written = source.lstrip("~").strip("/")  # a name rcl refuses is kept as written
+    for parameter in node.parameters:
+        path = parameter.strip("~/").replace(".", "/")
+        if path and path in (written, *_tails(source, node.name, namespace)):
+            return parameter
+    return None
+
+
+def _tails(source: str, *namespaces: str) -> list[str]:
+    """What is left of ``source`` below each of ``namespaces`` it is in."""
+    return [source[len(ns) + 1 :] for ns in namespaces if source.startswith(f"{ns}/")]
+
+
+def _what_it_uses(node: NodeInstance) -> str:
+    if not node.uses:
+        return ""  # its names go through APIs the linter does not know; they are not listed
+    listed = ", ".join(f"'{use}'" for use in node.uses[:_MAX_LISTED])
+    more = f" and {len(node.uses) - _MAX_LISTED} more" if len(node.uses) > _MAX_LISTED else ""
+    return f"; it uses {listed}{more}"
 
 
 RULE = Rule(

@@ -46,8 +46,16 @@ _EDGES = {
     Role.ACTION_CALL: EdgeKind.ACTION_CALL,
 }
 _RESOURCE_KINDS = frozenset({Kind.TOPIC, Kind.SERVICE, Kind.ACTION})
-# Names a node's code uses that a remap can rename: graph resources and, in ROS 1, params.
-_REMAPPABLE_KINDS = frozenset({Kind.TOPIC, Kind.SERVICE, Kind.ACTION, Kind.PARAMETER})
+# Names a node's code uses that a remap can rename: graph resources and, in ROS 1, params
+# (roscpp's ``names::resolve`` remaps every name it resolves, ``NodeHandle::getParam``'s
+# key too). rcl remaps topic and service names and the node's name and namespace only
+# (``rcl_remap_topic_name``, ``rcl_remap_service_name``, ``rcl_remap_node_name``,
+# ``rcl_remap_node_namespace`` in ``rcl/src/rcl/remap.c``): a ROS 2 parameter is no name a
+# remap can rename, and one built at run time hides none of them.
+_REMAPPABLE_KINDS = {
+    Generation.ROS1: frozenset({Kind.TOPIC, Kind.SERVICE, Kind.ACTION, Kind.PARAMETER}),
+    Generation.ROS2: frozenset({Kind.TOPIC, Kind.SERVICE, Kind.ACTION}),
+}
 _REMAPPABLE_ROLES = ENDPOINT_ROLES | {Role.PARAMETER}
 _TEST_DIRECTORIES = frozenset({"test", "tests", "testing"})
 
@@ -89,6 +97,7 @@ def build(
         tuple(sorted(set(endpoints), key=Endpoint.sort_key)),
         index.companions(),
         _mentions(index, nodes),
+        index.service_definitions(),
     )
 
 
@@ -141,9 +150,7 @@ def _launched_instance(
         )
         for remap, path, own in launched.remaps
     ]
-    endpoints, uses, relative, complete = _resolve_code(
-        code, instance, remaps, launched.root, reach
-    )
+    names = _resolve_code(code, instance, remaps, launched.root, reach)
     node = NodeInstance(
         name=full_name,
         generation=generation,
@@ -154,15 +161,16 @@ def _launched_instance(
         sources=sources,
         remaps=tuple(remaps),
         launch_namespaces=launched.site_namespaces,
-        uses=uses,
-        uses_complete=complete and bool(sources),
-        uses_relative=relative,
+        uses=names.uses,
+        uses_complete=names.complete and bool(sources),
+        uses_relative=names.relative,
+        parameters=names.parameters,
         conditional=launched.conditional,
         named_at_launch=launched.node.name is not None,
         test=launched.node.test,
         reach=reach,
     )
-    return node, endpoints
+    return node, names.endpoints
 
 
 def _unlaunched_programs(index: WorkspaceIndex, launched: set[str]) -> list[tuple[str, ...]]:
@@ -195,7 +203,7 @@ def _unlaunched_instance(
     full_name = _full_name(instance)
     package = index.package_of(sources[0])
     reach = Reach(instance.generation, False, () if package is None else (package.name,))
-    endpoints, uses, relative, complete = _resolve_code(code, instance, [], "", reach)
+    names = _resolve_code(code, instance, [], "", reach)
     node = NodeInstance(
         name=full_name,
         generation=instance.generation,
@@ -204,12 +212,13 @@ def _unlaunched_instance(
         root="",
         launched_at=(),
         sources=sources,
-        uses=uses,
-        uses_complete=complete,
-        uses_relative=relative,
+        uses=names.uses,
+        uses_complete=names.complete,
+        uses_relative=names.relative,
+        parameters=names.parameters,
         reach=reach,
     )
-    return node, endpoints
+    return node, names.endpoints
 
 
 def _package_name(index: WorkspaceIndex, path: str) -> str | None:
@@ -278,23 +287,40 @@ def _has_endpoints(facts: FileFacts) -> bool:
 # Resolution
 
 
+@dataclass(frozen=True)
+class _CodeNames:
+    """What a node's code uses: its endpoints after remapping; every remappable name
+    before remapping, resolved (``uses``), and as written where its namespace is unknown
+    (``relative``); whether those are all known; and, in ROS 2, its static parameter
+    names, which no remap renames."""
+
+    endpoints: list[Endpoint]
+    uses: tuple[str, ...]
+    relative: tuple[str, ...]
+    complete: bool
+    parameters: tuple[str, ...]
+
+
 def _resolve_code(
     code: Sequence[FileFacts],
     instance: _Instance,
     remaps: Sequence[NodeRemap],
     root: str,
     reach: Reach,
-) -> tuple[list[Endpoint], tuple[str, ...], tuple[str, ...], bool]:
-    """The node's endpoints after remapping; every remappable name it uses before
-    remapping, resolved, and as written when its namespace is unknown; whether the names
-    are all known."""
+) -> _CodeNames:
     endpoints: list[Endpoint] = []
     uses: set[str] = set()
     relative: set[str] = set()
+    parameters: set[str] = set()
     complete = True
+    remappable = _REMAPPABLE_KINDS[instance.generation]
     for facts in code:
         for use in facts.names:
-            if use.kind not in _REMAPPABLE_KINDS or use.role not in _REMAPPABLE_ROLES:
+            if use.kind is Kind.PARAMETER and use.kind not in remappable:
+                if not use.dynamic:
+                    parameters.add(use.value)
+                continue
+            if use.kind not in remappable or use.role not in _REMAPPABLE_ROLES:
                 continue
             resolved, certain = _resolve_use(use, facts.language, instance)
             if resolved is None:
@@ -326,7 +352,13 @@ def _resolve_code(
                     certain=certain,
                 )
             )
-    return endpoints, tuple(sorted(uses)), tuple(sorted(relative)), complete
+    return _CodeNames(
+        endpoints,
+        tuple(sorted(uses)),
+        tuple(sorted(relative)),
+        complete,
+        tuple(sorted(parameters)),
+    )
 
 
 def _resolve_use(use: NameUse, language: Language, instance: _Instance) -> tuple[str | None, bool]:

@@ -13,6 +13,7 @@ from enum import Enum
 from typing import Protocol
 
 from roslint_names.model import Generation, Kind, Remap, Span
+from roslint_names.workspace.interfaces import ServiceDefinition
 
 
 @dataclass(frozen=True, order=True)
@@ -103,6 +104,10 @@ class NodeInstance:
     uses: tuple[str, ...] = ()
     uses_complete: bool = False
     uses_relative: tuple[str, ...] = ()
+    # ROS 2 only: the parameter names the code shows statically. No remap renames one
+    # (rcl remaps topics, services, the node's name and namespace), so they are no
+    # ``uses``; they show that the linter sees the node's code (RN404).
+    parameters: tuple[str, ...] = ()
     conditional: bool = False  # started under a condition the linter cannot decide
     named_at_launch: bool = False  # the launch file gives its name, not its code
     test: bool = False  # a rostest ``<test>``: run alone, after the nodes are up
@@ -157,6 +162,9 @@ class Graph:
     # package -> name-shaped string literals of its code, for the packages of nodes with
     # remaps of their own: evidence of names used through APIs the linter does not know
     mentions: Mapping[str, frozenset[str]] = field(default_factory=dict)
+    # ``package/Name`` -> the definition of a ROS 1 service type (RN403 compares ROS 1
+    # services by it, as roscpp and rospy do by its md5sum)
+    service_definitions: Mapping[str, ServiceDefinition] = field(default_factory=dict)
 
     def can_meet(self, one: Placed, other: Placed) -> bool:
         """Whether two nodes (or their endpoints) can be in one ROS graph at run time.

@@ -12,6 +12,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 from roslint_names.model import ExecutableKind, FileFacts, Language
+from roslint_names.workspace.interfaces import WELL_KNOWN, ServiceDefinition
 
 CODE_LANGUAGES = frozenset({Language.CPP, Language.PYTHON})
 
@@ -21,6 +22,8 @@ class Package:
     name: str
     directory: str  # display path of the directory holding package.xml; "" for "."
     depends: frozenset[str] = frozenset()  # package names its package.xml depends on
+    # (name, definition) of each of its ROS 1 ``.srv`` files (``interfaces``), by name
+    services: tuple[tuple[str, ServiceDefinition], ...] = ()
 
 
 def parent(path: str) -> str:
@@ -84,6 +87,14 @@ class WorkspaceIndex:
             for one in gathered:
                 found[one] |= gathered
         return {name: frozenset(companions) for name, companions in found.items()}
+
+    def service_definitions(self) -> dict[str, ServiceDefinition]:
+        """``package/Name`` -> definition of every ROS 1 service type of the workspace's
+        packages, and of the well-known ones it does not hold."""
+        found = dict(WELL_KNOWN)
+        for package in self.packages.values():
+            found.update((f"{package.name}/{name}", known) for name, known in package.services)
+        return found
 
     def files_of(self, package: str) -> list[str]:
         return self._files_by_package.get(package, [])
