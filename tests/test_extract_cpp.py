@@ -1033,3 +1033,47 @@ def test_a_member_declared_in_the_header_and_set_in_the_constructor_is_followed(
     facts = extract(IMU_DRIVER_CPP, ROS2)
     assert (TOPIC, Role.PUBLISH, "/imu/data", "sensor_msgs::msg::Imu") in uses(facts)
     assert dynamic(facts) == [(TOPIC, "topic_name")]
+
+
+# A ROS 1 laser merger, shaped like ira_laser_tools' laserscan_multi_merger: each scan
+# topic is kept in a list as well as subscribed to.
+SCAN_MERGER = """#include <ros/ros.h>
+#include <sensor_msgs/LaserScan.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+class ScanMerger
+{
+public:
+  explicit ScanMerger(ros::NodeHandle & nh)
+  {
+    std::string front = "scan_front";
+    std::string rear = "scan_rear";
+    topics_.push_back(front);
+    topics_.emplace_back(rear);
+    front_sub_ = nh.subscribe(front, 10, &ScanMerger::onScan, this);
+    rear_sub_ = nh.subscribe(rear, 10, &ScanMerger::onScan, this);
+    std::string moved = "scan_moved";
+    topics_.push_back(std::move(moved));
+    moved_sub_ = nh.subscribe(moved, 10, &ScanMerger::onScan, this);
+  }
+
+private:
+  void onScan(const sensor_msgs::LaserScan::ConstPtr & scan) {}
+  std::vector<std::string> topics_;
+  ros::Subscriber front_sub_, rear_sub_, moved_sub_;
+};
+"""
+
+
+def test_a_string_copied_into_a_container_keeps_its_value() -> None:
+    """push_back and emplace_back copy the name: it was taken as written, so dynamic,
+    which silenced RN404 for the node. Moved from, it is unknown indeed."""
+    facts = extract(SCAN_MERGER)
+    assert [(u.value, u.dynamic) for u in facts.names if u.role is Role.SUBSCRIBE] == [
+        ("scan_front", False),
+        ("scan_rear", False),
+        ("moved", True),
+    ]

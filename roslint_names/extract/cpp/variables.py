@@ -37,6 +37,15 @@ _READING_CALLS = frozenset(
         "NodeHandle",
         "string",
         "string_view",
+        # A container's insertions copy their argument (``topics.push_back(front)``); one
+        # moved from is the argument of ``std::move``, which is not read.
+        "push_back",
+        "emplace_back",
+        "push_front",
+        "emplace_front",
+        "insert",
+        "emplace",
+        "push",
     }
 )
 _LOGGING_PREFIXES = ("ROS_", "RCLCPP_", "RCUTILS_LOG_")
