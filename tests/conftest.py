@@ -138,3 +138,13 @@ def extractions(monkeypatch: pytest.MonkeyPatch) -> list[str]:
 
     monkeypatch.setattr(gather, "extractor_for", counting)
     return seen
+
+
+def code_units(text: str, encoding: str) -> int:
+    """How many code units of ``encoding`` (an LSP position encoding) ``text`` takes: how
+    a client counts columns."""
+    if encoding == "utf-32":
+        return len(text)
+    if encoding == "utf-16":
+        return len(text.encode("utf-16-le")) // 2
+    return len(text.encode("utf-8"))

@@ -7,20 +7,13 @@ from __future__ import annotations
 import random
 
 import pytest
+from conftest import code_units
 from lsprotocol import types
 
 from roslint_names.lines import split_lines_keeping_ends
 from roslint_names.lsp import _apply, _LineHint
 
 PIECES = ["ros", "::", "é", "😀", " ", "\n", "\r\n", "\r", "\f", "\u2028", "\x85", '"/cmd_vel"']
-
-
-def _units(text: str, encoding: str) -> int:
-    if encoding == "utf-32":
-        return len(text)
-    if encoding == "utf-16":
-        return len(text.encode("utf-16-le")) // 2
-    return len(text.encode("utf-8"))
 
 
 def _reference_offset(text: str, position: types.Position, encoding: str) -> int:
@@ -30,7 +23,7 @@ def _reference_offset(text: str, position: types.Position, encoding: str) -> int
     start = sum(len(line) for line in lines[: position.line])
     line = lines[position.line].rstrip("\r\n")
     for index in range(len(line) + 1):
-        if _units(line[:index], encoding) >= position.character:
+        if code_units(line[:index], encoding) >= position.character:
             return start + index
     return start + len(line)
 

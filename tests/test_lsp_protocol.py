@@ -21,7 +21,7 @@ from pathlib import Path
 from typing import IO, Any
 
 import pytest
-from conftest import write, write_package
+from conftest import code_units, write, write_package
 
 WORKTREE = Path(__file__).resolve().parents[1]
 
@@ -199,15 +199,6 @@ FIXED_LINE = (
 ENCODINGS = ["utf-8", "utf-16", "utf-32"]
 
 
-def _units(text: str, encoding: str) -> int:
-    """How many code units of ``encoding`` ``text`` takes: how a client counts columns."""
-    if encoding == "utf-32":
-        return len(text)
-    if encoding == "utf-16":
-        return len(text.encode("utf-16-le")) // 2
-    return len(text.encode("utf-8"))
-
-
 def _offset(text: str, position: Message, encoding: str) -> int:
     """The code point offset in ``text`` of an LSP position counted in ``encoding``."""
     lines = text.splitlines(keepends=True)
@@ -217,7 +208,7 @@ def _offset(text: str, position: Message, encoding: str) -> int:
     for index, character in enumerate(line):
         if units >= position["character"]:
             return start + index
-        units += _units(character, encoding)
+        units += code_units(character, encoding)
     assert units == position["character"], "a position inside a character"
     return start + len(line)
 
@@ -273,8 +264,8 @@ def test_positions_are_counted_in_the_negotiated_encoding(
     line = DRIVER.splitlines()[ADVERTISE_LINE]
     literal = line.index('"/cmd_vel"')
     assert found["range"] == {
-        "start": {"line": ADVERTISE_LINE, "character": _units(line[:literal], encoding)},
-        "end": {"line": ADVERTISE_LINE, "character": _units(line[: literal + 10], encoding)},
+        "start": {"line": ADVERTISE_LINE, "character": code_units(line[:literal], encoding)},
+        "end": {"line": ADVERTISE_LINE, "character": code_units(line[: literal + 10], encoding)},
     }
 
     # The quick fix, applied by a client that counts in the same encoding: exactly the line
@@ -293,7 +284,7 @@ def test_positions_are_counted_in_the_negotiated_encoding(
     assert fixed.replace(FIXED_LINE, line) == DRIVER
 
     # A code action asked for a range that starts past the emoji still finds the finding.
-    after_emoji = _units(line[: line.index("café")], encoding)
+    after_emoji = code_units(line[: line.index("café")], encoding)
     actions = lsp.call(
         "textDocument/codeAction",
         {
@@ -484,7 +475,7 @@ def test_200_edits_in_a_row_make_one_check_of_the_last_text(
     # The user types 200 letters into the topic, after the emoji: incremental edits whose
     # columns count UTF-8 bytes.
     line = text.split("\n")[ADVERTISE_LINE]
-    column = _units(line[: line.index('"/cmd_vel"') + len('"/cmd_vel')], "utf-8")
+    column = code_units(line[: line.index('"/cmd_vel"') + len('"/cmd_vel')], "utf-8")
     typed = "".join("abcdefghijklmnopqrstuvwxyz"[i % 26] for i in range(200))
     for version, letter in enumerate(typed, start=2):
         lsp.notify("textDocument/didChange", _typed(uri, version, ADVERTISE_LINE, column, letter))
