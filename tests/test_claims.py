@@ -49,7 +49,7 @@ def test_rn205_leaves_a_static_broadcasters_frames_alone(run_cli: Any, tmp_path:
     found = [(f["line"], f["message"]) for f in result.findings()]
     # Only the servo's planning frame: the node looks transforms up with it.
     assert [line for line, _ in found] == [25]
-    assert "the nodes that look transforms up with it fail" in found[0][1]
+    assert "a lookup of it, or of a message stamped with it, fails" in found[0][1]
     assert result.exit_code == 1
 
 

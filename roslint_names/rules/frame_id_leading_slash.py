@@ -64,7 +64,9 @@ def _what_fails(use: NameUse) -> str:
         return "tf2's lookups throw InvalidArgumentException for it (BufferCore::validateFrameId)"
     if "frame_id" in use.api and "parameters" not in use.api:
         return "a message stamped with it cannot be transformed (tf2 BufferCore::validateFrameId)"
-    return "the nodes that look transforms up with it fail (tf2 BufferCore::validateFrameId)"
+    # A frame parameter (or its default): what the node does with it is not known here.
+    # Looked up or stamped on a message it fails; only broadcast, tf2 strips the slash.
+    return "a lookup of it, or of a message stamped with it, fails (tf2 validateFrameId)"
 
 
 def _broadcast_only(facts: FileFacts) -> frozenset[Span]:
