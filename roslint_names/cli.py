@@ -26,6 +26,8 @@ from .config import (
     enabled_codes,
     load_settings,
 )
+from .conventions import propose
+from .conventions import render as render_proposals
 from .discover import (
     DiscoveryError,
     SourceFile,
@@ -331,8 +333,11 @@ def _run_check(options: argparse.Namespace) -> int:
         baseline=options.baseline is not None,
         files=_checked_files(sources, result),
     )
+    proposals = propose(diagnostics)
     if options.statistics:
         report = statistics(diagnostics, metas)
+        if proposals:
+            report += "\n" + render_proposals(proposals)
     else:
         report = render(
             options.format,
@@ -342,6 +347,9 @@ def _run_check(options: argparse.Namespace) -> int:
         )
     _write(report, options.output)
     print(summary(diagnostics, result.files_checked), file=sys.stderr)
+    if proposals and not options.statistics and settings.source is None:
+        # A project that has stated nothing yet: say which findings are one decision.
+        print(render_proposals(proposals), end="", file=sys.stderr)
     has_findings = any(not d.suppressed and not d.baselined for d in diagnostics)
     return EXIT_FINDINGS if has_findings and not options.exit_zero else EXIT_CLEAN
 

@@ -443,7 +443,13 @@ def report_graph(
         to_diagnostic = _DiagnosticFactory(file_facts, settings, text)
         judging = _TestCodeFilter(file_facts, text, settings, test_rules)
         fresh = [
-            to_diagnostic(rule, item.finding.span, item.finding.message, item.finding.related)
+            to_diagnostic(
+                rule,
+                item.finding.span,
+                item.finding.message,
+                item.finding.related,
+                answer=item.finding.answer,
+            )
             for rule, item in items
             if rule.code not in ignored and not (judging.spared(rule.code) and judging.is_test())
         ]
@@ -483,7 +489,9 @@ def check_file(
         contexts = rule_contexts(registry, settings, known_service_types)
     to_diagnostic = _DiagnosticFactory(facts, settings, text)
     diagnostics = [
-        to_diagnostic(rule, finding.span, finding.message, finding.related, finding.fix)
+        to_diagnostic(
+            rule, finding.span, finding.message, finding.related, finding.fix, answer=finding.answer
+        )
         for rule in registry.rules
         if rule.code in active and rule.check is not None
         for finding in rule.check(facts, contexts[rule.code])
@@ -648,6 +656,8 @@ class _DiagnosticFactory:
         message: str,
         related: tuple[RelatedLocation, ...] = (),
         fix: Fix | None = None,
+        *,
+        answer: tuple[str, str] | None = None,
     ) -> Diagnostic:
         if self._lines is None:
             self._lines = split_lines(self._text)
@@ -665,6 +675,7 @@ class _DiagnosticFactory:
             source_line=source_line,
             edit=None if fix is None or fix.tokens else located(fix, span, source_line),
             renaming=fix if fix is not None and fix.tokens else None,
+            answer=answer,
         )
 
 

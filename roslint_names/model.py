@@ -317,6 +317,10 @@ class Finding:
     message: str
     related: tuple[RelatedLocation, ...] = ()
     fix: Fix | None = None
+    # The setting that would state the finding's name as the project's convention, and
+    # its value: ("max-depth", "7"), ("rules.RN202.extend-allow", "/api/state"). Many
+    # findings sharing one answer are one decision (``conventions`` proposes it).
+    answer: tuple[str, str] | None = None
 
 
 @dataclass(frozen=True)
@@ -348,6 +352,7 @@ class Diagnostic:
     # A rename not yet offered: ``renames.resolve`` turns it into ``edit`` and ``also``
     # once it has seen every use of the name, or drops it.
     renaming: Fix | None = None
+    answer: tuple[str, str] | None = field(default=None, compare=False)  # Finding.answer
 
     def sort_key(self) -> tuple[str, int, int, str, str]:
         return (self.path, self.span.line, self.span.column, self.code, self.message)

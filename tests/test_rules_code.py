@@ -71,6 +71,25 @@ def test_rn202_allow_lists() -> None:
     assert len(messages(rn202, file_facts, allow=("/joy",))) == 1  # /tf no longer allowed
 
 
+def test_rn202_allow_patterns_name_global_trees() -> None:
+    """autoware's /api/** and moveit's /rviz/moveit/* are global interfaces by design."""
+    rn202 = hard_coded_absolute_name.check
+    file_facts = facts(
+        use("/api/autoware/get/engage", Role.CALL, Kind.SERVICE),
+        use("/rviz/moveit/update_goal_state", Role.SUBSCRIBE),
+        use("/rviz/moveit/move_marker/goal", Role.SUBSCRIBE),
+        use("/apis", Role.PUBLISH),
+    )
+    allowed = {"extend-allow": ("/api/**", "/rviz/moveit/*")}
+    assert messages(rn202, file_facts, **allowed) == [
+        "absolute topic '/rviz/moveit/move_marker/goal' passed to ros::NodeHandle::advertise "
+        "escapes the node's namespace, so <group ns> and __ns:= cannot separate robots; "
+        "use 'rviz/moveit/move_marker/goal'",
+        "absolute topic '/apis' passed to ros::NodeHandle::advertise escapes the node's "
+        "namespace, so <group ns> and __ns:= cannot separate robots; use 'apis'",
+    ]
+
+
 def service(value: str, type_name: str | None, role: Role = Role.SERVE) -> NameUse:
     return use(value, role, Kind.SERVICE, type_name=type_name)
 
@@ -179,6 +198,7 @@ def test_rn202_reports_a_name_joined_from_an_absolute_literal() -> None:
     found = list(hard_coded_absolute_name.check(facts(joined, relative), RuleContext()))
     assert [(f.span, f.fix) for f in found] == [(joined.span, None)]
     assert "built from the absolute '/planning/planning_factors/'" in found[0].message
-    # A global interface the project allows, by its name without the trailing '/'.
-    allowed = RuleContext(options={"extend-allow": ["/planning/planning_factors"]})
-    assert list(hard_coded_absolute_name.check(facts(joined), allowed)) == []
+    # A global tree the project allows.
+    for pattern in ("/planning/**", "/planning/planning_factors/*"):
+        allowed = RuleContext(options={"extend-allow": [pattern]})
+        assert list(hard_coded_absolute_name.check(facts(joined), allowed)) == []

@@ -29,7 +29,10 @@ def launch_site(node: NodeInstance) -> Location | None:
 
 
 def finding(
-    location: Location, message: str, others: Iterable[tuple[Location, str]]
+    location: Location,
+    message: str,
+    others: Iterable[tuple[Location, str]],
+    answer: tuple[str, str] | None = None,
 ) -> WorkspaceFinding:
     """A finding at ``location`` pointing at every other place involved."""
     related = tuple(
@@ -37,4 +40,4 @@ def finding(
         for other, note in sorted(set(others))[:MAX_RELATED]
         if other != location
     )
-    return WorkspaceFinding(location.path, Finding(location.span, message, related))
+    return WorkspaceFinding(location.path, Finding(location.span, message, related, answer=answer))

@@ -12,7 +12,8 @@ literal, without a fix, since the rest of the name is not known.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import re
+from collections.abc import Iterable, Iterator
 
 from ..model import ENDPOINT_ROLES, FileFacts, Finding, Fix, Kind, Severity
 from ..names import is_valid
@@ -34,8 +35,12 @@ _ENDPOINT_KINDS = frozenset({Kind.TOPIC, Kind.SERVICE, Kind.ACTION})
 
 
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
-    allowed = set(_names(context.options.get("allow", GLOBAL_BY_DESIGN)))
-    allowed.update(_names(context.options.get("extend-allow", ())))
+    allowed = _Allowed(
+        (
+            *_names(context.options.get("allow", GLOBAL_BY_DESIGN)),
+            *_names(context.options.get("extend-allow", ())),
+        )
+    )
     yield from _joined_at_run_time(facts, allowed)
     for use in static_uses(facts):
         if (
@@ -43,7 +48,7 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             or use.role not in ENDPOINT_ROLES
             or use.kind not in _ENDPOINT_KINDS
             or not use.value.startswith("/")
-            or use.value in allowed
+            or allowed.covers(use.value)
             or not is_valid(use.value, use.kind, facts.generation)
         ):
             continue
@@ -55,10 +60,38 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             # Unsafe: under a namespace the name then resolves elsewhere, which is the
             # point, but whoever used the absolute name must follow.
             fix=Fix(use.value, relative, safe=False),
+            answer=(_SETTING, use.value),
         )
 
 
-def _joined_at_run_time(facts: FileFacts, allowed: set[str]) -> Iterator[Finding]:
+_SETTING = "rules.RN202.extend-allow"
+
+
+class _Allowed:
+    """Names global by design: exact names, or patterns where ``*`` stands for one level
+    and ``**`` for any number (``/api/**``, ``/rviz/moveit/*``)."""
+
+    def __init__(self, entries: Iterable[str]) -> None:
+        self._names = {entry for entry in entries if "*" not in entry}
+        patterns = [entry for entry in entries if "*" in entry]
+        self._pattern = re.compile("|".join(_regex(p) for p in patterns)) if patterns else None
+
+    def covers(self, name: str) -> bool:
+        return name in self._names or bool(self._pattern and self._pattern.fullmatch(name))
+
+
+def _regex(pattern: str) -> str:
+    parts = re.split(r"(\*\*|\*)", pattern)
+    return (
+        "(?:"
+        + "".join(
+            ".+" if part == "**" else "[^/]+" if part == "*" else re.escape(part) for part in parts
+        )
+        + ")"
+    )
+
+
+def _joined_at_run_time(facts: FileFacts, allowed: _Allowed) -> Iterator[Finding]:
     """Names built at run time whose absolute start is a literal: certain to escape."""
     for use in facts.names:
         prefix = use.absolute_prefix
@@ -68,7 +101,7 @@ def _joined_at_run_time(facts: FileFacts, allowed: set[str]) -> Iterator[Finding
             or not in_code(use, facts)
             or use.role not in ENDPOINT_ROLES
             or use.kind not in _ENDPOINT_KINDS
-            or any(name == prefix.rstrip("/") for name in allowed)
+            or allowed.covers(prefix + "x")  # a name it starts: "/api/**" covers "/api/"
         ):
             continue
         yield Finding(
@@ -76,6 +109,7 @@ def _joined_at_run_time(facts: FileFacts, allowed: set[str]) -> Iterator[Finding
             f"{label(use)} built from the absolute '{prefix}' and passed to {use.api} "
             "escapes the node's namespace, so <group ns> and __ns:= cannot separate robots; "
             "drop the leading '/'",
+            answer=(_SETTING, prefix.rstrip("/") + "/**"),
         )
 
 

@@ -51,7 +51,13 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             continue  # RN101 reports it; one problem, one finding
         levels = chosen_depth(use.value, use.kind, facts.generation)
         if levels > context.max_depth:
-            yield Finding(use.span, _too_deep(label(use), use.value, levels, context.max_depth))
+            message = _too_deep(label(use), use.value, levels, context.max_depth)
+            yield Finding(use.span, message, answer=_depth(levels))
+
+
+def _depth(levels: int) -> tuple[str, str]:
+    """The setting that would allow ``levels``: what ``conventions`` proposes."""
+    return ("max-depth", str(levels))
 
 
 def _too_deep(what: str, value: str, levels: int, limit: int) -> str:
@@ -278,7 +284,7 @@ def _deep_remap_finding(
     if subscribers:
         message += f"; {len(subscribers)} subscriber remap(s) use it too"
     others += [(other, "its image transport's subtopic, as deep") for other in transports]
-    return finding(location, message, others)
+    return finding(location, message, others, _depth(levels))
 
 
 def _pushed_endpoints(
@@ -328,7 +334,7 @@ def _pushed_finding(
             f"resolves to '{endpoint.resource}' once launched here: {levels} levels; "
             f"the limit is {limit} (max-depth)"
         )
-        return finding(site, message, others)
+        return finding(site, message, others, _depth(levels))
     shown = ", ".join(f"'{e.resource}' ({n})" for e, _, n in names[:_LISTED])
     rest = len(names) - _LISTED
     node_names = sorted({n.name for _, n, _ in names})
@@ -338,7 +344,7 @@ def _pushed_finding(
         f"levels (max-depth) once launched here: {shown}"
         + (f" and {rest} more" if rest > 0 else "")
     )
-    return finding(site, message, others)
+    return finding(site, message, others, _depth(max(n for _, _, n in names)))
 
 
 _LISTED = 3  # names a pushed finding's message spells out; its related locations list all

@@ -1,0 +1,103 @@
+"""A project's conventions, proposed: many findings that one line of configuration answers.
+
+Autoware's topic tree is deep by design (38 RN201 findings on autoware_launch, all
+answered by ``max-depth = 7``); MoveIt's ``/rviz/moveit/*`` topics are a global interface
+by design (21 RN202 findings, answered by ``extend-allow = ["/rviz/moveit/**"]``). Such
+findings are one decision, the project's, and the maintainer's answer is to state it,
+or to fix the names: either way in one step. Rules say, finding by finding, which
+setting would answer it (``Finding.answer``); this module groups those answers:
+
+- ``max-depth``: proposed when at least ``MIN_DEEP`` findings would be answered by it,
+  with the deepest level they need;
+- RN202's ``extend-allow``: a tree (``/api/**``) proposed when at least ``MIN_TREE``
+  findings name something in it; the tree is the levels all of them share.
+"""
+
+from __future__ import annotations
+
+import json
+from collections import defaultdict
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+from .model import Diagnostic
+
+MIN_DEEP = 5
+MIN_TREE = 3
+_DEPTH = "max-depth"
+_ALLOW = "rules.RN202.extend-allow"
+
+
+@dataclass(frozen=True)
+class Proposal:
+    table: str  # "" for a top-level key, else the TOML table ("rules.RN202")
+    key: str
+    value: str  # as TOML writes it
+    code: str  # the rule whose findings it answers
+    findings: int
+
+
+def propose(diagnostics: Iterable[Diagnostic]) -> list[Proposal]:
+    """The settings that would each answer many of the reported findings."""
+    answers: dict[str, list[str]] = defaultdict(list)
+    for diagnostic in diagnostics:
+        reported = not diagnostic.suppressed and not diagnostic.baselined
+        if diagnostic.answer is not None and reported:
+            setting, value = diagnostic.answer
+            answers[setting].append(value)
+    proposals = []
+    depths = [int(value) for value in answers.get(_DEPTH, ())]
+    if len(depths) >= MIN_DEEP:
+        proposals.append(Proposal("", _DEPTH, str(max(depths)), "RN201", len(depths)))
+    trees = _trees(answers.get(_ALLOW, ()))
+    if trees:
+        value = json.dumps(sorted(trees))
+        proposals.append(
+            Proposal("rules.RN202", "extend-allow", value, "RN202", sum(trees.values()))
+        )
+    return proposals
+
+
+def _trees(names: Sequence[str]) -> dict[str, int]:
+    """``/first/shared/**`` for each first level at least ``MIN_TREE`` names share, with
+    how many names it covers."""
+    by_first: dict[str, list[list[str]]] = defaultdict(list)
+    for name in names:
+        levels = name.removesuffix("/**").strip("/").split("/")
+        if len(levels) > 1 or name.endswith("/**"):
+            by_first[levels[0]].append(levels)
+    trees: dict[str, int] = {}
+    for first, members in by_first.items():
+        if len(members) < MIN_TREE:
+            continue
+        shared = [first]
+        # The levels every name has in common, short of each name's own last level.
+        for depth in range(1, min(len(levels) for levels in members)):
+            candidates = {levels[depth] for levels in members}
+            if len(candidates) != 1 or any(len(levels) <= depth + 1 for levels in members):
+                break
+            shared.append(candidates.pop())
+        trees["/" + "/".join(shared) + "/**"] = len(members)
+    return trees
+
+
+def render(proposals: Sequence[Proposal]) -> str:
+    """The proposals as the lines of a configuration file to paste, each commented with
+    the findings it answers; "" when there are none."""
+    if not proposals:
+        return ""
+    total = sum(proposal.findings for proposal in proposals)
+    decisions = "one decision" if len(proposals) == 1 else f"{len(proposals)} decisions"
+    lines = [
+        f"{total} findings are {decisions}: if the names are this project's convention, "
+        "state it in roslint-names.toml ([tool.roslint-names] in pyproject.toml), "
+        "else fix them:",
+    ]
+    table = ""
+    for proposal in sorted(proposals, key=lambda p: (p.table, p.key)):  # top-level keys first
+        if proposal.table != table:
+            table = proposal.table
+            lines.append(f"  [{table}]")
+        setting = f"{proposal.key} = {proposal.value}"
+        lines.append(f"  {setting:<44}  # {proposal.code}: {proposal.findings} findings")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,81 @@
+"""Conventions proposed: many findings one line of configuration answers."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from conftest import write, write_package
+
+from roslint_names.conventions import Proposal, propose, render
+from roslint_names.model import Diagnostic, Severity, Span
+
+
+def _diagnostic(code: str, answer: tuple[str, str], **fields: Any) -> Diagnostic:
+    return Diagnostic(
+        "src/x.cpp", Span(1, 1, 1, 2), code, "r", Severity.WARNING, "m", answer=answer, **fields
+    )
+
+
+def test_a_global_tree_is_the_levels_its_names_share() -> None:
+    """MoveIt's rviz plugin topics, autoware's /api services, and two names alone."""
+    allow = "rules.RN202.extend-allow"
+    names = [
+        "/rviz/moveit/update_goal_state",
+        "/rviz/moveit/update_start_state",
+        "/rviz/moveit/move_marker/goal",
+        "/api/autoware/get/engage",
+        "/api/operation_mode/state",
+        "/api/localization/initialize",
+        "/joy",
+        "/cmd_vel",
+    ]
+    diagnostics = [_diagnostic("RN202", (allow, name)) for name in names]
+    diagnostics.append(_diagnostic("RN202", (allow, "/api/x/y"), suppressed=True))
+    assert propose(diagnostics) == [
+        Proposal("rules.RN202", "extend-allow", '["/api/**", "/rviz/moveit/**"]', "RN202", 6)
+    ]
+
+
+def test_a_deep_tree_needs_enough_findings_and_its_deepest_level() -> None:
+    deep = [_diagnostic("RN201", ("max-depth", str(levels))) for levels in (5, 7, 6, 5)]
+    assert propose(deep) == []  # four: not yet a convention
+    deep.append(_diagnostic("RN201", ("max-depth", "6")))
+    [proposal] = propose(deep)
+    assert render([proposal]) == (
+        "5 findings are one decision: if the names are this project's convention, state it "
+        "in roslint-names.toml ([tool.roslint-names] in pyproject.toml), else fix them:\n"
+        "  max-depth = 7                                 # RN201: 5 findings\n"
+    )
+
+
+# An Autoware-shaped planning launch file: every module's debug output is deep by design.
+PLANNING_LAUNCH = """<launch>
+  <node pkg="autoware_path_planner" exec="path_planner_node" name="path_planner">
+    <remap from="~/output/path" to="/planning/scenario_planning/lane_driving/path_planner/path"/>
+    <remap from="~/debug/a" to="/planning/scenario_planning/lane_driving/debug/a/markers"/>
+    <remap from="~/debug/b" to="/planning/scenario_planning/lane_driving/debug/b/markers"/>
+    <remap from="~/debug/c" to="/planning/scenario_planning/lane_driving/debug/c/markers"/>
+    <remap from="~/debug/d" to="/planning/scenario_planning/lane_driving/debug/d/markers"/>
+  </node>
+</launch>
+"""
+
+
+def test_a_project_without_configuration_is_told_its_convention(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    write_package(tmp_path / "src/planning_launch", 2, "planning_launch")
+    write(tmp_path, "src/planning_launch/launch/planning.launch.xml", PLANNING_LAUNCH)
+    first = run_cli(["check", "--no-cache", "."], tmp_path)
+    assert "5 findings are one decision" in first.stderr
+    assert "  max-depth = 6" in first.stderr
+    # Stated, the findings are gone; a project with a configuration is not told again.
+    write(tmp_path, "roslint-names.toml", "max-depth = 6\n")
+    assert run_cli(["check", "--no-cache", "."], tmp_path).exit_code == 0
+    write(tmp_path, "roslint-names.toml", "max-depth = 4\n")
+    configured = run_cli(["check", "--no-cache", "."], tmp_path)
+    assert configured.exit_code == 1 and "one decision" not in configured.stderr
+    # --statistics always proposes it, with the counts.
+    statistics = run_cli(["check", "--no-cache", "--statistics", "."], tmp_path)
+    assert "  max-depth = 6" in statistics.stdout
