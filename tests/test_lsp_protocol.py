@@ -311,14 +311,20 @@ def test_positions_are_counted_in_the_negotiated_encoding(
     )
 
 
-def test_a_request_with_invalid_params_gets_an_error_response(
-    server: Any, workspace: tuple[Path, str]
-) -> None:
+def _driver_open(server: Any, workspace: tuple[Path, str]) -> tuple[WireServer, str]:
+    """A started server with the driver open and its first diagnostics in."""
     lsp: WireServer = server()
     uri = workspace[1]
     lsp.initialize()
     lsp.open(uri, DRIVER, "cpp")
     lsp.diagnostics(uri, _rn202)
+    return lsp, uri
+
+
+def test_a_request_with_invalid_params_gets_an_error_response(
+    server: Any, workspace: tuple[Path, str]
+) -> None:
+    lsp, uri = _driver_open(server, workspace)
     started = time.monotonic()
     broken = lsp.request("textDocument/hover", {"textDocument": {"uri": uri}})  # no position
     answer = lsp.response(broken, timeout=5)
@@ -339,11 +345,7 @@ def test_a_request_with_invalid_params_gets_an_error_response(
 def test_malformed_messages_and_unknown_documents_are_logged_not_shown(
     server: Any, workspace: tuple[Path, str]
 ) -> None:
-    lsp: WireServer = server()
-    uri = workspace[1]
-    lsp.initialize()
-    lsp.open(uri, DRIVER, "cpp")
-    lsp.diagnostics(uri, _rn202)
+    lsp, uri = _driver_open(server, workspace)
     never_opened = (workspace[0] / "src/robot_base/src/teleop.cpp").as_uri()
     lsp.notify(
         "textDocument/didChange",
@@ -396,11 +398,7 @@ def _big_driver(size: int, head: str = DRIVER) -> str:
 def test_a_50_mb_edit_is_not_checked_and_the_server_stays_responsive(
     server: Any, workspace: tuple[Path, str]
 ) -> None:
-    lsp: WireServer = server()
-    uri = workspace[1]
-    lsp.initialize()
-    lsp.open(uri, DRIVER, "cpp")
-    lsp.diagnostics(uri, _rn202)
+    lsp, uri = _driver_open(server, workspace)
     huge = _big_driver(50 * 1024 * 1024)
     lsp.notify(
         "textDocument/didChange",
@@ -437,11 +435,7 @@ def test_a_50_mb_edit_is_not_checked_and_the_server_stays_responsive(
 
 
 def test_exit_is_honoured_while_a_check_runs(server: Any, workspace: tuple[Path, str]) -> None:
-    lsp: WireServer = server()
-    uri = workspace[1]
-    lsp.initialize()
-    lsp.open(uri, DRIVER, "cpp")
-    lsp.diagnostics(uri, _rn202)
+    lsp, uri = _driver_open(server, workspace)
     # Under the limit, but a check of it takes seconds.
     lsp.notify(
         "textDocument/didChange",
