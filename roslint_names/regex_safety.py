@@ -254,10 +254,8 @@ def _prefix(items: Sequence[_Item]) -> list[_Item]:
 
 def _single_matches(item: _Item, character: str) -> bool:
     op, argument = item
-    if op is constants.LITERAL:
-        return chr(argument) == character
-    if op is constants.NOT_LITERAL:
-        return chr(argument) != character
+    if op is constants.LITERAL or op is constants.NOT_LITERAL:
+        return _member(item, character)  # the same test as inside a set
     if op is constants.IN:
         negated = bool(argument) and argument[0][0] is constants.NEGATE
         hit = any(_member(member, character) for member in argument[negated:])
