@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import contextlib
 import errno
-import hashlib
 import os
 import stat
 import time
@@ -30,7 +29,7 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..reading import open_regular
+from ..reading import content_digest, open_regular
 
 LOCK_WAIT_SECONDS = 10.0  # another run of this tool writing the same files
 TEMPORARY_SUFFIX = ".roslint-names.tmp"
@@ -49,10 +48,6 @@ class Change:
     after: bytes
 
 
-def digest(data: bytes) -> str:
-    return hashlib.blake2b(data, digest_size=16).hexdigest()
-
-
 class Snapshot:
     """The bytes of files as the run first read them.
 
@@ -69,15 +64,15 @@ class Snapshot:
         for display in displays:
             if display not in self._digests:
                 data, _ = read_regular(self.cwd / display)
-                self._digests[display] = None if data is None else digest(data)
+                self._digests[display] = None if data is None else content_digest(data)
 
     def read(self, display: str) -> tuple[bytes | None, str]:
         """The file's bytes and "", or None and why they may not be edited."""
         data, why = read_regular(self.cwd / display)
         if data is None:
             return None, f"cannot read it: {why}"
-        first = self._digests.setdefault(display, digest(data))
-        if first != digest(data):
+        now = content_digest(data)
+        if self._digests.setdefault(display, now) != now:
             return None, "changed since it was read; run again"
         return data, ""
 
