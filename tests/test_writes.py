@@ -198,6 +198,27 @@ def test_a_full_disk_on_the_second_of_three_files_changes_none(
     assert _temporaries(tmp_path) == []
 
 
+def test_ctrl_c_while_the_temporaries_are_written_leaves_none(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    paths = _launch_files(tmp_path, 3)
+    before = [path.read_bytes() for path in paths]
+    real_fsync = os.fsync
+    calls = []
+
+    def interrupted_at_second(descriptor: int) -> None:
+        calls.append(descriptor)
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+        real_fsync(descriptor)
+
+    monkeypatch.setattr(os, "fsync", interrupted_at_second)
+    with pytest.raises(KeyboardInterrupt):
+        replace_all(_changes(tmp_path, paths), cwd=tmp_path, roots=[tmp_path])
+    assert [path.read_bytes() for path in paths] == before
+    assert _temporaries(tmp_path) == []
+
+
 def test_a_file_changed_since_it_was_read_is_left_alone(tmp_path: Path) -> None:
     (path,) = _launch_files(tmp_path, 1)
     snapshot, (display,) = _snapshot_of(tmp_path, path)

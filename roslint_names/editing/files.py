@@ -114,8 +114,10 @@ def replace_all(changes: Sequence[Change], *, cwd: Path, roots: Sequence[Path]) 
         try:
             for target, change in zip(targets, changes, strict=True):
                 temporaries.append(_temporary(target, change))
-        except OSError as error:
+        except BaseException as error:  # Ctrl-C too: no temporary is left beside a source
             _remove(temporaries)
+            if not isinstance(error, OSError):
+                raise
             failed = changes[len(temporaries)].display
             raise WriteError(f"{_failure(failed, error)}: nothing was changed") from error
         _replace_in_turn(targets, temporaries, changes)
