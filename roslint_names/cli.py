@@ -313,11 +313,11 @@ def _run_check(options: argparse.Namespace) -> int:
             print(f"roslint-names: {path}: {why}", file=sys.stderr)
         if options.diff:
             _write(fixed.diff(), options.output)
-            return EXIT_FINDINGS if fixed.changes else EXIT_CLEAN
+            return EXIT_FINDINGS if fixed.writes else EXIT_CLEAN
         fixing.write(fixed, snapshot)
         for change in fixed.writes:
             print(f"roslint-names: wrote {change.display}", file=sys.stderr)
-        files = len(fixed.changes)
+        files = len(fixed.writes)
         print(f"roslint-names: fixed {fixed.fixed} findings in {files} files", file=sys.stderr)
         # What is left, as a run after the fixes reports it.
         return int(_run_check(argparse.Namespace(**{**vars(options), "fix": False})))

@@ -32,10 +32,17 @@ Verify = Callable[[str, bytes], tuple[int, set[tuple[str, int]]]]
 class Fixed:
     """What a fix run changed: each file's old and new text, and what it refused."""
 
-    changes: tuple[tuple[str, str, str], ...]  # (path, before, after)
+    writes: tuple[Change, ...]  # each changed file's bytes, before and after
     fixed: int  # findings fixed
     refused: tuple[tuple[str, str], ...]  # (path, why)
-    writes: tuple[Change, ...] = ()  # the bytes of ``changes``, each file's mark kept
+
+    @property
+    def changes(self) -> tuple[tuple[str, str, str], ...]:
+        """(path, before, after) as text; a byte order mark is no part of it."""
+        return tuple(
+            (write.display, write.before.decode("utf-8-sig"), write.after.decode("utf-8-sig"))
+            for write in self.writes
+        )
 
     def diff(self) -> str:
         return "".join(
@@ -73,7 +80,6 @@ def plan(
         for diagnostic in chosen:
             for path, edit in _edits(diagnostic):
                 by_file[path][(edit.span.line, edit.span.column, edit.span.end_column)] = edit
-        changes: list[tuple[str, str, str]] = []
         writes: list[Change] = []
         failed: dict[str, str] = {}
         for path, edits in sorted(by_file.items()):
@@ -92,11 +98,10 @@ def plan(
             elif any(d.path == path and (d.code, d.span.line) in remaining for d in chosen):
                 failed[path] = "no effect"
             else:
-                changes.append((path, before, after))
                 mark = codecs.BOM_UTF8 if data.startswith(codecs.BOM_UTF8) else b""
                 writes.append(Change(path, data, mark + after.encode("utf-8")))
         if not failed:
-            return Fixed(tuple(changes), len(chosen), tuple(refused), tuple(writes))
+            return Fixed(tuple(writes), len(chosen), tuple(refused))
         for path, why in failed.items():
             # A rename reaching into the file goes first: the file's own fixes may pass.
             touching = [d for d in chosen if path in {p for p, _ in _edits(d)}]
