@@ -43,7 +43,7 @@ from .rule import Rule, RuleContext, WorkspaceFinding
 from .run_inputs import RunInputs
 from .suppress import Suppression, find_suppressions, is_our_code
 from .symbols import PackageConstants, uses_constants
-from .templates import is_template, placeholder_lines
+from .templates import holds_placeholder, is_template
 from .test_code import is_test_code
 from .types import parse_type
 from .workers import Dispatcher
@@ -501,8 +501,9 @@ def check_file(
     if test_rules is None:
         test_rules = test_code_codes(settings, registry)
     if diagnostics and is_template(_relative_to_root(facts.path, settings)):
-        holding = placeholder_lines(text)
-        diagnostics = [d for d in diagnostics if d.span.line not in holding]
+        diagnostics = [
+            d for d in diagnostics if d.source_line is None or not holds_placeholder(d.source_line)
+        ]
     judging = _TestCodeFilter(facts, text, settings, test_rules)
     if suppressions or any(judging.spared(d.code) for d in diagnostics):
         enabled = judging.rules(enabled)

@@ -20,8 +20,6 @@ from __future__ import annotations
 
 import re
 
-from .lines import split_lines
-
 _TEMPLATE_DIRECTORY = re.compile(r"templates?|.+_templates?", re.IGNORECASE)
 _PLACEHOLDER = re.compile(
     r"\[[A-Z][A-Z0-9_]*\]|@[A-Za-z_][A-Za-z0-9_]*@|\{\{[^{}\n]*\}\}|\{%[^%\n]*%\}"
@@ -34,10 +32,6 @@ def is_template(relative_path: str) -> bool:
     return any(_TEMPLATE_DIRECTORY.fullmatch(directory) for directory in directories)
 
 
-def placeholder_lines(text: str) -> frozenset[int]:
-    """The 1-based numbers of the lines that hold a placeholder."""
-    return frozenset(
-        number
-        for number, line in enumerate(split_lines(text), start=1)
-        if _PLACEHOLDER.search(line)
-    )
+def holds_placeholder(line: str) -> bool:
+    """Whether a line of a template holds a placeholder."""
+    return _PLACEHOLDER.search(line) is not None

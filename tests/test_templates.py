@@ -8,7 +8,7 @@ from typing import Any
 
 from conftest import write, write_package
 
-from roslint_names.templates import is_template, placeholder_lines
+from roslint_names.templates import holds_placeholder, is_template
 
 # The MoveIt Setup Assistant's moveit_config_pkg_template/launch/gazebo.launch (MoveIt 1),
 # reduced: a placeholder where an attribute goes, one inside a name, and a node name the
@@ -66,4 +66,5 @@ def test_template_folders_and_placeholders() -> None:
     assert not is_template("robot_bringup/launch/templates.launch")  # a file, not a folder
     assert not is_template("robot_bringup/launch/robot.launch")
     text = 'a="[ROBOT_NAME]"\nb="@PROJECT_NAME@"\nc="{{ robot }}"\nd="[0, 1]"\ne="$(arg x)"\n'
-    assert placeholder_lines(text) == {1, 2, 3}
+    holding = {n for n, line in enumerate(text.splitlines(), start=1) if holds_placeholder(line)}
+    assert holding == {1, 2, 3}
