@@ -50,6 +50,7 @@ from .source import (
 )
 from .types import Types
 from .values import Folder, Value
+from .variables import statement_holding
 
 
 class Sites:
@@ -471,7 +472,8 @@ def _remapped(source: Source, site: Node, values: tuple[Node, ...]) -> set[str]:
             for occurrence in source.occurrences(name):
                 if occurrence.start_byte >= site.start_byte or not contains(scope, occurrence):
                     continue
-                statement = _statement_of(occurrence, scope)
+                # The statement or member initializer: None for a parameter
+                statement = statement_holding(occurrence, scope, _STATEMENT_HOLDERS)
                 if statement is not None:
                     texts.append(source.data[statement.start_byte : statement.end_byte])
                     wanted |= _variables(source, (statement,))
@@ -486,17 +488,6 @@ _STATEMENT_HOLDERS = frozenset({"compound_statement", "translation_unit", "field
 # Where an identifier names a function or a qualified name's part, not a variable
 _NOT_VARIABLES = frozenset({"qualified_identifier", "template_function", "call_expression"})
 _MAX_WALKED = 2000  # nodes of one statement looked at for variables
-
-
-def _statement_of(node: Node, scope: Node) -> Node | None:
-    """The statement (or member initializer) of ``scope`` holding ``node``; None for a
-    parameter or anything else outside its blocks."""
-    child, parent = node, node.parent
-    while parent is not None and parent != scope:
-        if parent.type in _STATEMENT_HOLDERS:
-            return child
-        child, parent = parent, parent.parent
-    return None
 
 
 def _variables(source: Source, nodes: tuple[Node, ...]) -> set[str]:

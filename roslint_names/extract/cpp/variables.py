@@ -108,7 +108,7 @@ def reaching(writes: list[Write], use: Node, function: Node) -> Write | None:
     if not before:
         return None
     last = before[-1]
-    statement = _statement(last.occurrence, function)
+    statement = statement_holding(last.occurrence, function)
     if statement is None or statement.parent is None or not contains(statement.parent, use):
         return None  # inside an `if` or a loop the use may not go through
     for write in writes:
@@ -215,11 +215,14 @@ def _argument_use(source: Source, arguments: Node) -> tuple[str, Node | None]:
     return "unknown", None
 
 
-def _statement(node: Node, function: Node) -> Node | None:
-    """The statement of ``function``'s blocks that holds ``node``."""
+def statement_holding(
+    node: Node, function: Node, holders: frozenset[str] = _STATEMENT_PARENTS
+) -> Node | None:
+    """The statement of ``function``'s blocks (``holders``: the node types whose children
+    are statements) that holds ``node``; None for anything outside them."""
     child, parent = node, node.parent
     while parent is not None and parent != function:
-        if parent.type in _STATEMENT_PARENTS:
+        if parent.type in holders:
             return child
         child, parent = parent, parent.parent
     return None
