@@ -173,48 +173,42 @@ def test_a_fault_between_replaces_puts_back_the_files_already_replaced(
     assert _temporaries(tmp_path) == []
 
 
-def test_a_full_disk_on_the_second_of_three_files_changes_none(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+@pytest.mark.parametrize(
+    ("fault", "expected", "message"),
+    [
+        # A full disk: the error names the file and says nothing changed.
+        (
+            OSError(errno.ENOSPC, "No space left on device"),
+            WriteError,
+            "no space left on device writing src/robot_bringup/launch/ekf_001.launch.xml: "
+            "nothing was changed",
+        ),
+        # Ctrl-C: the temporaries already written are removed too.
+        (KeyboardInterrupt(), KeyboardInterrupt, ""),
+    ],
+)
+def test_a_fault_on_the_second_of_three_temporaries_changes_none(
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    fault: BaseException,
+    expected: type[BaseException],
+    message: str,
 ) -> None:
     paths = _launch_files(tmp_path, 3)
     before = [path.read_bytes() for path in paths]
     real_fsync = os.fsync
     calls = []
 
-    def fsync_full_at_second(descriptor: int) -> None:
+    def fsync_failing_at_second(descriptor: int) -> None:
         calls.append(descriptor)
         if len(calls) == 2:
-            raise OSError(errno.ENOSPC, "No space left on device")
+            raise fault
         real_fsync(descriptor)
 
-    monkeypatch.setattr(os, "fsync", fsync_full_at_second)
-    with pytest.raises(WriteError) as raised:
+    monkeypatch.setattr(os, "fsync", fsync_failing_at_second)
+    with pytest.raises(expected) as raised:
         replace_all(_changes(tmp_path, paths), cwd=tmp_path, roots=[tmp_path])
-    assert str(raised.value) == (
-        "no space left on device writing src/robot_bringup/launch/ekf_001.launch.xml: "
-        "nothing was changed"
-    )
-    assert [path.read_bytes() for path in paths] == before
-    assert _temporaries(tmp_path) == []
-
-
-def test_ctrl_c_while_the_temporaries_are_written_leaves_none(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    paths = _launch_files(tmp_path, 3)
-    before = [path.read_bytes() for path in paths]
-    real_fsync = os.fsync
-    calls = []
-
-    def interrupted_at_second(descriptor: int) -> None:
-        calls.append(descriptor)
-        if len(calls) == 2:
-            raise KeyboardInterrupt
-        real_fsync(descriptor)
-
-    monkeypatch.setattr(os, "fsync", interrupted_at_second)
-    with pytest.raises(KeyboardInterrupt):
-        replace_all(_changes(tmp_path, paths), cwd=tmp_path, roots=[tmp_path])
+    assert str(raised.value) == message
     assert [path.read_bytes() for path in paths] == before
     assert _temporaries(tmp_path) == []
 
