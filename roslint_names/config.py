@@ -455,6 +455,10 @@ class _Reader:
                 checked[option] = self._option(
                     f"rules.{key}.{option}", rule.options[option], setting
                 )
+                if rule.option_error is not None:
+                    reason = rule.option_error(option, checked[option])
+                    if reason is not None:
+                        raise self.error(f"rules.{key}.{option}", reason)
             options[code] = checked
         return options
 

@@ -10,22 +10,35 @@ setting would answer it (``Finding.answer``); this module groups those answers:
 - ``max-depth``: proposed when at least ``MIN_DEEP`` findings would be answered by it,
   with the deepest level they need;
 - RN202's ``extend-allow``: a tree (``/api/**``) proposed when at least ``MIN_TREE``
-  findings name something in it; the tree is the levels all of them share.
+  findings name something in it; the tree is the levels all of them share;
+- RN203's ``ignore-names``: proposed when one package has at least ``MIN_NAMES``
+  distinct CamelCase names of one kind (image_pipeline's depth_image_proc names its ten
+  component nodes ``DebayerNode``-style, gmapping has eight camelCase parameters). A few
+  such names spread over packages among many snake_case ones (ros2/demos' ``Client``,
+  ``TestNode``...) are slips, and stay findings. Names ending in one CamelCase word with
+  at least ``MIN_SHARED - 1`` others are proposed as ``*Word``, the rest as they are.
 """
 
 from __future__ import annotations
 
 import json
-from collections import defaultdict
-from collections.abc import Iterable, Sequence
+import re
+from collections import Counter, defaultdict
+from collections.abc import Collection, Iterable, Sequence
 from dataclasses import dataclass
 
-from .model import Diagnostic
+from .model import Diagnostic, Kind
 
 MIN_DEEP = 5
 MIN_TREE = 3
+MIN_NAMES = 5
+MIN_SHARED = 3
 _DEPTH = "max-depth"
 _ALLOW = "rules.RN202.extend-allow"
+_IGNORE_NAMES = "rules.RN203.ignore-names"
+# The words of a CamelCase name: "PointCloudXyzNode" -> Point Cloud Xyz Node, an
+# acronym one word ("TrajectoryPlannerROS" -> ... ROS).
+_WORD = re.compile(r"[A-Z]+(?![a-z])|[A-Z][a-z0-9]*|[a-z0-9]+")
 
 
 @dataclass(frozen=True)
@@ -40,11 +53,14 @@ class Proposal:
 def propose(diagnostics: Iterable[Diagnostic]) -> list[Proposal]:
     """The settings that would each answer many of the reported findings."""
     answers: dict[str, list[str]] = defaultdict(list)
+    names: list[tuple[str | None, Kind | None, str]] = []  # RN203: package, kind, name
     for diagnostic in diagnostics:
-        reported = not diagnostic.suppressed and not diagnostic.baselined
-        if diagnostic.answer is not None and reported:
-            setting, value = diagnostic.answer
-            answers[setting].append(value)
+        answer = diagnostic.answer
+        if answer is None or diagnostic.suppressed or diagnostic.baselined:
+            continue
+        answers[answer.setting].append(answer.value)
+        if answer.setting == _IGNORE_NAMES:
+            names.append((diagnostic.package, answer.kind, answer.value))
     proposals = []
     depths = [int(value) for value in answers.get(_DEPTH, ())]
     if len(depths) >= MIN_DEEP:
@@ -55,7 +71,44 @@ def propose(diagnostics: Iterable[Diagnostic]) -> list[Proposal]:
         proposals.append(
             Proposal("rules.RN202", "extend-allow", value, "RN202", sum(trees.values()))
         )
+    patterns = _ignore_names(names)
+    if patterns:
+        answered = sum(1 for _, _, name in names if _matches(patterns, name))
+        value = json.dumps(sorted(patterns))
+        proposals.append(Proposal("rules.RN203", "ignore-names", value, "RN203", answered))
     return proposals
+
+
+def _ignore_names(names: Sequence[tuple[str | None, Kind | None, str]]) -> set[str]:
+    """The patterns stating each package's conventions: the names of every kind that a
+    package has at least ``MIN_NAMES`` of, ``*Word`` for a last word ``MIN_SHARED`` of
+    them share."""
+    by_group: dict[tuple[str | None, Kind | None], set[str]] = defaultdict(set)
+    for package, kind, name in names:
+        by_group[package, kind].add(name)
+    conventional = {
+        name for group in by_group.values() if len(group) >= MIN_NAMES for name in group
+    }
+    last_words = {name: _last_word(name) for name in conventional}
+    shared = Counter(word for word in last_words.values() if word is not None)
+    return {
+        f"*{word}" if word is not None and shared[word] >= MIN_SHARED else name
+        for name, word in last_words.items()
+    }
+
+
+def _last_word(name: str) -> str | None:
+    """The last CamelCase word of a name ("Node" of "DebayerNode", "Score" of
+    "minimumScore"), None where it does not end in one ("cmd__vel")."""
+    words = _WORD.findall(name)
+    return words[-1] if words and words[-1][0].isupper() else None
+
+
+def _matches(patterns: Collection[str], name: str) -> bool:
+    """Whether a proposed pattern covers the name, as ``ignore-names`` would."""
+    return name in patterns or any(
+        pattern.startswith("*") and name.endswith(pattern[1:]) for pattern in patterns
+    )
 
 
 def _trees(names: Sequence[str]) -> dict[str, int]:

@@ -29,6 +29,7 @@ from .gather import (
 from .generation import PackageGenerations, service_types, visible_service_types
 from .lines import split_lines
 from .model import (
+    Answer,
     Diagnostic,
     FileFacts,
     Fix,
@@ -345,6 +346,10 @@ class _FileChecks:
             diagnostics, found = self._check_text(
                 facts, decode_for_display(self.read(index)), known
             )
+        if diagnostics:
+            # Asked only of files with findings: proposals group answers by package.
+            package = self.package_of(index)
+            diagnostics = [replace(diagnostic, package=package) for diagnostic in diagnostics]
         self.per_file[index] = diagnostics
         if found:
             self.suppressions_of[index] = found
@@ -658,7 +663,7 @@ class _DiagnosticFactory:
         related: tuple[RelatedLocation, ...] = (),
         fix: Fix | None = None,
         *,
-        answer: tuple[str, str] | None = None,
+        answer: Answer | None = None,
     ) -> Diagnostic:
         if self._lines is None:
             self._lines = split_lines(self._text)

@@ -310,6 +310,20 @@ class Edit:
 
 
 @dataclass(frozen=True)
+class Answer:
+    """The setting that would state a finding's name as the project's convention, and its
+    value: ``max-depth`` 7, ``rules.RN202.extend-allow`` "/api/state". Many findings
+    sharing one answer are one decision (``conventions`` proposes it)."""
+
+    setting: str
+    value: str
+    # The kind of the name, where answers count as one convention only within a kind and
+    # a package (RN203: a package's CamelCase node names are its convention, and its
+    # parameters another); None where they count across the run.
+    kind: Kind | None = None
+
+
+@dataclass(frozen=True)
 class Finding:
     """What a rule reports: no code or severity, the engine attaches those from the rule."""
 
@@ -317,10 +331,7 @@ class Finding:
     message: str
     related: tuple[RelatedLocation, ...] = ()
     fix: Fix | None = None
-    # The setting that would state the finding's name as the project's convention, and
-    # its value: ("max-depth", "7"), ("rules.RN202.extend-allow", "/api/state"). Many
-    # findings sharing one answer are one decision (``conventions`` proposes it).
-    answer: tuple[str, str] | None = None
+    answer: Answer | None = None
 
 
 @dataclass(frozen=True)
@@ -352,7 +363,11 @@ class Diagnostic:
     # A rename not yet offered: ``renames.resolve`` turns it into ``edit`` and ``also``
     # once it has seen every use of the name, or drops it.
     renaming: Fix | None = None
-    answer: tuple[str, str] | None = field(default=None, compare=False)  # Finding.answer
+    answer: Answer | None = field(default=None, compare=False)  # Finding.answer
+    # The display directory of the file's package ("" for the run's root; None outside
+    # any package, and for graph rules' findings, whose answers count across the run):
+    # RN203's answers group by it.
+    package: str | None = field(default=None, compare=False)
 
     def sort_key(self) -> tuple[str, int, int, str, str]:
         return (self.path, self.span.line, self.span.column, self.code, self.message)

@@ -62,6 +62,10 @@ class Rule:
     ros1_severity: Severity | None = None  # when ROS 1 tolerates what ROS 2 rejects
     enabled_by_default: bool = True
     options: Mapping[str, OptionValue] = field(default_factory=dict)  # name -> default
+    # Why a configured option value is refused, or None: checked when the configuration
+    # is read (after its type, which the default's gives), so that a bad value ends the
+    # run naming its key instead of silencing nothing.
+    option_error: Callable[[str, OptionValue], str | None] | None = None
     check_workspace: WorkspaceCheck | None = None  # graph rules: the whole workspace at once
     # Whether the rule judges test code by default (``test_code``): a rule whose findings
     # make a test fail or pass for the wrong reason does (an illegal name, an init order,

@@ -72,6 +72,15 @@ node = '[a-z_]+'
     assert settings.root == tmp_path.resolve()
 
 
+def test_rn203_ignore_names_are_read(tmp_path: Path) -> None:
+    settings = settings_from(
+        tmp_path, '[rules.not-snake-case]\nignore-names = ["*Node", "minimumScore", "~/Base.*"]\n'
+    )
+    assert settings.rule_options == {
+        "RN203": {"ignore-names": ("*Node", "minimumScore", "~/Base.*")}
+    }
+
+
 def test_pyproject_without_our_table_is_passed_over(tmp_path: Path) -> None:
     write(tmp_path, "roslint-names.toml", "max-depth = 7\n")
     write(tmp_path, "pkg/pyproject.toml", "[tool.black]\nline-length = 100\n")
@@ -122,6 +131,13 @@ def test_default_selection_leaves_off_by_default_rules_out(tmp_path: Path) -> No
         # Nested quantifiers: a name they do not match takes minutes to reject.
         ('[naming]\nnode = "(a+)+$"\n', "naming.node.regex: '(a+)+$' repeats a part"),
         ("[naming]\ntopic = { regex = '^/([a-z][a-z0-9_]*)+$' }\n", "naming.topic.regex"),
+        # ignore-names: '*' is its only wildcard; a pattern for every name is RN203 off.
+        ('[rules.RN203]\nignore-names = ["Node?"]\n', "rules.RN203.ignore-names: invalid"),
+        ('[rules.RN203]\nignore-names = ["[A-Z]*Node"]\n', "rules.RN203.ignore-names"),
+        ('[rules.RN203]\nignore-names = [""]\n', "rules.RN203.ignore-names: invalid"),
+        ('[rules.not-snake-case]\nignore-names = ["**"]\n', "not-snake-case.ignore-names"),
+        ('[rules.RN203]\nignore-names = "*Node"\n', "rules.RN203.ignore-names: must be a list"),
+        ('[rules.RN203]\nextend-ignore-names = ["*Node"]\n', "known: ignore-names"),
     ],
 )
 def test_bad_values_name_the_key_and_the_file(tmp_path: Path, text: str, key: str) -> None:

@@ -8,12 +8,19 @@ from typing import Any
 from conftest import write, write_package
 
 from roslint_names.conventions import Proposal, propose, render
-from roslint_names.model import Diagnostic, Severity, Span
+from roslint_names.model import Answer, Diagnostic, Kind, Severity, Span
 
 
 def _diagnostic(code: str, answer: tuple[str, str], **fields: Any) -> Diagnostic:
     return Diagnostic(
-        "src/x.cpp", Span(1, 1, 1, 2), code, "r", Severity.WARNING, "m", answer=answer, **fields
+        "src/x.cpp",
+        Span(1, 1, 1, 2),
+        code,
+        "r",
+        Severity.WARNING,
+        "m",
+        answer=Answer(*answer),
+        **fields,
     )
 
 
@@ -79,3 +86,53 @@ def test_a_project_without_configuration_is_told_its_convention(
     # --statistics always proposes it, with the counts.
     statistics = run_cli(["check", "--no-cache", "--statistics", "."], tmp_path)
     assert "  max-depth = 6" in statistics.stdout
+
+
+def _named(value: str, package: str | None, kind: Kind = Kind.NODE, **fields: Any) -> Diagnostic:
+    answer = Answer("rules.RN203.ignore-names", value, kind)
+    return Diagnostic(
+        f"{package}/src/x.cpp",
+        Span(1, 1, 1, 2),
+        "RN203",
+        "not-snake-case",
+        Severity.WARNING,
+        "m",
+        answer=answer,
+        package=package,
+        **fields,
+    )
+
+
+def test_camel_case_names_are_a_convention_of_one_package_and_one_kind() -> None:
+    image_proc = ["DebayerNode", "RectifyNode", "ResizeNode", "ImagePublisher", "cropFilter"]
+    diagnostics = [_named(name, "image_proc") for name in image_proc]
+    diagnostics.append(_named("DebayerNode", "image_proc"))  # another use: one name
+    diagnostics.append(_named("TrackMarkerNode", "image_view"))  # alone, but covered
+    diagnostics.append(_named("StereoNode", "image_view", suppressed=True))
+    # Four node names and four parameters of one package: neither is a convention yet.
+    diagnostics += [_named(f"Stage{index}Filter", "stereo_image_proc") for index in range(4)]
+    diagnostics += [
+        _named(name, "stereo_image_proc", Kind.PARAMETER)
+        for name in ("minDisparity", "maxDisparity", "uniquenessRatio", "speckleSize")
+    ]
+    assert propose(diagnostics) == [
+        Proposal(
+            "rules.RN203",
+            "ignore-names",
+            '["*Node", "ImagePublisher", "cropFilter"]',
+            "RN203",
+            7,  # both DebayerNode findings, and image_view's TrackMarkerNode
+        )
+    ]
+
+
+def test_a_package_of_camel_case_parameters_lists_them_by_their_last_word() -> None:
+    names = ["maxUrange", "maxRange", "linearUpdate", "angularUpdate", "temporalUpdate"]
+    names += ["TrajectoryPlannerROS", "cmd__vel"]
+    diagnostics = [_named(name, "", Kind.PARAMETER) for name in names]  # the run's root
+    [proposal] = propose(diagnostics)
+    # Two names ending in "Range" are not enough for "*Range"; "cmd__vel" ends in no word.
+    assert proposal.value == (
+        '["*Update", "TrajectoryPlannerROS", "cmd__vel", "maxRange", "maxUrange"]'
+    )
+    assert proposal.findings == 7

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from ..model import Finding, RelatedLocation
+from ..model import Answer, Finding, RelatedLocation
 from ..rule import WorkspaceFinding
 from ..workspace.graph import Graph, Location, NodeInstance
 
@@ -32,7 +32,7 @@ def finding(
     location: Location,
     message: str,
     others: Iterable[tuple[Location, str]],
-    answer: tuple[str, str] | None = None,
+    answer: Answer | None = None,
 ) -> WorkspaceFinding:
     """A finding at ``location`` pointing at every other place involved."""
     related = tuple(

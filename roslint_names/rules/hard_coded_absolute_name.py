@@ -15,7 +15,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Iterator
 
-from ..model import ENDPOINT_ROLES, FileFacts, Finding, Fix, Kind, Severity
+from ..model import ENDPOINT_ROLES, Answer, FileFacts, Finding, Fix, Kind, Severity
 from ..names import is_valid
 from ..rule import Rule, RuleContext
 from .common import in_code, label, static_uses
@@ -60,7 +60,7 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             # Unsafe: under a namespace the name then resolves elsewhere, which is the
             # point, but whoever used the absolute name must follow.
             fix=Fix(use.value, relative, safe=False),
-            answer=(_SETTING, use.value),
+            answer=Answer(_SETTING, use.value),
         )
 
 
@@ -109,7 +109,7 @@ def _joined_at_run_time(facts: FileFacts, allowed: _Allowed) -> Iterator[Finding
             f"{label(use)} built from the absolute '{prefix}' and passed to {use.api} "
             "escapes the node's namespace, so <group ns> and __ns:= cannot separate robots; "
             "drop the leading '/'",
-            answer=(_SETTING, prefix.rstrip("/") + "/**"),
+            answer=Answer(_SETTING, prefix.rstrip("/") + "/**"),
         )
 
 

@@ -17,7 +17,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from enum import Enum
 
-from ..model import FileFacts, Finding, Generation, Kind, Role, Severity, Span
+from ..model import Answer, FileFacts, Finding, Generation, Kind, Role, Severity, Span
 from ..names import depth, is_valid
 from ..rule import Rule, RuleContext, WorkspaceFinding
 from ..workspace.graph import (
@@ -55,9 +55,9 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             yield Finding(use.span, message, answer=_depth(levels))
 
 
-def _depth(levels: int) -> tuple[str, str]:
+def _depth(levels: int) -> Answer:
     """The setting that would allow ``levels``: what ``conventions`` proposes."""
-    return ("max-depth", str(levels))
+    return Answer("max-depth", str(levels))
 
 
 def _too_deep(what: str, value: str, levels: int, limit: int) -> str:

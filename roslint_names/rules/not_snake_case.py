@@ -2,23 +2,39 @@
 
 Frame ids are left out: URDF link names follow the robot's own conventions (``FL_hip``),
 and tf2 does not care.
+
+A project whose names are CamelCase by design states it once: ``ignore-names`` (ruff's
+pep8-naming option of that name, for ROS names) lists glob patterns, ``*`` for any
+characters. image_pipeline names its component nodes ``DebayerNode``,
+``PointCloudXyzNode``...: ``ignore-names = ["*Node"]``. Each finding answers with the
+name that would silence it, and ``conventions`` proposes the list where a package has
+many.
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterator
+from functools import lru_cache
 
-from ..model import FileFacts, Finding, Fix, Generation, Kind, NameUse, Severity
+from ..model import Answer, FileFacts, Finding, Fix, Generation, Kind, NameUse, Severity
 from ..names import check_name, is_snake_case, rename_tokens, snake_case, tokens
-from ..rule import Rule, RuleContext
+from ..rule import OptionValue, Rule, RuleContext
 from .common import chosen_here, label, spelled_as_type, static_uses
 
 # Last tokens that ROS packages spell themselves, so no author can choose another spelling:
 # image_transport names a subtopic after its transport plugin (`image_raw/compressedDepth`).
 TRANSPORT_SUFFIXES = frozenset({"compressedDepth"})
 
+IGNORE_NAMES = "ignore-names"
+SETTING = f"rules.RN203.{IGNORE_NAMES}"  # what a finding's answer names
+# A pattern holds a name's characters (a '{substitution}' too) and '*'. Other glob syntax
+# ('?', '[...]') is refused, not taken literally: it would silently match nothing.
+_PATTERN = re.compile(r"[A-Za-z0-9_/~.{}*]+")
+
 
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
+    ignored = _ignored(_patterns(context.options.get(IGNORE_NAMES, ())))
     for use in static_uses(facts):
         if use.kind is Kind.FRAME or not chosen_here(use, facts):
             continue
@@ -29,7 +45,7 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
         if name_tokens and (name_tokens[-1] in TRANSPORT_SUFFIXES or spelled_as_type(use)):
             name_tokens = name_tokens[:-1]  # image_transport's spelling; RN204's finding
         bad = [token for token in name_tokens if not is_snake_case(token)]
-        if not bad:
+        if not bad or (ignored is not None and _covered(ignored, use.value, bad)):
             continue
         quoted = ", ".join(f"'{token}'" for token in bad)
         renamed = tuple((token, snake_case(token)) for token in dict.fromkeys(bad))
@@ -42,7 +58,55 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             fix=Fix(use.value, fixed, safe=False, tokens=renamed)
             if all(new for _, new in renamed)
             else None,
+            answer=_answer(use, bad),
         )
+
+
+def _answer(use: NameUse, bad: list[str]) -> Answer:
+    """The ``ignore-names`` entry that would silence the finding: its one CamelCase token
+    (``DebayerNode``, gmapping's ``minimumScore``), else the whole name."""
+    distinct = list(dict.fromkeys(bad))
+    return Answer(SETTING, distinct[0] if len(distinct) == 1 else use.value, use.kind)
+
+
+def _covered(ignored: re.Pattern[str], value: str, bad: list[str]) -> bool:
+    """Whether ``ignore-names`` covers the name: the whole of it, or each of its tokens
+    that is not snake_case."""
+    return bool(ignored.fullmatch(value)) or all(ignored.fullmatch(token) for token in bad)
+
+
+@lru_cache(maxsize=8)  # one configuration per run: compiled once, not once per file
+def _ignored(patterns: tuple[str, ...]) -> re.Pattern[str] | None:
+    if not patterns:
+        return None
+    return re.compile("|".join(_regex(pattern) for pattern in patterns))
+
+
+def _regex(pattern: str) -> str:
+    return "(?:" + ".*".join(re.escape(part) for part in pattern.split("*")) + ")"
+
+
+def _patterns(option: OptionValue) -> tuple[str, ...]:
+    return tuple(option) if isinstance(option, tuple | list) else ()
+
+
+def pattern_error(pattern: str) -> str | None:
+    """Why an ``ignore-names`` pattern is refused, or None."""
+    if not _PATTERN.fullmatch(pattern):
+        return f"invalid pattern {pattern!r}: a name's characters, with '*' for any characters"
+    if not pattern.strip("*"):
+        return f"pattern {pattern!r} matches every name; to turn RN203 off, ignore it"
+    return None
+
+
+def option_error(option: str, value: OptionValue) -> str | None:
+    if option != IGNORE_NAMES:
+        return None
+    for pattern in _patterns(value):
+        reason = pattern_error(pattern)
+        if reason is not None:
+            return reason
+    return None
 
 
 def _own_part(use: NameUse, facts: FileFacts) -> str:
@@ -64,5 +128,7 @@ RULE = Rule(
     summary="A name token that is not lower snake_case",
     severity=Severity.WARNING,
     check=check,
+    options={IGNORE_NAMES: ()},
+    option_error=option_error,
     judges_test_code=False,
 )
