@@ -472,12 +472,16 @@ def _workspace_context(
     for_graph: bool = False,
 ) -> list[SourceFile]:
     """For a run over files (what pre-commit does): the rest of their workspaces, which
-    the graph rules need to see. Nothing is reported in them, but what their walk passes
-    over joins ``warnings``: the graph does not see it. A run over directories is taken
-    to name its workspace."""
+    the graph rules need to see, and whose launch files say which absolute names are
+    wired (RN202). Nothing is reported in them, but what their walk passes over joins
+    ``warnings``: the graph does not see it. A run over directories is taken to name its
+    workspace."""
     enabled = enabled_codes(settings, registry)
-    graph_rules = any(rule.check_workspace and rule.code in enabled for rule in registry.rules)
-    if not (graph_rules or for_graph):
+    workspace_rules = any(
+        (rule.check_workspace or rule.reads_wiring) and rule.code in enabled
+        for rule in registry.rules
+    )
+    if not (workspace_rules or for_graph):
         return []
     files = [(cwd / path).absolute() for path in paths if (cwd / path).is_file()]
     roots = sorted({root for path in files if (root := workspace_root(path)) is not None})

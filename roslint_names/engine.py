@@ -47,6 +47,7 @@ from .symbols import PackageConstants, uses_constants
 from .templates import holds_placeholder, is_template
 from .test_code import is_test_code
 from .types import parse_type
+from .wiring import WIRING_SOURCES, awaits_wiring, wired_by
 from .workers import Dispatcher
 from .workspace.build import build
 from .workspace.graph import Graph
@@ -112,7 +113,8 @@ def lint(
     Arrival order never shows in the output.
 
     ``context`` files (the rest of the workspace of a per-file run) are gathered for the
-    graph rules only: nothing is reported in them. ``want_graph`` returns the graph;
+    graph rules, and their launch files for the absolute names they wire (``wiring``,
+    which RN202 reads): nothing is reported in them. ``want_graph`` returns the graph;
     ``want_facts`` every file's facts (``renames`` searches them), without the graph when
     no graph rule needs it.
     """
@@ -121,10 +123,15 @@ def lint(
     packages = PackageGenerations()
     fallback = settings.ros or DEFAULT_GENERATION
     cache = run.cache
+    wiring = any(rule.reads_wiring and rule.code in enabled for rule in registry.rules)
     keep_facts = bool(graph_rules) or want_graph or want_facts
     files = lintable(sources)
     reported = len(files)
-    if keep_facts:
+    if not keep_facts and wiring:
+        # Only what may wire names: parsing every C++ file of the workspace would be the
+        # whole cost of a one-file run, for nothing.
+        context = [source for source in context if source.language in WIRING_SOURCES]
+    if keep_facts or wiring:
         given = {source.path for source in files}
         files += [source for source in lintable(context) if source.path not in given]
     else:
@@ -162,6 +169,7 @@ def lint(
         enabled=enabled,
         service_types=set(service_types(workspace, packages)),
         keep_facts=keep_facts,
+        wiring=wiring,
         progress=run.progress,
         package_of=lambda index: package_display(files[index], packages),
         visible_of=lambda index: packages.visible_packages(files[index].path),
@@ -243,10 +251,11 @@ class _FileChecks:
     so arrival order never shows), each file's suppressions, and every file's facts.
 
     RN204 compares a service's name with every service type of the run (of the file's own
-    generation), and a C++ name held in another file's constant gets its value from the
-    headers of the run (``symbols``), both known only once every file is in: files that
-    serve or call a typed service, or use such a constant, wait for ``finish``; the
-    others, nearly all, are checked as they arrive.
+    generation), RN202 an absolute name with those the launch files of the run wire
+    (``wiring``), and a C++ name held in another file's constant gets its value from the
+    headers of the run (``symbols``), all known only once every file is in: files that
+    serve or call a typed service, hand an endpoint an absolute name, or use such a
+    constant, wait for ``finish``; the others, nearly all, are checked as they arrive.
     """
 
     files: int
@@ -256,6 +265,7 @@ class _FileChecks:
     enabled: frozenset[str]
     service_types: set[tuple[Generation | None, str]]
     keep_facts: bool
+    wiring: bool  # a rule reads the names the launch files wire
     progress: Progress | None
     package_of: Callable[[int], str | None]  # the display directory of a file's package
     visible_of: Callable[[int], frozenset[str] | None]  # its package and dependencies (RN204)
@@ -266,6 +276,7 @@ class _FileChecks:
     _waiting: list[tuple[int, FileFacts, bytes | None]] = field(default_factory=list)
     _unresolved: list[int] = field(default_factory=list)  # files only the graph reads
     _constants: PackageConstants = field(default_factory=PackageConstants)
+    _wired: set[str] = field(default_factory=set)  # absolute names launch files remap to
     _rejected: dict[str, set[str]] = field(default_factory=dict)  # package: fixture names
     _done: int = 0
 
@@ -283,19 +294,26 @@ class _FileChecks:
         types = typed_services(facts)
         self.service_types.update((facts.generation, spelling) for spelling in types)
         self._constants.add(facts)
+        if self.wiring:
+            self._wired.update(
+                launch_wiring(facts, partial(self._bytes, index, data), self.settings)
+            )
         if facts.rejected_fixtures and (package := self.package_of(index)) is not None:
             self._rejected.setdefault(package, set()).update(facts.rejected_fixtures)
         symbols = uses_constants(facts)
         if index < self.reported:
-            if types or symbols:
+            if types or symbols or (self.wiring and awaits_wiring(facts)):
                 self._waiting.append((index, facts, data))
             else:
-                self._check(index, facts, data, frozenset())
+                self._check(index, facts, data, self._contexts)
         elif symbols and self.keep_facts:
             self._unresolved.append(index)
         self._done += 1
         if self.progress is not None:
             self.progress(self._done, self.files)
+
+    def _bytes(self, index: int, data: bytes | None) -> bytes:
+        return self.read(index) if data is None else data
 
     def spare_rejected_fixtures(self, displays: Sequence[str]) -> None:
         """No finding in a file that its package's tests load expecting it to be refused
@@ -310,24 +328,26 @@ class _FileChecks:
                 self.per_file[index] = []
 
     def finish(self) -> None:
-        """Check the files that waited for the run's service types and constants."""
+        """Check the files that waited for the run's service types, wiring and constants."""
         for index in self._unresolved:
             facts = self._all_facts[index]
             if facts is not None:
                 self._all_facts[index] = self._constants.resolve(facts, self.package_of(index))
+        wired = frozenset(self._wired)
+        contexts = rule_contexts(self.registry, self.settings, wired_names=wired)
         for index, extracted, data in self._waiting:
             facts = self._constants.resolve(extracted, self.package_of(index))
             if self.keep_facts:
                 self._all_facts[index] = facts
-            typed = bool(typed_services(facts))
-            known = (
-                visible_service_types(
+            if typed_services(facts):
+                known = visible_service_types(
                     service_types_of(self.service_types, facts.generation), self.visible_of(index)
                 )
-                if typed
-                else frozenset()
-            )
-            self._check(index, facts, data, known)
+                self._check(
+                    index, facts, data, rule_contexts(self.registry, self.settings, known, wired)
+                )
+            else:
+                self._check(index, facts, data, contexts)
         self._waiting.clear()
         self._unresolved.clear()
 
@@ -336,15 +356,19 @@ class _FileChecks:
         return [facts for facts in self._all_facts if facts is not None]
 
     def _check(
-        self, index: int, facts: FileFacts, data: bytes | None, known: frozenset[str]
+        self,
+        index: int,
+        facts: FileFacts,
+        data: bytes | None,
+        contexts: Mapping[str, RuleContext],
     ) -> None:
         """``data`` None: the file was not read, as it holds no suppression; its text is
         needed only for findings (their lines, fixes, whether it is test code)."""
         text = "" if data is None else decode_for_display(data)
-        diagnostics, found = self._check_text(facts, text, known)
+        diagnostics, found = self._check_text(facts, text, contexts)
         if data is None and diagnostics:
             diagnostics, found = self._check_text(
-                facts, decode_for_display(self.read(index)), known
+                facts, decode_for_display(self.read(index)), contexts
             )
         if diagnostics:
             # Asked only of files with findings: proposals group answers by package.
@@ -355,7 +379,7 @@ class _FileChecks:
             self.suppressions_of[index] = found
 
     def _check_text(
-        self, facts: FileFacts, text: str, known: frozenset[str]
+        self, facts: FileFacts, text: str, contexts: Mapping[str, RuleContext]
     ) -> tuple[list[Diagnostic], list[Suppression]]:
         return check_file(
             facts,
@@ -363,10 +387,28 @@ class _FileChecks:
             self.settings,
             self.registry,
             self.enabled,
-            known_service_types=known,
             test_rules=self._test_rules,
-            contexts=self._contexts if not known else None,
+            contexts=contexts,
         )
+
+
+def launch_wiring(
+    facts: FileFacts, data: Callable[[], bytes | str], settings: Settings
+) -> frozenset[str]:
+    """The absolute names a launch file wires (``wiring``), unless it is test code: a
+    test's launch file wires the harness it needs (ros_comm's ``transform.test`` remaps to
+    ``/num2``), not the system's interfaces. ``data``: the file's content, read only for
+    a file that wires some."""
+    wired = wired_by(facts)
+    if not wired:
+        return wired
+    relative = _relative_to_root(facts.path, settings)
+    if os.path.isabs(relative) and not os.path.isabs(facts.path):
+        # A per-file run's context lies outside the root (the named files' directory):
+        # its directories are those below the working directory, as displayed, not those
+        # above the workspace (``~/test_ws/src/...`` is no test).
+        relative = facts.path
+    return frozenset() if is_test_code(relative, facts.language, data(), settings) else wired
 
 
 def _stored_result(value: object, files: int) -> LintResult | None:
@@ -480,6 +522,7 @@ def check_file(
     enabled: frozenset[str],
     *,
     known_service_types: frozenset[str] = frozenset(),
+    wired_names: frozenset[str] = frozenset(),
     test_rules: frozenset[str] | None = None,
     contexts: Mapping[str, RuleContext] | None = None,
 ) -> tuple[list[Diagnostic], list[Suppression]]:
@@ -487,11 +530,12 @@ def check_file(
     file's suppressions, for the graph rules' findings still to come.
 
     ``test_rules``: the rules that judge test code (``test_code_codes``), when the caller
-    has them already; ``contexts``: each rule's context (``rule_contexts``) for these
-    settings and service types, when the caller checks many files with the same."""
+    has them already; ``wired_names``: the absolute names the workspace's launch files wire;
+    ``contexts``: each rule's context (``rule_contexts``) for these settings, service types
+    and wiring, when the caller checks many files with the same."""
     active = enabled - _per_file_ignored(facts.path, settings, registry)
     if contexts is None:
-        contexts = rule_contexts(registry, settings, known_service_types)
+        contexts = rule_contexts(registry, settings, known_service_types, wired_names)
     to_diagnostic = _DiagnosticFactory(facts, settings, text)
     diagnostics = [
         to_diagnostic(
@@ -583,24 +627,36 @@ def recheck(
 
 
 def rule_contexts(
-    registry: Registry, settings: Settings, known_service_types: frozenset[str] = frozenset()
+    registry: Registry,
+    settings: Settings,
+    known_service_types: frozenset[str] = frozenset(),
+    wired_names: frozenset[str] = frozenset(),
 ) -> dict[str, RuleContext]:
     """Each per-file rule's context: the same for every file of a run that has the same
-    service types to compare with (nearly all: none)."""
+    service types to compare with (nearly all: none). The wiring goes to the rules that
+    read it only."""
     return {
-        rule.code: _context(rule, settings, known_service_types)
+        rule.code: _context(
+            rule, settings, known_service_types, wired_names if rule.reads_wiring else frozenset()
+        )
         for rule in registry.rules
         if rule.check is not None
     }
 
 
-def _context(rule: Rule, settings: Settings, known_service_types: frozenset[str]) -> RuleContext:
+def _context(
+    rule: Rule,
+    settings: Settings,
+    known_service_types: frozenset[str],
+    wired_names: frozenset[str] = frozenset(),
+) -> RuleContext:
     options = {**rule.options, **settings.rule_options.get(rule.code, {})}
     return RuleContext(
         max_depth=settings.max_depth,
         options=options,
         policies=settings.policies,
         known_service_types=known_service_types,
+        wired_names=wired_names,
     )
 
 

@@ -2,7 +2,8 @@
 
 A rule is a module in ``roslint_names/rules/`` (or a plugin) that exposes one ``Rule`` value
 through the ``roslint_names.rules`` entry-point group. Its ``check`` is pure: facts of one
-file and the settings that concern it in, findings out. A graph rule's ``check_workspace``
+file, the settings that concern it and what the engine gathered of the rest of the run
+(``RuleContext``) in, findings out. A graph rule's ``check_workspace``
 is pure too: the workspace's resolved graph in, findings in any of its files out.
 """
 
@@ -36,6 +37,9 @@ class RuleContext:
     # Service types of the run beyond the file's own: every .srv file found and every type
     # another file serves or calls, as "package/Name" (RN204).
     known_service_types: frozenset[str] = frozenset()
+    # The absolute names the workspace's launch files remap nodes to (``wiring``), given
+    # to a rule that asks for them (``Rule.reads_wiring``); empty for the others.
+    wired_names: frozenset[str] = frozenset()
 
 
 Check = Callable[[FileFacts, RuleContext], Iterable[Finding]]
@@ -72,6 +76,10 @@ class Rule:
     # a type mismatch); a style rule does not (a CamelCase fixture, an absolute name in an
     # integration test harm no one). ``[test-code]`` in the config changes the selection.
     judges_test_code: bool = True
+    # Whether ``check`` reads ``RuleContext.wired_names``: a run over some files then
+    # gathers the launch files of the rest of their workspace, so that its answer is the
+    # whole workspace's.
+    reads_wiring: bool = False
 
     def severity_for(self, generation: Generation) -> Severity:
         if generation is Generation.ROS1 and self.ros1_severity is not None:

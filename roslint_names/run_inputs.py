@@ -1,7 +1,9 @@
 """What a run's result depends on, as one key; and each file's facts key on the way.
 
 A run's result is a function of: every linted file's bytes (through its facts key, which
-also holds its path, language and generations), where each file is (per-file ignores are
+also holds its path, language and generations), those of a per-file run's context (the
+graph rules read them, and RN202 the names their launch files wire: an edited launch file
+is a fresh run, while the code's facts stay cached), where each file is (per-file ignores are
 relative paths), which files are reported, the files read without being linted (a
 ``.srv`` file's name is a service type, its text a ROS 1 service's definition; every
 package.xml read), the settings, and the code of the tool and of every rule.

@@ -19,6 +19,7 @@ thread-safe: one thread at a time calls it (the language server's session worker
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
@@ -30,6 +31,7 @@ from .discover import SourceFile, classify, discover, display_path
 from .engine import (
     RunOptions,
     check_file,
+    launch_wiring,
     lint,
     lintable,
     package_display,
@@ -96,6 +98,8 @@ class Session:
         self._sources: dict[str, SourceFile] = {}
         self._facts: dict[str, FileFacts] = {}
         self._service_types: set[tuple[Generation | None, str]] = set()
+        # The absolute names each launch file wires (RN202), for the files that wire some.
+        self._wired_of: dict[str, frozenset[str]] = {}
         self._open: dict[str, _Checked] = {}
         self._graph_found: dict[str, list[Diagnostic]] = {}
         # Kept from one graph build to the next: the packages, and the launch files'
@@ -132,6 +136,7 @@ class Session:
         )
         for facts in self._facts.values():
             self._service_types.update((facts.generation, t) for t in typed_services(facts))
+            self._note_wiring(facts, partial(self._disk_bytes, facts.path))
 
     def display(self, path: Path) -> str:
         return display_path(path, self.root)
@@ -160,6 +165,7 @@ class Session:
         if self._specialiser is not None:
             self._specialiser.forget(display)
         self._service_types.update((facts.generation, t) for t in typed_services(facts))
+        self._note_wiring(facts, lambda: text)
         known = visible_service_types(
             service_types_of(self._service_types, facts.generation),
             self._packages.visible_packages(path),
@@ -171,6 +177,7 @@ class Session:
             self._registry,
             self._enabled,
             known_service_types=known,
+            wired_names=frozenset().union(*self._wired_of.values()),
             test_rules=self._test_rules,
         )
         self._open[display] = _Checked(source, text, found, suppressions)
@@ -193,6 +200,7 @@ class Session:
         self._graph_found.pop(display, None)
         if display in self._facts:
             self._facts[display] = FileFacts(display, self._facts[display].language, self._fallback)
+        self._wired_of.pop(display, None)
         if self._specialiser is not None:
             self._specialiser.forget(display)
 
@@ -205,6 +213,7 @@ class Session:
         data, _, skip = read_file(path, self._settings.max_file_size)
         if source is None or data is None or skip is not None:
             self._facts.pop(display, None)
+            self._wired_of.pop(display, None)
             return
         self.check(path, data.decode("utf-8", errors="replace"))
         self._open.pop(display, None)
@@ -248,6 +257,20 @@ class Session:
         if not self._graph_codes or not job.opened or specialise is None:
             return None
         return build(job.facts, self._workspace_packages, specialise, specialise.prepare)
+
+    def _note_wiring(self, facts: FileFacts, data: Callable[[], bytes | str]) -> None:
+        """Keep what a launch file wires, as its facts are now (an edit may drop it).
+        A code document's findings change with it at its next check."""
+        wired = launch_wiring(facts, data, self._settings)
+        if wired:
+            self._wired_of[facts.path] = wired
+        else:
+            self._wired_of.pop(facts.path, None)
+
+    def _disk_bytes(self, display: str) -> bytes:
+        source = self._sources.get(display)
+        data = None if source is None else read_file(source.path, self._settings.max_file_size)[0]
+        return data or b""
 
     def _with_graph(self, display: str) -> list[Diagnostic]:
         checked = self._open[display]

@@ -8,6 +8,10 @@ is assembled, not a default baked into a reusable node.
 A name joined at run time from an absolute literal (``"/planning/planning_factors/" +
 name``) is as certainly absolute (``NameUse.absolute_prefix``): it is reported by that
 literal, without a fix, since the rest of the name is not known.
+
+A name the workspace's launch files remap a node to (``RuleContext.wired_names``) is one of
+the system's global interfaces, chosen where the system is assembled: code that writes it
+follows that choice, and is left alone. For a prefix, a wired name it starts will do.
 """
 
 from __future__ import annotations
@@ -41,7 +45,7 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             *_names(context.options.get("extend-allow", ())),
         )
     )
-    yield from _joined_at_run_time(facts, allowed)
+    yield from _joined_at_run_time(facts, allowed, context.wired_names)
     for use in static_uses(facts):
         if (
             not in_code(use, facts)
@@ -49,6 +53,7 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             or use.kind not in _ENDPOINT_KINDS
             or not use.value.startswith("/")
             or allowed.covers(use.value)
+            or use.value in context.wired_names
             or not is_valid(use.value, use.kind, facts.generation)
         ):
             continue
@@ -91,7 +96,9 @@ def _regex(pattern: str) -> str:
     )
 
 
-def _joined_at_run_time(facts: FileFacts, allowed: _Allowed) -> Iterator[Finding]:
+def _joined_at_run_time(
+    facts: FileFacts, allowed: _Allowed, wired: frozenset[str]
+) -> Iterator[Finding]:
     """Names built at run time whose absolute start is a literal: certain to escape."""
     for use in facts.names:
         prefix = use.absolute_prefix
@@ -102,6 +109,7 @@ def _joined_at_run_time(facts: FileFacts, allowed: _Allowed) -> Iterator[Finding
             or use.role not in ENDPOINT_ROLES
             or use.kind not in _ENDPOINT_KINDS
             or allowed.covers(prefix + "x")  # a name it starts: "/api/**" covers "/api/"
+            or _starts_wired(prefix, wired)
         ):
             continue
         yield Finding(
@@ -111,6 +119,13 @@ def _joined_at_run_time(facts: FileFacts, allowed: _Allowed) -> Iterator[Finding
             "drop the leading '/'",
             answer=Answer(_SETTING, prefix.rstrip("/") + "/**"),
         )
+
+
+def _starts_wired(prefix: str, wired: frozenset[str]) -> bool:
+    """Whether ``prefix`` starts a wired name and fixes a whole level of it: ``"/"`` or
+    ``"/plan"`` (gazebo_ros_harness' ``"/" + _parent->GetName()``) say nothing of which
+    interface the name is."""
+    return "/" in prefix[1:] and any(name.startswith(prefix) for name in wired)
 
 
 def _names(option: object) -> tuple[str, ...]:
@@ -125,4 +140,5 @@ RULE = Rule(
     check=check,
     options={"allow": GLOBAL_BY_DESIGN, "extend-allow": ()},
     judges_test_code=False,
+    reads_wiring=True,
 )
