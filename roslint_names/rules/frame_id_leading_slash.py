@@ -37,9 +37,18 @@ _STATIC_BROADCASTERS = frozenset(
         ("tf", "static_transform_publisher"),
     }
 )
-# ROS 1 Python tf's TransformBroadcaster.sendTransform(translation, rotation, time, child,
-# parent): only sends, and tf2's setTransform strips the slash on the receiving side.
-_BROADCAST_APIS = frozenset({"tf sendTransform"})
+# Frames only sent, by the API the extractors name them with: ROS 1 Python tf's
+# TransformBroadcaster.sendTransform(translation, rotation, time, child, parent), and the
+# two frames a launch file gives static_transform_publisher as arguments
+# (extract/launch/static_transform.py's FRAME_API and CHILD_FRAME_API). tf2's
+# setTransform strips the slash on the receiving side.
+_BROADCAST_APIS = frozenset(
+    {
+        "tf sendTransform",
+        "static_transform_publisher frame_id",
+        "static_transform_publisher child_frame_id",
+    }
+)
 # Lookups, by the API the extractors name (C++ call names, Python "tf <method>").
 _LOOKUP_WORDS = ("lookup", "canTransform", "can_transform", "waitForTransform", "transform")
 
@@ -71,7 +80,8 @@ def _what_fails(use: NameUse) -> str:
 
 def _broadcast_only(facts: FileFacts) -> frozenset[Span]:
     """The spans of frames only broadcast: those a launch file gives a static transform
-    broadcaster, and ROS 1 Python tf's ``sendTransform`` frames."""
+    broadcaster (as parameters or arguments), and ROS 1 Python tf's ``sendTransform``
+    frames."""
     found = {use.span for use in facts.names if use.api in _BROADCAST_APIS}
     if not facts.launch_nodes:
         return frozenset(found)
