@@ -71,6 +71,13 @@ ENDPOINT_ROLES = frozenset(
 )
 
 
+class TfRole(str, Enum):
+    """What a file of code does with tf, by the classes and calls it names."""
+
+    BROADCAST = "broadcast"  # a TransformBroadcaster or StaticTransformBroadcaster
+    LISTEN = "listen"  # a tf buffer or listener, a message filter, a lookup or transform
+
+
 class Severity(str, Enum):
     ERROR = "error"
     WARNING = "warning"
@@ -276,6 +283,9 @@ class FileFacts:
     # Python test code: the base names of launch, URDF and YAML files it loads expecting
     # them to be refused (``extract.python.fixtures``); their findings are the test's point.
     rejected_fixtures: tuple[str, ...] = ()
+    # C++ with ROS code: what the file does with tf (``extract.cpp.tf_roles``), in
+    # ``TfRole`` order; RN205 leaves the frames of a file that only broadcasts alone.
+    tf_roles: tuple[TfRole, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -316,3 +316,100 @@ def test_rn101_an_empty_frame_handed_to_tf2_is_still_reported(run_cli: Any, tmp_
     result = run_cli(["check", "--format", "json", "--select", "RN101", "src"], tmp_path)
     assert [(f["line"], f["code"]) for f in result.findings()] == [(11, "RN101")]
     assert "must not be empty" in result.findings()[0]["message"]
+
+
+# ros2/geometry2's tf2_ros/src/static_transform_broadcaster_node.cpp, reduced: the frame
+# parameters' defaults are only ever sent through a StaticTransformBroadcaster.
+STATIC_BROADCASTER_NODE = """#include <memory>
+#include <string>
+
+#include "tf2_ros/static_transform_broadcaster_node.hpp"
+#include "rclcpp/rclcpp.hpp"
+
+namespace tf2_ros
+{
+StaticTransformBroadcasterNode::StaticTransformBroadcasterNode(const rclcpp::NodeOptions & options)
+: rclcpp::Node("static_transform_publisher", options)
+{
+  geometry_msgs::msg::TransformStamped tf_msg;
+  tf_msg.header.stamp = this->now();
+  tf_msg.transform.translation.x = this->declare_parameter("translation.x", 0.0);
+  tf_msg.transform.rotation.w = this->declare_parameter("rotation.w", 1.0);
+  tf_msg.header.frame_id =
+    this->declare_parameter("frame_id", std::string("/frame"));
+  tf_msg.child_frame_id =
+    this->declare_parameter("child_frame_id", std::string("/child"));
+  broadcaster_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>(this);
+  broadcaster_->sendTransform(tf_msg);
+}
+}  // namespace tf2_ros
+"""
+
+# An odometry node: the same broadcast, and an odometry message stamped with the frame.
+ODOMETRY_NODE = """#include <memory>
+#include <string>
+
+#include "nav_msgs/msg/odometry.hpp"
+#include "rclcpp/rclcpp.hpp"
+#include "tf2_ros/transform_broadcaster.h"
+
+class Odometry : public rclcpp::Node
+{
+public:
+  Odometry()
+  : Node("odometry")
+  {
+    frame_id_ = declare_parameter("odom_frame", std::string("/odom"));
+    publisher_ = create_publisher<nav_msgs::msg::Odometry>("odom", 10);
+    broadcaster_ = std::make_unique<tf2_ros::TransformBroadcaster>(*this);
+  }
+
+private:
+  std::string frame_id_;
+  rclcpp::Publisher<nav_msgs::msg::Odometry>::SharedPtr publisher_;
+  std::unique_ptr<tf2_ros::TransformBroadcaster> broadcaster_;
+};
+"""
+
+# A follower: broadcasts its carrot, and looks the leader up in a tf2 buffer.
+FOLLOWER_NODE = """#include <memory>
+#include <string>
+
+#include "rclcpp/rclcpp.hpp"
+#include "tf2_ros/buffer.h"
+#include "tf2_ros/transform_broadcaster.h"
+#include "tf2_ros/transform_listener.h"
+
+class Follower : public rclcpp::Node
+{
+public:
+  Follower()
+  : Node("follower"), buffer_(get_clock()), listener_(buffer_), broadcaster_(this)
+  {
+    carrot_ = declare_parameter("carrot_frame", std::string("/carrot"));
+  }
+
+private:
+  std::string carrot_;
+  tf2_ros::Buffer buffer_;
+  tf2_ros::TransformListener listener_;
+  tf2_ros::TransformBroadcaster broadcaster_;
+};
+"""
+
+
+def test_rn205_leaves_the_frames_of_code_that_only_broadcasts_alone(
+    run_cli: Any, tmp_path: Any
+) -> None:
+    write(
+        tmp_path, "src/tf2_ros/src/static_transform_broadcaster_node.cpp", STATIC_BROADCASTER_NODE
+    )
+    write(tmp_path, "src/robot_base/src/odometry.cpp", ODOMETRY_NODE)
+    write(tmp_path, "src/robot_base/src/follower.cpp", FOLLOWER_NODE)
+    write_package(tmp_path / "src" / "tf2_ros", 2, name="tf2_ros")
+    write_package(tmp_path / "src" / "robot_base", 2, name="robot_base")
+    result = run_cli(["check", "--format", "json", "--select", "RN205", "src"], tmp_path)
+    assert [(f["path"], f["line"]) for f in result.findings()] == [
+        ("src/robot_base/src/follower.cpp", 15),
+        ("src/robot_base/src/odometry.cpp", 14),
+    ]

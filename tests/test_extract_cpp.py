@@ -1077,3 +1077,27 @@ def test_a_string_copied_into_a_container_keeps_its_value() -> None:
         ("scan_rear", False),
         ("moved", True),
     ]
+
+
+@pytest.mark.parametrize(
+    ("code", "roles"),
+    [
+        # a TransformStamped's `transform` field is no call of tf2_ros::Buffer::transform
+        (
+            "tf2_ros::StaticTransformBroadcaster b(node);\n"
+            "void f() { t.transform.rotation.w = 1.0; b.sendTransform(t); }\n",
+            ("broadcast",),
+        ),
+        (
+            "tf::TransformBroadcaster br;\ntf::TransformListener listener;\n",
+            ("broadcast", "listen"),
+        ),
+        ('void f() { auto p = buffer_->transform(pose, "map"); }\n', ("listen",)),
+        ("void f() { tf_->lookupTransform(a, b, t); }\n", ("listen",)),
+        # only in a comment or a string: not code
+        ('// a TransformBroadcaster\nconst char * s = "TransformListener";\n', ()),
+    ],
+)
+def test_what_the_code_does_with_tf(code: str, roles: tuple[str, ...]) -> None:
+    facts = extract("int main(int c, char ** v) { rclcpp::init(c, v); }\n" + code)
+    assert [role.value for role in facts.tf_roles] == list(roles)

@@ -343,6 +343,53 @@ def test_names_a_test_expects_to_fail_are_never_reported(run_cli: Any, tmp_path:
     ]
 
 
+# tf2's test_tf2/test/buffer_core_test.cpp (ros/geometry2 and ros2/geometry2), reduced: the
+# fields set just before an EXPECT_FALSE that takes the message are its deliberately
+# invalid input; the same fields before a call that must succeed are judged.
+PREPARED_FAILURES_CPP = """#include <gtest/gtest.h>
+#include <geometry_msgs/msg/transform_stamped.hpp>
+#include <tf2/buffer_core.h>
+
+TEST(BufferCore_setTransform, NoInsertWithNoParentID)
+{
+  tf2::BufferCore mBC;
+  geometry_msgs::msg::TransformStamped tranStamped;
+  tranStamped.header.stamp = tf2_ros::toMsg(tf2::timeFromSec(10.0));
+  tranStamped.child_frame_id = "some_frame";
+  tranStamped.header.frame_id = "";
+  EXPECT_FALSE(mBC.setTransform(tranStamped, "authority"));
+
+  // only a slash, which setTransform strips to nothing
+  tranStamped.header.frame_id = "/";
+  EXPECT_FALSE(mBC.setTransform(tranStamped, "authority"));
+}
+
+TEST(BufferCore_lookupTransform, LeadingSlash)
+{
+  tf2::BufferCore mBC;
+  geometry_msgs::msg::TransformStamped other;
+  geometry_msgs::msg::TransformStamped tranStamped;
+  tranStamped.header.frame_id = "/odom";
+  other.child_frame_id = "/base_link";
+  EXPECT_FALSE(mBC.setTransform(tranStamped, "authority"));
+  tranStamped.child_frame_id = "/laser";
+  mBC.clear();
+  EXPECT_TRUE(mBC.setTransform(tranStamped, "authority"));
+}
+"""
+
+
+def test_fields_set_for_a_call_a_test_expects_to_fail_are_never_reported(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    write_package(tmp_path / "test_tf2", 2, "test_tf2")
+    write(tmp_path, "test_tf2/test/buffer_core_test.cpp", PREPARED_FAILURES_CPP)
+    result = run_cli(["check", "--format", "json", "--select", "RN205", "."], tmp_path)
+    # other.child_frame_id: the macro does not take `other`; "/laser": a statement that
+    # sets no field stands between it and the macro.
+    assert [f["line"] for f in result.findings()] == [25, 27]
+
+
 # A launch_testing test as universal_robots writes them (ur_robot_driver/test/
 # urscript_interface.py): the launch description and the test's own rclpy node in one file.
 LAUNCH_TEST = """import unittest

@@ -13,16 +13,29 @@ noetic-devel and ros2/geometry2 rolling):
   every frame they are given, refuses a leading '/': ``lookupTransform`` throws
   ``tf2::InvalidArgumentException``, ``canTransform`` returns false.
 
-So a frame a launch file gives a static transform broadcaster is not reported (nothing
-breaks); every other use (a lookup's argument, a message header whose frame
-someone transforms, a node's frame parameter, a URDF link) is.
+So a frame only broadcast is not reported (nothing breaks): one a launch file gives a
+static transform broadcaster, as parameters or as static_transform_publisher's arguments,
+and every frame of code that names a broadcaster and nothing else that could use a frame.
+Every other use (a lookup's argument, a message header whose frame someone transforms, a
+node's frame parameter, a URDF link) is.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..model import FileFacts, Finding, Generation, Kind, LaunchNode, NameUse, Severity, Span
+from ..model import (
+    FileFacts,
+    Finding,
+    Generation,
+    Kind,
+    LaunchNode,
+    NameUse,
+    Role,
+    Severity,
+    Span,
+    TfRole,
+)
 from ..rule import Rule, RuleContext
 from .common import fix_hint, grammar_problems, suggested_fix
 
@@ -37,9 +50,22 @@ _STATIC_BROADCASTERS = frozenset(
         ("tf", "static_transform_publisher"),
     }
 )
-# ROS 1 Python tf's TransformBroadcaster.sendTransform(translation, rotation, time, child,
-# parent): only sends, and tf2's setTransform strips the slash on the receiving side.
-_BROADCAST_APIS = frozenset({"tf sendTransform"})
+# Frames only sent, by the API the extractors name them with: ROS 1 Python tf's
+# TransformBroadcaster.sendTransform(translation, rotation, time, child, parent), and the
+# two frames a launch file gives static_transform_publisher as arguments
+# (extract/launch/static_transform.py's FRAME_API and CHILD_FRAME_API). tf2's
+# setTransform strips the slash on the receiving side.
+_BROADCAST_APIS = frozenset(
+    {
+        "tf sendTransform",
+        "static_transform_publisher frame_id",
+        "static_transform_publisher child_frame_id",
+    }
+)
+# Endpoints that send a message or get one back: a frame of the file may be stamped on it.
+_SENDING_ROLES = frozenset(
+    {Role.PUBLISH, Role.SERVE, Role.CALL, Role.ACTION_SERVE, Role.ACTION_CALL}
+)
 # Lookups, by the API the extractors name (C++ call names, Python "tf <method>").
 _LOOKUP_WORDS = ("lookup", "canTransform", "can_transform", "waitForTransform", "transform")
 
@@ -71,7 +97,10 @@ def _what_fails(use: NameUse) -> str:
 
 def _broadcast_only(facts: FileFacts) -> frozenset[Span]:
     """The spans of frames only broadcast: those a launch file gives a static transform
-    broadcaster, and ROS 1 Python tf's ``sendTransform`` frames."""
+    broadcaster (as parameters or arguments), ROS 1 Python tf's ``sendTransform``
+    frames, and every frame of code that only broadcasts."""
+    if _only_broadcasts(facts):
+        return frozenset(use.span for use in facts.names if use.kind is Kind.FRAME)
     found = {use.span for use in facts.names if use.api in _BROADCAST_APIS}
     if not facts.launch_nodes:
         return frozenset(found)
@@ -80,6 +109,19 @@ def _broadcast_only(facts: FileFacts) -> frozenset[Span]:
         if use.kind is Kind.FRAME and _is_broadcaster(_node_before(nodes, use.span)):
             found.add(use.span)
     return frozenset(found)
+
+
+def _only_broadcasts(facts: FileFacts) -> bool:
+    """Code whose frames can only reach a tf broadcaster: it names a broadcaster, no tf
+    buffer, listener or lookup (``FileFacts.tf_roles``), and no endpoint that sends a
+    message (which might carry a frame in its header) or takes one back. tf2_ros's own
+    ``StaticTransformBroadcasterNode`` (ros2/geometry2 ``static_transform_broadcaster_node
+    .cpp``) declares its ``frame_id`` and ``child_frame_id`` parameters with the defaults
+    ``"/frame"`` and ``"/child"`` and sends them through a ``StaticTransformBroadcaster``:
+    tf2's setTransformImpl strips them."""
+    if facts.tf_roles != (TfRole.BROADCAST,):
+        return False
+    return not any(use.role in _SENDING_ROLES for use in facts.names)
 
 
 def _node_before(nodes: list[LaunchNode], span: Span) -> LaunchNode | None:

@@ -4,7 +4,10 @@ gtest's ``EXPECT_THROW``, ``ASSERT_THROW``, ``EXPECT_ANY_THROW``, ``ASSERT_ANY_T
 their wrappers (rclcpp's ``RCLCPP_EXPECT_THROW_EQ``) run a statement that must throw; the
 death tests (``EXPECT_DEATH``, ``ASSERT_EXIT``...) one that must crash; ``EXPECT_FALSE`` and
 ``ASSERT_FALSE`` a call that must come out false, a probe of what is refused or absent
-(tf2's ``EXPECT_FALSE(buffer.canTransform("", "a", ros::Time()))``). A ``try`` block
+(tf2's ``EXPECT_FALSE(buffer.canTransform("", "a", ros::Time()))``). The fields set on a
+variable by the statements just before such a macro, when the macro takes that variable,
+are that failing input too (tf2's ``buffer_core_test.cpp``: ``tranStamped.header.frame_id
+= "/"; EXPECT_FALSE(mBC.setTransform(tranStamped, "authority"));``). A ``try`` block
 that reaches ``FAIL()`` or ``ADD_FAILURE()`` expects what runs before it to throw (ros_comm's
 ``test_roscpp``: ``try { ros::NodeHandle n(parent, "illegal_name!!!"); FAIL(); } catch``).
 ``EXPECT_NO_THROW`` and ``ASSERT_NO_THROW`` expect success: their names are judged.
@@ -69,7 +72,55 @@ def _macro_arguments(source: Source) -> list[tuple[Position, Position]]:
         arguments = field(call, "arguments")
         if arguments is not None:
             found.append((_start(source, arguments), _end(source, arguments)))
+            found.extend(_prepared(source, call.parent, _identifiers(source, arguments)))
     return found
+
+
+def _prepared(
+    source: Source, statement: Node | None, taken: frozenset[str]
+) -> list[tuple[Position, Position]]:
+    """The statements just before ``statement`` that set a field of a variable the macro
+    takes (``msg.header.frame_id = "/";``), back to the first that sets no field."""
+    found: list[tuple[Position, Position]] = []
+    if statement is None or statement.type != "expression_statement":
+        return found
+    previous = statement.prev_named_sibling
+    while previous is not None:
+        if previous.type != "comment":
+            variable = _field_set(source, previous)
+            if variable is None:
+                break
+            if variable in taken:
+                found.append((_start(source, previous), _end(source, previous)))
+        previous = previous.prev_named_sibling
+    return found
+
+
+def _field_set(source: Source, statement: Node) -> str | None:
+    """The variable whose field an assignment statement sets: ``a`` of ``a.b.c = x;``."""
+    assignment = statement.named_children[0] if statement.named_child_count else None
+    if statement.type != "expression_statement" or assignment is None:
+        return None
+    if assignment.type != "assignment_expression":
+        return None
+    target = field(assignment, "left")
+    if target is None or target.type != "field_expression":
+        return None
+    while target is not None and target.type == "field_expression":
+        target = field(target, "argument")
+    return None if target is None or target.type != "identifier" else source.text(target)
+
+
+def _identifiers(source: Source, node: Node) -> frozenset[str]:
+    """The plain identifiers written in ``node`` (a macro's arguments: a few dozen nodes)."""
+    found: set[str] = set()
+    stack = [node]
+    while stack:
+        current = stack.pop()
+        if current.type == "identifier":
+            found.add(source.text(current))
+        stack.extend(current.named_children)
+    return frozenset(found)
 
 
 def _tries_that_fail(source: Source) -> list[tuple[Position, Position]]:

@@ -46,6 +46,7 @@ from .objects import (
 )
 from .sites import Sites
 from .source import Source, word_pattern
+from .tf_roles import tf_roles
 from .types import Types
 from .values import Declarations, Folder
 
@@ -170,6 +171,7 @@ def extract(
         literals=name_literals(text),
         constants=constants,
         cpp_includes=included_paths(text) if symbols else (),
+        tf_roles=tf_roles(source),
     )
 
 

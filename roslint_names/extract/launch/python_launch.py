@@ -24,6 +24,7 @@ from collections.abc import Iterator, Sequence
 
 import libcst as cst
 
+from roslint_names.extract.launch import static_transform
 from roslint_names.extract.launch.common import (
     FRAME,
     NAMESPACE,
@@ -376,6 +377,8 @@ class LaunchExtractor(LaunchValues):
         parameters = self.parameters(action, scope, node_path(namespace, name), label)
         composable = action.kind is Action.COMPOSABLE
         executable = ":plugin|node_plugin" if composable else ":executable|node_executable"
+        if not composable:
+            self.broadcast_frames(action, scope, node_path(namespace, name), executable)
         if self.inactive_depth:
             return
         self.nodes.append(
@@ -393,6 +396,27 @@ class LaunchExtractor(LaunchValues):
                 dynamic_name=dynamic_name,
             )
         )
+
+    def broadcast_frames(
+        self, action: ActionCall, scope: LaunchScope, path: str | None, executable: str
+    ) -> None:
+        """The two frames a static transform publisher is given in ``arguments=``: one
+        word per element, as launch_ros's ``Node`` puts each on the command line (a
+        string given whole is a sequence of characters there, and no command line of
+        the program)."""
+        which = static_transform.program(
+            self.static(action.get(":package"), scope),
+            self.static(action.get(executable), scope),
+            ros1=False,
+        )
+        located = action.get(":arguments")
+        if which is None or located is None:
+            return
+        words = [(item, self.value(item, scope)) for item in self.items(located)]
+        for frame in static_transform.frames(which, [value.text for _, value in words]):
+            item, value = words[frame.index]
+            if self.is_text(item):
+                self.add(FRAME, frame.api, item, value, path)
 
     def composable_nodes(self, action: ActionCall, scope: LaunchScope) -> None:
         """Composable nodes get the pushed namespace, not their container's."""

@@ -30,7 +30,7 @@ from typing import Protocol
 from lxml import etree
 
 from roslint_names.extract import evidence
-from roslint_names.extract.launch import xmlsafe
+from roslint_names.extract.launch import static_transform, xmlsafe
 from roslint_names.extract.launch.common import (
     FRAME,
     NAMESPACE,
@@ -60,6 +60,7 @@ from roslint_names.extract.launch.substitution import (
     ros1_assignments,
     ros2_assignments,
     skipped,
+    split_words,
     strip_node_prefix,
     substitute,
     truth,
@@ -365,6 +366,7 @@ class LaunchWalker(ABC):
         path = node_path(namespace, name)
         line_remaps, line_parameters = self.command_line_names(arguments, namespace, path)
         child_remaps, child_parameters = self.node_contents(entity, scope, namespace, path)
+        self.broadcast_frames(entity, scope, spec, path)
         own_remaps = child_remaps + line_remaps
         if scope.inactive:
             return
@@ -384,6 +386,31 @@ class LaunchWalker(ABC):
                 test=entity.kind == "test",
             )
         )
+
+    def broadcast_frames(
+        self, entity: Entity, scope: Scope, spec: NodeSpec, path: str | None
+    ) -> None:
+        """The two frames a static transform publisher is given in ``args``."""
+        which = static_transform.program(
+            self.static(entity, "pkg", scope),
+            self.static(entity, spec.executable_attribute, scope),
+            ros1=self.dialect is Dialect.ROS1,
+        )
+        located = entity.get("args")
+        if which is None or located is None or located.opaque:
+            return
+        words = self.program_words(located, scope)
+        for frame in static_transform.frames(which, [value.text for _, value in words]):
+            at, value = words[frame.index]
+            self.emit(FRAME, frame.api, at, value, path)
+
+    def program_words(self, located: Located, scope: Scope) -> list[tuple[Located, Value]]:
+        """The words of ``args`` as the program gets them, each with where it is written.
+
+        launch's frontends split the attribute into words first and substitute each word
+        alone (a substitution stays within its word); the ROS 1 walker substitutes, then
+        splits (see ``Ros1Launch.program_words``)."""
+        return [(word, self.value(word, scope)) for word in split_words(located)]
 
     # -- includes -----------------------------------------------------------------------
 
@@ -604,6 +631,21 @@ class Ros1Launch(LaunchWalker):
         if args is None or args.opaque:
             return []
         return self.substitute_assignments(ros1_assignments(args), entity.api("args"), scope)
+
+    def program_words(self, located: Located, scope: Scope) -> list[tuple[Located, Value]]:
+        """roslaunch substitutes ``args`` whole, then splits it with ``shlex.split``
+        (``create_local_process_args`` in roslaunch's node_args.py): an argument holding
+        several words gives several. Quotes, which shlex would pair up, are not
+        reproduced: such a command line gives no words. A substitution the linter cannot
+        know counts as one word."""
+        if any(quote in located.text for quote in "'\""):
+            return []
+        found: list[tuple[Located, Value]] = []
+        for word in split_words(located):
+            value = self.value(word, scope)
+            parts = [value.text] if value.dynamic else value.text.split()
+            found.extend((word, Value(part, value.dynamic)) for part in parts)
+        return found
 
     def node_contents(
         self, entity: Entity, scope: Scope, namespace: str | None, path: str | None
