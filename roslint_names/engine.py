@@ -430,7 +430,9 @@ def workspace_packages(
         if name is None or display is None:
             continue
         depends = packages.package_depends(source.path)
-        found[directory] = Package(name, display, depends, services.get(directory, ()))
+        found[directory] = Package(
+            name, display, depends, services.get(directory, ()), packages.for_file(source.path)
+        )
     return list(found.values())
 
 

@@ -1,8 +1,9 @@
 """Files that never run: a C++ source no build file of its package compiles
-(``workspace.built``)."""
+(``workspace.built``), a roslaunch file left in a ROS 2 package (``launch_tree.runs``)."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 from typing import Any
 
@@ -328,6 +329,86 @@ def test_a_cmake_module_is_read_from_its_includer_s_directory() -> None:
     assert not built.unbuilt("pkg/src/b.cpp", "pkg")  # a word from the package's directory
     assert not built.unbuilt("pkg/src/c.hpp", "pkg")  # headers are included, never named
     assert not built.unbuilt("other/src/c.cpp", "other")  # no CMake build of its own
+
+
+# moveit2's ompl_interface, reduced: a roslaunch file left in the ament package, for the
+# program the package builds from ROS 2 code that reads parameters.
+OMPL_CMAKE = """cmake_minimum_required(VERSION 3.22)
+project(moveit_planners_ompl LANGUAGES CXX)
+find_package(ament_cmake REQUIRED)
+find_package(rclcpp REQUIRED)
+add_executable(moveit_generate_state_database scripts/generate_state_database.cpp)
+set_target_properties(moveit_generate_state_database
+                      PROPERTIES OUTPUT_NAME "generate_state_database")
+install(DIRECTORY launch DESTINATION share/${PROJECT_NAME})
+ament_package()
+"""
+GENERATE_STATE_DATABASE_CPP = """#include <rclcpp/rclcpp.hpp>
+
+int main(int argc, char** argv)
+{
+  rclcpp::init(argc, argv);
+  rclcpp::NodeOptions node_options;
+  node_options.automatically_declare_parameters_from_overrides(true);
+  auto node = rclcpp::Node::make_shared("generate_state_database", node_options);
+  bool use_current_scene;
+  node->get_parameter_or("use_current_scene", use_current_scene, false);
+  std::string output_folder;
+  node->get_parameter_or("output_folder", output_folder,
+                         std::string("constraint_approximation_database"));
+  std::string planning_group;
+  node->get_parameter("planning_group", planning_group);
+  rclcpp::shutdown();
+  return 0;
+}
+"""
+ROSLAUNCH_FILE = """<launch>
+  <arg name="use_current_scene" default="false"/>
+  <arg name="planning_group"/>
+
+  <node name="generate_state_database" pkg="moveit_planners_ompl"
+        type="generate_state_database" output="screen">
+    <param name="use_current_scene" value="$(arg use_current_scene)"/>
+    <param name="planning_group" value="$(arg planning_group)"/>
+    <remap from="~output_folder" to="move_group/constraint_approximations_path"/>
+  </node>
+</launch>
+"""
+ROS2_LAUNCH_FILE = """<launch>
+  <node name="generate_state_database" pkg="moveit_planners_ompl" exec="generate_state_database">
+    <remap from="~/output_folder" to="move_group/constraint_approximations_path"/>
+  </node>
+</launch>
+"""
+
+
+def ompl_interface(root: Path) -> Path:
+    package = root / "moveit_planners/ompl"
+    write(package, "package.xml", AMENT_PACKAGE.format(name="moveit_planners_ompl"))
+    write(package, "CMakeLists.txt", OMPL_CMAKE)
+    write(package, "scripts/generate_state_database.cpp", GENERATE_STATE_DATABASE_CPP)
+    return package
+
+
+def test_a_roslaunch_file_in_a_ros2_package_starts_no_ros2_node(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """Before, its remap was an RN404 against the ROS 2 program's parameters: but ros2
+    launch stops at ``<node type=>`` (launch_ros reads ``exec``) and no ROS 1 build makes
+    the package's programs for roslaunch, so the file starts nothing."""
+    package = ompl_interface(tmp_path)
+    write(package, "launch/generate_state_database.launch", ROSLAUNCH_FILE)
+    assert found(run_cli, tmp_path) == []
+    graph = json.loads(run_cli(["graph", "--format", "json", "."], tmp_path).stdout)
+    assert graph["nodes"] == []  # before, /generate_state_database, launched from it
+
+
+def test_the_same_remap_in_ros2_launch_xml_is_reported(run_cli: Any, tmp_path: Path) -> None:
+    package = ompl_interface(tmp_path)
+    write(package, "launch/generate_state_database.launch.xml", ROS2_LAUNCH_FILE)
+    assert found(run_cli, tmp_path) == [
+        ("moveit_planners/ompl/launch/generate_state_database.launch.xml", 3, "RN404")
+    ]
 
 
 def test_the_language_server_judges_an_open_file_as_the_cli_does(tmp_path: Path) -> None:
