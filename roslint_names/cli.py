@@ -537,6 +537,12 @@ def _print_run_details(
     print(f"roslint-names: cache {where}; {done}", file=sys.stderr)
     for path, reason in result.skipped:
         print(f"roslint-names: skipped {path}: {reason}", file=sys.stderr)
+    for path in result.unbuilt:
+        print(
+            f"roslint-names: {path}: no build file of its package compiles it; "
+            "its findings about names are not reported",
+            file=sys.stderr,
+        )
     for problem in cache.problems if cache is not None else []:
         print(f"roslint-names: warning: {problem}", file=sys.stderr)
 

@@ -122,6 +122,8 @@ def _by_name(file_name: str) -> Language | _Sniff | None:
         return Language.CPP
     if name in _BUILD_FILES:
         return _BUILD_FILES[name]
+    if suffix == ".cmake":
+        return Language.CMAKE  # a module of the package's build: what it compiles counts
     if suffix == ".py":
         return Language.PYTHON
     if suffix == ".srv":

@@ -50,6 +50,7 @@ from .types import parse_type
 from .wiring import WIRING_SOURCES, awaits_wiring, wired_by
 from .workers import Dispatcher
 from .workspace.build import build
+from .workspace.built import BuiltSources
 from .workspace.graph import Graph
 from .workspace.index import Package
 from .workspace.interfaces import service_definitions
@@ -74,6 +75,9 @@ class LintResult:
     # Every file's facts, the rest of the workspace's too, when they were kept for the graph
     # or the caller (``want_facts``); never those of a stored result.
     facts: tuple[FileFacts, ...] = ()
+    # Reported C++ sources no build file compiles, whose findings about names were
+    # dropped (``workspace.built``): ``--verbose`` names them.
+    unbuilt: tuple[str, ...] = ()
 
 
 Progress = Callable[[int, int], None]  # (files done, files in total)
@@ -219,7 +223,9 @@ def lint(
             )
 
     # (5)
-    checks.spare_rejected_fixtures([source.display for source in files[:reported]])
+    displays = [source.display for source in files[:reported]]
+    checks.spare_rejected_fixtures(displays)
+    unbuilt = checks.spare_unbuilt(displays)
     diagnostics = sorted(
         (diagnostic for found in checks.per_file for diagnostic in found), key=Diagnostic.sort_key
     )
@@ -230,7 +236,8 @@ def lint(
     if inputs is not None:
         if run_key is not None and not inputs.changed:
             assert cache is not None
-            cache.store_run(run_key, (tuple(diagnostics), checked_count, tuple(gathered.skipped)))
+            kept = (tuple(diagnostics), checked_count, tuple(gathered.skipped), tuple(unbuilt))
+            cache.store_run(run_key, kept)
         inputs.finish()
     return LintResult(
         tuple(diagnostics),
@@ -241,6 +248,7 @@ def lint(
         graph,
         tuple(gathered.skipped),
         facts=tuple(checks.facts()),
+        unbuilt=tuple(unbuilt),
     )
 
 
@@ -278,6 +286,7 @@ class _FileChecks:
     _constants: PackageConstants = field(default_factory=PackageConstants)
     _wired: set[str] = field(default_factory=set)  # absolute names launch files remap to
     _rejected: dict[str, set[str]] = field(default_factory=dict)  # package: fixture names
+    _built: BuiltSources = field(default_factory=BuiltSources)
     _done: int = 0
 
     def __post_init__(self) -> None:
@@ -300,6 +309,8 @@ class _FileChecks:
             )
         if facts.rejected_fixtures and (package := self.package_of(index)) is not None:
             self._rejected.setdefault(package, set()).update(facts.rejected_fixtures)
+        if facts.compiled is not None or facts.included_sources:
+            self._built.add(facts, self.package_of(index))
         symbols = uses_constants(facts)
         if index < self.reported:
             if types or symbols or (self.wiring and awaits_wiring(facts)):
@@ -326,6 +337,19 @@ class _FileChecks:
             name = displays[index].rpartition("/")[2]
             if package is not None and name in self._rejected.get(package, ()):
                 self.per_file[index] = []
+
+    def spare_unbuilt(self, displays: Sequence[str]) -> list[str]:
+        """No finding of a rule about names in a C++ source that no build file of its
+        package compiles (``workspace.built``): it never runs. The linter's own (RN0xx:
+        a parse error, a suppression) stay. The files judged so, for ``--verbose``."""
+        spared: list[str] = []
+        for index, found in enumerate(self.per_file):
+            if not any(not is_linter_code(d.code) for d in found):
+                continue
+            if self._built.unbuilt(displays[index], self.package_of(index)):
+                self.per_file[index] = [d for d in found if is_linter_code(d.code)]
+                spared.append(displays[index])
+        return spared
 
     def finish(self) -> None:
         """Check the files that waited for the run's service types, wiring and constants."""
@@ -411,16 +435,30 @@ def launch_wiring(
     return frozenset() if is_test_code(relative, facts.language, data(), settings) else wired
 
 
+def is_linter_code(code: str) -> bool:
+    """RN0xx: the linter's own findings (parse errors, suppressions), about the text."""
+    return code.startswith("RN0")
+
+
 def _stored_result(value: object, files: int) -> LintResult | None:
     """A result ``store_run`` kept, if ``value`` is one (anything else: a miss)."""
     match value:
-        case (tuple() as diagnostics, int() as checked, tuple() as skipped) if all(
-            isinstance(diagnostic, Diagnostic) for diagnostic in diagnostics
-        ) and all(
-            isinstance(item, tuple) and all(isinstance(part, str) for part in item)
-            for item in skipped
+        case (
+            tuple() as diagnostics,
+            int() as checked,
+            tuple() as skipped,
+            tuple() as unbuilt,
+        ) if (
+            all(isinstance(diagnostic, Diagnostic) for diagnostic in diagnostics)
+            and all(
+                isinstance(item, tuple) and all(isinstance(part, str) for part in item)
+                for item in skipped
+            )
+            and all(isinstance(path, str) for path in unbuilt)
         ):
-            return LintResult(diagnostics, checked, 0, files, 0, None, skipped, reused=True)
+            return LintResult(
+                diagnostics, checked, 0, files, 0, None, skipped, reused=True, unbuilt=unbuilt
+            )
     return None
 
 
@@ -439,7 +477,9 @@ def workspace_packages(
         if name is None or display is None:
             continue
         depends = packages.package_depends(source.path)
-        found[directory] = Package(name, display, depends, services.get(directory, ()))
+        found[directory] = Package(
+            name, display, depends, services.get(directory, ()), packages.for_file(source.path)
+        )
     return list(found.values())
 
 

@@ -38,7 +38,7 @@ class Language(str, Enum):
     URDF = "urdf"  # URDF and XACRO
     PACKAGE_XML = "package-xml"
     SERVICE_DEFINITION = "srv"  # a .srv file: not linted, but its type is known (RN204)
-    CMAKE = "cmake"  # CMakeLists.txt: the executables and component plugins a package builds
+    CMAKE = "cmake"  # CMakeLists.txt, *.cmake: the executables and sources a package builds
     SETUP_PY = "setup-py"  # setup.py: a Python package's console_scripts
     SETUP_CFG = "setup-cfg"  # setup.cfg: console_scripts declared in [options.entry_points]
 
@@ -222,6 +222,29 @@ class Executable:
     span: Span
 
 
+@dataclass(frozen=True)
+class CompiledSources:
+    """Which source files one build file compiles, as far as its text tells.
+
+    Paths are relative to the build file's directory, '/'-separated, normalised (as
+    ``Executable.sources``). ``paths`` are the sources its targets name (programs,
+    libraries, tests). What the file leaves open keeps its sources possibly compiled:
+    ``patterns`` are sources named with a part the file does not determine, that part a
+    ``*`` (``"*"`` alone: any file of the package, as a glob's variable or a file that
+    stops lexing leaves it); ``words`` are what commands the linter does not know pass
+    (a macro of another package's ``.cmake``), which may name a file by its path, its
+    directory, its name or its stem; ``subdirectories`` (``add_subdirectory``) and
+    ``includes`` (``include`` of a file of the package) are build files this one runs,
+    which must be in the run for the rest to be the whole story.
+    """
+
+    paths: tuple[str, ...] = ()
+    patterns: tuple[str, ...] = ()
+    words: tuple[str, ...] = ()
+    subdirectories: tuple[str, ...] = ()
+    includes: tuple[str, ...] = ()
+
+
 class EventKind(str, Enum):
     """What RN301 orders: the runtime's initialisation and the objects that need it."""
 
@@ -286,6 +309,11 @@ class FileFacts:
     # C++ with ROS code: what the file does with tf (``extract.cpp.tf_roles``), in
     # ``TfRole`` order; RN205 leaves the frames of a file that only broadcasts alone.
     tf_roles: tuple[TfRole, ...] = ()
+    # A build file: the sources it compiles (``CompiledSources``); None for other files.
+    compiled: CompiledSources | None = None
+    # C++: the source files (not headers) it includes, ``#include "impl.cpp"``, by name:
+    # such a file is compiled though no build file names it.
+    included_sources: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -31,6 +31,7 @@ from .discover import SourceFile, classify, discover, display_path
 from .engine import (
     RunOptions,
     check_file,
+    is_linter_code,
     launch_wiring,
     lint,
     lintable,
@@ -55,6 +56,7 @@ from .suppress import Suppression
 from .symbols import PackageConstants, uses_constants
 from .workers import Dispatcher
 from .workspace.build import build
+from .workspace.built import BuiltSources
 from .workspace.graph import Graph
 from .workspace.index import Package
 
@@ -108,6 +110,7 @@ class Session:
         self._dispatcher: Dispatcher[Any, Any] = Dispatcher(partial(extract_batch, cache), 1)
         self._specialiser: Specialiser | None = None
         self._workspace_packages: list[Package] = []
+        self._built: BuiltSources | None = None  # made again when a build file changes
 
     def load(self) -> None:
         """Read the workspace: every file's facts, from the cache where it has them."""
@@ -161,7 +164,10 @@ class Session:
             for other in self._facts.values():
                 constants.add(other)
             facts = constants.resolve(facts, package_display(source, self._packages))
+        previous = self._facts.get(display)
         self._facts[display] = facts
+        if _builds(facts) or (previous is not None and _builds(previous)):
+            self._built = None
         if self._specialiser is not None:
             self._specialiser.forget(display)
         self._service_types.update((facts.generation, t) for t in typed_services(facts))
@@ -275,7 +281,25 @@ class Session:
     def _with_graph(self, display: str) -> list[Diagnostic]:
         checked = self._open[display]
         found = checked.diagnostics + self._graph_found.get(display, [])
+        if found and self._unbuilt(checked.source):
+            found = [diagnostic for diagnostic in found if is_linter_code(diagnostic.code)]
         return sorted(found, key=Diagnostic.sort_key)
+
+    def _unbuilt(self, source: SourceFile) -> bool:
+        """Whether no build file compiles the document, as a run says (``built``)."""
+        if self._built is None:
+            self._built = BuiltSources()
+            for facts in self._facts.values():
+                if _builds(facts):
+                    package = self._sources.get(facts.path)
+                    where = None if package is None else package_display(package, self._packages)
+                    self._built.add(facts, where)
+        return self._built.unbuilt(source.display, package_display(source, self._packages))
+
+
+def _builds(facts: FileFacts) -> bool:
+    """Whether a file's facts say what is compiled (``BuiltSources.add``)."""
+    return facts.compiled is not None or bool(facts.included_sources)
 
 
 def _utf8_size(text: str, chunk: int = 1 << 20) -> int:

@@ -123,6 +123,13 @@ def _package_generation(workspace: Path) -> None:
     manifest.write_text(manifest.read_text().replace("catkin", "ament_cmake"))
 
 
+def _build_file(workspace: Path) -> None:
+    # No file's facts but the CMakeLists.txt's change; with the target gone, driver.cpp
+    # is compiled by nothing, and its findings go (``workspace.built``).
+    build = workspace / "src/robot_base/CMakeLists.txt"
+    build.write_text(build.read_text().replace("add_executable", "# add_executable"))
+
+
 def _config(workspace: Path) -> None:
     write(workspace, "roslint-names.toml", 'ignore = ["RN202"]\n')
 
@@ -144,6 +151,7 @@ def _service_definition(workspace: Path) -> None:
         _delete_file,
         _package_depends,
         _package_generation,
+        _build_file,
         _config,
         _per_file_ignore,
         _service_definition,

@@ -25,6 +25,7 @@ from roslint_names.model import (
 )
 from roslint_names.names import NameResolutionError, resolve
 from roslint_names.types import parse_type
+from roslint_names.workspace.built import unbuilt_sources
 from roslint_names.workspace.graph import (
     EdgeKind,
     Endpoint,
@@ -79,9 +80,12 @@ def build(
     index = WorkspaceIndex(facts, packages)
     nodes: list[NodeInstance] = []
     endpoints: list[Endpoint] = []
-    launched_sources: set[str] = set()
+    # Code no build file compiles never runs: it joins no node (``built``).
+    unbuilt = unbuilt_sources(index)
+    launched_sources: set[str] = set(unbuilt)
     for launched in LaunchTrees(index, specialise, prepare).launched():
-        sources = index.sources_of(launched.node.package, launched.node.executable)
+        found = index.sources_of(launched.node.package, launched.node.executable)
+        sources = tuple(path for path in found if path not in unbuilt)
         launched_sources.update(sources)
         built = _launched_instance(index, launched, sources)
         if built is not None:

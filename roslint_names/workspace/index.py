@@ -11,7 +11,7 @@ from collections import Counter
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
-from roslint_names.model import ExecutableKind, FileFacts, Language
+from roslint_names.model import ExecutableKind, FileFacts, Generation, Language
 from roslint_names.workspace.interfaces import WELL_KNOWN, ServiceDefinition
 
 CODE_LANGUAGES = frozenset({Language.CPP, Language.PYTHON})
@@ -24,6 +24,8 @@ class Package:
     depends: frozenset[str] = frozenset()  # package names its package.xml depends on
     # (name, definition) of each of its ROS 1 ``.srv`` files (``interfaces``), by name
     services: tuple[tuple[str, ServiceDefinition], ...] = ()
+    # What its package.xml builds for (``generation``); None for both, or unknown.
+    generation: Generation | None = None
 
 
 def parent(path: str) -> str:

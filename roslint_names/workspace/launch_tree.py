@@ -73,7 +73,9 @@ class LaunchTrees:
         self.specialise = specialise
         self.prepare = prepare
         self.launch_files = sorted(
-            path for path, facts in index.facts.items() if facts.language in LAUNCH_LANGUAGES
+            path
+            for path, facts in index.facts.items()
+            if facts.language in LAUNCH_LANGUAGES and runs(index, facts)
         )
 
     def target(self, path: str, include: LaunchInclude) -> str | None:
@@ -155,8 +157,11 @@ class LaunchTrees:
             yield inner
 
     def _facts(self, path: str, arguments: LaunchArguments) -> FileFacts | None:
+        facts = self.index.facts.get(path)
+        if facts is None or not runs(self.index, facts):
+            return None  # included, it stops ros2 launch there: it starts nothing
         if not arguments:
-            return self.index.facts.get(path)
+            return facts
         return self.specialise(path, arguments)
 
     def _node(self, root: str, frame: _Frame, node: LaunchNode) -> Launched | None:
@@ -178,6 +183,26 @@ class LaunchTrees:
             site_namespaces=(*frame.site_namespaces, namespace),
             conditional=frame.conditional or node.conditional,
         )
+
+
+def runs(index: WorkspaceIndex, facts: FileFacts) -> bool:
+    """Whether a launch tool can run the launch file: not a roslaunch (ROS 1) file left in
+    a ROS 2 package, as moveit2's ``generate_state_database.launch``.
+
+    ros2 launch does read a ``.launch`` file (launch_xml's ``Parser.get_file_extensions``:
+    ``launch.xml``, ``xml``, ``launch``), but what makes a file ROS 1 to the extractor
+    (``evidence.launch_xml_evidence``) stops it: launch_ros's ``Node.parse`` reads
+    ``entity.get_attr('exec')``, not optional, so ``<node type=...>`` raises, and an
+    action's unread ``type`` attribute fails ``assert_entity_completely_parsed``
+    (launch's ``frontend/expose.py``); ``$(arg)`` and ``$(find)`` are no substitutions
+    it knows (``instantiate_substitution``: 'Unknown substitution'). And roslaunch has
+    no program of the package to start: no ROS 1 build (catkin) makes an ament package's
+    programs, rclcpp code at that. Its nodes would join the graph bound to the ROS 2
+    code of the package's executables."""
+    if facts.language is not Language.LAUNCH_XML or facts.generation is not Generation.ROS1:
+        return True
+    package = index.package_of(facts.path)
+    return package is None or package.generation is not Generation.ROS2
 
 
 def _nest(prefix: str, namespace: str, anchored: bool) -> str | None:

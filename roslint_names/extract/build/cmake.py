@@ -1,4 +1,5 @@
-"""CMakeLists.txt: the programs and component plugins a package builds, and their sources.
+"""CMakeLists.txt and .cmake files: the programs and component plugins a package builds,
+and their sources; and every source any of its targets compiles (``cmake_compiled``).
 
 Build files are context for the workspace model, not linted: a file that stops lexing
 yields what was found before the error, and no parse error.
@@ -29,6 +30,7 @@ import posixpath
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
+from roslint_names.extract.build.cmake_compiled import Compiled, compiles_nothing
 from roslint_names.extract.build.cmake_eval import (
     DYNAMIC,
     FOLLOWED,
@@ -115,6 +117,8 @@ class _Build:
         self._definitions: dict[str, _Definition] = {}
         self._calls = 0  # how deep in function and macro calls
         self._replayed = 0
+        self.compiled = Compiled()  # every source any target may compile
+        self._defining = 0  # inside a body read where it is defined: it compiles nothing yet
         self._handlers = {
             "target_sources": self._target_sources,
             "target_link_libraries": self._link,
@@ -141,16 +145,29 @@ class _Build:
             return
         handler = self._handlers.get(name)
         targets = name in _PROGRAM_COMMANDS or name in _LIBRARY_COMMANDS
-        if name not in FOLLOWED and handler is None and not targets and name not in _INSTALLERS:
+        compiling = not compiles_nothing(name)
+        if (
+            name not in FOLLOWED
+            and handler is None
+            and not targets
+            and name not in _INSTALLERS
+            and not compiling
+        ):
             return  # its arguments need no evaluation
         values = self.variables.values(command.arguments)
         self.variables.apply(name, values)
+        if compiling and not self._defining:
+            self.compiled.command(name, values)
         if handler is not None:
             handler(values)
         elif targets and values:
             self._add_target(name, values[0], values[1:])
         elif name in _INSTALLERS and values[:1] and values[0].text == "PROGRAMS":
             self._install_programs(values[1:])
+
+    def open_body(self) -> bool:
+        """Whether the file ended inside a body it never closed (a broken file)."""
+        return self._body is not None
 
     # -----------------------------------------------------------------------------------
     # Bodies: functions, macros, loops
@@ -185,12 +202,17 @@ class _Build:
             )
         # Read once where it stands, what is not known unknown: a definition's parameters
         # (it may be called from another directory), a loop's variable.
+        defining = int(opening.name != "foreach")
         self.variables.apply(opening.name, values)
+        self._defining += defining
         self._run_all(body.commands)
+        self._defining -= defining
         self.variables.apply(end.name, [])
 
     def _call(self, definition: _Definition, command: Command) -> None:
         if self._calls >= _MAX_CALL_DEPTH:
+            if not self._defining:
+                self.compiled.anything()  # a body not followed may compile anything
             return
         texts = [value.text for value in self.variables.values(command.arguments)]
         count = len(definition.parameters)
@@ -213,6 +235,7 @@ class _Build:
         for command in commands:
             self._replayed += 1
             if self._replayed > _MAX_REPLAYED:
+                self.compiled.anything()
                 break
             self.run(command)
         self._body = outer
@@ -355,11 +378,15 @@ def extract(
     """The programs and component plugins ``path`` builds or installs."""
     text = _decode(data)
     build = _Build(Source(text))
-    for command in lex(text).commands:  # a lexing error only ends the list
+    lexed = lex(text)
+    for command in lexed.commands:  # a lexing error only ends the list
         build.run(command)
+    if lexed.error is not None or build.open_body():
+        build.compiled.anything()  # what follows the error (or a body left open) is unknown
     return FileFacts(
         path,
         Language.CMAKE,
         package_generation or fallback_generation,
         executables=build.targets.executables(),
+        compiled=build.compiled.result(),
     )

@@ -22,8 +22,18 @@ from collections.abc import Iterator
 
 from roslint_names.extract.build.setup_cfg import console_scripts, ini_console_scripts, program
 from roslint_names.extract.build.setup_source import decode, parse
-from roslint_names.model import Executable, FileFacts, Generation, Language, ParseError, Span
+from roslint_names.model import (
+    CompiledSources,
+    Executable,
+    FileFacts,
+    Generation,
+    Language,
+    ParseError,
+    Span,
+)
 
+_EXTENSIONS = re.compile(rb"ext_modules|Extension\b")
+_MAY_COMPILE = CompiledSources(patterns=("*",))
 _LINE_BREAK = re.compile(r"\r\n|\r|\n")  # also CPython's, for ast's line numbers
 _SETUP_FUNCTIONS = frozenset({"setup"})  # setup(), setuptools.setup(), distutils.core.setup()
 # Module variables referring to one another are followed this many steps, no more.
@@ -205,7 +215,13 @@ def extract(
     generation = package_generation or fallback_generation
     if path.endswith(".cfg"):
         return FileFacts(path, Language.SETUP_CFG, generation, executables=console_scripts(data))
+    # A setup.py that builds extension modules (``ext_modules``, ``Extension(...)``,
+    # ``CppExtension``) may compile any C++ source of its package: no source of it is
+    # taken for one nothing builds (``workspace.built``).
+    compiled = _MAY_COMPILE if _EXTENSIONS.search(data) else None
     found = _setup_py(data)
     if isinstance(found, ParseError):
-        return FileFacts(path, Language.SETUP_PY, generation, parse_errors=(found,))
-    return FileFacts(path, Language.SETUP_PY, generation, executables=found)
+        return FileFacts(
+            path, Language.SETUP_PY, generation, parse_errors=(found,), compiled=compiled
+        )
+    return FileFacts(path, Language.SETUP_PY, generation, executables=found, compiled=compiled)

@@ -29,6 +29,10 @@ _DEFINE = re.compile(
 )
 _STRING_TYPE = re.compile(rb"\b(?:string|string_view|char)\b")
 _INCLUDE = re.compile(rb'#[ \t]*include[ \t]*[<"]([^>"\n]+)[>"]')
+# An included source file, not a header: ``#include "ikfast_solver.cpp"``.
+_SOURCE_INCLUDE = re.compile(
+    rb'#[ \t]*include[ \t]*[<"](?:[^>"\n]*/)?([^>"\n/]+\.(?:cpp|cc|cxx|c\+\+|c|C|cu))[>"]'
+)
 
 
 def is_header(path: str) -> bool:
@@ -63,6 +67,17 @@ def included_paths(data: bytes) -> tuple[str, ...]:
     return tuple(
         match.group(1).decode("utf-8", "replace").strip() for match in _directives(_INCLUDE, data)
     )
+
+
+def included_sources(data: bytes) -> tuple[str, ...]:
+    """The names of the source files (not headers) the file includes, sorted: they are
+    compiled as part of it, though no build file names them."""
+    if b".c" not in data and b".C" not in data:
+        return ()
+    found = {
+        match.group(1).decode("utf-8", "replace") for match in _directives(_SOURCE_INCLUDE, data)
+    }
+    return tuple(sorted(found))
 
 
 def _directives(pattern: re.Pattern[bytes], data: bytes) -> Iterator[re.Match[bytes]]:

@@ -33,7 +33,7 @@ from roslint_names.reading import bom_encoding
 
 from ..literals import name_literals
 from .apis import CALL_WORDS, CONSTRUCTED_TYPES, FRAME_FIELDS
-from .constants import header_constants, included_paths, is_header
+from .constants import header_constants, included_paths, included_sources, is_header
 from .events import INIT_WORDS, handle_event, init_event
 from .expected import ExpectedFailures
 from .handles import Handles
@@ -156,6 +156,7 @@ def extract(
             parse_errors=_errors(error),
             constants=constants,
             cpp_includes=included_paths(text) if header else (),
+            included_sources=included_sources(text),
         )
     generation = package_generation or file_generation(text) or fallback_generation
     source = Source(text, _PARSER.parse(text))
@@ -172,6 +173,7 @@ def extract(
         constants=constants,
         cpp_includes=included_paths(text) if symbols else (),
         tf_roles=tf_roles(source),
+        included_sources=included_sources(text),
     )
 
 

@@ -1,0 +1,433 @@
+"""Files that never run: a C++ source no build file of its package compiles
+(``workspace.built``), a roslaunch file left in a ROS 2 package (``launch_tree.runs``)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import pytest
+from conftest import AMENT_PACKAGE, write
+
+from roslint_names.extract.build import cmake
+from roslint_names.model import CompiledSources, FileFacts, Generation, Language
+from roslint_names.workspace.built import BuiltSources
+
+# moveit2's moveit_ros/perception, reduced: the package's CMakeLists.txt includes a
+# .cmake file of its own and adds the mesh_filter directory, whose CMakeLists.txt builds
+# the library and leaves the ROS 1 nodelet commented out ("TODO: Port to ROS2").
+PERCEPTION_CMAKE = """cmake_minimum_required(VERSION 3.22)
+project(moveit_ros_perception LANGUAGES CXX)
+
+find_package(moveit_common REQUIRED)
+moveit_package()
+find_package(ament_cmake REQUIRED)
+find_package(rclcpp REQUIRED)
+find_package(image_transport REQUIRED)
+
+# Finds Boost Components
+include(ConfigExtras.cmake)
+
+set(THIS_PACKAGE_INCLUDE_DIRS mesh_filter/include)
+include_directories(${THIS_PACKAGE_INCLUDE_DIRS})
+
+add_subdirectory(mesh_filter)
+
+install(TARGETS moveit_mesh_filter EXPORT moveit_ros_perceptionTargets
+        LIBRARY DESTINATION lib)
+ament_export_targets(moveit_ros_perceptionTargets HAS_LIBRARY_TARGET)
+ament_package(CONFIG_EXTRAS ConfigExtras.cmake)
+"""
+CONFIG_EXTRAS = """set(THIS_PACKAGE_INCLUDE_DEPENDS Boost)
+find_package(Boost REQUIRED system filesystem date_time thread)
+"""
+MESH_FILTER_CMAKE = """add_library(
+  moveit_mesh_filter SHARED
+  src/mesh_filter_base.cpp src/sensor_model.cpp)
+include(GenerateExportHeader)
+generate_export_header(moveit_mesh_filter)
+target_include_directories(
+  moveit_mesh_filter PUBLIC $<BUILD_INTERFACE:${CMAKE_CURRENT_BINARY_DIR}>)
+set_target_properties(moveit_mesh_filter
+                      PROPERTIES VERSION "${${PROJECT_NAME}_VERSION}")
+target_link_libraries(moveit_mesh_filter ${GL_LIBS} rclcpp::rclcpp)
+
+# TODO: Port to ROS2 add_library(moveit_depth_self_filter SHARED
+# src/depth_self_filter_nodelet.cpp src/transform_provider.cpp )
+# target_link_libraries(moveit_depth_self_filter ${catkin_LIBRARIES}
+# moveit_mesh_filter)
+
+install(DIRECTORY include/ DESTINATION include/moveit_ros_perception)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/moveit_mesh_filter_export.h
+        DESTINATION include/moveit_ros_perception)
+"""
+# depth_self_filter_nodelet.cpp, reduced: absolute topics (RN202) in a file nothing builds.
+NODELET_CPP = """#include <image_transport/image_transport.hpp>
+#include <rclcpp/rclcpp.hpp>
+
+namespace mesh_filter
+{
+void DepthSelfFiltering::onInit()
+{
+  auto nh = rclcpp::Node::make_shared("depth_self_filter");
+  filtered_depth_transport_ = std::make_shared<image_transport::ImageTransport>(nh);
+  pub_filtered_depth_image_ = filtered_depth_transport_->advertiseCamera("/filtered/depth", 1);
+  pub_model_depth_image_ = filtered_depth_transport_->advertiseCamera("/model/depth", 1);
+}
+}  // namespace mesh_filter
+"""
+# The built library makes the same mistake: it is reported.
+SENSOR_MODEL_CPP = """#include <rclcpp/rclcpp.hpp>
+#include <sensor_msgs/msg/image.hpp>
+
+namespace mesh_filter
+{
+void SensorModel::advertise(const rclcpp::Node::SharedPtr& node)
+{
+  publisher_ = node->create_publisher<sensor_msgs::msg::Image>("/model/depth", 1);
+}
+}  // namespace mesh_filter
+"""
+BASE_CPP = "#include <string>\n\nnamespace mesh_filter\n{\n}  // namespace mesh_filter\n"
+NODELET = "moveit_ros/perception/mesh_filter/src/depth_self_filter_nodelet.cpp"
+SENSOR_MODEL = "moveit_ros/perception/mesh_filter/src/sensor_model.cpp"
+
+
+def perception(root: Path, *, mesh_filter_cmake: str = MESH_FILTER_CMAKE) -> Path:
+    package = root / "moveit_ros/perception"
+    write(package, "package.xml", AMENT_PACKAGE.format(name="moveit_ros_perception"))
+    write(package, "CMakeLists.txt", PERCEPTION_CMAKE)
+    write(package, "ConfigExtras.cmake", CONFIG_EXTRAS)
+    write(package, "mesh_filter/CMakeLists.txt", mesh_filter_cmake)
+    write(package, "mesh_filter/src/mesh_filter_base.cpp", BASE_CPP)
+    write(package, "mesh_filter/src/sensor_model.cpp", SENSOR_MODEL_CPP)
+    write(package, "mesh_filter/src/depth_self_filter_nodelet.cpp", NODELET_CPP)
+    return package
+
+
+def found(run_cli: Any, root: Path, *options: str) -> list[tuple[str, int, str]]:
+    result = run_cli(["check", "--format", "json", *options, "."], root)
+    assert result.exit_code in (0, 1), result.stderr
+    return [(f["path"], f["line"], f["code"]) for f in result.findings()]
+
+
+def test_a_source_no_target_compiles_is_not_reported(run_cli: Any, tmp_path: Path) -> None:
+    """Before, the nodelet's two absolute topics were RN202s (moveit2: four)."""
+    perception(tmp_path)
+    assert found(run_cli, tmp_path) == [(SENSOR_MODEL, 8, "RN202")]
+
+
+def test_verbose_names_the_files_judged_unbuilt(run_cli: Any, tmp_path: Path) -> None:
+    """Also from a stored result, when nothing changed since the run that made it."""
+    perception(tmp_path)
+    for _ in range(2):
+        result = run_cli(["check", "--verbose", "."], tmp_path)
+        assert f"{NODELET}: no build file of its package compiles it" in result.stderr
+        assert "sensor_model.cpp: no build file" not in result.stderr
+    assert "its result reused" in result.stderr
+
+
+def test_a_per_file_run_judges_by_the_workspace_build(run_cli: Any, tmp_path: Path) -> None:
+    """pre-commit names the file; the CMakeLists.txt of its package is in the context."""
+    perception(tmp_path)
+    (tmp_path / ".git").mkdir()
+    result = run_cli(["check", "--format", "json", NODELET], tmp_path)
+    assert result.findings() == []
+    result = run_cli(["check", "--format", "json", SENSOR_MODEL], tmp_path)
+    assert result.codes() == ["RN202"]
+
+
+@pytest.mark.parametrize(
+    "cmake_text",
+    [
+        # A glob: the file may be any source it finds.
+        MESH_FILTER_CMAKE
+        + "file(GLOB NODELET_SOURCES src/*_nodelet.cpp)\n"
+        + "add_library(moveit_depth_self_filter SHARED ${NODELET_SOURCES})\n",
+        # A variable this file never sets (the parent directory's).
+        MESH_FILTER_CMAKE + "add_library(moveit_depth_self_filter SHARED ${NODELET_SOURCES})\n",
+        # A macro of another package, handed the file, or only its name.
+        MESH_FILTER_CMAKE
+        + "cs_add_library(moveit_depth_self_filter src/depth_self_filter_nodelet.cpp)\n",
+        MESH_FILTER_CMAKE + "moveit_add_nodelet(depth_self_filter_nodelet)\n",
+        # ament_cmake_auto globs the directory.
+        MESH_FILTER_CMAKE
+        + "ament_auto_add_library(moveit_depth_self_filter SHARED DIRECTORY src)\n",
+        # A function of this file, called: its body runs with the arguments.
+        MESH_FILTER_CMAKE
+        + "function(add_nodelet name)\n"
+        + "  add_library(${name} SHARED src/${name}.cpp)\n"
+        + "endfunction()\n"
+        + "add_nodelet(depth_self_filter_nodelet)\n",
+        # A generator expression may name anything.
+        MESH_FILTER_CMAKE
+        + "target_sources(moveit_mesh_filter PRIVATE\n"
+        + "  $<$<BOOL:${WITH_ROS1}>:src/depth_self_filter_nodelet.cpp>)\n",
+        # A .cmake file of the package the run does not hold.
+        MESH_FILTER_CMAKE + "include(${CMAKE_CURRENT_SOURCE_DIR}/cmake/nodelets.cmake)\n",
+        # A file that does not lex to its end.
+        MESH_FILTER_CMAKE + 'add_library(moveit_depth_self_filter SHARED "src/\n',
+    ],
+    ids=[
+        "glob",
+        "unknown-variable",
+        "foreign-macro-path",
+        "foreign-macro-stem",
+        "ament-auto-directory",
+        "function-called",
+        "generator-expression",
+        "missing-include",
+        "broken-file",
+    ],
+)
+def test_a_build_the_linter_cannot_read_whole_keeps_the_findings(
+    run_cli: Any, tmp_path: Path, cmake_text: str
+) -> None:
+    perception(tmp_path, mesh_filter_cmake=cmake_text)
+    assert (NODELET, 10, "RN202") in found(run_cli, tmp_path)
+
+
+def test_a_source_another_source_includes_is_compiled(run_cli: Any, tmp_path: Path) -> None:
+    """moveit2's ikfast plugin ``#include``s its solver's .cpp."""
+    package = perception(tmp_path)
+    write(
+        package,
+        "mesh_filter/src/mesh_filter_base.cpp",
+        '#include "depth_self_filter_nodelet.cpp"\n',
+    )
+    assert (NODELET, 10, "RN202") in found(run_cli, tmp_path)
+
+
+def test_a_subdirectory_the_run_does_not_hold_may_compile_it(run_cli: Any, tmp_path: Path) -> None:
+    """``add_subdirectory(mesh_filter)``, its CMakeLists.txt excluded from the run."""
+    perception(tmp_path)
+    write(tmp_path, "roslint-names.toml", 'exclude = ["**/mesh_filter/CMakeLists.txt"]\n')
+    assert (NODELET, 10, "RN202") in found(run_cli, tmp_path)
+
+
+def test_a_package_without_a_cmake_build_keeps_its_findings(run_cli: Any, tmp_path: Path) -> None:
+    package = perception(tmp_path)
+    (package / "CMakeLists.txt").unlink()
+    assert (NODELET, 10, "RN202") in found(run_cli, tmp_path)
+
+
+def test_the_linter_s_own_findings_stay(run_cli: Any, tmp_path: Path) -> None:
+    """A suppression in an unbuilt file that silences nothing is still one to remove."""
+    package = perception(tmp_path)
+    nodelet = package / "mesh_filter/src/depth_self_filter_nodelet.cpp"
+    nodelet.write_text(NODELET_CPP.replace("onInit()", "onInit()  // NOLINT(RN203)"))
+    everything = found(run_cli, tmp_path, "--extend-select", "RN002")
+    codes = [code for path, _, code in everything if path == NODELET]
+    assert codes == ["RN002"]
+
+
+# moveit_ros/planning/moveit_cpp, reduced: its test's CMake lines are commented out; the
+# copy in planning_interface/test is built by ament_add_gtest and keeps its finding.
+MOVEIT_CPP_CMAKE = """add_library(moveit_cpp SHARED src/moveit_cpp.cpp src/planning_component.cpp)
+target_link_libraries(moveit_cpp moveit_planning_scene_monitor)
+
+# TODO: Port MoveItCpp test if (BUILD_TESTING)
+# find_package(rostest REQUIRED)
+# add_rostest_gtest(moveit_cpp_test test/moveit_cpp_test.test
+# test/moveit_cpp_test.cpp) target_link_libraries(moveit_cpp_test moveit_cpp
+# ${catkin_LIBRARIES}) endif()
+"""
+PLANNING_CMAKE = """cmake_minimum_required(VERSION 3.22)
+project(moveit_ros_planning LANGUAGES CXX)
+find_package(ament_cmake REQUIRED)
+add_subdirectory(moveit_cpp)
+ament_package()
+"""
+PLANNING_INTERFACE_CMAKE = """cmake_minimum_required(VERSION 3.22)
+project(moveit_ros_planning_interface LANGUAGES CXX)
+find_package(ament_cmake REQUIRED)
+if(BUILD_TESTING)
+  find_package(ament_cmake_gtest REQUIRED)
+  ament_add_gtest_executable(moveit_cpp_test test/moveit_cpp_test.cpp)
+  target_link_libraries(moveit_cpp_test moveit_cpp)
+endif()
+ament_package()
+"""
+MOVEIT_CPP_TEST = """#include <gtest/gtest.h>
+#include <rclcpp/rclcpp.hpp>
+
+class MoveItCppTest : public ::testing::Test
+{
+public:
+  void SetUp() override
+  {
+    node_ = rclcpp::Node::make_shared("/moveit_cpp_test");
+  }
+
+protected:
+  rclcpp::Node::SharedPtr node_;
+};
+"""
+
+
+def test_a_test_whose_build_is_commented_out_is_not_reported(run_cli: Any, tmp_path: Path) -> None:
+    """Before, both copies were RN101 (a node name holding '/')."""
+    planning = tmp_path / "moveit_ros/planning"
+    write(planning, "package.xml", AMENT_PACKAGE.format(name="moveit_ros_planning"))
+    write(planning, "CMakeLists.txt", PLANNING_CMAKE)
+    write(planning, "moveit_cpp/CMakeLists.txt", MOVEIT_CPP_CMAKE)
+    write(planning, "moveit_cpp/src/moveit_cpp.cpp", BASE_CPP)
+    write(planning, "moveit_cpp/test/moveit_cpp_test.cpp", MOVEIT_CPP_TEST)
+    interface = tmp_path / "moveit_ros/planning_interface"
+    write(interface, "package.xml", AMENT_PACKAGE.format(name="moveit_ros_planning_interface"))
+    write(interface, "CMakeLists.txt", PLANNING_INTERFACE_CMAKE)
+    write(interface, "test/moveit_cpp_test.cpp", MOVEIT_CPP_TEST)
+    assert found(run_cli, tmp_path) == [
+        ("moveit_ros/planning_interface/test/moveit_cpp_test.cpp", 9, "RN101")
+    ]
+
+
+def compiled(text: str, path: str = "CMakeLists.txt") -> CompiledSources:
+    facts = cmake.extract(path, text.encode(), Generation.ROS2, Generation.ROS2)
+    assert facts.compiled is not None
+    return facts.compiled
+
+
+def test_what_a_cmake_file_compiles_and_leaves_open() -> None:
+    found = compiled(
+        """project(demo)
+set(SOURCES src/a.cpp ${CMAKE_CURRENT_SOURCE_DIR}/src/b.cpp)
+add_library(${PROJECT_NAME} SHARED ${SOURCES})
+ament_add_gtest(test_a test/test_a.cpp TIMEOUT 60 WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+add_executable(tool src/tools/${TOOL}.cpp)
+nav2_add_gtest(test_b test/test_b.cpp)
+install(FILES src/c.cpp DESTINATION share)
+add_subdirectory(plugins)
+include(GNUInstallDirs)
+include(cmake/extras.cmake)
+function(never_called name)
+  add_executable(${name} ${ARGN})
+endfunction()
+"""
+    )
+    assert found.paths == ("src/a.cpp", "src/b.cpp", "test/test_a.cpp")
+    assert found.patterns == ("src/tools/*.cpp",)  # never_called's body is no target
+    assert found.words == ("test_b", "test/test_b.cpp")
+    assert (found.subdirectories, found.includes) == (("plugins",), ("cmake/extras.cmake",))
+
+
+def test_a_cmake_module_is_read_from_its_includer_s_directory() -> None:
+    built = BuiltSources()
+    module = FileFacts(
+        "pkg/cmake/nodes.cmake",
+        Language.CMAKE,
+        Generation.ROS2,
+        compiled=CompiledSources(paths=("src/a.cpp",), words=("b",)),
+    )
+    lists = FileFacts(
+        "pkg/CMakeLists.txt", Language.CMAKE, Generation.ROS2, compiled=CompiledSources()
+    )
+    built.add(module, "pkg")
+    built.add(lists, "pkg")
+    assert built.unbuilt("pkg/src/c.cpp", "pkg")
+    assert not built.unbuilt("pkg/src/b.cpp", "pkg")  # a word from the package's directory
+    assert not built.unbuilt("pkg/src/c.hpp", "pkg")  # headers are included, never named
+    assert not built.unbuilt("other/src/c.cpp", "other")  # no CMake build of its own
+
+
+# moveit2's ompl_interface, reduced: a roslaunch file left in the ament package, for the
+# program the package builds from ROS 2 code that reads parameters.
+OMPL_CMAKE = """cmake_minimum_required(VERSION 3.22)
+project(moveit_planners_ompl LANGUAGES CXX)
+find_package(ament_cmake REQUIRED)
+find_package(rclcpp REQUIRED)
+add_executable(moveit_generate_state_database scripts/generate_state_database.cpp)
+set_target_properties(moveit_generate_state_database
+                      PROPERTIES OUTPUT_NAME "generate_state_database")
+install(DIRECTORY launch DESTINATION share/${PROJECT_NAME})
+ament_package()
+"""
+GENERATE_STATE_DATABASE_CPP = """#include <rclcpp/rclcpp.hpp>
+
+int main(int argc, char** argv)
+{
+  rclcpp::init(argc, argv);
+  rclcpp::NodeOptions node_options;
+  node_options.automatically_declare_parameters_from_overrides(true);
+  auto node = rclcpp::Node::make_shared("generate_state_database", node_options);
+  bool use_current_scene;
+  node->get_parameter_or("use_current_scene", use_current_scene, false);
+  std::string output_folder;
+  node->get_parameter_or("output_folder", output_folder,
+                         std::string("constraint_approximation_database"));
+  std::string planning_group;
+  node->get_parameter("planning_group", planning_group);
+  rclcpp::shutdown();
+  return 0;
+}
+"""
+ROSLAUNCH_FILE = """<launch>
+  <arg name="use_current_scene" default="false"/>
+  <arg name="planning_group"/>
+
+  <node name="generate_state_database" pkg="moveit_planners_ompl"
+        type="generate_state_database" output="screen">
+    <param name="use_current_scene" value="$(arg use_current_scene)"/>
+    <param name="planning_group" value="$(arg planning_group)"/>
+    <remap from="~output_folder" to="move_group/constraint_approximations_path"/>
+  </node>
+</launch>
+"""
+ROS2_LAUNCH_FILE = """<launch>
+  <node name="generate_state_database" pkg="moveit_planners_ompl" exec="generate_state_database">
+    <remap from="~/output_folder" to="move_group/constraint_approximations_path"/>
+  </node>
+</launch>
+"""
+
+
+def ompl_interface(root: Path) -> Path:
+    package = root / "moveit_planners/ompl"
+    write(package, "package.xml", AMENT_PACKAGE.format(name="moveit_planners_ompl"))
+    write(package, "CMakeLists.txt", OMPL_CMAKE)
+    write(package, "scripts/generate_state_database.cpp", GENERATE_STATE_DATABASE_CPP)
+    return package
+
+
+def test_a_roslaunch_file_in_a_ros2_package_starts_no_ros2_node(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """Before, its remap was an RN404 against the ROS 2 program's parameters: but ros2
+    launch stops at ``<node type=>`` (launch_ros reads ``exec``) and no ROS 1 build makes
+    the package's programs for roslaunch, so the file starts nothing."""
+    package = ompl_interface(tmp_path)
+    write(package, "launch/generate_state_database.launch", ROSLAUNCH_FILE)
+    assert found(run_cli, tmp_path) == []
+    graph = json.loads(run_cli(["graph", "--format", "json", "."], tmp_path).stdout)
+    assert graph["nodes"] == []  # before, /generate_state_database, launched from it
+
+
+def test_the_same_remap_in_ros2_launch_xml_is_reported(run_cli: Any, tmp_path: Path) -> None:
+    package = ompl_interface(tmp_path)
+    write(package, "launch/generate_state_database.launch.xml", ROS2_LAUNCH_FILE)
+    assert found(run_cli, tmp_path) == [
+        ("moveit_planners/ompl/launch/generate_state_database.launch.xml", 3, "RN404")
+    ]
+
+
+def test_the_language_server_judges_an_open_file_as_the_cli_does(tmp_path: Path) -> None:
+    """An edited buffer of the nodelet has no finding about names; once the build file
+    names it, it has (a build file's change is seen on its next check)."""
+    from roslint_names.config import load_settings
+    from roslint_names.registry import load_registry
+    from roslint_names.session import Session
+
+    package = perception(tmp_path)
+    registry = load_registry()
+    session = Session(tmp_path, load_settings(None, tmp_path, registry), registry, None)
+    session.load()
+    nodelet = package / "mesh_filter/src/depth_self_filter_nodelet.cpp"
+    edited = NODELET_CPP.replace('"/model/depth"', '"/model/depth_image"')
+    assert session.check(nodelet, edited) == []
+    built = (
+        MESH_FILTER_CMAKE + "add_library(depth_filter SHARED src/depth_self_filter_nodelet.cpp)\n"
+    )
+    session.check(package / "mesh_filter/CMakeLists.txt", built)
+    found = session.check(nodelet, edited) or []
+    assert [(d.code, d.span.line) for d in found] == [("RN202", 10), ("RN202", 11)]
