@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .config import Settings, enabled_codes, ignored_for_path, test_code_codes
+from .decisions import one_per_decision
 from .discover import SourceFile, classify
 from .editing.fixing import located
 from .gather import (
@@ -30,6 +31,7 @@ from .generation import PackageGenerations, service_types, visible_service_types
 from .lines import split_lines
 from .model import (
     Answer,
+    Decision,
     Diagnostic,
     FileFacts,
     Fix,
@@ -113,7 +115,8 @@ def lint(
     or by extraction in workers (``gather``), and (3) each file is checked by the per-file
     rules as its facts arrive, in whatever order; (4) the workspace graph is built once
     every file is in and the graph rules report into the files of ``sources``; (5) the
-    diagnostics are joined in discovery order, sorted, and the result stored for (1).
+    diagnostics are joined in discovery order, each decision reported once
+    (``decisions``), sorted, and the result stored for (1).
     Arrival order never shows in the output.
 
     ``context`` files (the rest of the workspace of a per-file run) are gathered for the
@@ -226,8 +229,11 @@ def lint(
     displays = [source.display for source in files[:reported]]
     checks.spare_rejected_fixtures(displays)
     unbuilt = checks.spare_unbuilt(displays)
+    # After the fixtures and unbuilt sources are spared: a finding in one must not stand
+    # for the others.
+    per_file = one_per_decision(checks.per_file)
     diagnostics = sorted(
-        (diagnostic for found in checks.per_file for diagnostic in found), key=Diagnostic.sort_key
+        (diagnostic for found in per_file for diagnostic in found), key=Diagnostic.sort_key
     )
     skipped_paths = {path for path, _ in gathered.skipped}
     checked_count = sum(1 for source in files[:reported] if source.display not in skipped_paths)
@@ -579,7 +585,13 @@ def check_file(
     to_diagnostic = _DiagnosticFactory(facts, settings, text)
     diagnostics = [
         to_diagnostic(
-            rule, finding.span, finding.message, finding.related, finding.fix, answer=finding.answer
+            rule,
+            finding.span,
+            finding.message,
+            finding.related,
+            finding.fix,
+            answer=finding.answer,
+            decision=finding.decision,
         )
         for rule in registry.rules
         if rule.code in active and rule.check is not None
@@ -760,6 +772,7 @@ class _DiagnosticFactory:
         fix: Fix | None = None,
         *,
         answer: Answer | None = None,
+        decision: Decision | None = None,
     ) -> Diagnostic:
         if self._lines is None:
             self._lines = split_lines(self._text)
@@ -778,6 +791,7 @@ class _DiagnosticFactory:
             edit=None if fix is None or fix.tokens else located(fix, span, source_line),
             renaming=fix if fix is not None and fix.tokens else None,
             answer=answer,
+            decision=decision,
         )
 
 

@@ -362,6 +362,25 @@ class Answer:
 
 
 @dataclass(frozen=True)
+class Decision:
+    """The name a finding judges, as one choice however many places write it.
+
+    Findings of one rule on equal decisions are reported once (``decisions``): the place
+    that writes the name is an occurrence of the choice, not a choice of its own.
+    """
+
+    kind: Kind
+    name: str  # the name's value; with ``prefix``, the absolute start it is built from
+    generation: Generation
+    prefix: bool = False
+    # "" where the name is the workspace's (a topic, a node name); the file's path where it
+    # is one node's own (a parameter, a private ``~`` name): another node's is another name.
+    scope: str = ""
+    producer: bool = False  # the place publishes, serves or serves the action: the source
+    api: str = ""  # what the place hands the name to, for the note at it
+
+
+@dataclass(frozen=True)
 class Finding:
     """What a rule reports: no code or severity, the engine attaches those from the rule."""
 
@@ -370,6 +389,8 @@ class Finding:
     related: tuple[RelatedLocation, ...] = ()
     fix: Fix | None = None
     answer: Answer | None = None
+    # The name the finding judges, where other places may write the same (``decisions``).
+    decision: Decision | None = None
 
 
 @dataclass(frozen=True)
@@ -406,6 +427,10 @@ class Diagnostic:
     # any package, and for graph rules' findings, whose answers count across the run):
     # RN203's answers group by it.
     package: str | None = field(default=None, compare=False)
+    decision: Decision | None = field(default=None, compare=False)  # Finding.decision
+    # The other places of its decision, as the findings they were (``decisions``): a
+    # baseline knows the decision by every one of them.
+    joined: tuple[Diagnostic, ...] = field(default=(), compare=False)
 
     def sort_key(self) -> tuple[str, int, int, str, str]:
         return (self.path, self.span.line, self.span.column, self.code, self.message)

@@ -27,6 +27,7 @@ from typing import Any
 
 from .cache import FactsCache
 from .config import Settings, enabled_codes, test_code_codes
+from .decisions import one_per_decision
 from .discover import SourceFile, classify, discover, display_path
 from .engine import (
     RunOptions,
@@ -186,6 +187,9 @@ class Session:
             wired_names=frozenset().union(*self._wired_of.values()),
             test_rules=self._test_rules,
         )
+        # One document at a time: its own places of a decision are one finding, as a
+        # run reports them; a place whose producer is another file stays where it is.
+        (found,) = one_per_decision([found])
         self._open[display] = _Checked(source, text, found, suppressions)
         return self._with_graph(display)
 

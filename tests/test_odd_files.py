@@ -41,6 +41,16 @@ def found(result: Run) -> list[tuple[str, int, int, str]]:
     return [(f["path"], f["line"], f["column"], f["code"]) for f in result.findings()]
 
 
+def places(result: Run) -> list[tuple[str, int, int, str]]:
+    """(path, line, column, code) of every finding and of the other places it stands for:
+    copies of one file write the same names, one decision (``decisions``)."""
+    return sorted(
+        (place["path"], place["line"], place["column"], f["code"])
+        for f in result.findings()
+        for place in (f, *f["related"])
+    )
+
+
 def messages(result: Run) -> list[tuple[str, str, str]]:
     return [(f["path"], f["code"], f["message"]) for f in result.findings()]
 
@@ -411,7 +421,7 @@ def test_encoding_and_line_ends_do_not_move_a_finding(
     result = check(run_cli, tmp_path, "plain", "other", "--verbose")
     assert "skipped" not in result.stderr
     positions: dict[str, list[tuple[int, int, str]]] = {}
-    for path, line, column, code in found(result):
+    for path, line, column, code in places(result):
         positions.setdefault(path.split("/")[0], []).append((line, column, code))
     assert positions == {"plain": expected, "other": expected}
 

@@ -10,6 +10,10 @@ counted, so a second copy of a baselined line is reported.
 The file is JSON, sorted and indented one entry per block, meant to be committed and
 reviewed in diffs; the line numbers of the run that wrote it are not in it, so it changes
 only when findings come or go.
+
+A finding that stands for a decision written at several places (``decisions``) is
+recorded by each of them, and known only while each of them is: a copy of the name at a
+new place makes it new again, as a second copy of a line does.
 """
 
 from __future__ import annotations
@@ -55,9 +59,11 @@ def entry(diagnostic: Diagnostic, directory: Path, cwd: Path) -> Entry:
 
 
 def write(path: Path, diagnostics: Iterable[Diagnostic], cwd: Path) -> int:
-    """Record every reported (not suppressed) diagnostic in ``path``; the entry count."""
+    """Record every reported (not suppressed) diagnostic in ``path``, by each of its
+    places; the count of diagnostics recorded."""
     directory = path.absolute().parent
-    entries = sorted(entry(d, directory, cwd) for d in diagnostics if not d.suppressed)
+    recorded = [d for d in diagnostics if not d.suppressed]
+    entries = sorted(entry(place, directory, cwd) for d in recorded for place in _places(d))
     document = {
         "roslint-names-baseline": FORMAT,
         "findings": [
@@ -70,7 +76,7 @@ def write(path: Path, diagnostics: Iterable[Diagnostic], cwd: Path) -> int:
         write_new(path, text.encode("utf-8"), "the baseline")
     except WriteError as error:
         raise BaselineError(str(error)) from error
-    return len(entries)
+    return len(recorded)
 
 
 def load(path: Path) -> Counter[Entry]:
@@ -99,15 +105,23 @@ def load(path: Path) -> Counter[Entry]:
 def apply(
     diagnostics: Sequence[Diagnostic], baseline: Counter[Entry], directory: Path, cwd: Path
 ) -> Applied:
-    """Mark the diagnostics the baseline holds (each entry absorbs as many as it counts)."""
+    """Mark the diagnostics the baseline holds (each entry absorbs as many places as it
+    counts): a diagnostic is known when every place of it is."""
     left = Counter(baseline)
     marked: list[Diagnostic] = []
     for diagnostic in diagnostics:
-        key = entry(diagnostic, directory, cwd)
-        if not diagnostic.suppressed and left[key] > 0:
-            left[key] -= 1
-            marked.append(replace(diagnostic, baselined=True))
-        else:
+        if diagnostic.suppressed:
             marked.append(diagnostic)
+            continue
+        wanted = Counter(entry(place, directory, cwd) for place in _places(diagnostic))
+        known = all(left[key] >= count for key, count in wanted.items())
+        for key, count in wanted.items():
+            left[key] -= min(count, left[key])
+        marked.append(replace(diagnostic, baselined=True) if known else diagnostic)
     stale = tuple(sorted(key for key, count in left.items() for _ in range(count)))
     return Applied(tuple(marked), stale)
+
+
+def _places(diagnostic: Diagnostic) -> tuple[Diagnostic, ...]:
+    """The diagnostic and the other places of its decision, each as its own finding."""
+    return (diagnostic, *diagnostic.joined)

@@ -50,8 +50,9 @@ Fields:
     One sentence saying what is wrong and, when there is one, the fix.
 ``related`` (array)
     Other locations the finding involves, for example the other half of a case collision
-    (RN401): objects with ``path``, ``line``, ``column``, ``end_line``, ``end_column`` (as
-    above) and ``message``. Empty when there are none.
+    (RN401), or the other places that write the name the finding judges: objects with
+    ``path``, ``line``, ``column``, ``end_line``, ``end_column`` (as above) and
+    ``message``. Empty when there are none.
 ``fix`` (object or null)
     The certain fix, when the rule has one and the file spells the name exactly: the text
     from ``line``:``column`` to ``end_line``:``end_column`` (exclusive) becomes

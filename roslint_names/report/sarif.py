@@ -6,9 +6,10 @@ short and full description, help as text and Markdown (the catalog page, with it
 alert. Results point at their files with URIs relative to ``%SRCROOT%`` (the directory the
 paths are relative to, given in ``originalUriBaseIds``); regions carry start and end
 columns counted in Unicode code points (``columnKind``). Related locations (the other half
-of a collision) go in ``relatedLocations`` and the message links to them. Every result has a
-``partialFingerprints.primaryLocationLineHash``. Nothing depends on the clock or the order
-of a dictionary: two runs on the same tree give identical bytes.
+of a collision, the other places of a name) go in ``relatedLocations`` and the message
+links to them. Every result has a ``partialFingerprints.primaryLocationLineHash``.
+Nothing depends on the clock or the order of a dictionary: two runs on the same tree give
+identical bytes.
 
 Suppressed results are left out (GitHub ignores ``suppressions`` and would show them as
 open alerts) unless the context includes them; then each carries

@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 
-from ..model import FileFacts, Fix, Generation, Kind, Language, NameUse, Role
+from ..model import Decision, FileFacts, Fix, Generation, Kind, Language, NameUse, Role
 from ..names import Problem, check_name, tokens
 
 GRAPH_KINDS = frozenset({Kind.NODE, Kind.NAMESPACE, Kind.TOPIC, Kind.SERVICE, Kind.ACTION})
@@ -151,6 +151,29 @@ def chosen_depth(name: str, kind: Kind, generation: Generation) -> int:
         if hidden:
             chosen = chosen[: hidden[0]]
     return len(chosen)
+
+
+# Where a name starts: a publisher, a service server, an action server.
+_PRODUCING_ROLES = frozenset({Role.PUBLISH, Role.SERVE, Role.ACTION_SERVE})
+
+
+def decision(use: NameUse, facts: FileFacts, *, prefix: str | None = None) -> Decision:
+    """The name ``use`` writes as one decision (``decisions``), or with ``prefix`` the
+    absolute start a name built at run time shares with others.
+
+    A parameter belongs to its node, as does a private ``~`` name: the same spelling in
+    another file is most often another node's, so its scope is the file. Every other name
+    (a topic, a service, a node name, a frame) is the workspace's."""
+    own = use.kind is Kind.PARAMETER or use.value.startswith("~")
+    return Decision(
+        kind=use.kind,
+        name=use.value if prefix is None else prefix,
+        generation=facts.generation,
+        prefix=prefix is not None,
+        scope=facts.path if own and prefix is None else "",
+        producer=use.role in _PRODUCING_ROLES,
+        api=use.api,
+    )
 
 
 def label(use: NameUse) -> str:

@@ -22,7 +22,7 @@ from collections.abc import Iterable, Iterator
 from ..model import ENDPOINT_ROLES, Answer, FileFacts, Finding, Fix, Kind, Severity
 from ..names import is_valid
 from ..rule import Rule, RuleContext
-from .common import in_code, label, static_uses
+from .common import decision, in_code, label, static_uses
 
 GLOBAL_BY_DESIGN = (
     "/tf",
@@ -66,6 +66,7 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             # point, but whoever used the absolute name must follow.
             fix=Fix(use.value, relative, safe=False),
             answer=Answer(_SETTING, use.value),
+            decision=decision(use, facts),
         )
 
 
@@ -118,6 +119,7 @@ def _joined_at_run_time(
             "escapes the node's namespace, so <group ns> and __ns:= cannot separate robots; "
             "drop the leading '/'",
             answer=Answer(_SETTING, prefix.rstrip("/") + "/**"),
+            decision=decision(use, facts, prefix=prefix),
         )
 
 

@@ -25,7 +25,7 @@ from collections.abc import Iterator
 from ..model import FileFacts, Finding, Fix, Generation, Kind, Language, NameUse, Severity
 from ..names import Problem, check_name
 from ..rule import Rule, RuleContext
-from .common import fix_hint, grammar_problems, label, suggested_fix
+from .common import decision, fix_hint, grammar_problems, label, suggested_fix
 
 
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
@@ -35,7 +35,7 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             continue
         message = f"{label(use)} '{use.value}' {problem.reason} ({ros}){fix_hint(problem)}"
         fix = _private_name_fix(use, problem, facts) or _separator_fix(use, problem)
-        yield Finding(use.span, message, fix=fix)
+        yield Finding(use.span, message, fix=fix, decision=decision(use, facts))
 
 
 # The API the C++ extractor names on a child handle's namespace (extract/cpp/handles.py's

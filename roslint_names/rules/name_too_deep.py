@@ -34,6 +34,8 @@ from .common import (
     TRANSPORT_SUFFIXES,
     chosen_depth,
     chosen_here,
+    decision,
+    in_code,
     label,
     static_uses,
 )
@@ -52,7 +54,10 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
         levels = chosen_depth(use.value, use.kind, facts.generation)
         if levels > context.max_depth:
             message = _too_deep(label(use), use.value, levels, context.max_depth)
-            yield Finding(use.span, message, answer=_depth(levels))
+            # In code a name is one decision wherever it is written; in a launch file each
+            # remap or namespace is its file's own choice (the graph judges their wiring).
+            chosen = decision(use, facts) if in_code(use, facts) else None
+            yield Finding(use.span, message, answer=_depth(levels), decision=chosen)
 
 
 def _depth(levels: int) -> Answer:

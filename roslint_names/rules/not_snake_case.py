@@ -20,7 +20,7 @@ from functools import lru_cache
 from ..model import Answer, FileFacts, Finding, Fix, Generation, Kind, NameUse, Severity
 from ..names import check_name, is_snake_case, rename_tokens, snake_case, tokens
 from ..rule import OptionValue, Rule, RuleContext
-from .common import chosen_here, label, spelled_as_type, static_uses
+from .common import chosen_here, decision, label, spelled_as_type, static_uses
 
 # Last tokens that ROS packages spell themselves, so no author can choose another spelling:
 # image_transport names a subtopic after its transport plugin (`image_raw/compressedDepth`).
@@ -65,6 +65,7 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             if all(new for _, new in renamed)
             else None,
             answer=_answer(use, bad),
+            decision=decision(use, facts),
         )
 
 
