@@ -677,3 +677,46 @@ def test_a_baseline_knows_a_decision_by_every_place(run_cli: Any, tmp_path: Path
     assert [places(f) for f in grown.findings()] == [
         [(third, 11), (PLANNING_TEST, 11), (INTERFACE_TEST, 11)]
     ]
+
+
+# ---------------------------------------------------------------------------------------
+# Universal_Robots_ROS2_Driver's motion primitives example: an action client and a client of
+# the same action's cancel service, both absolute: one name, the action's.
+
+MOTION_PRIMITIVES_PY = """\
+import rclpy
+from action_msgs.srv import CancelGoal
+from rclpy.action import ActionClient
+from rclpy.node import Node
+from control_msgs.action import ExecuteMotionPrimitiveSequence
+
+
+class MotionPrimitiveExecutor(Node):
+    def __init__(self):
+        super().__init__("motion_primitive_executor")
+        self._client = ActionClient(
+            self,
+            ExecuteMotionPrimitiveSequence,
+            "/motion_primitive_forward_controller/motion_sequence",
+        )
+        self._cancel_client = self.create_client(
+            CancelGoal, "/motion_primitive_forward_controller/motion_sequence/_action/cancel_goal"
+        )
+
+
+def main():
+    rclpy.init()
+    rclpy.spin(MotionPrimitiveExecutor())
+"""
+MOTION_PRIMITIVES = "src/ur_robot_driver/examples/send_dummy_motion_primitives.py"
+
+
+def test_an_actions_cancel_service_is_the_actions_decision(run_cli: Any, tmp_path: Path) -> None:
+    """rcl_action names the cancel service ``<action>/_action/cancel_goal``: writing it
+    absolute is the action's absolute name again, one decision with the action client."""
+    package = AMENT_PACKAGE.format(name="ur_robot_driver")
+    write(tmp_path, "src/ur_robot_driver/package.xml", package)
+    write(tmp_path, MOTION_PRIMITIVES, MOTION_PRIMITIVES_PY)
+    found = check(run_cli, tmp_path, "--select", "RN202", ".").findings()
+    assert [places(f) for f in found] == [[(MOTION_PRIMITIVES, 14), (MOTION_PRIMITIVES, 17)]]
+    assert "absolute action" in found[0]["message"]

@@ -153,6 +153,9 @@ def chosen_depth(name: str, kind: Kind, generation: Generation) -> int:
     return len(chosen)
 
 
+# The hidden level under which rcl_action names an action's services and topics.
+_ACTION_LEVEL = "/_action/"
+
 # Where a name starts: a publisher, a service server, an action server.
 _PRODUCING_ROLES = frozenset({Role.PUBLISH, Role.SERVE, Role.ACTION_SERVE})
 
@@ -163,11 +166,18 @@ def decision(use: NameUse, facts: FileFacts, *, prefix: str | None = None) -> De
 
     A parameter belongs to its node, as does a private ``~`` name: the same spelling in
     another file is most often another node's, so its scope is the file. Every other name
-    (a topic, a service, a node name, a frame) is the workspace's."""
+    (a topic, a service, a node name, a frame) is the workspace's.
+
+    In ROS 2 an action's services and topics are its name and a hidden ``_action`` level
+    (rcl_action ``rcl_action_get_cancel_service_name``: ``<action>/_action/cancel_goal``):
+    a client that writes one of them spells the action's name, one decision with it."""
     own = use.kind is Kind.PARAMETER or use.value.startswith("~")
+    kind, name = use.kind, use.value if prefix is None else prefix
+    if prefix is None and facts.generation is Generation.ROS2 and _ACTION_LEVEL in name:
+        kind, name = Kind.ACTION, name.partition(_ACTION_LEVEL)[0]
     return Decision(
-        kind=use.kind,
-        name=use.value if prefix is None else prefix,
+        kind=kind,
+        name=name,
         generation=facts.generation,
         prefix=prefix is not None,
         scope=facts.path if own and prefix is None else "",
