@@ -100,7 +100,9 @@ def _decide(path: str | Path, by_name: Language | _Sniff | None) -> Language | N
     if by_name is _Sniff.XML:
         return _sniff_xml(path)
     if by_name is _Sniff.YAML:
-        return Language.LAUNCH_YAML if _YAML_LAUNCH_KEY.search(_head(path)) else None
+        # Any other YAML may be a parameter file: its content and its package decide
+        # (``extract.parameter_file``), and the launch files that load it.
+        return Language.LAUNCH_YAML if _YAML_LAUNCH_KEY.search(_head(path)) else Language.PARAMETERS
     if by_name is _Sniff.SCRIPT:
         return Language.PYTHON if _PYTHON_SHEBANG.match(_head(path, _SHEBANG_BYTES)) else None
     return by_name

@@ -45,6 +45,7 @@ EXTRACTOR_MODULES: dict[Language, str] = {
     Language.CMAKE: "build.cmake",
     Language.SETUP_PY: "build.setup_py",
     Language.SETUP_CFG: "build.setup_py",
+    Language.PARAMETERS: "parameter_file",
 }
 # Launch files an including file can hand arguments to (see ``workspace.launch_tree``).
 SPECIALISABLE = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.PYTHON})

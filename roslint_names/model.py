@@ -41,6 +41,9 @@ class Language(str, Enum):
     CMAKE = "cmake"  # CMakeLists.txt, *.cmake: the executables and sources a package builds
     SETUP_PY = "setup-py"  # setup.py: a Python package's console_scripts
     SETUP_CFG = "setup-cfg"  # setup.cfg: console_scripts declared in [options.entry_points]
+    # A YAML file that is not a launch file: a parameter file (ROS 2 ``ros__parameters``,
+    # ROS 1 ``rosparam``) or other configuration, as its content and package tell.
+    PARAMETERS = "parameters"
 
 
 class Role(str, Enum):
@@ -134,6 +137,42 @@ class Remap:
 
 
 @dataclass(frozen=True)
+class ParameterLoad:
+    """A parameter file a launch file hands a node, or (ROS 1) loads into a namespace.
+
+    ``package`` and ``path`` locate the file as ``LaunchInclude``'s do; ``span`` is the
+    reference (``<rosparam file>``, ``<param from>``, the ``parameters=`` item).
+    ``namespace``: ROS 1 only, where the file's names are loaded. On a node it is the
+    ``ns`` relative to the node's private namespace ("" for that namespace itself); on a
+    group-level ``<rosparam>`` (``FileFacts.parameter_loads``) the fully pushed namespace,
+    as ``LaunchNode.namespace`` ("" when dynamic), with ``anchored`` likewise.
+    """
+
+    package: str | None
+    path: str | None
+    span: Span
+    namespace: str = ""
+    anchored: bool = False
+    conditional: bool = False
+
+
+@dataclass(frozen=True)
+class ParameterBlock:
+    """The parameters one part of a parameter file sets, each name with its key's span.
+
+    ROS 2: one node key (``controller_server``, ``/ns/node``, ``/**``) and the parameters
+    under its ``ros__parameters``, nested keys joined with '.' (``FollowPath.max_vel_x``);
+    ``key`` is the node key as rcl reads it (nested node keys joined with '/') and
+    ``span`` covers the key written last before ``ros__parameters``. ROS 1: the whole
+    file, ``key`` None and ``span`` its first key, names the nested keys joined with '/'.
+    """
+
+    key: str | None
+    span: Span
+    parameters: tuple[tuple[str, Span], ...] = ()
+
+
+@dataclass(frozen=True)
 class LaunchNode:
     """A node started by a launch file, with the scope the file gives it.
 
@@ -166,6 +205,9 @@ class LaunchNode:
     # A rostest ``<test>``: rostest runs its tests one at a time once the nodes are up, so
     # two tests of one name never run together.
     test: bool = False
+    # The parameter files handed to the node, in order (``parameters=[path]``, ``<param
+    # from>``, ``<rosparam command="load" file>`` inside the node).
+    parameter_files: tuple[ParameterLoad, ...] = ()
 
 
 # What an include hands the included file, sorted by name: each argument's value, None
@@ -314,6 +356,10 @@ class FileFacts:
     # C++: the source files (not headers) it includes, ``#include "impl.cpp"``, by name:
     # such a file is compiled though no build file names it.
     included_sources: tuple[str, ...] = ()
+    # A parameter file: what each of its parts sets (``ParameterBlock``).
+    parameter_blocks: tuple[ParameterBlock, ...] = ()
+    # A ROS 1 launch file: the ``<rosparam command="load" file>`` outside any node.
+    parameter_loads: tuple[ParameterLoad, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -29,12 +29,14 @@ from .model import Language, Span
 _KEYS = r"([A-Za-z0-9_\-]+(?:(?:[ \t]*,[ \t]*|[ \t]+)[A-Za-z0-9_\-]+)*)"
 _NOQA_LANGUAGES = frozenset({Language.PYTHON, Language.LAUNCH_PYTHON})
 _XML_LANGUAGES = frozenset({Language.LAUNCH_XML, Language.URDF, Language.PACKAGE_XML})
+_YAML_LANGUAGES = frozenset({Language.LAUNCH_YAML, Language.PARAMETERS})
 _MARKER = {
     Language.CPP: "NOLINT",
     Language.PYTHON: "noqa",
     Language.LAUNCH_PYTHON: "noqa",
     Language.LAUNCH_XML: "roslint-names",
     Language.LAUNCH_YAML: "roslint-names",
+    Language.PARAMETERS: "roslint-names",
     Language.URDF: "roslint-names",
     Language.PACKAGE_XML: "roslint-names",
     Language.SERVICE_DEFINITION: "roslint-names",
@@ -137,7 +139,7 @@ def _in_line(line: str, number: int, language: Language) -> Iterable[Suppression
         for match in NOQA.finditer(line):
             yield _make(match.group(1), frozenset({number}), number, match)
     else:
-        pattern = YAML_IGNORE if language is Language.LAUNCH_YAML else XML_IGNORE
+        pattern = YAML_IGNORE if language in _YAML_LANGUAGES else XML_IGNORE
         for match in pattern.finditer(line):
             # Alone on its line, the comment is about the next line; after markup, its own.
             alone = not line[: match.start()].strip()

@@ -34,7 +34,9 @@ from roslint_names.model import Generation, Language
         ("model.xml", "<robot name='r'/>", Language.URDF),
         ("plugins.xml", "<library path='x'/>", None),
         ("bringup.yaml", "# launch\nlaunch:\n- node: {pkg: a, exec: b}\n", Language.LAUNCH_YAML),
-        ("params.yaml", "amcl:\n  ros__parameters:\n    use_sim_time: true\n", None),
+        ("params.yaml", "amcl:\n  ros__parameters:\n    use_sim_time: true\n", Language.PARAMETERS),
+        # Any YAML may be a parameter file: its content and package decide (extraction).
+        ("costmap.yaml", "robot_radius: 0.2\n", Language.PARAMETERS),
         ("CMakeLists.txt", "", Language.CMAKE),
         ("setup.py", "from setuptools import setup\n", Language.SETUP_PY),
         ("setup.cfg", "[options.entry_points]\n", Language.SETUP_CFG),

@@ -215,6 +215,7 @@ _EDITORS = {
     Language.PYTHON: _python,
     Language.LAUNCH_PYTHON: _python,
     Language.LAUNCH_YAML: _yaml,
+    Language.PARAMETERS: _yaml,
     Language.LAUNCH_XML: _xml,
     Language.URDF: _xml,
 }

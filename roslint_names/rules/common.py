@@ -102,11 +102,15 @@ def chosen_here(use: NameUse, facts: FileFacts) -> bool:
     - a subscriber, service client or action client uses the name its publisher or
       server chose, often in another package (robot_localization's ``fromLL``);
     - in ROS 2, reading, describing or setting a parameter uses the name its declaration
-      chose.
+      chose;
+    - a parameter file sets the names the node's code declares or reads, as a launch
+      file's ``<param name>`` does: it spells them, and cannot rename them alone.
 
     Node names, namespaces, publishers, servers, parameter declarations (and every ROS 1
     parameter access) are where names are chosen, and are judged.
     """
+    if facts.language is Language.PARAMETERS:
+        return use.role is not Role.PARAMETER
     if facts.language in _LAUNCH_LANGUAGES and not in_code(use, facts):
         return use.role not in (Role.PARAMETER, Role.REMAP_FROM)
     if use.role in _USING_ROLES:

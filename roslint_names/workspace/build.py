@@ -33,10 +33,12 @@ from roslint_names.workspace.graph import (
     Location,
     NodeInstance,
     NodeRemap,
+    ParameterFileUse,
     Reach,
 )
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
 from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Prepare, Specialise
+from roslint_names.workspace.parameters import ros1_names, ros2_names
 
 _EDGES = {
     Role.PUBLISH: EdgeKind.PUBLISH,
@@ -83,25 +85,39 @@ def build(
     # Code no build file compiles never runs: it joins no node (``built``).
     unbuilt = unbuilt_sources(index)
     launched_sources: set[str] = set(unbuilt)
-    for launched in LaunchTrees(index, specialise, prepare).launched():
+    trees = LaunchTrees(index, specialise, prepare)
+    unnamed: set[str] = set()  # parameter files handed to nodes of unknown names
+    for launched in trees.launched():
         found = index.sources_of(launched.node.package, launched.node.executable)
         sources = tuple(path for path in found if path not in unbuilt)
         launched_sources.update(sources)
-        built = _launched_instance(index, launched, sources)
+        built = _launched_instance(index, launched, sources, trees)
         if built is not None:
             nodes.append(built[0])
             endpoints.extend(built[1])
+        else:
+            unnamed.update(
+                path
+                for load in launched.node.parameter_files
+                if (path := _parameter_file(index, trees, launched.path, load.package, load.path))
+            )
     for sources in _unlaunched_programs(index, launched_sources):
         built = _unlaunched_instance(index, sources)
         if built is not None:
             nodes.append(built[0])
             endpoints.extend(built[1])
+    loads = _group_loads(index, trees)
+    linked = {use.path for node in nodes for use in node.parameter_files}
+    linked.update(use.path for use in loads)
     return Graph(
         tuple(sorted(set(nodes), key=NodeInstance.sort_key)),
         tuple(sorted(set(endpoints), key=Endpoint.sort_key)),
         index.companions(),
         _mentions(index, nodes),
         index.service_definitions(),
+        {path: index.facts[path].parameter_blocks for path in sorted(linked)},
+        tuple(sorted(set(loads))),
+        frozenset(unnamed),
     )
 
 
@@ -122,7 +138,7 @@ def _mentions(index: WorkspaceIndex, nodes: Iterable[NodeInstance]) -> dict[str,
 
 
 def _launched_instance(
-    index: WorkspaceIndex, launched: Launched, sources: tuple[str, ...]
+    index: WorkspaceIndex, launched: Launched, sources: tuple[str, ...], trees: LaunchTrees
 ) -> tuple[NodeInstance, list[Endpoint]] | None:
     code = [index.facts[path] for path in sources]
     if launched.node.dynamic_name:
@@ -155,6 +171,10 @@ def _launched_instance(
         for remap, path, own in launched.remaps
     ]
     names = _resolve_code(code, instance, remaps, launched.root, reach)
+    composable = "::" in (launched.node.executable or "")  # a component's plugin class
+    files = _parameter_files(
+        index, trees, launched, full_name, generation=generation, composable=composable
+    )
     node = NodeInstance(
         name=full_name,
         generation=generation,
@@ -173,8 +193,70 @@ def _launched_instance(
         named_at_launch=launched.node.name is not None,
         test=launched.node.test,
         reach=reach,
+        parameter_files=files,
+        composable=composable,
     )
     return node, names.endpoints
+
+
+def _parameter_file(
+    index: WorkspaceIndex, trees: LaunchTrees, path: str, package: str | None, relative: str | None
+) -> str | None:
+    """The parameter file of the workspace a launch file names, if it holds one."""
+    found = trees.located(path, package, relative)
+    facts = None if found is None else index.facts.get(found)
+    return found if facts is not None and facts.language is Language.PARAMETERS else None
+
+
+def _parameter_files(
+    index: WorkspaceIndex,
+    trees: LaunchTrees,
+    launched: Launched,
+    full_name: str,
+    *,
+    generation: Generation,
+    composable: bool,
+) -> tuple[ParameterFileUse, ...]:
+    """The parameter files the launch hands the node, with the names each sets on it.
+
+    ROS 1 loads a file inside ``<node>`` under the node's private namespace. A composable
+    node the launch file names not gets only a file's ``/**`` entry from launch_ros
+    (``workspace.parameters``)."""
+    found: list[ParameterFileUse] = []
+    for load in launched.node.parameter_files:
+        path = _parameter_file(index, trees, launched.path, load.package, load.path)
+        if path is None:
+            continue
+        blocks = index.facts[path].parameter_blocks
+        site = Location(launched.path, load.span)
+        conditional = launched.conditional or load.conditional
+        if generation is Generation.ROS1:
+            namespace = (
+                load.namespace
+                if load.namespace.startswith("/")
+                else f"{full_name}/{load.namespace}".rstrip("/")
+            )
+            names = ros1_names(blocks, namespace)
+            found.append(ParameterFileUse(path, site, namespace, names, conditional))
+            continue
+        matched = full_name if launched.node.name is not None or not composable else ""
+        names = ros2_names(blocks, matched, composable=composable)
+        found.append(ParameterFileUse(path, site, "", names, conditional))
+    return tuple(found)
+
+
+def _group_loads(index: WorkspaceIndex, trees: LaunchTrees) -> list[ParameterFileUse]:
+    """ROS 1 ``<rosparam load>`` outside nodes, each with the names it sets."""
+    found: list[ParameterFileUse] = []
+    for loaded in trees.loaded():
+        load = loaded.load
+        path = _parameter_file(index, trees, loaded.path, load.package, load.path)
+        if path is None:
+            continue
+        names = ros1_names(index.facts[path].parameter_blocks, loaded.namespace)
+        site = Location(loaded.path, load.span)
+        found.append(ParameterFileUse(path, site, loaded.namespace, names, loaded.conditional))
+    return found
 
 
 def _unlaunched_programs(index: WorkspaceIndex, launched: set[str]) -> list[tuple[str, ...]]:

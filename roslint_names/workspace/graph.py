@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from enum import Enum
 from typing import Protocol
 
-from roslint_names.model import Generation, Kind, Remap, Span
+from roslint_names.model import Generation, Kind, ParameterBlock, Remap, Span
 from roslint_names.workspace.interfaces import ServiceDefinition
 
 
@@ -74,6 +74,25 @@ class NodeRemap(Remap):
     written_target: str = ""
 
 
+@dataclass(frozen=True, order=True)
+class ParameterFileUse:
+    """A parameter file of the workspace that a launch file hands a node, or (ROS 1)
+    loads into a namespace.
+
+    ``path`` is the file's display path; ``site`` the reference in the launch file
+    (``parameters=[...]``'s item, ``<param from>``, ``<rosparam file>``). ``namespace``
+    (ROS 1) is where its names are loaded, fully qualified. ``names`` are the parameters
+    it sets there: ROS 2, those of its node keys that match the node
+    (``workspace.parameters``), as the node names them; ROS 1, fully qualified.
+    """
+
+    path: str
+    site: Location
+    namespace: str = ""
+    names: tuple[str, ...] = ()
+    conditional: bool = False
+
+
 @dataclass(frozen=True)
 class NodeInstance:
     """One node as it runs: launched by a launch tree, or code no launch file starts.
@@ -110,6 +129,9 @@ class NodeInstance:
     parameters: tuple[str, ...] = ()
     conditional: bool = False  # started under a condition the linter cannot decide
     named_at_launch: bool = False  # the launch file gives its name, not its code
+    # The parameter files the launch hands it (ROS 1: loads into its private namespace).
+    parameter_files: tuple[ParameterFileUse, ...] = ()
+    composable: bool = False  # a component loaded into a container (launch_ros matches)
     test: bool = False  # a rostest ``<test>``: run alone, after the nodes are up
     reach: Reach = Reach(Generation.ROS2)
 
@@ -165,6 +187,14 @@ class Graph:
     # ``package/Name`` -> the definition of a ROS 1 service type (RN403 compares ROS 1
     # services by it, as roscpp and rospy do by its md5sum)
     service_definitions: Mapping[str, ServiceDefinition] = field(default_factory=dict)
+    # display path -> the blocks of each parameter file a launch file hands a node or loads
+    parameter_files: Mapping[str, tuple[ParameterBlock, ...]] = field(default_factory=dict)
+    # ROS 1 ``<rosparam command="load" file>`` outside any node, with its namespace
+    parameter_loads: tuple[ParameterFileUse, ...] = ()
+    # Parameter files handed to a launched node whose name the linter does not know
+    # (``$(anon x)``, an argument, a name its code does not show): which of their keys
+    # that node reads is unknown.
+    unnamed_parameter_files: frozenset[str] = frozenset()
 
     def can_meet(self, one: Placed, other: Placed) -> bool:
         """Whether two nodes (or their endpoints) can be in one ROS graph at run time.

@@ -20,6 +20,7 @@ from roslint_names.model import (
     LaunchArguments,
     LaunchInclude,
     LaunchNode,
+    ParameterLoad,
     Remap,
 )
 from roslint_names.names import join_namespace
@@ -52,6 +53,17 @@ class Launched:
 
 
 @dataclass(frozen=True)
+class Loaded:
+    """A ROS 1 ``<rosparam command="load" file>`` outside nodes, as a tree runs it."""
+
+    root: str
+    load: ParameterLoad
+    path: str  # the launch file that holds it
+    namespace: str  # fully qualified, includes' namespaces applied
+    conditional: bool
+
+
+@dataclass(frozen=True)
 class _Frame:
     """Where the walk is: the file, and what its includers give it."""
 
@@ -80,13 +92,18 @@ class LaunchTrees:
 
     def target(self, path: str, include: LaunchInclude) -> str | None:
         """The display path of the file an include names, when the workspace holds it."""
-        if include.path is None:
+        return self.located(path, include.package, include.path)
+
+    def located(self, path: str, package: str | None, relative: str | None) -> str | None:
+        """The display path of the file that the launch file ``path`` names by
+        ``package`` and ``relative`` (``LaunchInclude``, ``ParameterLoad``)."""
+        if relative is None:
             return None
-        if include.package is not None:
-            return self.index.find_in_package(include.package, include.path)
-        if include.path.startswith("/"):
+        if package is not None:
+            return self.index.find_in_package(package, relative)
+        if relative.startswith("/"):
             return None  # an absolute path outside the run's display paths
-        candidate = join(parent(path), include.path)
+        candidate = join(parent(path), relative)
         return candidate if candidate in self.index.facts else None
 
     def roots(self) -> list[str]:
@@ -103,6 +120,24 @@ class LaunchTrees:
             self._prepare_depths(self.prepare, frames)
         for frame in frames:
             yield from self._walk(frame.path, frame)
+
+    def loaded(self) -> Iterator[Loaded]:
+        """Every group-level ``<rosparam load>`` the trees run (after ``launched``, whose
+        walk has extracted every file they hold)."""
+        for root in self.roots():
+            yield from self._loads(root, _Frame(root, (), "/", (), (), (), frozenset({root})))
+
+    def _loads(self, root: str, frame: _Frame) -> Iterator[Loaded]:
+        facts = self._facts(frame.path, frame.arguments)
+        if facts is None:
+            return
+        for load in facts.parameter_loads:
+            namespace = _nest(frame.namespace, load.namespace, load.anchored)
+            if namespace is not None:
+                conditional = frame.conditional or load.conditional
+                yield Loaded(root, load, frame.path, namespace, conditional)
+        for inner in self._included(frame, facts):
+            yield from self._loads(root, inner)
 
     def _prepare_depths(self, prepare: Prepare, frames: list[_Frame]) -> None:
         """Walk the trees depth by depth, handing each depth's specialisations to

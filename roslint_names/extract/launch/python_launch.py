@@ -60,11 +60,13 @@ from roslint_names.model import (
     LaunchInclude,
     LaunchNode,
     NameUse,
+    ParameterLoad,
     Remap,
     Span,
 )
 
 _IF = ("launch", "IfCondition")
+_PARAMETER_FILE = ("launch_ros", "ParameterFile")
 _UNLESS = ("launch", "UnlessCondition")
 _ROOTS = ("generate_launch_description", "generate_test_description")
 # Keywords, current then pre-Foxy spelling (node_name, node_namespace...).
@@ -375,6 +377,7 @@ class LaunchExtractor(LaunchValues):
             name, dynamic_name = (None, True) if name_value.dynamic else (name_value.text, False)
         remaps = self.remappings(action, scope, namespace, label)
         parameters = self.parameters(action, scope, node_path(namespace, name), label)
+        files = self.parameter_files(action, scope)
         composable = action.kind is Action.COMPOSABLE
         executable = ":plugin|node_plugin" if composable else ":executable|node_executable"
         if not composable:
@@ -394,6 +397,7 @@ class LaunchExtractor(LaunchValues):
                 anchored=anchored,
                 conditional=self.undecided_depth > 0,
                 dynamic_name=dynamic_name,
+                parameter_files=tuple(files),
             )
         )
 
@@ -472,6 +476,35 @@ class LaunchExtractor(LaunchValues):
             if dictionary is not None:
                 found += self.parameter_dict(dictionary, scope, "", path, label)
         return found
+
+    def parameter_files(self, action: ActionCall, scope: LaunchScope) -> list[ParameterLoad]:
+        """The files of ``parameters=``: every item that is no dictionary, a path or a
+        ``ParameterFile(path)``, located as an include's file is (``IncludePaths``)."""
+        located = action.get(":parameters")
+        found: list[ParameterLoad] = []
+        for item in [] if located is None else self.items(located):
+            if self.dictionary(item) is not None:
+                continue
+            path = self.parameter_file_path(item, 0)
+            package, where = self.paths.locate(path, scope)
+            span = self.locator.span(item.where())
+            found.append(ParameterLoad(package, where, span, conditional=self.undecided_depth > 0))
+        return found
+
+    def parameter_file_path(self, item: Written, depth: int) -> Written:
+        """The path of ``ParameterFile(path)`` (through a variable holding one); any
+        other item is the path itself."""
+        expr = item.expr
+        if isinstance(expr, cst.Name) and depth < 8:
+            bound = self.bound(item)
+            if bound is not None and isinstance(bound.expr, cst.Call):
+                return self.parameter_file_path(bound, depth + 1)
+        if isinstance(expr, cst.Call) and any(
+            class_key(name) == _PARAMETER_FILE for name in item.scope.qualified(expr.func)
+        ):
+            path = call_argument(expr, item.context, "0:param_file")
+            return item if path is None else path
+        return item
 
     def parameter_dict(
         self,

@@ -24,7 +24,7 @@ from __future__ import annotations
 import functools
 from abc import ABC, abstractmethod
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Protocol
 
 from lxml import etree
@@ -73,6 +73,7 @@ from roslint_names.model import (
     LaunchInclude,
     LaunchNode,
     NameUse,
+    ParameterLoad,
     ParseError,
     Remap,
     Span,
@@ -240,6 +241,22 @@ class LaunchWalker(ABC):
         self.names: list[NameUse] = []
         self.nodes: list[LaunchNode] = []
         self.includes: list[LaunchInclude] = []
+        self.loads: list[ParameterLoad] = []  # ROS 1 ``<rosparam load>`` outside nodes
+        self.node_files: list[ParameterLoad] = []  # of the node being read
+
+    def parameter_file(
+        self, entity: Entity, attribute: str, scope: Scope, namespace: str = ""
+    ) -> ParameterLoad | None:
+        """The parameter file ``attribute`` names, located as an include's file is
+        (``include.locate``); None where the entity names none or is inactive."""
+        located = entity.get(attribute)
+        if located is None or located.opaque or scope.inactive:
+            return None
+        target = locate(located.text, self.dialect, scope.lookup)
+        conditional = scope.conditional or self.undecided(entity, scope)
+        return ParameterLoad(
+            target.package, target.path, located.span, namespace, conditional=conditional
+        )
 
     # -- values and facts ---------------------------------------------------------------
 
@@ -365,7 +382,9 @@ class LaunchWalker(ABC):
         name = _node_name(name_value, arguments)
         path = node_path(namespace, name)
         line_remaps, line_parameters = self.command_line_names(arguments, namespace, path)
+        self.node_files = []
         child_remaps, child_parameters = self.node_contents(entity, scope, namespace, path)
+        files = tuple(self.node_files)
         self.broadcast_frames(entity, scope, spec, path)
         own_remaps = child_remaps + line_remaps
         if scope.inactive:
@@ -384,6 +403,7 @@ class LaunchWalker(ABC):
                 conditional=scope.conditional or self.undecided(entity, scope),
                 dynamic_name=name is None and _names_node(name_value, arguments),
                 test=entity.kind == "test",
+                parameter_files=files,
             )
         )
 
@@ -582,6 +602,7 @@ class Ros1Launch(LaunchWalker):
                 self.param(entity, here, here.namespace)
             elif kind == "rosparam":
                 self.rosparam(entity, here, here.namespace)
+                self.group_load(entity, here)
             elif kind == "include":
                 self.include(entity, here, "ns")
             elif kind not in _ROS1_IGNORED:
@@ -626,6 +647,40 @@ class Ros1Launch(LaunchWalker):
             return None
         return param.text if ns is None or not ns.text else f"{ns.text.rstrip('/')}/{param.text}"
 
+    def loaded_namespace(self, entity: Entity, scope: Scope) -> str | None:
+        """Where ``<rosparam command="load" file>`` puts the file's names, relative to
+        where the tag is: ``ns_join(ns, param)`` (roslaunch ``xmlloader.py``,
+        ``_rosparam_tag``); None when the tag loads no file or the place is dynamic."""
+        command = self.static(entity, "command", scope) if entity.get("command") else "load"
+        if command != "load" or entity.get("file") is None:
+            return None
+        parts: list[str] = []
+        for attribute in ("ns", "param"):
+            written = entity.get(attribute)
+            value = self.static(entity, attribute, scope)
+            if written is not None and value is None:
+                return None
+            parts.append(value or "")
+        joined = "/".join(part.strip("/") for part in parts if part.strip("/"))
+        return f"/{joined}" if parts[0].startswith("/") else joined
+
+    def node_load(self, entity: Entity, scope: Scope) -> None:
+        """``<rosparam load>`` inside a node: below the node's private namespace."""
+        namespace = self.loaded_namespace(entity, scope)
+        found = None if namespace is None else self.parameter_file(entity, "file", scope, namespace)
+        self.node_files.extend([found] if found else [])
+
+    def group_load(self, entity: Entity, scope: Scope) -> None:
+        """``<rosparam load>`` outside nodes: below the group's namespace."""
+        relative = self.loaded_namespace(entity, scope)
+        if relative is None or scope.namespace is None:
+            return
+        namespace = join_namespace(scope.namespace, Value(relative))
+        found = self.parameter_file(entity, "file", scope)
+        if found is not None and namespace is not None:
+            anchored = scope.anchored or relative.startswith("/")
+            self.loads.append(replace(found, namespace=namespace, anchored=anchored))
+
     def command_line(self, entity: Entity, scope: Scope) -> list[CommandLineName]:
         args = entity.get("args")
         if args is None or args.opaque:
@@ -661,6 +716,7 @@ class Ros1Launch(LaunchWalker):
                 found = self.param(child, here, path)
             elif child.kind == "rosparam":
                 found = self.rosparam(child, here, path)
+                self.node_load(child, here)
             if found is None or here.inactive:
                 continue
             if isinstance(found, Remap):
@@ -826,8 +882,12 @@ class Ros2Launch(LaunchWalker):
         """
         found: list[str] = []
         for entity in entities:
+            if entity.get("from") is not None:
+                loaded = self.parameter_file(entity, "from", self.branch(entity, scope))
+                self.node_files.extend([loaded] if loaded and prefix == "" else [])
+                continue
             located = entity.get("name")
-            if located is None or entity.get("from") is not None:
+            if located is None:
                 continue
             value = self.value(located, scope)
             if prefix is None or value.dynamic:
@@ -880,6 +940,7 @@ def facts_from(
         names=tuple(sorted(walker.names, key=lambda use: (use.span.line, use.span.column))),
         launch_nodes=tuple(walker.nodes),
         includes=tuple(walker.includes),
+        parameter_loads=tuple(walker.loads),
     )
 
 
