@@ -114,8 +114,15 @@ def _distance(one: str, other: str, limit: int) -> int:
 
 
 def _spelled(key: str, node: NodeInstance) -> str:
-    """The node's name as the key would spell it: with or without the leading '/'."""
-    namespace, _, base = node.name.rpartition("/")
+    """The key that would match the node: the key with its base name mended where that
+    is enough (``/**/colision_monitor``), else the node's name, with or without the
+    leading '/' as the key has it."""
+    head, slash, _ = key.rpartition("/")
+    base = node.name.rpartition("/")[2]
+    mended = f"{head}{slash}{base}"
+    if key_matches(mended, _matched_name(node), composable=node.composable):
+        return mended
+    namespace = node.name.rpartition("/")[0]
     if not namespace:
         return base
     return node.name if key.startswith("/") else node.name.lstrip("/")
