@@ -28,6 +28,9 @@ FILES = {
         {"tree_sitter"},
     ),
     "robot.launch": ('<launch>\n  <node name="talker" pkg="p" type="t"/>\n</launch>\n', {"lxml"}),
+    # A parameter file by its content is parsed; other YAML of a ROS 2 workspace is not.
+    "params.yaml": ("amcl:\n  ros__parameters:\n    use_sim_time: true\n", {"yaml"}),
+    "costmap.yaml": ("robot_radius: 0.2\nplugins: [obstacle_layer]\n", set()),
 }
 
 

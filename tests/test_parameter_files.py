@@ -434,6 +434,7 @@ def test_a_namespaced_node_and_a_key_without_or_with_another_namespace(
         ("robot2/fusion_core", "robot1/fusion_core"),
         ("/robot2/fusion_core", "/robot1/fusion_core"),
         ("robot1/fusioncore", "robot1/fusion_core"),
+        ("/**/fusioncore", "/**/fusion_core"),
     ):
         namespaced_workspace(tmp_path, wrong)
         (found,) = rn405(run_cli, tmp_path)
@@ -495,3 +496,45 @@ def test_a_one_file_run_on_the_parameter_file_sees_its_launch_files(
     nav_workspace(tmp_path)
     (found,) = rn405(run_cli, tmp_path, "src/nav_bringup/config/fusion.yaml")
     assert found["path"] == "src/nav_bringup/config/fusion.yaml"
+
+
+# A ROS 2 controller with a camelCase parameter, and the parameter file that tunes it.
+CONTROLLER_CPP = """\
+#include "rclcpp/rclcpp.hpp"
+
+class Controller : public rclcpp::Node
+{
+public:
+  Controller() : rclcpp::Node("controller")
+  {
+    max_speed_ = declare_parameter("maxSpeed", 0.5);
+  }
+
+private:
+  double max_speed_;
+};
+"""
+
+
+def test_a_rename_of_a_declared_parameter_renames_the_parameter_file_key(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """The file spells the code's name at a key the extractor knows exactly: RN203's
+    rename edits it with the declaration, instead of being held back by it."""
+    write(tmp_path, "src/controller/package.xml", AMENT_PACKAGE.format(name="controller"))
+    write(tmp_path, "src/controller/src/controller.cpp", CONTROLLER_CPP)
+    params = "controller:\n  ros__parameters:\n    maxSpeed: 1.2\n"
+    write(tmp_path, "src/controller/config/controller.yaml", params)
+    arguments = ["check", "--format", "json", "--unsafe-fixes", "--select", "RN203", "."]
+    (found,) = run_cli(arguments, tmp_path).findings()
+    assert found["path"] == "src/controller/src/controller.cpp"
+    assert found["fix"]["also"] == [
+        {
+            "path": "src/controller/config/controller.yaml",
+            "line": 3,
+            "column": 5,
+            "end_line": 3,
+            "end_column": 13,
+            "replacement": "max_speed",
+        }
+    ]
