@@ -6,7 +6,8 @@ may change between runs, and applying them to cached facts is cheap next to pars
 entry is found by a key over
 everything an extractor's result depends on: the file's bytes, the path it is reported
 under (it is part of the facts, and the Python extractor reads the file name), the
-language, the package's generation and the fallback generation. Everything that is the
+language, the package's generation and the fallback generation, and whether a Python file
+may be Python 2 (``generation.reads_python2``). Everything that is the
 same for a whole run (this module's format, the tool version, the source of the
 extractors and of the modules they import, the parser libraries, the Python version) is
 hashed once into the name of the directory holding the entries, so a development checkout
@@ -176,9 +177,16 @@ class FactsCache:
         language: Language,
         package_generation: Generation | None,
         fallback_generation: Generation,
+        *,
+        python2: bool = False,
     ) -> str:
         return self.key_of_digest(
-            content_digest(data), path, language, package_generation, fallback_generation
+            content_digest(data),
+            path,
+            language,
+            package_generation,
+            fallback_generation,
+            python2=python2,
         )
 
     def key_of_digest(
@@ -188,11 +196,15 @@ class FactsCache:
         language: Language,
         package_generation: Generation | None,
         fallback_generation: Generation,
+        *,
+        python2: bool = False,
     ) -> str:
         """``key`` of a file whose bytes have ``content_digest`` ``content``."""
         digest = hashlib.blake2b(digest_size=20)
         package = "-" if package_generation is None else str(package_generation.value)
         header = f"{path}\0{language.value}\0{package}\0{fallback_generation.value}\0{content}"
+        if python2:  # only then: the other files' keys do not depend on it
+            header += "\0python2"
         digest.update(header.encode("utf-8", errors="surrogatepass"))
         return digest.hexdigest()
 

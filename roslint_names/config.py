@@ -69,6 +69,7 @@ class Settings:
     root: Path  # paths in exclude and per-file-ignores are relative to it
     source: Path | None = None  # the file the settings came from
     ros: Generation | None = None  # None: auto (package.xml, then file evidence, then ROS 2)
+    python: int | None = None  # of ROS 1 packages, 2 or 3; None: auto (``ros1_python2``)
     select: tuple[str, ...] | None = None  # None: the rules enabled by default
     extend_select: tuple[str, ...] = ()
     ignore: tuple[str, ...] = ()
@@ -80,6 +81,24 @@ class Settings:
     rule_options: Mapping[str, Mapping[str, OptionValue]] = field(default_factory=dict)
     policies: tuple[NamingPolicy, ...] = ()
     test_code: TestCodeSettings = TestCodeSettings()
+
+
+def ros1_python2(settings: Settings, environ: Mapping[str, str] | None = None) -> bool:
+    """Whether the workspace's ROS 1 packages may hold Python 2, which is then read.
+
+    The ``python`` key says; on "auto", ``ROS_PYTHON_VERSION`` as a sourced ROS 1
+    environment sets it (catkin's ros_environment: 2 up to Melodic, 3 from Noetic), and
+    without one, yes: a ROS 1 package may be of any distribution. A sourced ROS 2
+    environment (``ROS_VERSION=2``) sets ``ROS_PYTHON_VERSION=3`` for its own packages,
+    which says nothing of ROS 1 ones. Read here only, once per run; the cache keys of
+    the files it applies to hold the answer (``generation.reads_python2``).
+    """
+    if settings.python is not None:
+        return settings.python == 2
+    environ = os.environ if environ is None else environ
+    if environ.get("ROS_VERSION", "1").strip() != "1":
+        return True
+    return environ.get("ROS_PYTHON_VERSION", "").strip() != "3"
 
 
 def settings_fingerprint(settings: Settings) -> str:
@@ -153,6 +172,7 @@ def parse_settings(table: Mapping[str, Any], source: Path, registry: Registry) -
     reader = _Reader(source, registry)
     known = {
         "ros",
+        "python",
         "select",
         "extend-select",
         "ignore",
@@ -173,6 +193,7 @@ def parse_settings(table: Mapping[str, Any], source: Path, registry: Registry) -
         root=source.parent,
         source=source,
         ros=reader.generation("ros", table.get("ros", "auto")),
+        python=reader.python("python", table.get("python", "auto")),
         select=None if select is None else reader.selectors("select", select),
         extend_select=reader.selectors("extend-select", table.get("extend-select", [])),
         ignore=reader.selectors("ignore", table.get("ignore", [])),
@@ -360,6 +381,13 @@ class _Reader:
         if value in (2, "2"):
             return Generation.ROS2
         raise self.error(key, f'must be 1, 2 or "auto", got {value!r}')
+
+    def python(self, key: str, value: object) -> int | None:
+        if value == "auto":
+            return None
+        if value in (2, "2", 3, "3"):
+            return int(value)
+        raise self.error(key, f'must be 2, 3 or "auto", got {value!r}')
 
     def strings(self, key: str, value: object) -> tuple[str, ...]:
         if not isinstance(value, list) or not all(isinstance(item, str) for item in value):

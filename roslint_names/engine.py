@@ -14,7 +14,7 @@ from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from .config import Settings, enabled_codes, ignored_for_path, test_code_codes
+from .config import Settings, enabled_codes, ignored_for_path, ros1_python2, test_code_codes
 from .decisions import one_per_decision
 from .discover import SourceFile, classify
 from .editing.fixing import located
@@ -129,6 +129,7 @@ def lint(
     graph_rules = [r for r in registry.rules if r.check_workspace and r.code in enabled]
     packages = PackageGenerations()
     fallback = settings.ros or DEFAULT_GENERATION
+    python2 = ros1_python2(settings)
     cache = run.cache
     wiring = any(rule.reads_wiring and rule.code in enabled for rule in registry.rules)
     keep_facts = bool(graph_rules) or want_graph or want_facts
@@ -159,6 +160,7 @@ def lint(
             registry=registry,
             packages=packages,
             fallback=fallback,
+            ros1_python2=python2,
         )
         run_key = None if fresh else inputs.key_first()
         stored = None if run_key is None else _stored_result(cache.load_run(run_key), len(files))
@@ -196,6 +198,7 @@ def lint(
             dispatcher=dispatcher,
             packages=packages,
             fallback=fallback,
+            ros1_python2=python2,
             max_file_size=settings.max_file_size,
         )
         for index, facts, data in gathered.facts():
@@ -209,7 +212,13 @@ def lint(
         if graph_rules or want_graph:
             known_facts = checks.facts()
             specialise = Specialiser(
-                files, packages, fallback, cache, settings.max_file_size, dispatcher=dispatcher
+                files,
+                packages,
+                fallback,
+                cache,
+                settings.max_file_size,
+                dispatcher=dispatcher,
+                ros1_python2=python2,
             )
             graph = build(
                 known_facts, workspace_packages(workspace, packages), specialise, specialise.prepare
@@ -672,7 +681,9 @@ def recheck(
     if language is None or language not in EXTRACTOR_MODULES:
         return 0, set()
     fallback = settings.ros or DEFAULT_GENERATION
-    facts = extract_file(language, display, data, packages.for_file(path), fallback)
+    package = packages.for_file(path)
+    python2 = ros1_python2(settings)
+    facts = extract_file(language, display, data, package, fallback, ros1_python2=python2)
     enabled = enabled_codes(settings, registry)
     found, _ = check_file(facts, decode_for_display(data), settings, registry, enabled)
     return len(facts.parse_errors), {(d.code, d.span.line) for d in found if not d.suppressed}

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Protocol
 from . import workers
 from .collection import no_collections
 from .discover import SourceFile
-from .generation import PackageGenerations
+from .generation import PackageGenerations, reads_python2
 from .model import FileFacts, Generation, Language, LaunchArguments, ParseError, Span
 from .reading import BINARY, content_digest, read_file
 from .run_inputs import RunInputs
@@ -75,6 +75,21 @@ class _ExtractWithArguments(Protocol):
     ) -> FileFacts: ...
 
 
+class _ExtractPython(Protocol):
+    """The Python extractor's ``extract``: also told that the file may be Python 2."""
+
+    def __call__(
+        self,
+        path: str,
+        data: bytes,
+        package_generation: Generation | None,
+        fallback_generation: Generation,
+        *,
+        arguments: LaunchArguments,
+        python2: bool,
+    ) -> FileFacts: ...
+
+
 class Specialiser:
     """An included launch file's facts under the arguments its includer hands it: the
     same extraction, with those arguments, through the same cache."""
@@ -88,10 +103,12 @@ class Specialiser:
         max_file_size: int,
         *,
         dispatcher: Dispatcher[_Item, tuple[int, FileFacts]],
+        ros1_python2: bool,
     ) -> None:
         self._sources = {source.display: source for source in sources}
         self._packages = packages
         self._fallback = fallback
+        self._ros1_python2 = ros1_python2
         self._cache = cache
         self._max_file_size = max_file_size
         self._dispatcher = dispatcher
@@ -141,17 +158,18 @@ class Specialiser:
         if data is None:
             return None
         package = self._packages.for_file(source.path)
+        python2 = reads_python2(source.language, package, self._fallback, self._ros1_python2)
         cache_key = None
         if self._cache is not None:
             # The arguments are part of what the facts depend on: key them with the path.
             keyed = f"{display}\0{arguments!r}"
             cache_key = self._cache.key_of_digest(
-                content, keyed, source.language, package, self._fallback
+                content, keyed, source.language, package, self._fallback, python2=python2
             )
             found = self._cache.load(cache_key, display)
             if found is not None:
                 return found
-        job = _Job(index, display, source.language, package, self._fallback, arguments)
+        job = _Job(index, display, source.language, package, self._fallback, arguments, python2)
         return job, data, cache_key
 
     def _read(self, source: SourceFile) -> tuple[bytes | None, str]:
@@ -173,6 +191,7 @@ class _Job:
     package_generation: Generation | None
     fallback_generation: Generation
     arguments: LaunchArguments = ()  # a launch file specialised under its includer's
+    python2: bool = False  # a Python file that may be Python 2 (``reads_python2``)
 
 
 # A job, the file's bytes, and the key its facts are cached under.
@@ -204,6 +223,11 @@ def _extract_within_budget(job: _Job, data: bytes) -> FileFacts:
     budget = workers.budget_seconds()
     try:
         with workers.time_limit(budget), no_collections():  # a parse tree is freed when done
+            if job.python2:  # only the Python extractor reads Python 2
+                python: _ExtractPython = _extractor_module(job.language).extract
+                return python(
+                    job.display, data, *generations, arguments=job.arguments, python2=True
+                )
             if job.arguments:
                 specialise: _ExtractWithArguments = _extractor_module(job.language).extract
                 return specialise(job.display, data, *generations, arguments=job.arguments)
@@ -218,13 +242,16 @@ def extract_file(
     data: bytes,
     package_generation: Generation | None,
     fallback_generation: Generation,
+    *,
+    ros1_python2: bool = False,
 ) -> FileFacts:
     """One file's facts, within the time budget, in this process: for a caller that
     extracts one file at a time (``--fix`` checking its edit, the language server).
 
     The budget holds on the main thread only (``workers.time_limit``); a file whose
     shape is known to keep a parser busy is refused before parsing, in any thread."""
-    job = _Job(0, display, language, package_generation, fallback_generation)
+    python2 = reads_python2(language, package_generation, fallback_generation, ros1_python2)
+    job = _Job(0, display, language, package_generation, fallback_generation, (), python2)
     return _extract_within_budget(job, data)
 
 
@@ -310,6 +337,7 @@ class Gatherer:
     dispatcher: Dispatcher[_Item, tuple[int, FileFacts]]
     packages: PackageGenerations
     fallback: Generation
+    ros1_python2: bool  # ``config.ros1_python2``
     max_file_size: int
     extracted: int = 0
     cached: int = 0
@@ -345,7 +373,10 @@ class Gatherer:
                 if stored is not None:
                     yield index, stored, data
                     continue
-                job = _Job(index, source.display, source.language, package, self.fallback)
+                python2 = reads_python2(source.language, package, self.fallback, self.ros1_python2)
+                job = _Job(
+                    index, source.display, source.language, package, self.fallback, (), python2
+                )
                 self.extracted += 1
                 self._extracting[index] = data
                 yield from self._arrived(self.dispatcher.put((job, data, key), len(data)))

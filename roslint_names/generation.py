@@ -48,6 +48,19 @@ def package_xml_generation(text: str) -> Generation | None:
     return found.pop() if len(found) == 1 else None
 
 
+def reads_python2(
+    language: Language,
+    package_generation: Generation | None,
+    fallback_generation: Generation,
+    ros1_python2: bool,
+) -> bool:
+    """Whether a file is read as Python 2 where it is not Python 3: a Python file of a
+    ROS 1 package (or of no package, where ``ros = 1``), when the ROS 1 packages may be
+    Python 2 (``config.ros1_python2``). ROS 2 is Python 3 only."""
+    generation = package_generation or fallback_generation
+    return ros1_python2 and language is Language.PYTHON and generation is Generation.ROS1
+
+
 def package_xml_depends(text: str) -> frozenset[str]:
     """The packages a package.xml depends on (any format, any condition)."""
     return frozenset(match.group(3) for match in _REQUIRES.finditer(_COMMENT.sub("", text)))

@@ -6,7 +6,9 @@ graph rules read them, and RN202 the names their launch files wire: an edited la
 is a fresh run, while the code's facts stay cached), where each file is (per-file ignores are
 relative paths), which files are reported, the files read without being linted (a
 ``.srv`` file's name is a service type, its text a ROS 1 service's definition; every
-package.xml read), the settings, and the code of the tool and of every rule.
+package.xml read), the settings, and the code of the tool and of every rule. The one
+input from the environment, ``ROS_PYTHON_VERSION`` (``config.ros1_python2``), is in the
+facts key of each file it applies to.
 ``RunInputs`` keys a run by all of that, so that ``FactsCache.load_run`` can serve the
 result of an earlier run over the same inputs.
 
@@ -29,7 +31,7 @@ from typing import TYPE_CHECKING
 from .config import Settings, settings_fingerprint
 from .digests import ContentDigests
 from .discover import SourceFile
-from .generation import PackageGenerations
+from .generation import PackageGenerations, reads_python2
 from .model import Generation, Language
 from .reading import Read, content_digest, read_file
 from .registry import Registry
@@ -52,6 +54,7 @@ class RunInputs:
         registry: Registry,
         packages: PackageGenerations,
         fallback: Generation,
+        ros1_python2: bool,
     ) -> None:
         self._cache = cache
         self._checked = checked
@@ -61,6 +64,7 @@ class RunInputs:
         self._registry = registry
         self._packages = packages
         self._fallback = fallback
+        self._ros1_python2 = ros1_python2  # the environment's part (``config.ros1_python2``)
         self._digests = ContentDigests.of(cache, _common_directory(checked))
         self._tags: list[str] = []  # per checked file: its facts key, or why it has none
         self._contents: list[str | None] = []  # per checked file: its digest, as keyed first
@@ -124,8 +128,9 @@ class RunInputs:
         if content is None:
             return _UNREADABLE + read_error
         package = self._packages.for_file(source.path)
+        python2 = reads_python2(source.language, package, self._fallback, self._ros1_python2)
         return self._cache.key_of_digest(
-            content, source.display, source.language, package, self._fallback
+            content, source.display, source.language, package, self._fallback, python2=python2
         )
 
     def _key(self) -> str:

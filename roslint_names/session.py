@@ -26,7 +26,7 @@ from pathlib import Path
 from typing import Any
 
 from .cache import FactsCache
-from .config import Settings, enabled_codes, test_code_codes
+from .config import Settings, enabled_codes, ros1_python2, test_code_codes
 from .decisions import one_per_decision
 from .discover import SourceFile, classify, discover, display_path
 from .engine import (
@@ -98,6 +98,7 @@ class Session:
         }
         self._packages = PackageGenerations()
         self._fallback = settings.ros or DEFAULT_GENERATION
+        self._ros1_python2 = ros1_python2(settings)
         self._sources: dict[str, SourceFile] = {}
         self._facts: dict[str, FileFacts] = {}
         self._service_types: set[tuple[Generation | None, str]] = set()
@@ -137,6 +138,7 @@ class Session:
             self._cache,
             self._settings.max_file_size,
             dispatcher=self._dispatcher,
+            ros1_python2=self._ros1_python2,
         )
         for facts in self._facts.values():
             self._service_types.update((facts.generation, t) for t in typed_services(facts))
@@ -159,7 +161,14 @@ class Session:
         data = text.encode("utf-8", errors="replace")
         # Within the time budget where it can hold (the main thread), and a file shaped to
         # keep a parser busy is refused before it is parsed, in any thread.
-        facts = extract_file(language, display, data, self._packages.for_file(path), self._fallback)
+        facts = extract_file(
+            language,
+            display,
+            data,
+            self._packages.for_file(path),
+            self._fallback,
+            ros1_python2=self._ros1_python2,
+        )
         if uses_constants(facts):
             constants = PackageConstants()
             for other in self._facts.values():

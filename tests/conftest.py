@@ -78,6 +78,14 @@ def private_cache(
     return directory / "roslint-names"
 
 
+@pytest.fixture(autouse=True)
+def no_ros_environment(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The suite runs alike in a sourced ROS environment: ``ROS_PYTHON_VERSION`` decides
+    whether a ROS 1 package's Python 2 is read (``config.ros1_python2``)."""
+    for variable in ("ROS_PYTHON_VERSION", "ROS_VERSION"):
+        monkeypatch.delenv(variable, raising=False)
+
+
 @pytest.fixture
 def run_cli(capsys: pytest.CaptureFixture[str]) -> Any:
     def run(arguments: Sequence[str], cwd: Path) -> Run:

@@ -635,8 +635,8 @@ def test_only_launch_files_keep_their_tree_for_extractions_under_arguments() -> 
     python_extract.extract_parsed("talker.py", node, None, Generation.ROS2, False)
     launch(SPECIALISED)
     kept = python_extract._LAUNCH_FILES
-    assert ((HEADER + SPECIALISED).encode(), Generation.ROS2, Generation.ROS2) in kept
-    assert (node, None, Generation.ROS2) not in kept
+    assert ((HEADER + SPECIALISED).encode(), Generation.ROS2, Generation.ROS2, False) in kept
+    assert (node, None, Generation.ROS2, False) not in kept
 
 
 def test_launch_trees_pushed_out_of_the_memo_leave_no_cycle_for_the_collector() -> None:
@@ -664,7 +664,7 @@ def test_a_launch_tree_being_extracted_is_not_released_when_pushed_out() -> None
     from roslint_names.extract.python import parsed as python_extract
 
     memo = python_extract._LAUNCH_FILES
-    key = ((HEADER + SPECIALISED).encode(), Generation.ROS2, Generation.ROS2)
+    key = ((HEADER + SPECIALISED).encode(), Generation.ROS2, Generation.ROS2, False)
     memo.clear()
     launch(SPECIALISED)
     prepared = memo.begin(key)  # one thread starts on the kept tree...

@@ -15,6 +15,7 @@ import codecs
 import re
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 
 from roslint_names.discover import classify
@@ -58,6 +59,15 @@ TARGETS: tuple[Target, ...] = (
         (Language.PYTHON,),
         ("scripts/node.py", "launch/robot.launch.py"),
         (b"import rospy\n", b"import rclpy\n", b"def generate_launch_description():\n"),
+        takes_arguments=True,
+    ),
+    # A ROS 1 package's Python, which may be Python 2: rewritten when it is not Python 3.
+    Target(
+        "python.extract[python2]",
+        partial(python.extract, python2=True),
+        (Language.PYTHON,),
+        ("scripts/node.py",),
+        (b"import rospy\nprint ", b"import rospy\n\tprint `x`, 0777\nexcept E, e:\n"),
         takes_arguments=True,
     ),
     Target(

@@ -46,6 +46,11 @@ class Source:
         index = bisect_right(self._line_starts, offset) - 1
         return index + 1, offset - self._line_starts[index] + 1
 
+    def offset(self, line: int, column: int) -> int:
+        """The offset of a 1-based ``line`` and ``column``: ``position``'s inverse."""
+        index = min(max(line, 1), len(self._line_starts)) - 1
+        return self._line_starts[index] + max(column, 1) - 1
+
     def span(self, start: int, end: int) -> Span:
         line, column = self.position(start)
         end_line, end_column = self.position(max(start, end))

@@ -66,14 +66,18 @@ def extract(
     fallback_generation: Generation,
     *,
     arguments: LaunchArguments = (),
+    python2: bool = False,
 ) -> FileFacts:
     """Names, events, launch nodes and includes of a Python file; never raises on any bytes.
 
     ``arguments`` are launch configurations set before a launch file's description runs:
     what an including file hands over, winning over ``DeclareLaunchArgument`` defaults.
-    Code that is not a launch file has no use for them.
+    Code that is not a launch file has no use for them. ``python2``: the file may be
+    Python 2 (``generation.reads_python2``), which is then read, not refused.
     """
-    facts = _extract(path, data, package_generation, fallback_generation, arguments)
+    facts = _extract(
+        path, data, package_generation, fallback_generation, arguments=arguments, python2=python2
+    )
     fixtures = rejected_fixtures(data)
     return replace(facts, rejected_fixtures=fixtures) if fixtures else facts
 
@@ -83,7 +87,9 @@ def _extract(
     data: bytes,
     package_generation: Generation | None,
     fallback_generation: Generation,
+    *,
     arguments: LaunchArguments,
+    python2: bool,
 ) -> FileFacts:
     launch_path = is_launch_path(path)
     wide = bom_encoding(data)
@@ -103,5 +109,11 @@ def _extract(
     from roslint_names.extract.python.parsed import extract_parsed
 
     return extract_parsed(
-        path, data, package_generation, fallback_generation, launch_path, arguments=arguments
+        path,
+        data,
+        package_generation,
+        fallback_generation,
+        launch_path,
+        arguments=arguments,
+        python2=python2,
     )

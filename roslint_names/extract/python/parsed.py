@@ -8,11 +8,15 @@ from __future__ import annotations
 import threading
 from collections import OrderedDict
 
+import libcst as cst
+
 from roslint_names.extract import evidence
 from roslint_names.extract.launch.python_launch import LaunchExtractor
 from roslint_names.extract.launch.python_values import LaunchCalls
+from roslint_names.extract.launch.substitution import Source
 from roslint_names.extract.literals import name_literals
 from roslint_names.extract.python.code import CodeExtractor
+from roslint_names.extract.python.python2 import Rewritten, rewrite
 from roslint_names.extract.python.source import decode, parse
 from roslint_names.extract.python.spans import Locator
 from roslint_names.extract.python.walk import Walk
@@ -54,9 +58,11 @@ def extract_parsed(
     launch_path: bool,
     *,
     arguments: LaunchArguments = (),
+    python2: bool = False,
 ) -> FileFacts:
+    """``python2``: the file may be Python 2 (a ROS 1 package's, see ``python2``)."""
     default_language = Language.LAUNCH_PYTHON if launch_path else Language.PYTHON
-    key = (data, package_generation, fallback_generation)
+    key = (data, package_generation, fallback_generation, python2)
     prepared = _LAUNCH_FILES.begin(key)
     if isinstance(prepared, ParseError):
         generation = package_generation or fallback_generation
@@ -91,7 +97,7 @@ def extract_parsed(
 
 
 _Prepared = tuple[Walk, Locator, CodeExtractor, LaunchCalls, Generation, str]
-_Key = tuple[bytes, Generation | None, Generation]
+_Key = tuple[bytes, Generation | None, Generation, bool]
 
 
 class _RecentLaunchFiles:
@@ -166,7 +172,10 @@ _LAUNCH_FILES = _RecentLaunchFiles(16)
 
 
 def _prepare(
-    data: bytes, package_generation: Generation | None, fallback_generation: Generation
+    data: bytes,
+    package_generation: Generation | None,
+    fallback_generation: Generation,
+    python2: bool,
 ) -> _Prepared | ParseError:
     """Everything of a file that launch arguments do not change: parsed, walked, its
     code's names extracted and its launch calls found. A launch file that includers hand
@@ -174,11 +183,19 @@ def _prepare(
     launch part runs again, from ``_LAUNCH_FILES``. Nothing here answers differently
     after it is built (the locator and the scopes only fill their own memos), so it is
     safe to share.
+
+    A file that may be Python 2 and is not Python 3 is parsed again rewritten
+    (``python2``), and placed in the original text through the rewrite.
     """
     text = decode(data)
     if isinstance(text, ParseError):
         return text
     module = parse(text)
+    rewritten = None
+    if isinstance(module, ParseError) and python2:
+        rewritten = rewrite(text)
+        if rewritten is not None:
+            module = _parse_rewritten(rewritten)
     if isinstance(module, ParseError):
         return module
     # Every step follows the tree recursively: a long operator chain as a name's value
@@ -188,12 +205,30 @@ def _prepare(
         generation = evidence.decide(
             package_generation, import_generation(walk.packages), None, fallback_generation
         )
-        locator = Locator(module, text, walk.anchor_indents)
+        parsed = text if rewritten is None else rewritten.text
+        locator = Locator(module, parsed, walk.anchor_indents, rewritten)
         code = CodeExtractor(walk, locator, generation)
         code.run()
         return walk, locator, code, LaunchCalls.of(walk), generation, text
     except RecursionError:
         return _TOO_DEEP
+
+
+def _parse_rewritten(rewritten: Rewritten) -> cst.Module | ParseError:
+    """The rewritten text's tree; else where and why it fails, in the original text.
+
+    Its own failure, not the original's: that one is often a ``print`` statement, which
+    is fine Python 2, while what stops the file is further on."""
+    module = parse(rewritten.text)
+    if not isinstance(module, ParseError):
+        return module
+    span = module.span
+    start = rewritten.original(Source(rewritten.text).offset(span.line, span.column))
+    line, column = Source(rewritten.source).position(start)
+    reason = module.message.removeprefix("not valid Python 3: ")
+    return ParseError(
+        f"cannot read as Python 2 or 3: {reason}", Span(line, column, line, column + 1)
+    )
 
 
 _TOO_DEEP = ParseError("Python code nested too deeply to analyse", Span(1, 1, 1, 2))

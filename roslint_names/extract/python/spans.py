@@ -17,6 +17,7 @@ from itertools import accumulate
 import libcst as cst
 
 from roslint_names.extract.launch.substitution import Source
+from roslint_names.extract.python.python2 import Rewritten
 from roslint_names.model import Span
 
 try:
@@ -55,6 +56,9 @@ class Locator:
     regenerating only that anchor and noting where the node starts; the module itself is
     the last anchor. ``PositionProvider`` (slower still) only serves a libcst whose
     codegen state moved.
+
+    A module parsed from Python 2 rewritten (``python2``) is placed in the rewritten
+    text, and its spans are those of the original: the user's bytes.
     """
 
     def __init__(
@@ -62,12 +66,16 @@ class Locator:
         module: cst.Module,
         text: str,
         anchor_indents: dict[int, tuple[str, ...]] | None = None,
+        rewritten: Rewritten | None = None,
     ) -> None:
         """``anchor_indents``: by id, the indentation of each anchor written at another
-        than the nodes inside it (a function); every other anchor shares its nodes'."""
+        than the nodes inside it (a function); every other anchor shares its nodes'.
+        ``rewritten``: what ``text`` was rewritten from, when it was."""
         self._module = module
         self._anchor_indents = anchor_indents or {}
         self._source = Source(text)
+        self._rewritten = rewritten
+        self._original = None if rewritten is None else Source(rewritten.source)
         self._offsets: dict[int, int | None] = {}
         self._codes: dict[tuple[int, tuple[str, ...]], str] = {}
         self._starts: dict[int, _Starts] = {}
@@ -89,7 +97,7 @@ class Locator:
         start = self._offset(where.node, (*where.anchors, self._module), where.indents)
         if start is None:
             return self._provided(where.node)
-        return self._source.span(start, start + len(self.code(where.node, where.indents)))
+        return self._span(start, start + len(self.code(where.node, where.indents)))
 
     def head_span(self, where: Where, head: cst.CSTNode) -> Span:
         """The span of ``head`` (a callee), found inside ``where.node`` (its call)."""
@@ -140,6 +148,20 @@ class Locator:
         # A parenthesised node starts at its '('; its span starts after the last one.
         return starts.get(id(parens[-1]) if parens else id(node))
 
+    def _span(self, start: int, end: int) -> Span:
+        """The span of offsets ``start`` to ``end`` of the parsed text, in the file."""
+        if self._rewritten is None or self._original is None:
+            return self._source.span(start, end)
+        original = self._rewritten.original
+        return self._original.span(original(start), original(end))
+
+    def _moved(self, span: Span) -> Span:
+        """A span of the parsed text, in the file."""
+        if self._rewritten is None:
+            return span
+        offset = self._source.offset
+        return self._span(offset(span.line, span.column), offset(span.end_line, span.end_column))
+
     def _indents(self, node: cst.CSTNode, indents: tuple[str, ...]) -> tuple[str, ...]:
         if id(node) in self._unindented:
             return ()
@@ -153,7 +175,9 @@ class Locator:
             wrapper = MetadataWrapper(self._module, unsafe_skip_copy=True)
             ranges = wrapper.resolve(PositionProvider)
             self._positions = {
-                key: Span(r.start.line, r.start.column + 1, r.end.line, r.end.column + 1)
+                key: self._moved(
+                    Span(r.start.line, r.start.column + 1, r.end.line, r.end.column + 1)
+                )
                 for key, r in ranges.items()
             }
         return self._positions.get(node, Span(1, 1, 1, 1))
