@@ -22,6 +22,7 @@ setting would answer it (``Finding.answer``); this module groups those answers:
 from __future__ import annotations
 
 import json
+import posixpath
 import re
 from collections import Counter, defaultdict
 from collections.abc import Collection, Iterable, Sequence
@@ -86,8 +87,20 @@ def _ignore_names(names: Sequence[tuple[str | None, Kind | None, str]]) -> set[s
     by_group: dict[tuple[str | None, Kind | None], set[str]] = defaultdict(set)
     for package, kind, name in names:
         by_group[package, kind].add(name)
+    # A convention is its project's: the packages beside one that states it (the same
+    # directory, as a repository holds them) follow it too. image_pipeline's
+    # image_publisher names its one component node ``ImagePublisher``, as depth_image_proc
+    # and image_proc name theirs.
+    stating = {
+        (_parent(package), kind)
+        for (package, kind), group in by_group.items()
+        if len(group) >= MIN_NAMES
+    }
     conventional = {
-        name for group in by_group.values() if len(group) >= MIN_NAMES for name in group
+        name
+        for (package, kind), group in by_group.items()
+        if (_parent(package), kind) in stating
+        for name in group
     }
     last_words = {name: _last_word(name) for name in conventional}
     shared = Counter(word for word in last_words.values() if word is not None)
@@ -95,6 +108,11 @@ def _ignore_names(names: Sequence[tuple[str | None, Kind | None, str]]) -> set[s
         f"*{word}" if word is not None and shared[word] >= MIN_SHARED else name
         for name, word in last_words.items()
     }
+
+
+def _parent(package: str | None) -> str | None:
+    """The directory holding a package's directory (display form), None outside any."""
+    return None if package is None else posixpath.dirname(package)
 
 
 def _last_word(name: str) -> str | None:

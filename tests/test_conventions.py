@@ -109,10 +109,11 @@ def test_camel_case_names_are_a_convention_of_one_package_and_one_kind() -> None
     diagnostics.append(_named("DebayerNode", "image_proc"))  # another use: one name
     diagnostics.append(_named("TrackMarkerNode", "image_view"))  # alone, but covered
     diagnostics.append(_named("StereoNode", "image_view", suppressed=True))
-    # Four node names and four parameters of one package: neither is a convention yet.
-    diagnostics += [_named(f"Stage{index}Filter", "stereo_image_proc") for index in range(4)]
+    # Four node names and four parameters of a package of another repository: neither is
+    # a convention yet.
+    diagnostics += [_named(f"Stage{index}Filter", "vision/stereo_image_proc") for index in range(4)]
     diagnostics += [
-        _named(name, "stereo_image_proc", Kind.PARAMETER)
+        _named(name, "vision/stereo_image_proc", Kind.PARAMETER)
         for name in ("minDisparity", "maxDisparity", "uniquenessRatio", "speckleSize")
     ]
     assert propose(diagnostics) == [
@@ -124,6 +125,21 @@ def test_camel_case_names_are_a_convention_of_one_package_and_one_kind() -> None
             7,  # both DebayerNode findings, and image_view's TrackMarkerNode
         )
     ]
+
+
+def test_a_convention_holds_in_the_packages_beside_the_one_stating_it() -> None:
+    """image_pipeline: depth_image_proc names its component nodes ``XxxNode``;
+    image_publisher, beside it in the repository, names its one ``ImagePublisher``. A
+    package in another directory, or names of another kind, do not follow."""
+    stating = ["ConvertMetricNode", "CropForemostNode", "DisparityNode", "RegisterNode"]
+    stating.append("PointCloudXyzNode")
+    diagnostics = [_named(name, "src/image_pipeline/depth_image_proc") for name in stating]
+    diagnostics.append(_named("ImagePublisher", "src/image_pipeline/image_publisher"))
+    diagnostics.append(_named("kernelSize", "src/image_pipeline/image_publisher", Kind.PARAMETER))
+    diagnostics.append(_named("TeleopTwist", "src/teleop/teleop_twist"))
+    [proposal] = propose(diagnostics)
+    assert proposal.value == '["*Node", "ImagePublisher"]'
+    assert proposal.findings == 6
 
 
 def test_a_package_of_camel_case_parameters_lists_them_by_their_last_word() -> None:
