@@ -33,6 +33,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from roslint_names.extract import yaml_text
 from roslint_names.extract.launch.substitution import Source
 from roslint_names.model import (
     FileFacts,
@@ -69,14 +70,14 @@ def extract(
     empty = FileFacts(path, Language.PARAMETERS, generation)
     if not ros2 and generation is not Generation.ROS1:
         return empty  # a ROS 2 package's YAML without ros__parameters: no parameter file
-    text = _decode(data)
+    text = yaml_text.decode(data)
     if isinstance(text, ParseError):
         return (
             FileFacts(path, Language.PARAMETERS, generation, parse_errors=(text,))
             if ros2
             else empty
         )
-    composed = _compose(text)
+    composed = yaml_text.compose(text, libyaml=True)
     if isinstance(composed, ParseError):
         # Only a file that is a parameter file by its content is one whose YAML must parse.
         if not ros2:
@@ -172,36 +173,3 @@ def _pairs(mapping: yaml.MappingNode) -> Iterator[tuple[yaml.ScalarNode, yaml.No
     for key, value in mapping.value:
         if isinstance(key, yaml.ScalarNode) and key.value != _MERGE_KEY:
             yield key, value
-
-
-def _decode(data: bytes) -> str | ParseError:
-    """Text as the YAML spec reads it: UTF-8, or UTF-16/32 announced by a BOM."""
-    encoding = bom_encoding(data) or "utf-8"
-    try:
-        text = data.decode(encoding)
-    except UnicodeDecodeError as error:
-        before = Source(data[: error.start].decode(encoding, errors="replace"))
-        line, column = before.position(len(before.text))
-        message = f"cannot decode YAML as {encoding}: {error.reason}"
-        return ParseError(message, Span(line, column, line, column + 1))
-    return text[1:] if text.startswith("\ufeff") else text
-
-
-def _compose(text: str) -> yaml.Node | ParseError | None:
-    """The node graph, or the error PyYAML reports (its marks are 0-based). The C
-    loader where PyYAML was built with libyaml (rcl's own parser): the same nodes and
-    marks, faster."""
-    import yaml
-
-    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
-    try:
-        return yaml.compose(text, Loader=loader)
-    except yaml.MarkedYAMLError as error:
-        mark = error.problem_mark or error.context_mark
-        line, column = (mark.line + 1, mark.column + 1) if mark else (1, 1)
-        problem = error.problem or error.context or "malformed YAML"
-        return ParseError(f"cannot parse YAML: {problem}", Span(line, column, line, column + 1))
-    except yaml.YAMLError as error:
-        return ParseError(f"cannot parse YAML: {error}", Span(1, 1, 1, 2))
-    except RecursionError:
-        return ParseError("cannot parse YAML: nested too deeply", Span(1, 1, 1, 2))

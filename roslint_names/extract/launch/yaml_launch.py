@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import yaml
 
-from roslint_names.extract import evidence
+from roslint_names.extract import evidence, yaml_text
 from roslint_names.extract.launch.substitution import Located, Source, without_surrogates
 from roslint_names.extract.launch.xml_launch import Entity, Ros2Launch, facts_from, too_deep
 from roslint_names.model import (
@@ -32,7 +32,6 @@ from roslint_names.model import (
     ParseError,
     Span,
 )
-from roslint_names.reading import bom_encoding
 
 
 class _Document:
@@ -131,40 +130,6 @@ class YamlEntity:
         return f"{self._kind}: {attribute}"
 
 
-def _decode(data: bytes) -> str | ParseError:
-    """Text as the YAML spec reads it: UTF-8, or UTF-16/32 announced by a BOM."""
-    encoding = bom_encoding(data) or "utf-8"
-    try:
-        text = data.decode(encoding)
-    except UnicodeDecodeError as error:
-        before = Source(data[: error.start].decode(encoding, errors="replace"))
-        line, column = before.position(len(before.text))
-        message = f"cannot decode YAML as {encoding}: {error.reason}"
-        return ParseError(message, Span(line, column, line, column + 1))
-    return text[1:] if text.startswith("\ufeff") else text
-
-
-def _compose(text: str) -> yaml.Node | ParseError | None:
-    """The node graph, or the error PyYAML reports (its marks are 0-based)."""
-    try:
-        return yaml.compose(text, Loader=yaml.SafeLoader)
-    except yaml.MarkedYAMLError as error:
-        mark = error.problem_mark or error.context_mark
-        line, column = (mark.line + 1, mark.column + 1) if mark else (1, 1)
-        problem = error.problem or error.context or "malformed YAML"
-        return ParseError(f"cannot parse YAML: {problem}", Span(line, column, line, column + 1))
-    except yaml.reader.ReaderError as error:
-        line, column = Source(text).position(error.position)
-        character = error.character
-        shown = f"#x{character:04x}" if isinstance(character, int) else repr(character)
-        message = f"cannot parse YAML: unacceptable character {shown}"
-        return ParseError(message, Span(line, column, line, column + 1))
-    except yaml.YAMLError as error:
-        return ParseError(f"cannot parse YAML: {error}", Span(1, 1, 1, 2))
-    except RecursionError:
-        return ParseError("cannot parse YAML: nested too deeply", Span(1, 1, 1, 2))
-
-
 def _launch_root(document: _Document, root: yaml.Node | None) -> Entity | None:
     """The ``launch:`` list as an entity whose children are the file's actions."""
     if not isinstance(root, yaml.MappingNode):
@@ -191,10 +156,10 @@ def extract(
     """
     default = evidence.extension_generation(path) or Generation.ROS2
     generation = evidence.decide(package_generation, None, default, fallback_generation)
-    text = _decode(data)
+    text = yaml_text.decode(data)
     if isinstance(text, ParseError):
         return FileFacts(path, Language.LAUNCH_YAML, generation, parse_errors=(text,))
-    composed = _compose(text)
+    composed = yaml_text.compose(text)
     if isinstance(composed, ParseError):
         return FileFacts(path, Language.LAUNCH_YAML, generation, parse_errors=(composed,))
     root = _launch_root(_Document(Source(text)), composed)
