@@ -543,6 +543,12 @@ def _print_run_details(
             "its findings about names are not reported",
             file=sys.stderr,
         )
+    for path in result.rostest_named:
+        print(
+            f"roslint-names: {path}: only rostest starts what it is built into, naming the "
+            "node; the node name it hands ros::init is not judged",
+            file=sys.stderr,
+        )
     for problem in cache.problems if cache is not None else []:
         print(f"roslint-names: warning: {problem}", file=sys.stderr)
 

@@ -80,6 +80,9 @@ class LintResult:
     # Reported C++ sources no build file compiles, whose findings about names were
     # dropped (``workspace.built``): ``--verbose`` names them.
     unbuilt: tuple[str, ...] = ()
+    # Reported C++ sources built only into tests rostest starts, whose findings about the
+    # node name they hand ``ros::init`` were dropped: ``--verbose`` names them too.
+    rostest_named: tuple[str, ...] = ()
 
 
 Progress = Callable[[int, int], None]  # (files done, files in total)
@@ -238,8 +241,9 @@ def lint(
     displays = [source.display for source in files[:reported]]
     checks.spare_rejected_fixtures(displays)
     unbuilt = checks.spare_unbuilt(displays)
-    # After the fixtures and unbuilt sources are spared: a finding in one must not stand
-    # for the others.
+    rostest_named = checks.spare_rostest_named(displays)
+    # After the fixtures, unbuilt sources and names rostest replaces are spared: a finding
+    # in one must not stand for the others.
     per_file = one_per_decision(checks.per_file)
     diagnostics = sorted(
         (diagnostic for found in per_file for diagnostic in found), key=Diagnostic.sort_key
@@ -251,7 +255,13 @@ def lint(
     if inputs is not None:
         if run_key is not None and not inputs.changed:
             assert cache is not None
-            kept = (tuple(diagnostics), checked_count, tuple(gathered.skipped), tuple(unbuilt))
+            kept = (
+                tuple(diagnostics),
+                checked_count,
+                tuple(gathered.skipped),
+                tuple(unbuilt),
+                tuple(rostest_named),
+            )
             cache.store_run(run_key, kept)
         inputs.finish()
     return LintResult(
@@ -264,6 +274,7 @@ def lint(
         tuple(gathered.skipped),
         facts=tuple(checks.facts()),
         unbuilt=tuple(unbuilt),
+        rostest_named=tuple(rostest_named),
     )
 
 
@@ -366,6 +377,20 @@ class _FileChecks:
                 spared.append(displays[index])
         return spared
 
+    def spare_rostest_named(self, displays: Sequence[str]) -> list[str]:
+        """No finding about the node name a C++ source hands ``ros::init`` where only
+        rostest starts what it is built into (``workspace.built``): roslaunch names the
+        node (``rostest_replaces``). The files judged so, for ``--verbose``."""
+        spared: list[str] = []
+        for index, found in enumerate(self.per_file):
+            kept = [diagnostic for diagnostic in found if not rostest_replaces(diagnostic)]
+            if len(kept) == len(found):
+                continue
+            if self._built.started_by_rostest(displays[index], self.package_of(index)):
+                self.per_file[index] = kept
+                spared.append(displays[index])
+        return spared
+
     def finish(self) -> None:
         """Check the files that waited for the run's service types, wiring and constants."""
         for index in self._unresolved:
@@ -455,6 +480,27 @@ def is_linter_code(code: str) -> bool:
     return code.startswith("RN0")
 
 
+# The API the C++ extractor names on the node name handed to roscpp (extract/cpp/sites.py;
+# not imported: the engine does not import the C++ parser).
+_ROS_INIT_API = "ros::init"
+
+
+def rostest_replaces(diagnostic: Diagnostic) -> bool:
+    """Whether the finding judges the node name a ROS 1 program hands ``ros::init``,
+    which a program rostest starts never takes: roslaunch passes every node it starts
+    ``__name:=<name>``, a ``<test>``'s ``name`` or else its ``test-name``
+    (``create_local_process_args``, ``XmlLoader._node_tag``), and roscpp's
+    ``ThisNode::init`` takes that remapping in place of the name before it checks it."""
+    decision = diagnostic.decision
+    return (
+        decision is not None
+        and not is_linter_code(diagnostic.code)
+        and decision.kind is Kind.NODE
+        and decision.api == _ROS_INIT_API
+        and decision.generation is Generation.ROS1
+    )
+
+
 def _stored_result(value: object, files: int) -> LintResult | None:
     """A result ``store_run`` kept, if ``value`` is one (anything else: a miss)."""
     match value:
@@ -463,16 +509,26 @@ def _stored_result(value: object, files: int) -> LintResult | None:
             int() as checked,
             tuple() as skipped,
             tuple() as unbuilt,
+            tuple() as rostest_named,
         ) if (
             all(isinstance(diagnostic, Diagnostic) for diagnostic in diagnostics)
             and all(
                 isinstance(item, tuple) and all(isinstance(part, str) for part in item)
                 for item in skipped
             )
-            and all(isinstance(path, str) for path in unbuilt)
+            and all(isinstance(path, str) for path in (*unbuilt, *rostest_named))
         ):
             return LintResult(
-                diagnostics, checked, 0, files, 0, None, skipped, reused=True, unbuilt=unbuilt
+                diagnostics,
+                checked,
+                0,
+                files,
+                0,
+                None,
+                skipped,
+                reused=True,
+                unbuilt=unbuilt,
+                rostest_named=rostest_named,
             )
     return None
 

@@ -277,7 +277,11 @@ class CompiledSources:
     (a macro of another package's ``.cmake``), which may name a file by its path, its
     directory, its name or its stem; ``subdirectories`` (``add_subdirectory``) and
     ``includes`` (``include`` of a file of the package) are build files this one runs,
-    which must be in the run for the rest to be the whole story.
+    which must be in the run for the rest to be the whole story, and the only
+    ``CMakeLists.txt`` files of its package besides its root that CMake reads.
+    ``rostest`` are the sources of the test executables that only rostest starts
+    (``add_rostest_gtest``); such a source is in ``paths`` only where another target
+    names it too.
     """
 
     paths: tuple[str, ...] = ()
@@ -285,6 +289,7 @@ class CompiledSources:
     words: tuple[str, ...] = ()
     subdirectories: tuple[str, ...] = ()
     includes: tuple[str, ...] = ()
+    rostest: tuple[str, ...] = ()
 
 
 class EventKind(str, Enum):

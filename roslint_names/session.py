@@ -38,6 +38,7 @@ from .engine import (
     lintable,
     package_display,
     report_graph,
+    rostest_replaces,
     service_types_of,
     typed_services,
     workspace_packages,
@@ -294,12 +295,17 @@ class Session:
     def _with_graph(self, display: str) -> list[Diagnostic]:
         checked = self._open[display]
         found = checked.diagnostics + self._graph_found.get(display, [])
-        if found and self._unbuilt(checked.source):
-            found = [diagnostic for diagnostic in found if is_linter_code(diagnostic.code)]
+        if found:
+            built = self._built_sources()
+            package = package_display(checked.source, self._packages)
+            if built.unbuilt(display, package):
+                found = [diagnostic for diagnostic in found if is_linter_code(diagnostic.code)]
+            elif any(map(rostest_replaces, found)) and built.started_by_rostest(display, package):
+                found = [diagnostic for diagnostic in found if not rostest_replaces(diagnostic)]
         return sorted(found, key=Diagnostic.sort_key)
 
-    def _unbuilt(self, source: SourceFile) -> bool:
-        """Whether no build file compiles the document, as a run says (``built``)."""
+    def _built_sources(self) -> BuiltSources:
+        """What the workspace's build files compile, as a run judges it (``built``)."""
         if self._built is None:
             self._built = BuiltSources()
             for facts in self._facts.values():
@@ -307,7 +313,7 @@ class Session:
                     package = self._sources.get(facts.path)
                     where = None if package is None else package_display(package, self._packages)
                     self._built.add(facts, where)
-        return self._built.unbuilt(source.display, package_display(source, self._packages))
+        return self._built
 
 
 def _builds(facts: FileFacts) -> bool:

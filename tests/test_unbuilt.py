@@ -283,6 +283,115 @@ def test_a_test_whose_build_is_commented_out_is_not_reported(run_cli: Any, tmp_p
     ]
 
 
+# moveit2's moveit_ros/planning_interface, reduced: the root CMakeLists.txt adds its
+# library directories and leaves ``add_subdirectory(test)`` commented out, so CMake never
+# reads test/CMakeLists.txt, and its ament_add_gtest builds nothing.
+INTERFACE_ROOT_CMAKE = """cmake_minimum_required(VERSION 3.22)
+project(moveit_ros_planning_interface LANGUAGES CXX)
+find_package(moveit_common REQUIRED)
+moveit_package()
+find_package(ament_cmake REQUIRED)
+find_package(rclcpp REQUIRED)
+
+include_directories(${THIS_PACKAGE_INCLUDE_DIRS})
+
+add_subdirectory(move_group_interface)
+# add_subdirectory(test)
+
+if(BUILD_TESTING)
+  find_package(ament_cmake_gtest REQUIRED)
+endif()
+
+ament_package()
+"""
+MOVE_GROUP_INTERFACE_CMAKE = """add_library(moveit_move_group_interface SHARED
+            src/move_group_interface.cpp)
+target_link_libraries(moveit_move_group_interface rclcpp::rclcpp)
+"""
+INTERFACE_TEST_CMAKE = """if(BUILD_TESTING)
+  find_package(moveit_resources REQUIRED)
+  find_package(ament_cmake_gtest REQUIRED)
+
+  ament_add_gtest(moveit_cpp_test moveit_cpp_test.test moveit_cpp_test.cpp)
+  target_link_libraries(moveit_cpp_test moveit_cpp)
+endif()
+"""
+INTERFACE_TEST = "moveit_ros/planning_interface/test/moveit_cpp_test.cpp"
+
+
+def planning_interface(root: Path, *, root_cmake: str = INTERFACE_ROOT_CMAKE) -> Path:
+    package = root / "moveit_ros/planning_interface"
+    write(package, "package.xml", AMENT_PACKAGE.format(name="moveit_ros_planning_interface"))
+    write(package, "CMakeLists.txt", root_cmake)
+    write(package, "move_group_interface/CMakeLists.txt", MOVE_GROUP_INTERFACE_CMAKE)
+    write(package, "move_group_interface/src/move_group_interface.cpp", BASE_CPP)
+    write(package, "test/CMakeLists.txt", INTERFACE_TEST_CMAKE)
+    write(package, "test/moveit_cpp_test.cpp", MOVEIT_CPP_TEST)
+    return package
+
+
+def test_a_cmake_file_whose_add_subdirectory_is_commented_out_builds_nothing(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """Before, the test was an RN101 (a node name holding '/'): test/CMakeLists.txt, which
+    names it, was taken for part of the build, though no file CMake reads adds it."""
+    planning_interface(tmp_path)
+    assert found(run_cli, tmp_path) == []
+    result = run_cli(["check", "--verbose", "."], tmp_path)
+    assert f"{INTERFACE_TEST}: no build file of its package compiles it" in result.stderr
+
+
+@pytest.mark.parametrize(
+    "root_cmake",
+    [
+        INTERFACE_ROOT_CMAKE.replace("# add_subdirectory(test)", "add_subdirectory(test)"),
+        INTERFACE_ROOT_CMAKE.replace(
+            "# add_subdirectory(test)", "add_subdirectory(${CMAKE_CURRENT_SOURCE_DIR}/test)"
+        ),
+        # Reached through a directory it adds, and a .cmake file of the package.
+        INTERFACE_ROOT_CMAKE.replace("# add_subdirectory(test)", "include(cmake/tests.cmake)"),
+        # Unknown: a variable the file never sets, a macro of another package handed the
+        # directory, a function of the file whose body adds one, a file that stops lexing.
+        INTERFACE_ROOT_CMAKE.replace("# add_subdirectory(test)", "add_subdirectory(${TESTS})"),
+        INTERFACE_ROOT_CMAKE.replace("# add_subdirectory(test)", "moveit_add_tests(test)"),
+        INTERFACE_ROOT_CMAKE.replace(
+            "# add_subdirectory(test)",
+            "function(add_tests directory)\n  add_subdirectory(${directory})\nendfunction()",
+        ),
+        INTERFACE_ROOT_CMAKE.replace("# add_subdirectory(test)", 'add_subdirectory("test\n'),
+    ],
+    ids=[
+        "added",
+        "added-by-source-dir",
+        "included-module",
+        "unknown-variable",
+        "foreign-macro",
+        "function-body",
+        "broken-file",
+    ],
+)
+def test_a_cmake_file_the_build_may_reach_keeps_its_findings(
+    run_cli: Any, tmp_path: Path, root_cmake: str
+) -> None:
+    package = planning_interface(tmp_path, root_cmake=root_cmake)
+    if "tests.cmake" in root_cmake:
+        write(package, "cmake/tests.cmake", "add_subdirectory(test)\n")
+    assert found(run_cli, tmp_path) == [(INTERFACE_TEST, 9, "RN101")]
+
+
+def test_a_subdirectory_is_reached_through_the_directories_between(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """move_group_interface/CMakeLists.txt adds its own test directory."""
+    package = planning_interface(tmp_path)
+    write(
+        package,
+        "move_group_interface/CMakeLists.txt",
+        MOVE_GROUP_INTERFACE_CMAKE + "add_subdirectory(../test ${CMAKE_BINARY_DIR}/tests)\n",
+    )
+    assert found(run_cli, tmp_path) == [(INTERFACE_TEST, 9, "RN101")]
+
+
 def compiled(text: str, path: str = "CMakeLists.txt") -> CompiledSources:
     facts = cmake.extract(path, text.encode(), Generation.ROS2, Generation.ROS2)
     assert facts.compiled is not None

@@ -1,27 +1,43 @@
-"""C++ sources that no build file of their package compiles: code that never runs.
+"""C++ sources that no build file of their package compiles: code that never runs; and
+those compiled only into test executables that rostest starts, and so names.
 
 A ROS 1 nodelet left in a ported package (moveit2's ``depth_self_filter_nodelet.cpp``,
 its ``add_library`` commented out with ``TODO: Port to ROS2``), a test whose
-``ament_add_gtest`` is commented out: their names reach no running graph, and a finding
-in them asks for an edit no user of the package would ever see. Whether a file is built
-is a question about other files, the package's ``CMakeLists.txt`` and ``.cmake`` files,
-so it is decided here, over the run's facts, and never stored with the file's own.
+``ament_add_gtest`` is commented out, or whose directory's ``add_subdirectory`` is
+(moveit2's ``planning_interface/test``): their names reach no running graph, and a
+finding in them asks for an edit no user of the package would ever see. Whether a file is
+built is a question about other files, the package's ``CMakeLists.txt`` and ``.cmake``
+files, so it is decided here, over the run's facts, and never stored with the file's own.
+
+CMake reads a package's root ``CMakeLists.txt``, and another only where a file it reads
+runs it: ``add_subdirectory`` of its directory, ``include`` of it. A ``CMakeLists.txt``
+nothing reached names that way builds nothing, and what it compiles does not count. What
+a reached file leaves open may run one too: a pattern that may match it (an unknown
+subdirectory, a file that did not lex: ``*``), a word of a command the linter does not
+know that names its directory or one above. ``.cmake`` files count as read whatever
+includes them (``include(Name)`` finds one through ``CMAKE_MODULE_PATH``, which is not
+followed), as does a setup.py.
 
 A translation unit (``.cpp``, ``.cc``, ``.cxx``, ``.c++``; never a header, which builds
 include without naming) is unbuilt only when all of this holds:
 
-* its package's ``CMakeLists.txt`` is in the run, and no build file of the run names it
+* its package's ``CMakeLists.txt`` is in the run, and no build file CMake reads names it
   as a target's source (``CompiledSources.paths``, any package's: ``../common/a.cpp``);
 * no C++ file of the run includes a source of its name (``#include "solver.cpp"``);
-* nothing its package's build files leave open may be it: no pattern matches it (the
-  unknown parts of a source, ``file(GLOB)``'s variable, a file that did not lex: ``*``),
-  no word of a command the linter does not know names its path, a directory above it,
-  its name or its stem, and every ``add_subdirectory`` and ``include`` of the package
-  names a build file the run holds.
+* nothing the package's build files that CMake reads leave open may be it: no pattern
+  matches it (the unknown parts of a source, ``file(GLOB)``'s variable, a file that did
+  not lex: ``*``), no word of a command the linter does not know names its path, a
+  directory above it, its name or its stem, and every ``add_subdirectory`` and
+  ``include`` of those files names a build file the run holds.
+
+It is started only by rostest when the same holds but for ``add_rostest_gtest`` (or
+``add_rostest_gmock``) naming it (``CompiledSources.rostest``): the executable is then a
+test that rostest starts from its .test file, and roslaunch names every node it starts.
 
 A ``.cmake`` file is run by the file that includes it, in that file's directory: its
 relative paths are read from its own directory and from every directory of the package
-that holds a ``CMakeLists.txt``. A setup.py building extension modules compiles anything.
+that holds a ``CMakeLists.txt`` CMake reads. A setup.py building extension modules
+compiles anything.
 """
 
 from __future__ import annotations
@@ -43,15 +59,32 @@ class _BuildFile:
     compiled: CompiledSources
     module: bool  # a .cmake file, run in its includer's directory
 
+    @property
+    def lists(self) -> bool:
+        """A ``CMakeLists.txt``: read only where the package's build reaches it."""
+        return posixpath.basename(self.path) == _CMAKE_LISTS
+
+
+@dataclass(frozen=True)
+class _Named:
+    """The display paths the targets of the build files CMake reads name."""
+
+    targets: frozenset[str]  # by any target but rostest's
+    rostest: frozenset[str]  # by a test executable only rostest starts
+
 
 @dataclass
 class BuiltSources:
     """What the run's build files compile, gathered file by file (``add``)."""
 
     _by_package: dict[str, list[_BuildFile]] = field(default_factory=dict)
-    _compiled: set[str] = field(default_factory=set)  # display paths some target names
+    _outside: list[_BuildFile] = field(default_factory=list)  # of no package: all count
     _build_files: set[str] = field(default_factory=set)  # display paths of build files
     _included: set[str] = field(default_factory=set)  # names of included sources
+    # Worked out on the first question after an ``add``: per package, the build files
+    # CMake reads; what their targets name.
+    _reached: dict[str, tuple[_BuildFile, ...]] = field(default_factory=dict)
+    _named: _Named | None = None
 
     def add(self, facts: FileFacts, package: str | None) -> None:
         """One file's facts; ``package`` the display directory of its package."""
@@ -59,47 +92,120 @@ class BuiltSources:
         compiled = facts.compiled
         if compiled is None:
             return
+        self._reached.clear()
+        self._named = None
         self._build_files.add(facts.path)
-        directory = parent(facts.path)
-        self._compiled.update(join(directory, path) for path in compiled.paths)
+        build_file = _BuildFile(facts.path, compiled, facts.path.endswith(".cmake"))
         if package is None:
-            return
-        module = facts.path.endswith(".cmake")
-        self._by_package.setdefault(package, []).append(_BuildFile(facts.path, compiled, module))
+            self._outside.append(build_file)
+        else:
+            self._by_package.setdefault(package, []).append(build_file)
 
     def unbuilt(self, path: str, package: str | None) -> bool:
         """Whether the C++ file at display path ``path`` is certainly compiled by nothing."""
-        if package is None or join(package, _CMAKE_LISTS) not in self._build_files:
+        if package is None or not self._whole_story(path, package):
+            return False
+        return path not in self._names().rostest and not self._compiled_otherwise(path, package)
+
+    def started_by_rostest(self, path: str, package: str | None) -> bool:
+        """Whether the C++ file at display path ``path`` is certainly compiled into test
+        executables that only rostest starts, and into nothing else."""
+        if package is None or not self._whole_story(path, package):
+            return False
+        return path in self._names().rostest and not self._compiled_otherwise(path, package)
+
+    def _whole_story(self, path: str, package: str) -> bool:
+        """Whether the run holds what builds the file, a translation unit (a build names
+        no header, it includes them): its package's CMake build, from its root."""
+        if join(package, _CMAKE_LISTS) not in self._build_files:
             return False  # no CMake build, or the run holds only part of it
-        if not path.lower().endswith(TRANSLATION_UNITS):
-            return False
-        if path in self._compiled or posixpath.basename(path) in self._included:
-            return False
-        build_files = self._by_package[package]
-        lists = [parent(f.path) for f in build_files if f.path.endswith(_CMAKE_LISTS)]
+        return path.lower().endswith(TRANSLATION_UNITS)
+
+    def _compiled_otherwise(self, path: str, package: str) -> bool:
+        """Whether anything but a rostest test executable may compile the file."""
+        if path in self._names().targets or posixpath.basename(path) in self._included:
+            return True
+        build_files = self._reached_files(package)
+        lists = [parent(f.path) for f in build_files if f.lists]
         inside = path[len(package) :].lstrip("/") if package else path
         for build_file in build_files:
             bases = [parent(build_file.path)] + (lists if build_file.module else [])
             if any(self._may_compile(build_file.compiled, base, path, inside) for base in bases):
-                return False
-        return True
+                return True
+        return False
+
+    def _names(self) -> _Named:
+        if self._named is None:
+            targets: set[str] = set()
+            rostest: set[str] = set()
+            reached = [self._reached_files(package) for package in self._by_package]
+            for build_file in [*self._outside, *(f for files in reached for f in files)]:
+                directory = parent(build_file.path)
+                targets.update(join(directory, path) for path in build_file.compiled.paths)
+                rostest.update(join(directory, path) for path in build_file.compiled.rostest)
+            self._named = _Named(frozenset(targets), frozenset(rostest))
+        return self._named
+
+    def _reached_files(self, package: str) -> tuple[_BuildFile, ...]:
+        """The package's build files that its build reads: the ``CMakeLists.txt`` files
+        its root one reaches, every other build file (module docstring)."""
+        if package not in self._reached:
+            files = self._by_package.get(package, [])
+            lists = {f.path: f for f in files if f.lists}
+            others = tuple(f for f in files if not f.lists)
+            modules = [f for f in others if f.module]
+            root = join(package, _CMAKE_LISTS)
+            reached = {root: lists[root]} if root in lists else {}
+            grown = True
+            while grown:  # until no reached file runs one more
+                grown = False
+                directories = [parent(path) for path in reached]
+                for runner in [*reached.values(), *modules]:
+                    bases = [parent(runner.path)] + (directories if runner.module else [])
+                    for path, candidate in lists.items():
+                        if path not in reached and any(
+                            _may_run(runner.compiled, base, path, package) for base in bases
+                        ):
+                            reached[path] = candidate
+                            grown = True
+            self._reached[package] = (*reached.values(), *others)
+        return self._reached[package]
 
     def _may_compile(self, compiled: CompiledSources, base: str, path: str, inside: str) -> bool:
         """Whether what one build file leaves open, read from ``base``, may be ``path``
         (``inside``: the same, relative to its package's directory)."""
-        for pattern in compiled.patterns:
-            if pattern.startswith("*"):  # an unknown start: any directory of the package
-                if fnmatchcase(inside, pattern) or fnmatchcase(path, pattern):
-                    return True
-            elif fnmatchcase(path, join(base, pattern)):
-                return True
-        if any(_names(join(base, word), path) for word in compiled.words):
+        if _may_name(compiled, base, path, inside):
             return True
         for directory in compiled.subdirectories:
             below = join(base, directory)
             if join(below, _CMAKE_LISTS) not in self._build_files and path.startswith(below + "/"):
                 return True  # a subdirectory whose CMakeLists.txt the run does not hold
         return any(join(base, included) not in self._build_files for included in compiled.includes)
+
+
+def _may_run(compiled: CompiledSources, base: str, lists: str, package: str) -> bool:
+    """Whether one build file, read from ``base``, may run the ``CMakeLists.txt`` at
+    display path ``lists`` of ``package``: it adds its directory, includes it, or leaves
+    open what may."""
+    directory = parent(lists)
+    inside = lists[len(package) :].lstrip("/") if package else lists
+    return (
+        any(join(base, subdirectory) == directory for subdirectory in compiled.subdirectories)
+        or any(join(base, included) == lists for included in compiled.includes)
+        or _may_name(compiled, base, lists, inside)
+    )
+
+
+def _may_name(compiled: CompiledSources, base: str, path: str, inside: str) -> bool:
+    """Whether a pattern or word of one build file, read from ``base``, may name ``path``
+    (``inside``: the same, relative to its package's directory)."""
+    for pattern in compiled.patterns:
+        if pattern.startswith("*"):  # an unknown start: any directory of the package
+            if fnmatchcase(inside, pattern) or fnmatchcase(path, pattern):
+                return True
+        elif fnmatchcase(path, join(base, pattern)):
+            return True
+    return any(_names(join(base, word), path) for word in compiled.words)
 
 
 def _names(word: str, path: str) -> bool:

@@ -30,7 +30,11 @@ import posixpath
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
-from roslint_names.extract.build.cmake_compiled import Compiled, compiles_nothing
+from roslint_names.extract.build.cmake_compiled import (
+    RUNS_BUILD_FILES,
+    Compiled,
+    compiles_nothing,
+)
 from roslint_names.extract.build.cmake_eval import (
     DYNAMIC,
     FOLLOWED,
@@ -156,7 +160,7 @@ class _Build:
             return  # its arguments need no evaluation
         values = self.variables.values(command.arguments)
         self.variables.apply(name, values)
-        if compiling and not self._defining:
+        if compiling and (not self._defining or name in RUNS_BUILD_FILES):
             self.compiled.command(name, values)
         if handler is not None:
             handler(values)

@@ -7,7 +7,8 @@ whole story, so everything here errs towards "may be compiled":
 
 * the targets' sources (``add_executable``, ``add_library``, the test executables of
   gtest, gmock and benchmarks, ``target_sources``...), after the target's name and without
-  the values of keywords such as ``WORKING_DIRECTORY``, are ``paths``; a source with a
+  the values of keywords such as ``WORKING_DIRECTORY``, are ``paths`` (``rostest`` for
+  the test executables only rostest starts: ``add_rostest_gtest``); a source with a
   part the file does not determine (a variable it never sets, ``file(GLOB)``'s output, a
   generator expression) is a pattern with ``*`` for that part, and ``ament_auto``'s
   ``DIRECTORY src`` the pattern ``src/*``;
@@ -21,13 +22,15 @@ whole story, so everything here errs towards "may be compiled":
   ``target_link_libraries``, ``ament_package``, message generation, linters...) are
   skipped, whatever their arguments;
 * ``add_subdirectory`` and ``include`` of a file of the package name build files that
-  must be in the run too; ``include`` of a module (``include(GNUInstallDirs)``) or of a
-  file of another package (``include(${moveit_common_DIR}/...)``) defines macros, whose
-  calls are judged as above;
+  must be in the run too, and the only ones of the package CMake reads besides its root
+  ``CMakeLists.txt`` (``workspace.built``): they are recorded from the bodies of
+  functions and macros too, a parameter there unknown. ``include`` of a module
+  (``include(GNUInstallDirs)``) or of a file of another package
+  (``include(${moveit_common_DIR}/...)``) defines macros, whose calls are judged as above;
 * a body of a function or macro read where it is defined (its parameters unknown) records
-  nothing, since each call records its own: a call in this file runs the body with its
-  arguments, a call in another file is a command that file does not know. A call too deep
-  to follow, a file that stops lexing and a replay cut short leave ``*``: anything.
+  no other command, since each call records its own: a call in this file runs the body
+  with its arguments, a call in another file is a command that file does not know. A call
+  too deep to follow, a file that stops lexing and a replay cut short leave ``*``: anything.
 """
 
 from __future__ import annotations
@@ -43,7 +46,7 @@ from roslint_names.model import CompiledSources
 ANYTHING = "*"
 
 # Commands whose first argument names a target and whose other arguments are its sources
-# (and keywords). add_rostest_gtest's second is the .test file: no source suffix.
+# (and keywords).
 _TARGETS = frozenset(
     {
         "add_executable",
@@ -66,8 +69,6 @@ _TARGETS = frozenset(
         "catkin_add_gmock",
         "catkin_add_executable_with_gtest",
         "catkin_add_executable_with_gmock",
-        "add_rostest_gtest",
-        "add_rostest_gmock",
         "rosbuild_add_executable",
         "rosbuild_add_library",
         "rosbuild_add_library_module",
@@ -75,6 +76,12 @@ _TARGETS = frozenset(
         "target_sources",
     }
 )
+# Test executables only rostest starts, by the name a .test file gives them: rostest's
+# ``_add_rostest_google_test`` (ros_comm ``tools/rostest/cmake/rostest-extras.cmake.em``)
+# makes them ``add_executable(${target} EXCLUDE_FROM_ALL ${ARGN})`` and hands the .test
+# file to ``add_rostest(... DEPENDENCIES ${target})``. Arguments as for ``_TARGETS``; the
+# second is the .test file, a path with no source suffix, harmless among the sources.
+_ROSTEST_TARGETS = frozenset({"add_rostest_gtest", "add_rostest_gmock"})
 # Keywords of those commands whose values are no sources (ament_cmake_gtest's
 # ``cmake_parse_arguments``: RUNNER, TIMEOUT, WORKING_DIRECTORY; ENV, APPEND_ENV,
 # APPEND_LIBRARY_DIRS; benchmarks' RESULTS_FILE; add_library's ALIAS target).
@@ -263,6 +270,10 @@ _MARKER = re.compile(f"[{DYNAMIC}]+")
 _GENERATOR_EXPRESSION = "$<"
 
 
+# What a body read where it is defined still records: the build files it may run.
+RUNS_BUILD_FILES = frozenset({"add_subdirectory", "include"})
+
+
 def compiles_nothing(command: str) -> bool:
     return command in _COMPILE_NOTHING or command.startswith(_COMPILE_NOTHING_PREFIXES)
 
@@ -276,11 +287,14 @@ class Compiled:
         self._words: dict[str, None] = {}
         self._subdirectories: dict[str, None] = {}
         self._includes: dict[str, None] = {}
+        self._rostest: dict[str, None] = {}
 
     def command(self, name: str, values: Sequence[Value]) -> None:
         """What one command run (not a call of a function of this file) compiles."""
         if name in _TARGETS:
-            self._target(values[1:])
+            self._target(values[1:], self._paths)
+        elif name in _ROSTEST_TARGETS:
+            self._target(values[1:], self._rostest)
         elif name == "add_subdirectory":
             self._subdirectory(values[:1])
         elif name == "include":
@@ -304,9 +318,11 @@ class Compiled:
             tuple(self._words),
             tuple(self._subdirectories),
             tuple(self._includes),
+            tuple(self._rostest),
         )
 
-    def _target(self, values: Sequence[Value]) -> None:
+    def _target(self, values: Sequence[Value], paths: dict[str, None]) -> None:
+        """A target's sources into ``paths``; its unknown ones are patterns."""
         skipping = directory = False
         for value in values:
             text = value.text
@@ -320,12 +336,12 @@ class Compiled:
                 directory = False
                 self._pattern(text.rstrip("/") + "/" + DYNAMIC)
             elif not skipping or posixpath.splitext(text)[1] in CODE_SUFFIXES:
-                self._source(text)
+                self._source(text, paths)
 
-    def _source(self, text: str) -> None:
+    def _source(self, text: str, paths: dict[str, None]) -> None:
         path = normalise(text)
         if path is not None:
-            self._paths[path] = None
+            paths[path] = None
         elif DYNAMIC in text or _GENERATOR_EXPRESSION in text:
             self._pattern(text)
 
