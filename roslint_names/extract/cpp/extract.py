@@ -32,6 +32,7 @@ from roslint_names.model import (
 from roslint_names.reading import bom_encoding
 
 from ..literals import name_literals
+from ..parameter_traits import cpp_class_bases, parameter_traits
 from .apis import CALL_WORDS, CONSTRUCTED_TYPES, FRAME_FIELDS
 from .constants import header_constants, included_paths, included_sources, is_header
 from .events import INIT_WORDS, handle_event, init_event
@@ -56,7 +57,8 @@ _PARSER = tree_sitter.Parser(tree_sitter.Language(tree_sitter_cpp.language()))
 # site is found by, then (when the word alone says too little) what must follow it. About
 # half of the C++ files of a ROS workspace include rclcpp or ros/ and still name nothing.
 _POINTER_TYPEDEF = rb"\b(?!::(?:SharedPtr|WeakPtr|ConstSharedPtr|UniquePtr)\b)"
-_PARAMETER_METHOD = rb"(?:_or|_if_not_declared)?\b"  # get_parameter_or, not get_parameters
+# get_parameter_or, get_parameters; not get_parameters_by_prefix
+_PARAMETER_METHOD = rb"(?:_or|_if_not_declared|s)?\b"
 MARKERS: dict[str, bytes | None] = {
     "ros::init": None,
     "rclcpp::init": None,
@@ -77,6 +79,7 @@ MARKERS: dict[str, bytes | None] = {
         for verb in ("declare", "get", "has", "undeclare", "describe")
     },
     "rclcpp::Parameter": rb"\b",
+    "auto_declare": rb"\b",  # ros2_control's controllers
     "frame_id": rb"\s*=[^=]",  # frame_id = "map", not frame_id == "map"
     **dict.fromkeys(("lookupTransform", "canTransform", "waitForTransform"), None),
     **dict.fromkeys(f"transform{what}" for what in ("Pose", "Point", "Vector", "Quaternion")),
@@ -92,7 +95,7 @@ MARKERS: dict[str, bytes | None] = {
 # it shares with others; few files hold any part.
 _MARKER_PARTS = tuple(
     b"Node ubscribe ::init create_ dvertise aram ervice ransform Action frame_id Stamped"
-    b" message_filters".split()
+    b" message_filters auto_declare".split()
 )
 _Marker = tuple[bytes, "re.Pattern[bytes] | None"]  # its word, what must follow it
 
@@ -157,6 +160,8 @@ def extract(
             constants=constants,
             cpp_includes=included_paths(text) if header else (),
             included_sources=included_sources(text),
+            parameter_traits=parameter_traits(text),
+            class_bases=cpp_class_bases(text),
         )
     generation = package_generation or file_generation(text) or fallback_generation
     source = Source(text, _PARSER.parse(text))
@@ -170,6 +175,8 @@ def extract(
         events=tuple(sorted(events, key=lambda event: (event.scope, event.order))),
         parse_errors=_errors(error),
         literals=name_literals(text),
+        parameter_traits=parameter_traits(text),
+        class_bases=cpp_class_bases(text),
         constants=constants,
         cpp_includes=included_paths(text) if symbols else (),
         tf_roles=tf_roles(source),
@@ -227,7 +234,7 @@ _ANCHORS = word_pattern(_ANCHOR_WORDS)
 # other identifiers hold.
 _ANCHOR_PARTS = tuple(
     b"Node aram ervice create_ Action Stamped Transform transform ubscribe dvertise frame_id"
-    b" init ForMessage _for_message".split()
+    b" init ForMessage _for_message auto_declare".split()
 )
 if unfound := [w for w in _ANCHOR_WORDS if not any(p in w.encode() for p in _ANCHOR_PARTS)]:
     raise ValueError(f"anchor words holding none of _ANCHOR_PARTS: {unfound}")

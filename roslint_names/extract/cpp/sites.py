@@ -12,19 +12,28 @@ import re
 
 from tree_sitter import Node
 
-from roslint_names.model import Kind, NameUse, Role
+from roslint_names.model import Kind, NameUse, ParameterAccess, Role
 
 from .apis import (
     ACTION_FUNCTIONS,
     ACTIONLIB,
     ACTIONLIB_QUALIFIERS,
     CAMERA_ENDPOINTS,
+    DECLARE_OR_GET,
+    DECLARE_OR_GET_API,
+    DECLARE_PARAMETERS,
+    DECLARE_PARAMETERS_API,
     ENDPOINTS,
     FRAME_CONSTRUCTIONS,
     FRAME_FUNCTIONS,
+    GET_PARAMETERS,
+    GET_PARAMETERS_API,
     MAX_FRAME_ARGUMENTS,
     OPTIONS,
     OPTIONS_USERS,
+    PLUGIN_TYPE,
+    PLUGIN_TYPE_API,
+    PLUGIN_TYPE_SUFFIX,
     ROS1_PARAMETER_FUNCTIONS,
     ROS1_PARAMETERS,
     ROS2_PARAMETERS,
@@ -42,6 +51,7 @@ from .source import (
     Source,
     arguments,
     call_named_by,
+    compact,
     contains,
     enclosing_functions,
     is_field,
@@ -82,9 +92,11 @@ class Sites:
         type_name: str | None = None,
         *,
         namespace: str | None = None,
+        access: ParameterAccess | None = None,
     ) -> None:
         if value is None:
             return
+        parameter = kind is Kind.PARAMETER and role is Role.PARAMETER
         self.names.append(
             NameUse(
                 kind=kind,
@@ -97,6 +109,8 @@ class Sites:
                 namespace=namespace,
                 symbol=value.symbol,
                 absolute_prefix=value.prefix if value.dynamic else None,
+                access=access if parameter else None,
+                suffix=value.suffix if parameter and value.dynamic else None,
             )
         )
 
@@ -150,6 +164,14 @@ class Sites:
             self.parameter(call, ROS1_PARAMETERS[call.name])
         elif call.name in ROS2_PARAMETERS:
             self.parameter(call, ROS2_PARAMETERS[call.name])
+        elif call.name == DECLARE_OR_GET:
+            self.declare_or_get(call)
+        elif call.name == PLUGIN_TYPE and len(call.arguments) >= 2:
+            self.plugin_type(call)
+        elif call.name == DECLARE_PARAMETERS and call.qualifier == "":
+            self.declare_parameters(call)
+        elif call.name == GET_PARAMETERS and call.qualifier == "":
+            self.get_parameters(call)
         elif call.name in FRAME_FUNCTIONS:
             self.frames(call)
 
@@ -297,11 +319,108 @@ class Sites:
             return
         namespace = self.handles.namespace_of(call.receiver)
         name = self.argument(values, site.name)
-        self.emit(Kind.PARAMETER, Role.PARAMETER, site.api, name, namespace=namespace)
+        access = site.access
+        if site.quiet_from is not None and len(values) >= site.quiet_from:
+            access = ParameterAccess.READ_QUIETLY
+        access = self._parameter_access(call, access)
+        self.emit(
+            Kind.PARAMETER, Role.PARAMETER, site.api, name, namespace=namespace, access=access
+        )
         if site.value is not None and name is not None and not name.dynamic:
             index = len(values) - 1 if site.value < 0 else site.value
             if index > site.name:
                 self.parameter_value(name.text, values, index, site.api, namespace)
+
+    def _parameter_access(
+        self, call: Call, access: ParameterAccess | None
+    ) -> ParameterAccess | None:
+        """A ROS 2 read through a parameter client (``rclcpp::SyncParametersClient``,
+        ``AsyncParametersClient``: ``client->get_parameters({"a"})``,
+        ``client->get_parameter<T>("a", default)``) asks a node by service, whatever node
+        it names: it reads no parameter of the calling node, and throws nothing."""
+        receiver = call.receiver
+        if receiver is None or access not in _READS_AND_CHECKS:
+            return access
+        spelled = self.source.text(receiver).lower()
+        if "client" in spelled:
+            return ParameterAccess.REMOTE
+        name = variable_name(self.source, unparenthesized(receiver))
+        if name is not None and name in _parameter_clients(self.source):
+            return ParameterAccess.REMOTE
+        return access
+
+    def declare_or_get(self, call: Call) -> None:
+        """nav2's ``declare_or_get_parameter``: ``node->declare_or_get_parameter(name,
+        default)``, ``nav2::declare_or_get_parameter(node, name, default)`` or
+        ``(logger, interface, name, default)``: the name is the first string argument,
+        else where its form puts it."""
+        values = call.arguments
+        if not values:
+            return
+        index = 0 if call.receiver is not None else None
+        for candidate in range(min(len(values), 3)) if index is None else ():
+            if self.folder.static(values[candidate]) is not None or '"' in self.source.text(
+                values[candidate]
+            ):
+                index = candidate
+                break
+        if index is None:
+            first = self.source.text(values[0]).lower()
+            index = 2 if "logger" in first else 1 if call.qualifier or len(values) >= 3 else 0
+        name = self.argument(values, index)
+        access = ParameterAccess.DECLARE
+        self.emit(Kind.PARAMETER, Role.PARAMETER, DECLARE_OR_GET_API, name, access=access)
+        if name is not None and not name.dynamic and index + 1 < len(values):
+            self.parameter_value(name.text, values, index + 1, DECLARE_OR_GET_API, None)
+
+    def plugin_type(self, call: Call) -> None:
+        """nav2's ``get_plugin_type_param(node, plugin)`` declares ``plugin.plugin``."""
+        name = self.argument(call.arguments, 1)
+        if name is None:
+            return
+        if name.dynamic:
+            name = Value(name.text, True, name.node, suffix=PLUGIN_TYPE_SUFFIX)
+        else:
+            name = Value(name.text + PLUGIN_TYPE_SUFFIX, False, name.node)
+        access = ParameterAccess.DECLARE
+        self.emit(Kind.PARAMETER, Role.PARAMETER, PLUGIN_TYPE_API, name, access=access)
+
+    def declare_parameters(self, call: Call) -> None:
+        """``declare_parameters("ns", {{"a", 1}, {"b", 2}})`` declares ``ns.a`` and
+        ``ns.b``; a map the call does not spell declares names the linter cannot know."""
+        values = call.arguments
+        if len(values) < 2:
+            return
+        namespace = self.folder.fold(values[0])
+        entries = _initializer_entries(values[1])
+        access = ParameterAccess.DECLARE
+        if namespace.dynamic or entries is None:
+            unknown = Value(compact(self.source.text(values[1])), True, values[1])
+            api = DECLARE_PARAMETERS_API
+            self.emit(Kind.PARAMETER, Role.PARAMETER, api, unknown, access=access)
+            return
+        for entry in entries:
+            key = self.folder.fold(entry)
+            if not key.dynamic and namespace.text:
+                key = Value(f"{namespace.text}.{key.text}", False, key.node)
+            self.emit(Kind.PARAMETER, Role.PARAMETER, DECLARE_PARAMETERS_API, key, access=access)
+
+    def get_parameters(self, call: Call) -> None:
+        """``get_parameters({"a", "b"})`` reads each name, throwing for an undeclared one;
+        ``get_parameters("prefix", map)`` reads every parameter below ``prefix.``."""
+        values = call.arguments
+        if len(values) == 2:
+            prefix = self.argument(values, 0)
+            access = self._parameter_access(call, ParameterAccess.READ_PREFIX)
+            self.emit(Kind.PARAMETER, Role.PARAMETER, GET_PARAMETERS_API, prefix, access=access)
+            return
+        names = _initializer_items(values[0]) if len(values) == 1 else None
+        if names is None:
+            return  # a vector the call does not spell: what it reads is unknown, and dynamic
+        access = self._parameter_access(call, ParameterAccess.READ)
+        for item in names:
+            value = self.folder.fold(item)
+            self.emit(Kind.PARAMETER, Role.PARAMETER, GET_PARAMETERS_API, value, access=access)
 
     def parameter_value(
         self, name: str, values: tuple[Node, ...], index: int, api: str, namespace: str | None
@@ -378,7 +497,7 @@ class Sites:
                 value = self.static_argument(construction.arguments, index)
                 self.emit(Kind.FRAME, Role.FRAME, f"{qualifier or 'tf'}::{name}", value)
         elif name == "Parameter" and qualifier == "rclcpp":
-            self.parameter(_as_call(construction), ParameterSite(0, 1, "rclcpp::Parameter"))
+            self.parameter(_as_call(construction), ParameterSite(0, 1, "rclcpp::Parameter", None))
 
     def node_handle(self, construction: Construction) -> None:
         """``NodeHandle(ns)``, ``NodeHandle(ns, remappings)``, ``NodeHandle(parent, ns)``."""
@@ -584,3 +703,57 @@ def _as_call(construction: Construction) -> Call:
         template=construction.template,
         arguments=construction.arguments,
     )
+
+
+_READS_AND_CHECKS = frozenset(
+    {
+        ParameterAccess.READ,
+        ParameterAccess.READ_QUIETLY,
+        ParameterAccess.READ_PREFIX,
+        ParameterAccess.CHECK,
+    }
+)
+# ``auto client = std::make_shared<rclcpp::SyncParametersClient>(...)``,
+# ``rclcpp::AsyncParametersClient::SharedPtr client_;``, ``client_ = ...ParametersClient...``
+_PARAMETER_CLIENT = re.compile(
+    rb"(?:ParametersClient\b[^;(){}]*?\b([A-Za-z_]\w*)\s*[;=({])"
+    rb"|(?:\b([A-Za-z_]\w*)\s*=[^;]*?ParametersClient\b)"
+)
+
+
+def _parameter_clients(source: Source) -> frozenset[str]:
+    """The variables and members the file declares as, or assigns, parameter clients."""
+    data = source.data
+    if b"ParametersClient" not in data:
+        return frozenset()
+    found = set()
+    for match in _PARAMETER_CLIENT.finditer(data):
+        name = match.group(1) or match.group(2)
+        if name:
+            found.add(name.decode("utf-8", "replace"))
+    return frozenset(found)
+
+
+def _initializer_items(node: Node) -> list[Node] | None:
+    """The elements of ``{"a", "b"}`` or ``std::vector<std::string>{"a", "b"}``."""
+    node = unparenthesized(node)
+    if node.type == "compound_literal_expression":
+        node = node.child_by_field_name("value") or node
+    if node.type != "initializer_list":
+        return None
+    return [child for child in node.named_children if child.type != "comment"]
+
+
+def _initializer_entries(node: Node) -> list[Node] | None:
+    """The keys of a map spelled in the call: ``{{"a", 1}, {"b", 2}}``; None when the
+    call does not spell it, or an element is not a pair."""
+    items = _initializer_items(node)
+    if items is None:
+        return None
+    keys = []
+    for item in items:
+        pair = _initializer_items(item)
+        if not pair:
+            return None
+        keys.append(pair[0])
+    return keys

@@ -11,7 +11,9 @@ function result, a ternary, a string the code may change.
 A constant that is assigned anywhere in the file, or set in a constructor's initializer
 list, is not a constant. A dynamic ``std::string`` sum that starts with an absolute literal
 (``"/planning/" + name``, or a string initialised once with one) keeps that literal as its
-``prefix``: the name is still unknown, but certain to be absolute.
+``prefix``: the name is still unknown, but certain to be absolute. One that ends with a
+literal (``plugin_name_ + ".max_vel_x"``) keeps it as its ``suffix``: a parameter under a
+run-time prefix.
 """
 
 from __future__ import annotations
@@ -68,6 +70,8 @@ class Value:
     symbol: str | None = None  # a dynamic identifier no declaration of the file binds
     # a dynamic value's certain absolute start: the literal of ``"/planning/" + name``
     prefix: str | None = None
+    # a dynamic value's certain end: the literal of ``name + ".max_vel_x"``
+    suffix: str | None = None
 
 
 @dataclass(frozen=True)
@@ -236,8 +240,12 @@ class Folder:
                 spelling = compact(self._source.text(node))
                 return Value(spelling, True, node, symbol=compact(self._source.text(expression)))
             if text is None:
-                prefix = self._identifier_prefix(expression, depth)
-                return Value(compact(self._source.text(node)), True, node, prefix=prefix)
+                written = self._written_once(expression, depth)
+                prefix = None if written is None else written.prefix
+                suffix = None if written is None else written.suffix
+                return Value(
+                    compact(self._source.text(node)), True, node, prefix=prefix, suffix=suffix
+                )
         elif kind in ("call_expression", "compound_literal_expression"):
             wrapped = self._wrapped(expression)
             if wrapped is not None:
@@ -252,7 +260,8 @@ class Folder:
 
     def _sum(self, node: Node, expression: Node, depth: int) -> Value:
         """``"/planning/" + name``: dynamic, but certain to start with its absolute literal
-        (a ``std::string`` sum; a number added to a literal is pointer arithmetic)."""
+        (a ``std::string`` sum; a number added to a literal is pointer arithmetic);
+        ``name + ".max_vel_x"``: certain to end with its literal."""
         spelling = Value(compact(self._source.text(node)), True, node)
         operator = expression.child_by_field_name("operator")
         left = expression.child_by_field_name("left")
@@ -262,14 +271,14 @@ class Folder:
         if unparenthesized(right).type in _NOT_STRINGS or depth >= _MAX_DEPTH:
             return spelling
         start = self._fold(left, depth + 1)
-        if not start.dynamic:
-            end = self._fold(right, depth + 1)
-            if not end.dynamic:  # kNs + "/cmd" of two constants
-                return Value(start.text + end.text, False, expression)
+        end = self._fold(right, depth + 1)
+        if not start.dynamic and not end.dynamic:  # kNs + "/cmd" of two constants
+            return Value(start.text + end.text, False, expression)
         prefix = start.prefix if start.dynamic else start.text
-        if prefix is None or not prefix.startswith("/"):
-            return spelling
-        return Value(spelling.text, True, node, prefix=prefix)
+        if prefix is not None and not prefix.startswith("/"):
+            prefix = None
+        suffix = end.suffix if end.dynamic else end.text
+        return Value(spelling.text, True, node, prefix=prefix, suffix=suffix or None)
 
     def _member_constant(self, access: Node, depth: int) -> str | None:
         """``this->kTopic``, ``driver.kTopic``: a constant member of the file's classes, the
@@ -286,9 +295,10 @@ class Folder:
         values = {self._declaration_value(member, depth + 1) for member in members}
         return values.pop() if len(values) == 1 else None
 
-    def _identifier_prefix(self, expression: Node, depth: int) -> str | None:
-        """The absolute start of a string written once, where it is declared:
-        ``const std::string topic = "/planning/" + name;``."""
+    def _written_once(self, expression: Node, depth: int) -> Value | None:
+        """The dynamic value of a string written once, where it is declared, for the
+        absolute start and the end it certainly has: ``const std::string topic =
+        "/planning/" + name;``."""
         name_node = _named_identifier(expression)
         if name_node is None or depth >= _MAX_DEPTH:
             return None
@@ -300,7 +310,7 @@ class Folder:
         if writes is None or len(writes) != 1 or writes[0].value is None:
             return None
         value = self._fold(writes[0].value, depth + 1)
-        return value.prefix if value.dynamic else None
+        return value if value.dynamic else None
 
     def _concatenation(self, node: Node, depth: int) -> str | None:
         parts: list[str] = []

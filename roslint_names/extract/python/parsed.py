@@ -12,6 +12,7 @@ from roslint_names.extract import evidence
 from roslint_names.extract.launch.python_launch import LaunchExtractor
 from roslint_names.extract.launch.python_values import LaunchCalls
 from roslint_names.extract.literals import name_literals
+from roslint_names.extract.parameter_traits import parameter_traits, python_class_bases
 from roslint_names.extract.python.code import CodeExtractor
 from roslint_names.extract.python.source import decode, parse
 from roslint_names.extract.python.spans import Locator
@@ -21,6 +22,7 @@ from roslint_names.model import (
     Generation,
     Language,
     LaunchArguments,
+    ParameterTrait,
     ParseError,
     Span,
 )
@@ -87,7 +89,17 @@ def extract_parsed(
         events=tuple(code.events),
         includes=tuple(launch.includes),
         literals=() if language is Language.LAUNCH_PYTHON else name_literals(text),
+        parameter_traits=() if language is Language.LAUNCH_PYTHON else _traits(text),
+        class_bases=() if language is Language.LAUNCH_PYTHON else _bases(text),
     )
+
+
+def _traits(text: str) -> tuple[ParameterTrait, ...]:
+    return parameter_traits(text.encode("utf-8", "surrogatepass"))
+
+
+def _bases(text: str) -> tuple[tuple[str, tuple[str, ...]], ...]:
+    return python_class_bases(text.encode("utf-8", "surrogatepass"))
 
 
 _Prepared = tuple[Walk, Locator, CodeExtractor, LaunchCalls, Generation, str]
