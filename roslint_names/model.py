@@ -336,6 +336,10 @@ class FileFacts:
     # (``("ControllerServer", ("nav2::LifecycleNode",))``): where else declarations hide.
     parameter_traits: tuple[ParameterTrait, ...] = ()
     class_bases: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    # Code: parameter-shaped string literals it holds more often than the names it was
+    # read for (``extract.literals.unexplained_literals``): names it may declare through
+    # something the linter does not know.
+    unexplained_literals: tuple[str, ...] = ()
     # C++: the string constants a header defines, (name, value), and the paths the file
     # includes (both only where ``symbols`` may need them).
     constants: tuple[tuple[str, str], ...] = ()

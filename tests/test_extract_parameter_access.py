@@ -181,6 +181,9 @@ class NAV2_EXPORT ControllerServer : public nav2::LifecycleNode, private Helper<
 };
 struct Options {};
 """
-    assert cpp_class_bases(header) == (("ControllerServer", ("nav2::LifecycleNode", "Helper")),)
+    assert cpp_class_bases(header) == (
+        ("ControllerServer", ("nav2::LifecycleNode", "Helper")),
+        ("Options", ()),
+    )
     module = b"class Driver(Node):\n    pass\n\nclass Meta(Base, metaclass=M):\n    pass\n"
     assert python_class_bases(module) == (("Driver", ("Node",)), ("Meta", ("Base",)))

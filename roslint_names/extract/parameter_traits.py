@@ -23,7 +23,10 @@ _ALLOW_UNDECLARED = re.compile(rb"\ballow_undeclared_parameters" + _SWITCH)
 _FROM_OVERRIDES = re.compile(rb"\bautomatically_declare_parameters_from_overrides" + _SWITCH)
 # pluginlib's ClassLoader and its instance makers: a plugin is handed the node and
 # declares its own parameters on it (nav2's controllers, costmap layers, behaviours).
-_PLUGINS = re.compile(rb"\bClassLoader\s*<|\bcreate(?:Shared|Unique|Unmanaged)Instance\b")
+_PLUGINS = re.compile(
+    rb"\bClassLoader\s*<|\bcreate(?:Shared|Unique|Unmanaged)Instance\b"
+    rb"|\bregisterFromPlugin\b"  # BehaviorTree.CPP's: nav2's tree nodes read the ROS node's
+)
 # generate_parameter_library's generated ParamListener declares a YAML file's parameters.
 _GENERATED = re.compile(rb"\bParamListener\b|\bgenerate_parameter_library\b")
 # A ROS 1 dynamic_reconfigure server: the parameters its .cfg file generates.
@@ -40,6 +43,7 @@ _TRAITS = (
     ),
     (b"Instance", _PLUGINS, ParameterTrait.PLUGINS),
     (b"ClassLoader", _PLUGINS, ParameterTrait.PLUGINS),
+    (b"registerFromPlugin", _PLUGINS, ParameterTrait.PLUGINS),
     (b"ParamListener", _GENERATED, ParameterTrait.GENERATED),
     (b"generate_parameter_library", _GENERATED, ParameterTrait.GENERATED),
     (b"dynamic_reconfigure", _DYNAMIC_RECONFIGURE, ParameterTrait.DYNAMIC_RECONFIGURE),
@@ -49,11 +53,14 @@ _TRAITS = (
 # the last word before the colon is the class; the base clause runs to the brace.
 _CPP_CLASS = re.compile(
     rb"(?<!enum\s)\b(?:class|struct)\s+(?:[A-Za-z_]\w*\s+){0,3}?([A-Za-z_]\w*)\s*(?:final\s*)?"
-    rb":(?!:)\s*([^{};()]{1,600}?)\{"
+    rb"(?::(?!:)\s*([^{};()]{1,600}?))?\{"
 )
+_CPP_COMMENT = re.compile(rb"//[^\n]*|/\*.*?\*/", re.DOTALL)
 _CPP_ACCESS = re.compile(r"^(?:(?:public|protected|private|virtual)\s+)+")
 # ``class Talker(Node):``, ``class Talker(rclpy.node.Node, metaclass=Meta):``
-_PYTHON_CLASS = re.compile(rb"(?m)^[ \t]*class[ \t]+([A-Za-z_]\w*)[ \t]*\(([^()]{0,600})\)[ \t]*:")
+_PYTHON_CLASS = re.compile(
+    rb"(?m)^[ \t]*class[ \t]+([A-Za-z_]\w*)[ \t]*(?:\(([^()]{0,600})\))?[ \t]*:"
+)
 
 
 def parameter_traits(data: bytes) -> tuple[ParameterTrait, ...]:
@@ -63,27 +70,27 @@ def parameter_traits(data: bytes) -> tuple[ParameterTrait, ...]:
 
 
 def cpp_class_bases(data: bytes) -> tuple[tuple[str, tuple[str, ...]], ...]:
-    """Each class or struct the C++ text defines with bases: (name, bases as written,
-    template arguments dropped)."""
+    """Each class or struct the C++ text defines: (name, bases as written, template
+    arguments dropped; none for a class without bases)."""
     if b"class" not in data and b"struct" not in data:
         return ()
     found: dict[str, tuple[str, ...]] = {}
-    for match in _CPP_CLASS.finditer(data):
+    for match in _CPP_CLASS.finditer(_CPP_COMMENT.sub(b" ", data)):
         name = match.group(1).decode("utf-8", "replace")
-        clause = match.group(2).decode("utf-8", "replace")
+        clause = (match.group(2) or b"").decode("utf-8", "replace")
         bases = tuple(
             base
             for part in _without_templates(clause).split(",")
             if (base := _CPP_ACCESS.sub("", part.strip()).strip())
         )
-        if bases:
-            found.setdefault(name, bases)
+        if bases or name not in found:
+            found[name] = bases
     return tuple(sorted(found.items()))
 
 
 def python_class_bases(data: bytes) -> tuple[tuple[str, tuple[str, ...]], ...]:
-    """Each class the Python text defines with bases (keywords such as ``metaclass=``
-    dropped)."""
+    """Each class the Python text defines, with its bases (keywords such as
+    ``metaclass=`` dropped)."""
     if b"class" not in data:
         return ()
     found: dict[str, tuple[str, ...]] = {}
@@ -91,11 +98,11 @@ def python_class_bases(data: bytes) -> tuple[tuple[str, tuple[str, ...]], ...]:
         name = match.group(1).decode("utf-8", "replace")
         bases = tuple(
             base
-            for part in match.group(2).decode("utf-8", "replace").split(",")
+            for part in (match.group(2) or b"").decode("utf-8", "replace").split(",")
             if (base := part.strip()) and "=" not in base
         )
-        if bases:
-            found.setdefault(name, bases)
+        if bases or name not in found:
+            found[name] = bases
     return tuple(sorted(found.items()))
 
 

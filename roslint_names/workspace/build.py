@@ -12,7 +12,7 @@ from __future__ import annotations
 import posixpath
 import re
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from roslint_names.model import (
     ENDPOINT_ROLES,
@@ -37,6 +37,7 @@ from roslint_names.workspace.graph import (
 )
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
 from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Prepare, Specialise
+from roslint_names.workspace.parameters import ParameterSets
 
 _EDGES = {
     Role.PUBLISH: EdgeKind.PUBLISH,
@@ -96,12 +97,15 @@ def build(
         if built is not None:
             nodes.append(built[0])
             endpoints.extend(built[1])
+    parameters = ParameterSets(index, lambda path: path in unbuilt or _is_test(index, path))
+    nodes = [replace(node, code_parameters=parameters.of(node.sources)) for node in nodes]
     return Graph(
         tuple(sorted(set(nodes), key=NodeInstance.sort_key)),
         tuple(sorted(set(endpoints), key=Endpoint.sort_key)),
         index.companions(),
         _mentions(index, nodes),
         index.service_definitions(),
+        parameter_declarations=parameters.declarations(),
     )
 
 

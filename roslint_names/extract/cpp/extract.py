@@ -31,7 +31,7 @@ from roslint_names.model import (
 )
 from roslint_names.reading import bom_encoding
 
-from ..literals import name_literals
+from ..literals import name_literals, unexplained_literals
 from ..parameter_traits import cpp_class_bases, parameter_traits
 from .apis import CALL_WORDS, CONSTRUCTED_TYPES, FRAME_FIELDS
 from .constants import header_constants, included_paths, included_sources, is_header
@@ -133,6 +133,13 @@ def _follows(data: bytes, word: bytes, context: re.Pattern[bytes] | None) -> boo
     return False
 
 
+def _unexplained(text: bytes) -> tuple[str, ...]:
+    """The literals of a file no site was read in, where it may name parameters."""
+    if b"aram" in text or b"declare" in text:
+        return unexplained_literals(text, ())
+    return ()
+
+
 _ROS1_INCLUDE = re.compile(rb'#[ \t]*include[ \t]*[<"](?:ros|actionlib|tf|nodelet)/')
 _ROS2_INCLUDE = re.compile(rb'#[ \t]*include[ \t]*[<"]rclcpp(?:_action|_lifecycle|_components)?/')
 _ROS1_CODE = re.compile(rb"ros::(?:NodeHandle|init|Publisher|Subscriber|Rate|spin)\b")
@@ -158,15 +165,16 @@ def extract(
             generation,
             parse_errors=_errors(error),
             constants=constants,
-            cpp_includes=included_paths(text) if header else (),
+            cpp_includes=included_paths(text),
             included_sources=included_sources(text),
             parameter_traits=parameter_traits(text),
             class_bases=cpp_class_bases(text),
+            # A helper's caller need not name any ROS API: ``declare(node, "rate")``.
+            unexplained_literals=_unexplained(text),
         )
     generation = package_generation or file_generation(text) or fallback_generation
     source = Source(text, _PARSER.parse(text))
     names, events = facts_of(source)
-    symbols = header or any(use.symbol for use in names)
     return FileFacts(
         path=path,
         language=Language.CPP,
@@ -177,8 +185,10 @@ def extract(
         literals=name_literals(text),
         parameter_traits=parameter_traits(text),
         class_bases=cpp_class_bases(text),
+        unexplained_literals=unexplained_literals(text, names),
         constants=constants,
-        cpp_includes=included_paths(text) if symbols else (),
+        # Every parsed file's: its node's parameters may be declared in what it includes.
+        cpp_includes=included_paths(text),
         tf_roles=tf_roles(source),
         included_sources=included_sources(text),
     )

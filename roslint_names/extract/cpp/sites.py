@@ -97,6 +97,8 @@ class Sites:
         if value is None:
             return
         parameter = kind is Kind.PARAMETER and role is Role.PARAMETER
+        if parameter and value.dynamic and _implements_declaring_api(self.source, value.node):
+            access = None  # the API's own body: its callers' names are what it declares
         self.names.append(
             NameUse(
                 kind=kind,
@@ -319,6 +321,8 @@ class Sites:
             return
         namespace = self.handles.namespace_of(call.receiver)
         name = self.argument(values, site.name)
+        if name is not None and name.dynamic:
+            name = self.folder.local_field(values[site.name]) or name
         access = site.access
         if site.quiet_from is not None and len(values) >= site.quiet_from:
             access = ParameterAccess.READ_QUIETLY
@@ -757,3 +761,33 @@ def _initializer_entries(node: Node) -> list[Node] | None:
             return None
         keys.append(pair[0])
     return keys
+
+
+# The parameter APIs whose callers the linter reads (``apis``): their own bodies, when the
+# workspace holds them (nav2_ros_common's node_utils.hpp, ros2_control's
+# controller_interface_base.hpp), declare what each caller passes, not a name of their own.
+_DECLARING_APIS = frozenset(
+    {
+        "declare_parameter",
+        "declare_parameters",
+        "declare_parameter_if_not_declared",
+        DECLARE_OR_GET,
+        PLUGIN_TYPE,
+        "auto_declare",
+    }
+)
+
+
+def _implements_declaring_api(source: Source, node: Node) -> bool:
+    """Whether ``node`` is inside the definition of one of ``_DECLARING_APIS``."""
+    for function in enclosing_functions(node):
+        if function.type != "function_definition":
+            continue
+        declarator = function.child_by_field_name("declarator")
+        while declarator is not None and declarator.type != "function_declarator":
+            declarator = declarator.child_by_field_name("declarator")
+        name = None if declarator is None else declarator.child_by_field_name("declarator")
+        if name is not None:
+            spelled = source.text(name).rpartition("::")[2]
+            return spelled in _DECLARING_APIS
+    return False

@@ -170,6 +170,16 @@ class Declarations:
         return Declaration(name, parent, value, function, constant, False, string)
 
 
+def _declares(identifier: Node) -> bool:
+    """Whether an identifier is the name a declaration declares."""
+    parent = identifier.parent
+    while parent is not None and parent.type in ("init_declarator", *_POINTER_LIKE):
+        if not is_field(parent, "declarator", identifier):
+            return False
+        identifier, parent = parent, parent.parent
+    return parent is not None and parent.type in _DECLARATIONS
+
+
 def _wraps_declarator(parent: Node, child: Node) -> bool:
     if parent.type == "reference_declarator":
         return True  # its declarator is not a named field
@@ -225,6 +235,54 @@ class Folder:
     def static(self, node: Node) -> str | None:
         value = self.fold(node)
         return None if value.dynamic else value.text
+
+    def local_field(self, node: Node) -> Value | None:
+        """A field of a local object the function sets once, plainly, before ``node``
+        reads it: ``descriptor.name = "colormap"; declare_parameter(descriptor.name, ...)``
+        (how image_pipeline names its parameters). None when anything else may write it:
+        another assignment, a setter (``set__name``), the object handed to a call first."""
+        access = unparenthesized(node)
+        if access.type != "field_expression":
+            return None
+        holder = access.child_by_field_name("argument")
+        field = access.child_by_field_name("field")
+        operator = access.child_by_field_name("operator")
+        functions = enclosing_functions(access)
+        if holder is None or field is None or holder.type != "identifier" or not functions:
+            return None
+        if operator is not None and self._source.text(operator) != ".":
+            return None
+        function, name, wanted = functions[0], self._source.text(holder), self._source.text(field)
+        writes: list[Node] = []
+        for occurrence in self._source.occurrences(name):
+            if not contains(function, occurrence) or occurrence == holder:
+                continue
+            parent = occurrence.parent
+            if parent is not None and parent.type == "field_expression":
+                member = parent.child_by_field_name("field")
+                spelled = "" if member is None else self._source.text(member)
+                outer = parent.parent
+                if spelled == f"set__{wanted}":
+                    return None
+                if (
+                    spelled == wanted
+                    and outer is not None
+                    and outer.type == "assignment_expression"
+                    and is_field(outer, "left", parent)
+                ):
+                    writes.append(outer)
+                continue
+            if occurrence.start_byte < access.start_byte and not _declares(occurrence):
+                return None  # handed to something before the use: it may set the field
+        if len(writes) != 1 or writes[0].end_byte > access.start_byte:
+            return None
+        statement = writes[0].parent
+        block = None if statement is None else statement.parent
+        if block is None or block.type != "compound_statement" or not contains(block, access):
+            return None  # set on one branch only
+        right = writes[0].child_by_field_name("right")
+        value = None if right is None else self.fold(right)
+        return None if value is None or value.dynamic else Value(value.text, False, node)
 
     def _fold(self, node: Node, depth: int) -> Value:
         expression = unparenthesized(node)

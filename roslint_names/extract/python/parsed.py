@@ -11,7 +11,7 @@ from collections import OrderedDict
 from roslint_names.extract import evidence
 from roslint_names.extract.launch.python_launch import LaunchExtractor
 from roslint_names.extract.launch.python_values import LaunchCalls
-from roslint_names.extract.literals import name_literals
+from roslint_names.extract.literals import name_literals, unexplained_literals
 from roslint_names.extract.parameter_traits import parameter_traits, python_class_bases
 from roslint_names.extract.python.code import CodeExtractor
 from roslint_names.extract.python.source import decode, parse
@@ -91,6 +91,9 @@ def extract_parsed(
         literals=() if language is Language.LAUNCH_PYTHON else name_literals(text),
         parameter_traits=() if language is Language.LAUNCH_PYTHON else _traits(text),
         class_bases=() if language is Language.LAUNCH_PYTHON else _bases(text),
+        unexplained_literals=()
+        if language is Language.LAUNCH_PYTHON
+        else unexplained_literals(text.encode("utf-8", "surrogatepass"), names, python=True),
     )
 
 
