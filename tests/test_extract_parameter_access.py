@@ -119,6 +119,7 @@ class Driver(Node):
         self.declare_parameters('limits', [('min', 0.0), ('max', 1.0)])
         self.get_parameter(f'{self.prefix}.max_vel')
         self.get_parameters_by_prefix('filters')
+        self.get_parameters_by_prefix('')
         self.camera_client.get_parameters(['exposure'])
 """
 
@@ -187,3 +188,67 @@ struct Options {};
     )
     module = b"class Driver(Node):\n    pass\n\nclass Meta(Base, metaclass=M):\n    pass\n"
     assert python_class_bases(module) == (("Driver", ("Node",)), ("Meta", ("Base",)))
+
+
+def test_a_descriptor_name_set_once_is_the_parameter_name() -> None:
+    """image_pipeline's image_view names parameters through their descriptors."""
+    text = """
+void ImageViewNode::configure()
+{
+  rcl_interfaces::msg::ParameterDescriptor colormap_descriptor;
+  colormap_descriptor.name = "colormap";
+  colormap_descriptor.set__integer_range({rcl_interfaces::msg::IntegerRange()});
+  colormap_ = this->declare_parameter<int>(colormap_descriptor.name, -1, colormap_descriptor);
+  rcl_interfaces::msg::ParameterDescriptor other;
+  if (flip) {
+    other.name = "flipped";
+  }
+  declare_parameter(other.name, 0);
+}
+"""
+    assert _parameters(_cpp(text)) == [("colormap", D, None), ("other.name", D, None)]
+
+
+def test_a_declaring_api_own_body_declares_nothing_of_its_own() -> None:
+    """nav2_ros_common's node_utils.hpp: the callers' names are what it declares."""
+    header = """
+template<typename NodeT>
+inline void declare_parameter_if_not_declared(
+  NodeT node, const std::string & parameter_name, const rclcpp::ParameterValue & value)
+{
+  if (!node->has_parameter(parameter_name)) {
+    node->declare_parameter(parameter_name, value);
+  }
+}
+void load_limits(rclcpp::Node * node, const std::string & name)
+{
+  node->declare_parameter(name, 1.0);
+}
+"""
+    facts = cpp.extract(
+        "include/a/node_utils.hpp", header.encode(), Generation.ROS2, Generation.ROS2
+    )
+    assert _parameters(facts) == [
+        ("parameter_name", None, None),  # the API's body: checks and declares what it is given
+        ("parameter_name", None, None),
+        ("name", D, None),  # a project's own helper: a name declared at run time
+    ]
+
+
+def test_strings_the_extractor_did_not_read_for() -> None:
+    from roslint_names.extract.literals import unexplained_literals
+
+    code = b"""
+// "gain" in a comment is no string
+/* "offset" neither */
+void f() {
+  utils::declare_double(node, "trim");
+  get_parameter("rate", rate_);
+  RCLCPP_INFO(logger, "No 'octomap_frame' parameter defined");
+  char c = 'x';
+}
+"""
+    facts = _cpp(code.decode())
+    assert unexplained_literals(code, facts.names) == ("trim",)
+    python = b"# 'gain'\ndeclare(node, 'trim')\nnode.get_parameter(\"rate\")\n"
+    assert unexplained_literals(python, (), python=True) == ("rate", "trim")

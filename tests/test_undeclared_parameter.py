@@ -355,3 +355,51 @@ def test_graph_json_shows_each_node_parameters(run_cli: Any, tmp_path: Path) -> 
     (node,) = json.loads(result.stdout)["nodes"]
     assert node["code_parameters"]["complete"] is False
     assert node["code_parameters"]["incomplete"] == ["allow-undeclared"]
+
+
+def test_a_constant_of_another_package_may_declare_only_what_it_is_named_for(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """nav2's LifecycleNode declares bond's DISABLE_HEARTBEAT_TIMEOUT_PARAM, whose value
+    the workspace does not hold: a read of a name sharing a word with it is doubted, one
+    of an unrelated name is not."""
+    ctor = DRIVER_CPP.replace(
+        '  declare_parameter("rate", 10.0);\n',
+        '  declare_parameter("rate", 10.0);\n'
+        "  declare_parameter(bond::msg::Constants::DISABLE_HEARTBEAT_TIMEOUT_PARAM, true);\n",
+    )
+    timer = DRIVER_TIMER_CPP.replace(
+        '  double trim = 0.0;\n  get_parameter("trim", trim);\n',
+        '  double trim = get_parameter("heartbeat_timeout").as_double();\n',
+    )
+    directory = wheel_driver(tmp_path, timer=timer)
+    write(directory, "src/wheel_driver.cpp", ctor)
+    assert places(findings(run_cli, tmp_path)) == [
+        ("src/wheel_driver/src/wheel_driver_timer.cpp", 9)  # 'gain'
+    ]
+
+
+def test_a_base_class_the_workspace_holds_is_followed(run_cli: Any, tmp_path: Path) -> None:
+    """An rclpy node deriving from a base class of another package of the workspace: what
+    the base does is the node's (here it allows undeclared parameters), and the base's own
+    base, rclpy's Node, declares nothing more."""
+    base = package(tmp_path, "robot_common")
+    base_node = (
+        "from rclpy.node import Node\n\n\n"
+        "class RobotNode(Node):\n\n"
+        "    def __init__(self, name):\n"
+        "        super().__init__(name{options})\n"
+    )
+    write(base, "robot_common/base_node.py", base_node.format(options=""))
+    directory = package(tmp_path, "battery_reporter")
+    node = (
+        RCLPY_NODE.format(options="")
+        .replace("from rclpy.node import Node", "from robot_common.base_node import RobotNode")
+        .replace("(Node)", "(RobotNode)")
+    )
+    path = "battery_reporter/battery_reporter.py"
+    write(directory, path, node)
+    assert places(findings(run_cli, tmp_path)) == [(f"src/battery_reporter/{path}", 12)]
+    allowing = ", allow_undeclared_parameters=True"
+    write(base, "robot_common/base_node.py", base_node.format(options=allowing))
+    assert findings(run_cli, tmp_path) == []

@@ -41,12 +41,14 @@ def name_literal_spans(text: str) -> Iterator[tuple[int, int]]:
 
 # A parameter-shaped word: tokens joined by '.' or '/' (``FollowPath.max_vel_x``).
 _WORD = re.compile(rb"[A-Za-z_][A-Za-z0-9_]{0,63}(?:[./][A-Za-z0-9_]{1,64}){0,8}")
+_LONGEST = 200  # longer strings are messages, not names: not even matched
 # String literals and comments, in order, so that a quote in a comment (``// "rate" is
-# ...``) is no string: C++ (a char literal is none either) and Python.
+# ...``) is no string: the group holds a string's text, and is empty for the rest. C++ (a
+# char literal is no string either) and Python.
 _CPP_TOKENS = re.compile(
-    rb"\"((?:[^\"\\\n]|\\.)*)\"|'(?:[^'\\\n]|\\.)*'|//[^\n]*|/\*.*?\*/", re.DOTALL
+    rb'"((?:[^"\\\n]|\\.)*)"|\'(?:[^\'\\\n]|\\.)*\'|//[^\n]*|/\*.*?\*/', re.DOTALL
 )
-_PYTHON_TOKENS = re.compile(rb"\"((?:[^\"\\\n]|\\.)*)\"|'((?:[^'\\\n]|\\.)*)'|#[^\n]*")
+_PYTHON_TOKENS = re.compile(rb'"((?:[^"\\\n]|\\.)*)"|\'((?:[^\'\\\n]|\\.)*)\'|#[^\n]*')
 
 
 def unexplained_literals(
@@ -56,13 +58,14 @@ def unexplained_literals(
     than the static names the extractor read: strings the code hands to something the
     linter does not know (a project's ``declare(node, "rate")``, a list of names a loop
     declares), sorted. RN407 doubts a parameter such a string may declare."""
-    tokens = _PYTHON_TOKENS if python else _CPP_TOKENS
-    counts: Counter[str] = Counter()
-    for token in tokens.finditer(data):
-        text = next((group for group in token.groups() if group is not None), None)
-        if text is not None and _WORD.fullmatch(text):
-            counts[text.decode("ascii")] += 1
+    if python:
+        strings = [double or single for double, single in _PYTHON_TOKENS.findall(data)]
+    else:
+        strings = _CPP_TOKENS.findall(data)
+    counts = Counter(text for text in strings if 0 < len(text) < _LONGEST and _WORD.fullmatch(text))
     for use in names:
-        if not use.dynamic and use.value in counts:
-            counts[use.value] -= 1
-    return tuple(sorted(word for word, count in counts.items() if count > 0))
+        if not use.dynamic:
+            word = use.value.encode("utf-8", "surrogatepass")
+            if word in counts:
+                counts[word] -= 1
+    return tuple(sorted(word.decode("ascii") for word, count in counts.items() if count > 0))

@@ -11,6 +11,7 @@ workspace.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 
 from roslint_names.model import ParameterTrait
 
@@ -52,9 +53,10 @@ _TRAITS = (
 # ``class NAV2_EXPORT ControllerServer : public nav2::LifecycleNode, private Base<T> {``:
 # the last word before the colon is the class; the base clause runs to the brace.
 _CPP_CLASS = re.compile(
-    rb"(?<!enum\s)\b(?:class|struct)\s+(?:[A-Za-z_]\w*\s+){0,3}?([A-Za-z_]\w*)\s*(?:final\s*)?"
-    rb"(?::(?!:)\s*([^{};()]{1,600}?))?\{"
+    rb"(class|struct)[ \t\n]+(?:[A-Za-z_]\w*[ \t\n]+){0,3}?([A-Za-z_]\w*)\s*(?:final\s*)?"
+    rb"(?::(?!:)([^{};()]{1,600}))?\{"
 )
+_ENUM = re.compile(rb"\benum\s*$")
 _CPP_COMMENT = re.compile(rb"//[^\n]*|/\*.*?\*/", re.DOTALL)
 _CPP_ACCESS = re.compile(r"^(?:(?:public|protected|private|virtual)\s+)+")
 # ``class Talker(Node):``, ``class Talker(rclpy.node.Node, metaclass=Meta):``
@@ -75,9 +77,11 @@ def cpp_class_bases(data: bytes) -> tuple[tuple[str, tuple[str, ...]], ...]:
     if b"class" not in data and b"struct" not in data:
         return ()
     found: dict[str, tuple[str, ...]] = {}
-    for match in _CPP_CLASS.finditer(_CPP_COMMENT.sub(b" ", data)):
-        name = match.group(1).decode("utf-8", "replace")
-        clause = (match.group(2) or b"").decode("utf-8", "replace")
+    for match in _cpp_classes(data):
+        if _ENUM.search(data, max(match.start() - 8, 0), match.start()):
+            continue  # ``enum class Mode : uint8_t {``
+        name = match.group(2).decode("utf-8", "replace")
+        clause = _CPP_COMMENT.sub(b" ", match.group(3) or b"").decode("utf-8", "replace")
         bases = tuple(
             base
             for part in _without_templates(clause).split(",")
@@ -86,6 +90,19 @@ def cpp_class_bases(data: bytes) -> tuple[tuple[str, tuple[str, ...]], ...]:
         if bases or name not in found:
             found[name] = bases
     return tuple(sorted(found.items()))
+
+
+def _cpp_classes(data: bytes) -> Iterator[re.Match[bytes]]:
+    """``_CPP_CLASS`` matched where each ``class`` or ``struct`` keyword starts, in order:
+    found with ``bytes.find``, which is many times faster than a search for either."""
+    for keyword in (b"class", b"struct"):
+        start = data.find(keyword)
+        while start >= 0:
+            if start == 0 or not (data[start - 1 : start].isalnum() or data[start - 1] == 95):
+                match = _CPP_CLASS.match(data, start)
+                if match is not None:
+                    yield match
+            start = data.find(keyword, start + len(keyword))
 
 
 def python_class_bases(data: bytes) -> tuple[tuple[str, tuple[str, ...]], ...]:

@@ -31,6 +31,7 @@ import re
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from enum import Enum
+from functools import cache
 
 from roslint_names.model import (
     EventKind,
@@ -189,13 +190,16 @@ class ParameterSets:
     ) -> None:
         """``excluded``: code that joins no node's (tests, sources no build compiles)."""
         self._index = index
-        self._excluded = excluded
+        # Asked about the same files for every node: each answer once.
+        self._excluded = cache(excluded)
         self._memo: dict[tuple[str, ...], NodeParameters] = {}
+        self._included_memo: dict[tuple[str, str], list[str]] = {}
+        self._package_memo: dict[str, tuple[set[str], set[str]]] = {}
         self._classes: dict[str, list[str]] = {}  # class name -> files defining it
         self._by_name: dict[str, list[str]] = {}  # C++ file name -> its paths
         self._programs: set[str] = set()  # sources of every program and component
         for path, facts in sorted(index.facts.items()):
-            if facts.language not in CODE_LANGUAGES or excluded(path):
+            if facts.language not in CODE_LANGUAGES or self._excluded(path):
                 continue
             for name, _ in facts.class_bases:
                 self._classes.setdefault(name, []).append(path)
@@ -246,8 +250,10 @@ class ParameterSets:
         # The rest of the packages' code (a library the program links, a helper): its
         # declarations may be the node's too. Only declarations: what it reads, or leaves
         # open, is another node's business.
-        for path in self._package_code(sources, set(own)):
-            names.add_declarations(self._index.facts[path])
+        for package in sorted({p.name for path in sources if (p := self._index.package_of(path))}):
+            declared, suffixes = self._package_declarations(package)
+            names.declared |= declared
+            names.declared_suffixes |= suffixes
         uses = tuple(
             sorted(
                 ParameterUse(use.value, use.access, Location(path, use.span), use.api)
@@ -320,16 +326,24 @@ class ParameterSets:
     def _included(self, include: str, includer: str) -> list[str]:
         """The files of the includer's package an ``#include`` may mean: ``include``
         beside the includer, or below any directory of the package."""
-        package = self._index.package_of(includer)
-        if package is None:
-            return []
-        beside = posixpath.normpath(posixpath.join(posixpath.dirname(includer), include))
-        suffix = f"/{include}"
-        return [
-            path
-            for path in self._by_name.get(posixpath.basename(include), [])
-            if (path == beside or path.endswith(suffix)) and self._index.package_of(path) == package
-        ]
+        directory = posixpath.dirname(includer)
+        key = (include, directory)
+        found = self._included_memo.get(key)
+        if found is None:
+            found = []
+            candidates = self._by_name.get(posixpath.basename(include), [])
+            package = self._index.package_of(includer) if candidates else None
+            if package is not None:
+                beside = posixpath.normpath(posixpath.join(directory, include))
+                suffix = f"/{include}"
+                found = [
+                    path
+                    for path in candidates
+                    if (path == beside or path.endswith(suffix))
+                    and self._index.package_of(path) == package
+                ]
+            self._included_memo[key] = found
+        return found
 
     def _implementations(self, header: str) -> list[str]:
         """The translation units of the header's package named after it
@@ -345,21 +359,18 @@ class ParameterSets:
             if self._index.package_of(path) == package
         ]
 
-    def _package_code(self, sources: tuple[str, ...], own: set[str]) -> list[str]:
-        found: dict[str, None] = {}
-        for path in sources:
-            package = self._index.package_of(path)
-            if package is None:
-                continue
-            for other in self._index.files_of(package.name):
-                facts = self._index.facts[other]
-                if (
-                    other not in own
-                    and facts.language in CODE_LANGUAGES
-                    and not self._excluded(other)
-                ):
-                    found.setdefault(other)
-        return list(found)
+    def _package_declarations(self, package: str) -> tuple[set[str], set[str]]:
+        """The names (and ends of names) the package's code declares, tests aside."""
+        found = self._package_memo.get(package)
+        if found is None:
+            names = _Names()
+            for path in self._index.files_of(package):
+                facts = self._index.facts[path]
+                if facts.language in CODE_LANGUAGES and not self._excluded(path):
+                    names.add_declarations(facts)
+            found = (names.declared, names.declared_suffixes)
+            self._package_memo[package] = found
+        return found
 
     def _defined(self, base: str) -> list[str] | None:
         """The files defining a base class (none for a client library's), None when the

@@ -15,6 +15,7 @@ The generation is the package's when known, else the file's includes (``ros/``,
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 
 import tree_sitter
 import tree_sitter_cpp
@@ -133,10 +134,10 @@ def _follows(data: bytes, word: bytes, context: re.Pattern[bytes] | None) -> boo
     return False
 
 
-def _unexplained(text: bytes) -> tuple[str, ...]:
-    """The literals of a file no site was read in, where it may name parameters."""
+def _unexplained(text: bytes, names: Sequence[NameUse]) -> tuple[str, ...]:
+    """The literals the sites do not account for, in a file that may name parameters."""
     if b"aram" in text or b"declare" in text:
-        return unexplained_literals(text, ())
+        return unexplained_literals(text, names)
     return ()
 
 
@@ -165,12 +166,14 @@ def extract(
             generation,
             parse_errors=_errors(error),
             constants=constants,
-            cpp_includes=included_paths(text),
+            cpp_includes=included_paths(text) if header else (),
             included_sources=included_sources(text),
+            # A header may hold a node's base class and what it does; a source with no
+            # ROS marker is no node's (but a helper's caller need name no ROS API:
+            # ``declare(node, "rate")``).
             parameter_traits=parameter_traits(text),
-            class_bases=cpp_class_bases(text),
-            # A helper's caller need not name any ROS API: ``declare(node, "rate")``.
-            unexplained_literals=_unexplained(text),
+            class_bases=cpp_class_bases(text) if header else (),
+            unexplained_literals=_unexplained(text, ()),
         )
     generation = package_generation or file_generation(text) or fallback_generation
     source = Source(text, _PARSER.parse(text))
@@ -185,7 +188,7 @@ def extract(
         literals=name_literals(text),
         parameter_traits=parameter_traits(text),
         class_bases=cpp_class_bases(text),
-        unexplained_literals=unexplained_literals(text, names),
+        unexplained_literals=_unexplained(text, names),
         constants=constants,
         # Every parsed file's: its node's parameters may be declared in what it includes.
         cpp_includes=included_paths(text),

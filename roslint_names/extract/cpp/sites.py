@@ -80,6 +80,7 @@ class Sites:
         self.handles = handles
         self.types = types
         self.names: list[NameUse] = []
+        self._clients: frozenset[str] | None = None  # ``_parameter_clients``, once asked
 
     # -- emitting -----------------------------------------------------------------------
 
@@ -348,10 +349,12 @@ class Sites:
         spelled = self.source.text(receiver).lower()
         if "client" in spelled:
             return ParameterAccess.REMOTE
+        if self._clients is None:
+            self._clients = _parameter_clients(self.source)
+        if not self._clients:
+            return access
         name = variable_name(self.source, unparenthesized(receiver))
-        if name is not None and name in _parameter_clients(self.source):
-            return ParameterAccess.REMOTE
-        return access
+        return ParameterAccess.REMOTE if name in self._clients else access
 
     def declare_or_get(self, call: Call) -> None:
         """nav2's ``declare_or_get_parameter``: ``node->declare_or_get_parameter(name,
@@ -415,6 +418,8 @@ class Sites:
         values = call.arguments
         if len(values) == 2:
             prefix = self.argument(values, 0)
+            if prefix is not None and not prefix.dynamic and not prefix.text:
+                return  # ``get_parameters("", map)`` reads them all: it names none
             access = self._parameter_access(call, ParameterAccess.READ_PREFIX)
             self.emit(Kind.PARAMETER, Role.PARAMETER, GET_PARAMETERS_API, prefix, access=access)
             return
@@ -720,8 +725,8 @@ _READS_AND_CHECKS = frozenset(
 # ``auto client = std::make_shared<rclcpp::SyncParametersClient>(...)``,
 # ``rclcpp::AsyncParametersClient::SharedPtr client_;``, ``client_ = ...ParametersClient...``
 _PARAMETER_CLIENT = re.compile(
-    rb"(?:ParametersClient\b[^;(){}]*?\b([A-Za-z_]\w*)\s*[;=({])"
-    rb"|(?:\b([A-Za-z_]\w*)\s*=[^;]*?ParametersClient\b)"
+    rb"ParametersClient\b[^;(){}\n]{0,80}?\b([A-Za-z_]\w*)\s*[;=({]"
+    rb"|\b([A-Za-z_]\w*)\s*=[^;=]{0,80}?ParametersClient\b"
 )
 
 

@@ -329,13 +329,17 @@ class Folder:
         if unparenthesized(right).type in _NOT_STRINGS or depth >= _MAX_DEPTH:
             return spelling
         start = self._fold(left, depth + 1)
-        end = self._fold(right, depth + 1)
-        if not start.dynamic and not end.dynamic:  # kNs + "/cmd" of two constants
-            return Value(start.text + end.text, False, expression)
+        suffix = None
+        if not start.dynamic:
+            end = self._fold(right, depth + 1)
+            if not end.dynamic:  # kNs + "/cmd" of two constants
+                return Value(start.text + end.text, False, expression)
+            suffix = end.suffix
+        elif unparenthesized(right).type in STRING_LITERALS:  # plugin_name_ + ".max_vel_x"
+            suffix = literal_value(self._source, unparenthesized(right))
         prefix = start.prefix if start.dynamic else start.text
         if prefix is not None and not prefix.startswith("/"):
             prefix = None
-        suffix = end.suffix if end.dynamic else end.text
         return Value(spelling.text, True, node, prefix=prefix, suffix=suffix or None)
 
     def _member_constant(self, access: Node, depth: int) -> str | None:

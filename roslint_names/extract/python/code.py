@@ -356,6 +356,8 @@ class CodeExtractor:
     ) -> None:
         """One fact per node and kind: ``lookup_transform(target_frame="map")`` is both a
         tf lookup and a frame keyword."""
+        if _access(use) is ParameterAccess.READ_PREFIX and not value.dynamic and not value.text:
+            return  # ``get_parameters_by_prefix("")`` reads them all: it names none
         key = (id(where.node), use.kind, use.role)
         if key in self._emitted:
             return
