@@ -81,6 +81,37 @@ class TfRole(str, Enum):
     LISTEN = "listen"  # a tf buffer or listener, a message filter, a lookup or transform
 
 
+class ParameterAccess(str, Enum):
+    """What code does with a parameter's name (``NameUse.access``), as the client library
+    defines the call: what a node's parameter set (``workspace.parameters``) is made of.
+
+    In ROS 2 the difference between a read that throws and one that does not is rclcpp's
+    ``NodeParameters::get_parameter(name)`` (throws ``ParameterNotDeclaredException`` for
+    an undeclared name unless undeclared parameters are allowed) against its
+    ``get_parameter(name, parameter)`` (returns false); rclpy's ``Node.get_parameter``
+    raises, ``Node.get_parameter_or`` returns the alternative.
+    """
+
+    DECLARE = "declare"  # declares it (ROS 2); a ROS 1 node has no declarations
+    READ = "read"  # reads it; ROS 2: throws when it is not declared
+    READ_QUIETLY = "read-quietly"  # reads it; ROS 2: false or a default when not declared
+    READ_PREFIX = "read-prefix"  # reads every parameter below the name (``get_parameters``)
+    CHECK = "check"  # asks whether it exists (``has_parameter``, ``hasParam``, ``searchParam``)
+    WRITE = "write"  # sets, deletes or undeclares it
+    REMOTE = "remote"  # another node's, through a parameter client: not this node's
+
+
+class ParameterTrait(str, Enum):
+    """What a file of code does that leaves a node's parameters open to names its code
+    does not spell (``FileFacts.parameter_traits``)."""
+
+    ALLOW_UNDECLARED = "allow-undeclared"  # NodeOptions().allow_undeclared_parameters(true)
+    FROM_OVERRIDES = "from-overrides"  # automatically_declare_parameters_from_overrides
+    PLUGINS = "plugins"  # loads pluginlib plugins, which declare on the node they are given
+    GENERATED = "generated"  # generate_parameter_library: declared by generated code
+    DYNAMIC_RECONFIGURE = "dynamic-reconfigure"  # serves a .cfg's parameters (ROS 1)
+
+
 class Severity(str, Enum):
     ERROR = "error"
     WARNING = "warning"
@@ -126,6 +157,11 @@ class NameUse:
     # time (``"/planning/" + name``, ``f"/planning/{name}"``). It stays dynamic, so that no
     # grammar rule judges the unknown rest; RN202 may judge the anchor the prefix fixes.
     absolute_prefix: str | None = None
+    # A parameter: what the code does with it (declare, read...); None elsewhere.
+    access: ParameterAccess | None = None
+    # A dynamic name whose end is certain: the literal it ends with (``plugin_name_ +
+    # ".max_vel_x"``, ``f"{name}.max_vel_x"``): a parameter under a run-time prefix.
+    suffix: str | None = None
 
 
 @dataclass(frozen=True)
@@ -342,6 +378,15 @@ class FileFacts:
     # Name-shaped string literals of code (``extract.literals``): evidence of names used
     # through APIs the linter does not know.
     literals: tuple[str, ...] = ()
+    # Code: what it does that leaves its node's parameter names open (``ParameterTrait``,
+    # in that order), and each class it defines with the bases it names, as written
+    # (``("ControllerServer", ("nav2::LifecycleNode",))``): where else declarations hide.
+    parameter_traits: tuple[ParameterTrait, ...] = ()
+    class_bases: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    # Code: parameter-shaped string literals it holds more often than the names it was
+    # read for (``extract.literals.unexplained_literals``): names it may declare through
+    # something the linter does not know.
+    unexplained_literals: tuple[str, ...] = ()
     # C++: the string constants a header defines, (name, value), and the paths the file
     # includes (both only where ``symbols`` may need them).
     constants: tuple[tuple[str, str], ...] = ()

@@ -21,7 +21,7 @@ from roslint_names.model import FileFacts, Generation, Kind, Language, LaunchArg
 from roslint_names.workspace.build import build
 from roslint_names.workspace.graph import Graph
 from roslint_names.workspace.index import Package
-from roslint_names.workspace.parameters import key_matches
+from roslint_names.workspace.parameter_files import key_matches
 
 ROS1, ROS2 = Generation.ROS1, Generation.ROS2
 

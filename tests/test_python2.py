@@ -15,7 +15,7 @@ from typing import Any
 
 import pytest
 from conftest import write
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from roslint_names.config import Settings, load_settings, ros1_python2
@@ -330,6 +330,7 @@ _PIECES = st.sampled_from(
 )  # fmt: skip
 
 
+@example("print[\n")  # a file ending inside brackets: the ")" stays on the line
 @given(st.lists(_PIECES, max_size=40).map("".join))
 @settings(max_examples=300, deadline=None)
 def test_the_rewrite_keeps_lines_and_maps_every_offset_back(source: str) -> None:

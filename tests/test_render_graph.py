@@ -503,6 +503,7 @@ def test_json_nodes_carry_everything() -> None:
             },
         ],
         "remaps": [{"from": "/robot1/odom_raw", "to": "/robot1/odom"}],
+        "code_parameters": None,  # a graph built by hand: not computed
     }
     idle = by_name(nodes, "/idle")
     assert (idle["package"], idle["executable"], idle["root"], idle["launched_at"]) == (

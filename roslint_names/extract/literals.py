@@ -10,7 +10,10 @@ text, so they cost no parse; a name-shaped string in a comment is harmless evide
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
+from collections import Counter
+from collections.abc import Iterable, Iterator
+
+from roslint_names.model import NameUse
 
 # A quoted relative, private (``~``, ``~/``) or absolute name of at most nine tokens, its
 # quotes either `"` or `'`: searched for with every `'` made a `"` first (no quote can be
@@ -34,3 +37,35 @@ def name_literal_spans(text: str) -> Iterator[tuple[int, int]]:
     quotes excluded; every occurrence, in order."""
     for found in _QUOTED.finditer(text.replace("'", '"')):
         yield found.span(1)
+
+
+# A parameter-shaped word: tokens joined by '.' or '/' (``FollowPath.max_vel_x``).
+_WORD = re.compile(rb"[A-Za-z_][A-Za-z0-9_]{0,63}(?:[./][A-Za-z0-9_]{1,64}){0,8}")
+_LONGEST = 200  # longer strings are messages, not names: not even matched
+# String literals and comments, in order, so that a quote in a comment (``// "rate" is
+# ...``) is no string: the group holds a string's text, and is empty for the rest. C++ (a
+# char literal is no string either) and Python.
+_CPP_TOKENS = re.compile(
+    rb'"((?:[^"\\\n]|\\.)*)"|\'(?:[^\'\\\n]|\\.)*\'|//[^\n]*|/\*.*?\*/', re.DOTALL
+)
+_PYTHON_TOKENS = re.compile(rb'"((?:[^"\\\n]|\\.)*)"|\'((?:[^\'\\\n]|\\.)*)\'|#[^\n]*')
+
+
+def unexplained_literals(
+    data: bytes, names: Iterable[NameUse], *, python: bool = False
+) -> tuple[str, ...]:
+    """The parameter-shaped string literals of ``data`` (UTF-8 code) that occur more often
+    than the static names the extractor read: strings the code hands to something the
+    linter does not know (a project's ``declare(node, "rate")``, a list of names a loop
+    declares), sorted. RN407 doubts a parameter such a string may declare."""
+    if python:
+        strings = [double or single for double, single in _PYTHON_TOKENS.findall(data)]
+    else:
+        strings = _CPP_TOKENS.findall(data)
+    counts = Counter(text for text in strings if 0 < len(text) < _LONGEST and _WORD.fullmatch(text))
+    for use in names:
+        if not use.dynamic:
+            word = use.value.encode("utf-8", "surrogatepass")
+            if word in counts:
+                counts[word] -= 1
+    return tuple(sorted(word.decode("ascii") for word, count in counts.items() if count > 0))

@@ -44,7 +44,20 @@ Fields:
     ``launched_at`` (array) the chain of launch sites that start it, outermost include first
     and the node's own element last, each a location (below); empty when not launched;
     ``remaps`` (array) its remaps in force, each ``{"from": ..., "to": ...}`` with both sides
-    fully qualified.
+    fully qualified;
+    ``code_parameters`` (object, or null where the graph did not compute it) what the
+    node's code does with parameters, looked for in its sources, what they include of
+    their package, their base classes and (for declarations) the rest of their packages
+    (``workspace/parameters.py``): ``declared`` and ``read`` (arrays of strings)
+    the names declared and read (read: also checked with ``has_parameter``);
+    ``declared_under_prefix`` and ``read_under_prefix`` (arrays of strings) the names
+    declared or read under a prefix known only at run time, as ``*`` and the literal end
+    (``*.max_vel_x``); ``read_below`` (array of strings) the prefixes every parameter below
+    which is read (``get_parameters("filters", map)``); ``complete`` (boolean) whether
+    those are all the names the code may declare or read; ``incomplete`` (array of
+    strings) why not: ``no-code``, ``library`` (code no program or component is known to
+    run), ``run-time-declaration``, ``run-time-read``, ``allow-undeclared``,
+    ``from-overrides``, ``plugins``, ``generated``, ``dynamic-reconfigure``, ``base-class``.
 ``topics``, ``services``, ``actions`` (arrays)
     One object per resolved name, by ``name``:
     ``name`` (string) the fully qualified name;
@@ -79,6 +92,7 @@ from typing import Any
 
 from ..model import Kind
 from ..workspace.graph import EdgeKind, Endpoint, Graph, Location, NodeInstance
+from ..workspace.parameters import NodeParameters
 
 FORMAT_VERSION = 1
 # Each resource list, the kind it holds, and the edge kinds behind each of its role lists.
@@ -126,6 +140,21 @@ def _node(node: NodeInstance) -> dict[str, Any]:
         "sources": list(node.sources),
         "launched_at": [_location(location) for location in node.launched_at],
         "remaps": [{"from": remap.source, "to": remap.target} for remap in node.remaps],
+        "code_parameters": _code_parameters(node.code_parameters),
+    }
+
+
+def _code_parameters(found: NodeParameters | None) -> dict[str, Any] | None:
+    if found is None:
+        return None
+    return {
+        "declared": list(found.declared),
+        "read": list(found.read),
+        "declared_under_prefix": [f"*{suffix}" for suffix in found.declared_suffixes],
+        "read_under_prefix": [f"*{suffix}" for suffix in found.read_suffixes],
+        "read_below": list(found.read_prefixes),
+        "complete": found.complete,
+        "incomplete": [cause.value for cause in found.incomplete],
     }
 
 

@@ -31,7 +31,7 @@ from collections.abc import Iterator
 from ..model import Generation, ParameterBlock, Severity
 from ..rule import Rule, RuleContext, WorkspaceFinding
 from ..workspace.graph import Graph, Location, NodeInstance, ParameterFileUse
-from ..workspace.parameters import is_wildcard, key_matches
+from ..workspace.parameter_files import is_wildcard, key_matches
 from .graph_common import finding, launch_site, where
 
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import posixpath
 import re
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from roslint_names.model import (
     ENDPOINT_ROLES,
@@ -38,7 +38,8 @@ from roslint_names.workspace.graph import (
 )
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
 from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Prepare, Specialise
-from roslint_names.workspace.parameters import ros1_names, ros2_names
+from roslint_names.workspace.parameter_files import ros1_names, ros2_names
+from roslint_names.workspace.parameters import ParameterSets
 
 _EDGES = {
     Role.PUBLISH: EdgeKind.PUBLISH,
@@ -109,6 +110,8 @@ def build(
     loads = _group_loads(index, trees)
     linked = {use.path for node in nodes for use in node.parameter_files}
     linked.update(use.path for use in loads)
+    parameters = ParameterSets(index, lambda path: path in unbuilt or _is_test(index, path))
+    nodes = [replace(node, code_parameters=parameters.of(node.sources)) for node in nodes]
     return Graph(
         tuple(sorted(set(nodes), key=NodeInstance.sort_key)),
         tuple(sorted(set(endpoints), key=Endpoint.sort_key)),
@@ -118,6 +121,7 @@ def build(
         {path: index.facts[path].parameter_blocks for path in sorted(linked)},
         tuple(sorted(set(loads))),
         frozenset(unnamed),
+        parameter_declarations=parameters.declarations(),
     )
 
 

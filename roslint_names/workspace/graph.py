@@ -10,10 +10,13 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from enum import Enum
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 from roslint_names.model import Generation, Kind, ParameterBlock, Remap, Span
 from roslint_names.workspace.interfaces import ServiceDefinition
+
+if TYPE_CHECKING:  # parameters.py builds on Location: no import cycle at run time
+    from roslint_names.workspace.parameters import NodeParameters, WorkspaceDeclarations
 
 
 @dataclass(frozen=True, order=True)
@@ -127,6 +130,8 @@ class NodeInstance:
     # (rcl remaps topics, services, the node's name and namespace), so they are no
     # ``uses``; they show that the linter sees the node's code (RN404).
     parameters: tuple[str, ...] = ()
+    # What the node's code declares and reads, and whether that is all (RN407).
+    code_parameters: NodeParameters | None = None
     conditional: bool = False  # started under a condition the linter cannot decide
     named_at_launch: bool = False  # the launch file gives its name, not its code
     # The parameter files the launch hands it (ROS 1: loads into its private namespace).
@@ -195,6 +200,9 @@ class Graph:
     # (``$(anon x)``, an argument, a name its code does not show): which of their keys
     # that node reads is unknown.
     unnamed_parameter_files: frozenset[str] = frozenset()
+    # Every parameter the workspace's ROS 2 code declares (RN407: a name declared nowhere
+    # cannot have been declared by a helper the linter does not follow)
+    parameter_declarations: WorkspaceDeclarations | None = None
 
     def can_meet(self, one: Placed, other: Placed) -> bool:
         """Whether two nodes (or their endpoints) can be in one ROS graph at run time.

@@ -154,6 +154,10 @@ class WorkspaceIndex:
         """(package, executable) -> sources, for grouping code no launch file starts."""
         return dict(self._programs)
 
+    def plugin_sources(self) -> set[str]:
+        """The sources of every component plugin the build files register."""
+        return {path for sources in self._plugins.values() for path in sources}
+
     def _index_executables(self) -> None:
         for path, facts in sorted(self.facts.items()):
             if not facts.executables:

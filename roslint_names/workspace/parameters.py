@@ -1,88 +1,480 @@
-"""Which parameters a parameter file sets on a node, as the runtimes decide it.
+"""A node's parameters as its code shows them: what it declares, what it reads, and whether
+that is the whole story.
 
-ROS 2: a file handed to a node (``--params-file``) is read by rcl into one entry per node
-key (rcl_yaml_param_parser ``parse.c``: ``parse_key``, ``find_node``); the client library
-then keeps the entries whose key matches the node's fully qualified name
-(rclcpp ``parameter_map.cpp``, ``parameter_map_from`` and ``is_node_name_matched``;
-rclpy ``src/rclpy/node.cpp``, ``_populate_node_parameters_from_rcl_params``, the same
-code): the key gets a leading '/' when it has none, every ``/*`` becomes ``(/\\w+)`` (so
-``/**`` becomes ``(/\\w+)*``), and the result must match the whole name
-(``std::regex_match``). A key ``*`` is thus ``/*``: one token, a node in the root
-namespace only.
+The code looked at is wider than the node's own sources: a declaration may sit in another
+file of the same executable or library (the class's constructor, a header, a
+``parameter_handler.cpp``), or in a base class. So the node's *code* is every non-test code
+file of the packages of its sources, plus the files defining the base classes (followed
+through the workspace) of the classes in those files. Looking wider only adds
+declarations, and causes of doubt, so it can only make a node's set more cautious.
 
-A composable node is not started with ``--params-file``: launch_ros reads the file itself
-and keeps only the ``**`` entry and the entry of the node's ``namespace/name`` exactly,
-leading '/' stripped, and nothing at all when the launch file gives the node no name
-(launch_ros ``utilities/to_parameters_list.py``, ``to_parameters_list`` and
-``__normalize_parameters_dict``; ``actions/load_composable_nodes.py``,
-``get_composable_node_load_request``).
+The set is incomplete, for one or more ``Incomplete`` causes, when names may be declared,
+read or accepted that no code of the workspace spells: names built at run time, undeclared
+parameters allowed, declarations from overrides, plugins, generated parameter code,
+dynamic_reconfigure, a base class the workspace does not hold, or code not (all) in the
+workspace. The causes are kept apart: a rule that judges reads of undeclared names asks
+only whether the *declarations* are all known (``declarations_complete``).
 
-ROS 1: ``<rosparam command="load" file ns>`` sets every leaf of the file under the
-namespace, its keys joined with '/' (roslaunch ``loader.py``, ``Loader.load_rosparam``
-and ``Loader.add_param``).
+Every ROS 2 node also holds what its client library declares for it: ``use_sim_time``
+(rclcpp's ``TimeSource::NodeState::attachNode`` in ``rclcpp/src/rclcpp/time_source.cpp``,
+rclpy's ``TimeSource.attach_node`` in ``rclpy/time_source.py``) and
+``start_type_description_service`` (rclcpp's ``NodeTypeDescriptions`` in
+``node_interfaces/node_type_descriptions.cpp``, rclpy's ``TypeDescriptionService``), and
+the ``qos_overrides.`` parameters rclcpp declares for a publisher or subscription that
+allows QoS overrides (``rclcpp/detail/qos_parameters.hpp``).
 """
 
 from __future__ import annotations
 
+import posixpath
 import re
-from collections.abc import Iterable
-from functools import lru_cache
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass
+from enum import Enum
+from functools import cache
 
-from roslint_names.model import ParameterBlock
+from roslint_names.model import (
+    EventKind,
+    FileFacts,
+    Generation,
+    Kind,
+    Language,
+    NameUse,
+    ParameterAccess,
+    ParameterTrait,
+    Role,
+)
+from roslint_names.workspace.built import TRANSLATION_UNITS
+from roslint_names.workspace.graph import Location
+from roslint_names.workspace.index import CODE_LANGUAGES, WorkspaceIndex
+
+LIBRARY_DECLARED = frozenset({"use_sim_time", "start_type_description_service"})
+LIBRARY_PREFIXES = ("qos_overrides.",)
+DECLARATIONS = frozenset({ParameterAccess.DECLARE})
+READS = frozenset(
+    {
+        ParameterAccess.READ,
+        ParameterAccess.READ_QUIETLY,
+        ParameterAccess.CHECK,
+    }
+)
 
 
-def key_matches(key: str, full_name: str, *, composable: bool = False) -> bool:
-    """Whether a ROS 2 parameter file's node ``key`` applies to the node ``full_name``
-    (``/ns/node``); ``composable``: a composable node, which launch_ros matches."""
-    if composable:
-        plain = key.lstrip("/")
-        return plain == "**" or plain == full_name.lstrip("/")
-    pattern = _pattern(key)
-    return pattern is not None and pattern.fullmatch(full_name) is not None
+class Incomplete(str, Enum):
+    """Why a node's parameter set may miss names; the note counts nodes by these."""
+
+    NO_CODE = "no-code"  # none of the node's code is in the workspace
+    LIBRARY = "library"  # code no program or component is known to run alone
+    RUN_TIME_DECLARATION = "run-time-declaration"  # declares names built at run time
+    RUN_TIME_READ = "run-time-read"  # reads names built at run time
+    ALLOW_UNDECLARED = "allow-undeclared"  # allow_undeclared_parameters
+    FROM_OVERRIDES = "from-overrides"  # automatically_declare_parameters_from_overrides
+    PLUGINS = "plugins"  # loads pluginlib plugins, which declare on the node
+    GENERATED = "generated"  # generate_parameter_library declares them
+    DYNAMIC_RECONFIGURE = "dynamic-reconfigure"  # a .cfg file's parameters (ROS 1)
+    BASE_CLASS = "base-class"  # derives from a class the workspace does not hold
 
 
-@lru_cache(maxsize=1024)
-def _pattern(key: str) -> re.Pattern[str] | None:
-    """rclcpp's regular expression for ``key``; None where std::regex would refuse it."""
-    absolute = key if key.startswith("/") else f"/{key}"
-    text = absolute.replace("/*", r"(/\w+)")
-    try:
-        return re.compile(text, re.ASCII)
-    except re.error:
-        return None
+_TRAIT_CAUSES = {
+    ParameterTrait.ALLOW_UNDECLARED: Incomplete.ALLOW_UNDECLARED,
+    ParameterTrait.FROM_OVERRIDES: Incomplete.FROM_OVERRIDES,
+    ParameterTrait.PLUGINS: Incomplete.PLUGINS,
+    ParameterTrait.GENERATED: Incomplete.GENERATED,
+    ParameterTrait.DYNAMIC_RECONFIGURE: Incomplete.DYNAMIC_RECONFIGURE,
+}
+# Client-library base classes: they declare only what LIBRARY_DECLARED says. Spelled
+# unqualified (``Node`` under a using), they count only where the workspace defines no
+# class of that name.
+_ROOT_BASES = frozenset(
+    {
+        "rclcpp::Node",
+        "rclcpp_lifecycle::LifecycleNode",
+        "rclpy.node.Node",
+        "rclpy.lifecycle.Node",
+        "rclpy.lifecycle.LifecycleNode",
+    }
+)
+_UNQUALIFIED_ROOTS = frozenset({"Node", "LifecycleNode"})
 
 
-def is_wildcard(key: str) -> bool:
-    return "*" in key
+@dataclass(frozen=True, order=True)
+class ParameterUse:
+    """A parameter name the node's own sources use, where, and how."""
+
+    name: str
+    access: ParameterAccess
+    location: Location
+    api: str
 
 
-def ros2_names(
-    blocks: Iterable[ParameterBlock], full_name: str, *, composable: bool = False
-) -> tuple[str, ...]:
-    """The parameter names the file sets on the node ``full_name``."""
-    return tuple(
-        sorted(
-            {
-                name
-                for block in blocks
-                if block.key is not None
-                and key_matches(block.key, full_name, composable=composable)
-                for name, _ in block.parameters
-            }
+@dataclass(frozen=True)
+class NodeParameters:
+    """What a node's code declares and reads (static names, sorted), the ends of names it
+    declares or reads under a run-time prefix (``.max_vel_x``), the prefixes it reads
+    everything below, and why the set may be incomplete (empty: it is complete).
+
+    ``uses`` are the static parameter uses of the node's own sources, for the rules to
+    point at; the names are the whole code's.
+    """
+
+    declared: tuple[str, ...] = ()
+    read: tuple[str, ...] = ()
+    declared_suffixes: tuple[str, ...] = ()
+    read_suffixes: tuple[str, ...] = ()
+    read_prefixes: tuple[str, ...] = ()
+    incomplete: tuple[Incomplete, ...] = ()
+    uses: tuple[ParameterUse, ...] = ()
+    # Parameter-shaped strings the node's code holds beyond the names read for
+    # (``FileFacts.unexplained_literals``): names it may declare some way the linter does
+    # not know.
+    literals: tuple[str, ...] = ()
+    # Constants of other packages the code declares parameters by, whose values the
+    # workspace does not hold (``bond::msg::Constants::DISABLE_HEARTBEAT_TIMEOUT_PARAM``).
+    declared_constants: tuple[str, ...] = ()
+
+    @property
+    def complete(self) -> bool:
+        return not self.incomplete
+
+    @property
+    def declarations_complete(self) -> bool:
+        """Whether every name the node may declare is known: only run-time *reads* are
+        allowed to be unknown."""
+        return all(cause is Incomplete.RUN_TIME_READ for cause in self.incomplete)
+
+    def declares(self, name: str) -> bool:
+        """Whether the code (or its client library) may declare ``name``."""
+        return declared_by(name, self.declared, self.declared_suffixes)
+
+    def may_declare(self, name: str) -> bool:
+        """Whether the code may declare ``name`` some way the linter cannot see through:
+        a string it holds that no known API takes, or a constant of another package whose
+        name shares a word with it (a constant is named for what it holds:
+        ``DISABLE_HEARTBEAT_TIMEOUT_PARAM`` may hold ``bond_disable_heartbeat_timeout``,
+        hardly ``max_vel_x``)."""
+        if name in self.literals:
+            return True
+        words = _words(name)
+        return any(
+            words & _words(constant.rpartition("::")[2]) for constant in self.declared_constants
         )
+
+
+def declared_by(name: str, names: Iterable[str], suffixes: Iterable[str]) -> bool:
+    """``name`` among ``names``, or ending with a suffix (an empty run-time prefix may
+    leave the suffix alone), or one the client library declares."""
+    if name in LIBRARY_DECLARED or name.startswith(LIBRARY_PREFIXES):
+        return True
+    return name in names or any(name.endswith(suffix) for suffix in suffixes)
+
+
+@dataclass(frozen=True)
+class WorkspaceDeclarations:
+    """Every parameter the workspace's ROS 2 code declares, statically or by its end: a
+    name declared nowhere in the workspace cannot have been declared by a helper of it."""
+
+    names: frozenset[str] = frozenset()
+    suffixes: frozenset[str] = frozenset()
+
+    def declares(self, name: str) -> bool:
+        return declared_by(name, self.names, self.suffixes)
+
+
+class ParameterSets:
+    """Computes each node's ``NodeParameters`` over one run's index, memoised by sources."""
+
+    def __init__(
+        self,
+        index: WorkspaceIndex,
+        excluded: Callable[[str], bool],
+    ) -> None:
+        """``excluded``: code that joins no node's (tests, sources no build compiles)."""
+        self._index = index
+        # Asked about the same files for every node: each answer once.
+        self._excluded = cache(excluded)
+        self._memo: dict[tuple[str, ...], NodeParameters] = {}
+        self._included_memo: dict[tuple[str, str], list[str]] = {}
+        self._package_memo: dict[str, tuple[set[str], set[str]]] = {}
+        self._classes: dict[str, list[str]] = {}  # class name -> files defining it
+        self._by_name: dict[str, list[str]] = {}  # C++ file name -> its paths
+        self._programs: set[str] = set()  # sources of every program and component
+        for path, facts in sorted(index.facts.items()):
+            if facts.language not in CODE_LANGUAGES or self._excluded(path):
+                continue
+            for name, _ in facts.class_bases:
+                self._classes.setdefault(name, []).append(path)
+            if facts.language is Language.CPP:
+                self._by_name.setdefault(posixpath.basename(path), []).append(path)
+        for sources in index.built_sources().values():
+            self._programs.update(sources)
+        self._programs.update(index.plugin_sources())
+
+    def declarations(self) -> WorkspaceDeclarations:
+        names: set[str] = set()
+        suffixes: set[str] = set()
+        for facts in self._index.facts.values():
+            if facts.language not in CODE_LANGUAGES or facts.generation is not Generation.ROS2:
+                continue
+            for use in _parameter_uses(facts):
+                if use.access is not ParameterAccess.DECLARE:
+                    continue
+                if not use.dynamic:
+                    names.add(use.value)
+                elif use.suffix:
+                    suffixes.add(use.suffix)
+        return WorkspaceDeclarations(frozenset(names), frozenset(suffixes))
+
+    def of(self, sources: Sequence[str]) -> NodeParameters:
+        key = tuple(sources)
+        found = self._memo.get(key)
+        if found is None:
+            found = self._compute(key)
+            self._memo[key] = found
+        return found
+
+    def _compute(self, sources: tuple[str, ...]) -> NodeParameters:
+        if not sources:
+            return NodeParameters(incomplete=(Incomplete.NO_CODE,))
+        causes: set[Incomplete] = set()
+        if not any(self._is_program(path) for path in sources):
+            causes.add(Incomplete.LIBRARY)
+        own, unknown_base = self._own_code(sources)
+        if unknown_base:
+            causes.add(Incomplete.BASE_CLASS)
+        names = _Names()
+        for path in own:
+            facts = self._index.facts[path]
+            causes.update(_TRAIT_CAUSES[trait] for trait in facts.parameter_traits)
+            names.add(facts, causes)
+            names.literals.update(facts.unexplained_literals)
+        # The rest of the packages' code (a library the program links, a helper): its
+        # declarations may be the node's too. Only declarations: what it reads, or leaves
+        # open, is another node's business.
+        for package in sorted({p.name for path in sources if (p := self._index.package_of(path))}):
+            declared, suffixes = self._package_declarations(package)
+            names.declared |= declared
+            names.declared_suffixes |= suffixes
+        uses = tuple(
+            sorted(
+                ParameterUse(use.value, use.access, Location(path, use.span), use.api)
+                for path in sources
+                for use in _parameter_uses(self._index.facts[path])
+                if not use.dynamic and use.access is not None
+            )
+        )
+        return NodeParameters(
+            declared=tuple(sorted(names.declared)),
+            read=tuple(sorted(names.read)),
+            declared_suffixes=tuple(sorted(names.declared_suffixes)),
+            read_suffixes=tuple(sorted(names.read_suffixes)),
+            read_prefixes=tuple(sorted(names.read_prefixes)),
+            incomplete=tuple(cause for cause in Incomplete if cause in causes),
+            uses=uses,
+            literals=tuple(sorted(names.literals)),
+            declared_constants=tuple(sorted(names.constants)),
+        )
+
+    def _is_program(self, path: str) -> bool:
+        return path in self._programs or _starts_runtime(self._index, path)
+
+    def _own_code(self, sources: tuple[str, ...]) -> tuple[list[str], bool]:
+        """The node's code: its sources, what they include of their own package (with the
+        file of the same stem that implements an included header), and the files of the
+        base classes their classes derive from, followed alike; and whether one of those
+        classes, or of their bases, derives from a class the workspace does not define.
+        In a base class's files only that class's bases are followed: the other classes
+        there (a QoS helper beside nav2's LifecycleNode) are not the node's."""
+        index = self._index
+        # path -> the classes of it whose bases are followed; None: all of them
+        files: dict[str, set[str] | None] = dict.fromkeys(sources)
+        pending: list[tuple[str, set[str] | None]] = [(path, None) for path in sources]
+        unknown = False
+
+        def add(path: str, classes: set[str] | None) -> None:
+            if self._excluded(path):
+                return
+            if path in files:
+                known = files[path]
+                if known is None or (classes is not None and classes <= known):
+                    return
+                classes = None if classes is None else classes | known
+            files[path] = classes
+            pending.append((path, classes))
+
+        while pending:
+            path, classes = pending.pop()
+            facts = index.facts[path]
+            nested = None if classes is None else set[str]()
+            for include in facts.cpp_includes:
+                for header in self._included(include, path):
+                    add(header, nested)
+                    for implementation in self._implementations(header):
+                        add(implementation, nested)
+            for name, bases in facts.class_bases:
+                if classes is not None and name not in classes:
+                    continue
+                for base in bases:
+                    defined = self._defined(base)
+                    if defined is None:
+                        unknown = unknown or not _harmless(base)
+                        continue
+                    base_name = base.replace(".", "::").rpartition("::")[2]
+                    for found in defined:
+                        add(found, {base_name})
+        return list(files), unknown
+
+    def _included(self, include: str, includer: str) -> list[str]:
+        """The files of the includer's package an ``#include`` may mean: ``include``
+        beside the includer, or below any directory of the package."""
+        directory = posixpath.dirname(includer)
+        key = (include, directory)
+        found = self._included_memo.get(key)
+        if found is None:
+            found = []
+            candidates = self._by_name.get(posixpath.basename(include), [])
+            package = self._index.package_of(includer) if candidates else None
+            if package is not None:
+                beside = posixpath.normpath(posixpath.join(directory, include))
+                suffix = f"/{include}"
+                found = [
+                    path
+                    for path in candidates
+                    if (path == beside or path.endswith(suffix))
+                    and self._index.package_of(path) == package
+                ]
+            self._included_memo[key] = found
+        return found
+
+    def _implementations(self, header: str) -> list[str]:
+        """The translation units of the header's package named after it
+        (``controller_server.hpp`` -> ``controller_server.cpp``)."""
+        if header.lower().endswith(TRANSLATION_UNITS):
+            return []  # an included source is its own implementation
+        package = self._index.package_of(header)
+        stem = posixpath.basename(header).rpartition(".")[0]
+        return [
+            path
+            for extension in TRANSLATION_UNITS
+            for path in self._by_name.get(stem + extension, [])
+            if self._index.package_of(path) == package
+        ]
+
+    def _package_declarations(self, package: str) -> tuple[set[str], set[str]]:
+        """The names (and ends of names) the package's code declares, tests aside."""
+        found = self._package_memo.get(package)
+        if found is None:
+            names = _Names()
+            for path in self._index.files_of(package):
+                facts = self._index.facts[path]
+                if facts.language in CODE_LANGUAGES and not self._excluded(path):
+                    names.add_declarations(facts)
+            found = (names.declared, names.declared_suffixes)
+            self._package_memo[package] = found
+        return found
+
+    def _defined(self, base: str) -> list[str] | None:
+        """The files defining a base class (none for a client library's), None when the
+        workspace does not define it."""
+        if base in _ROOT_BASES:
+            return []
+        name = base.replace(".", "::").rpartition("::")[2]
+        defined = self._classes.get(name)
+        if defined:
+            return defined
+        return [] if base in _UNQUALIFIED_ROOTS else None
+
+
+class _Names:
+    """The names a node's code files declare and read, gathered file by file."""
+
+    def __init__(self) -> None:
+        self.declared: set[str] = set()
+        self.read: set[str] = set()
+        self.declared_suffixes: set[str] = set()
+        self.read_suffixes: set[str] = set()
+        self.read_prefixes: set[str] = set()
+        self.literals: set[str] = set()
+        self.constants: set[str] = set()
+
+    def add_declarations(self, facts: FileFacts) -> None:
+        for use in _parameter_uses(facts):
+            if use.access is ParameterAccess.DECLARE and not use.dynamic:
+                self.declared.add(use.value)
+            elif use.access is ParameterAccess.DECLARE and use.suffix:
+                self.declared_suffixes.add(use.suffix)
+
+    def add(self, facts: FileFacts, causes: set[Incomplete]) -> None:
+        for use in _parameter_uses(facts):
+            access = use.access
+            if access is ParameterAccess.READ_PREFIX:
+                if use.dynamic:
+                    causes.add(Incomplete.RUN_TIME_READ)
+                else:
+                    self.read_prefixes.add(use.value)
+                continue
+            if access in DECLARATIONS:
+                names, suffixes, cause = (
+                    self.declared,
+                    self.declared_suffixes,
+                    Incomplete.RUN_TIME_DECLARATION,
+                )
+            elif access in READS:
+                names, suffixes, cause = self.read, self.read_suffixes, Incomplete.RUN_TIME_READ
+            else:
+                continue
+            if not use.dynamic:
+                names.add(use.value)
+            elif use.suffix:
+                suffixes.add(use.suffix)
+            elif access in DECLARATIONS and _constant(use.symbol):
+                self.constants.add(use.symbol or "")
+            else:
+                causes.add(cause)
+
+
+def _constant(symbol: str | None) -> bool:
+    """A name the file does not declare, spelled as a constant is (``kTopic``,
+    ``Constants::DISABLE_HEARTBEAT_TIMEOUT_PARAM``): not a loop's variable."""
+    last = (symbol or "").rpartition("::")[2]
+    return bool(re.fullmatch(r"[A-Z][A-Z0-9_]*|k[A-Z]\w*", last))
+
+
+# Words a constant's name adds to what it holds.
+_CONSTANT_WORDS = frozenset({"k", "param", "params", "parameter", "parameters", "name", "key"})
+
+
+def _words(name: str) -> frozenset[str]:
+    """The lowercase words of an identifier or a parameter name: ``kMaxVelX``,
+    ``MAX_VEL_X`` and ``max_vel.x`` all give ``max``, ``vel``, ``x``."""
+    spaced = re.sub(r"([a-z0-9])([A-Z])", r"\1 \2", name)
+    words = re.split(r"[^A-Za-z0-9]+", spaced.lower())
+    return frozenset(word for word in words if word and word not in _CONSTANT_WORDS)
+
+
+def _parameter_uses(facts: FileFacts) -> Iterable[NameUse]:
+    return (
+        use
+        for use in facts.names
+        if use.kind is Kind.PARAMETER and use.role is Role.PARAMETER and use.access is not None
     )
 
 
-def ros1_names(blocks: Iterable[ParameterBlock], namespace: str) -> tuple[str, ...]:
-    """The fully qualified names a ROS 1 file sets when loaded under ``namespace``."""
-    base = namespace.rstrip("/")
-    return tuple(
-        sorted(
-            {
-                f"{base}/{name.strip('/')}"
-                for block in blocks
-                if block.key is None
-                for name, _ in block.parameters
-            }
-        )
-    )
+def _starts_runtime(index: WorkspaceIndex, path: str) -> bool:
+    """A file that initialises the client library is a program's main: ``rclcpp::init``,
+    ``rclpy.init``, ``ros::init``, ``rospy.init_node``."""
+    return any(event.kind is EventKind.INIT for event in index.facts[path].events)
+
+
+# Bases from libraries that hold no ROS node: a class deriving from one declares nothing
+# (a behaviour tree node of BehaviorTree.CPP, an rviz panel, a Qt widget...).
+_HARMLESS_BASES = re.compile(
+    r"(?:::)?(?:std|boost|Eigen|testing|Ogre|pybind11|BT|rviz_common)(?:::|\.)"
+    r"|rclcpp::(?!Node$)"  # a QoS profile, an executor: rclcpp's classes besides the node
+    r"|Q[A-Z]\w*$"  # Qt
+    r"|(?:object|Exception|Enum|IntEnum|Thread|threading\.Thread|unittest\.TestCase)$"
+    r"|\w*(?:Error|Exception)$"
+)
+
+
+def _harmless(base: str) -> bool:
+    return bool(_HARMLESS_BASES.match(base))

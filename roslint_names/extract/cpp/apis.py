@@ -8,7 +8,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from roslint_names.model import Kind, Role
+from roslint_names.model import Kind, ParameterAccess, Role
 
 
 @dataclass(frozen=True)
@@ -70,47 +70,82 @@ WAIT_FOR_MESSAGE = {
 }
 
 
+_DECLARE, _READ = ParameterAccess.DECLARE, ParameterAccess.READ
+_QUIETLY = ParameterAccess.READ_QUIETLY
+_CHECK, _WRITE = ParameterAccess.CHECK, ParameterAccess.WRITE
+
+
 @dataclass(frozen=True)
 class ParameterSite:
     name: int  # the argument holding the parameter's name
     value: int | None  # the argument holding its default or new value
     api: str
+    access: ParameterAccess | None  # None: no access of the node's (``rclcpp::Parameter``)
     minimum: int = 1  # the fewest arguments the call takes (the value's form may vary)
+    # From this many arguments on, a read that throws becomes one that does not: rclcpp's
+    # ``Node::get_parameter(name)`` calls ``NodeParameters::get_parameter(name)``, which
+    # throws ``ParameterNotDeclaredException``; ``get_parameter(name, value)`` calls
+    # ``NodeParameters::get_parameter(name, parameter)``, which returns false
+    # (rclcpp/src/rclcpp/node_interfaces/node_parameters.cpp).
+    quiet_from: int | None = None
 
 
 # roscpp NodeHandle methods; `param` takes its default last: (name, var, default) or
 # (name, default).
 ROS1_PARAMETERS = {
-    "param": ParameterSite(0, -1, "ros::NodeHandle::param", minimum=2),
-    "getParam": ParameterSite(0, None, "ros::NodeHandle::getParam"),
-    "getParamCached": ParameterSite(0, None, "ros::NodeHandle::getParamCached"),
-    "setParam": ParameterSite(0, 1, "ros::NodeHandle::setParam"),
-    "hasParam": ParameterSite(0, None, "ros::NodeHandle::hasParam"),
-    "deleteParam": ParameterSite(0, None, "ros::NodeHandle::deleteParam"),
-    "searchParam": ParameterSite(0, None, "ros::NodeHandle::searchParam"),
+    "param": ParameterSite(0, -1, "ros::NodeHandle::param", _READ, minimum=2),
+    "getParam": ParameterSite(0, None, "ros::NodeHandle::getParam", _READ),
+    "getParamCached": ParameterSite(0, None, "ros::NodeHandle::getParamCached", _READ),
+    "setParam": ParameterSite(0, 1, "ros::NodeHandle::setParam", _WRITE),
+    "hasParam": ParameterSite(0, None, "ros::NodeHandle::hasParam", _CHECK),
+    "deleteParam": ParameterSite(0, None, "ros::NodeHandle::deleteParam", _WRITE),
+    "searchParam": ParameterSite(0, None, "ros::NodeHandle::searchParam", _CHECK),
 }
 # ros::param:: free functions
 ROS1_PARAMETER_FUNCTIONS = {
-    "param": ParameterSite(0, -1, "ros::param::param", minimum=2),
-    "get": ParameterSite(0, None, "ros::param::get"),
-    "getCached": ParameterSite(0, None, "ros::param::getCached"),
-    "set": ParameterSite(0, 1, "ros::param::set"),
-    "has": ParameterSite(0, None, "ros::param::has"),
-    "del": ParameterSite(0, None, "ros::param::del"),
-    "search": ParameterSite(0, None, "ros::param::search"),
+    "param": ParameterSite(0, -1, "ros::param::param", _READ, minimum=2),
+    "get": ParameterSite(0, None, "ros::param::get", _READ),
+    "getCached": ParameterSite(0, None, "ros::param::getCached", _READ),
+    "set": ParameterSite(0, 1, "ros::param::set", _WRITE),
+    "has": ParameterSite(0, None, "ros::param::has", _CHECK),
+    "del": ParameterSite(0, None, "ros::param::del", _WRITE),
+    "search": ParameterSite(0, None, "ros::param::search", _CHECK),
 }
 ROS2_PARAMETERS = {
-    "declare_parameter": ParameterSite(0, 1, "rclcpp::Node::declare_parameter"),
-    "get_parameter": ParameterSite(0, None, "rclcpp::Node::get_parameter"),
-    "get_parameter_or": ParameterSite(0, 2, "rclcpp::Node::get_parameter_or"),
-    "has_parameter": ParameterSite(0, None, "rclcpp::Node::has_parameter"),
-    "undeclare_parameter": ParameterSite(0, None, "rclcpp::Node::undeclare_parameter"),
-    "describe_parameter": ParameterSite(0, None, "rclcpp::Node::describe_parameter"),
+    "declare_parameter": ParameterSite(0, 1, "rclcpp::Node::declare_parameter", _DECLARE),
+    "get_parameter": ParameterSite(0, None, "rclcpp::Node::get_parameter", _READ, quiet_from=2),
+    "get_parameter_or": ParameterSite(0, 2, "rclcpp::Node::get_parameter_or", _QUIETLY),
+    "has_parameter": ParameterSite(0, None, "rclcpp::Node::has_parameter", _CHECK),
+    "undeclare_parameter": ParameterSite(0, None, "rclcpp::Node::undeclare_parameter", _WRITE),
+    # rclcpp's Node::describe_parameter throws ParameterNotDeclaredException (node.cpp)
+    "describe_parameter": ParameterSite(0, None, "rclcpp::Node::describe_parameter", _READ),
     # nav2_util's free function: (node, name, default)
     "declare_parameter_if_not_declared": ParameterSite(
-        1, 2, "nav2_util::declare_parameter_if_not_declared", minimum=2
+        1, 2, "nav2_util::declare_parameter_if_not_declared", _DECLARE, minimum=2
+    ),
+    # ros2_control's ControllerInterfaceBase::auto_declare(name, default): declares the
+    # parameter unless it is (controller_interface_base.hpp)
+    "auto_declare": ParameterSite(
+        0, 1, "controller_interface::ControllerInterfaceBase::auto_declare", _DECLARE, minimum=2
     ),
 }
+# nav2's declare_or_get_parameter: a member (name, default) of nav2::LifecycleNode, or free
+# (node, name[, default]) and (logger, parameters interface, name, default) in
+# nav2_ros_common's node_utils.hpp; each declares the name unless it is.
+DECLARE_OR_GET = "declare_or_get_parameter"
+DECLARE_OR_GET_API = "nav2::declare_or_get_parameter"
+# nav2's get_plugin_type_param(node, plugin): declares ``plugin + ".plugin"`` (node_utils.hpp)
+PLUGIN_TYPE = "get_plugin_type_param"
+PLUGIN_TYPE_API = "nav2::get_plugin_type_param"
+PLUGIN_TYPE_SUFFIX = ".plugin"
+# rclcpp's Node::declare_parameters(namespace, map) declares ``namespace.key`` for each key
+# of the map, Node::get_parameters(names) reads each name (throwing as get_parameter does),
+# Node::get_parameters(prefix, map) every parameter below ``prefix.`` (node_impl.hpp).
+DECLARE_PARAMETERS = "declare_parameters"
+DECLARE_PARAMETERS_API = "rclcpp::Node::declare_parameters"
+GET_PARAMETERS = "get_parameters"
+GET_PARAMETERS_API = "rclcpp::Node::get_parameters"
+PARAMETER_LISTS = frozenset({DECLARE_OR_GET, PLUGIN_TYPE, DECLARE_PARAMETERS, GET_PARAMETERS})
 # tf and tf2: every string argument of these is a frame id.
 FRAME_FUNCTIONS = frozenset(
     {
@@ -149,6 +184,7 @@ CALL_WORDS = frozenset(
         *ACTION_FUNCTIONS,
         *ROS1_PARAMETERS,
         *ROS2_PARAMETERS,
+        *PARAMETER_LISTS,
         *FRAME_FUNCTIONS,
         "subscribe",
         "advertiseService",

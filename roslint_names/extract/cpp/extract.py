@@ -15,6 +15,7 @@ The generation is the package's when known, else the file's includes (``ros/``,
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 
 import tree_sitter
 import tree_sitter_cpp
@@ -31,7 +32,8 @@ from roslint_names.model import (
 )
 from roslint_names.reading import bom_encoding
 
-from ..literals import name_literals
+from ..literals import name_literals, unexplained_literals
+from ..parameter_traits import cpp_class_bases, parameter_traits
 from .apis import CALL_WORDS, CONSTRUCTED_TYPES, FRAME_FIELDS
 from .constants import header_constants, included_paths, included_sources, is_header
 from .events import INIT_WORDS, handle_event, init_event
@@ -56,7 +58,8 @@ _PARSER = tree_sitter.Parser(tree_sitter.Language(tree_sitter_cpp.language()))
 # site is found by, then (when the word alone says too little) what must follow it. About
 # half of the C++ files of a ROS workspace include rclcpp or ros/ and still name nothing.
 _POINTER_TYPEDEF = rb"\b(?!::(?:SharedPtr|WeakPtr|ConstSharedPtr|UniquePtr)\b)"
-_PARAMETER_METHOD = rb"(?:_or|_if_not_declared)?\b"  # get_parameter_or, not get_parameters
+# get_parameter_or, get_parameters; not get_parameters_by_prefix
+_PARAMETER_METHOD = rb"(?:_or|_if_not_declared|s)?\b"
 MARKERS: dict[str, bytes | None] = {
     "ros::init": None,
     "rclcpp::init": None,
@@ -77,6 +80,7 @@ MARKERS: dict[str, bytes | None] = {
         for verb in ("declare", "get", "has", "undeclare", "describe")
     },
     "rclcpp::Parameter": rb"\b",
+    "auto_declare": rb"\b",  # ros2_control's controllers
     "frame_id": rb"\s*=[^=]",  # frame_id = "map", not frame_id == "map"
     **dict.fromkeys(("lookupTransform", "canTransform", "waitForTransform"), None),
     **dict.fromkeys(f"transform{what}" for what in ("Pose", "Point", "Vector", "Quaternion")),
@@ -92,7 +96,7 @@ MARKERS: dict[str, bytes | None] = {
 # it shares with others; few files hold any part.
 _MARKER_PARTS = tuple(
     b"Node ubscribe ::init create_ dvertise aram ervice ransform Action frame_id Stamped"
-    b" message_filters".split()
+    b" message_filters auto_declare".split()
 )
 _Marker = tuple[bytes, "re.Pattern[bytes] | None"]  # its word, what must follow it
 
@@ -130,6 +134,13 @@ def _follows(data: bytes, word: bytes, context: re.Pattern[bytes] | None) -> boo
     return False
 
 
+def _unexplained(text: bytes, names: Sequence[NameUse]) -> tuple[str, ...]:
+    """The literals the sites do not account for, in a file that may name parameters."""
+    if b"aram" in text or b"declare" in text:
+        return unexplained_literals(text, names)
+    return ()
+
+
 _ROS1_INCLUDE = re.compile(rb'#[ \t]*include[ \t]*[<"](?:ros|actionlib|tf|nodelet)/')
 _ROS2_INCLUDE = re.compile(rb'#[ \t]*include[ \t]*[<"]rclcpp(?:_action|_lifecycle|_components)?/')
 _ROS1_CODE = re.compile(rb"ros::(?:NodeHandle|init|Publisher|Subscriber|Rate|spin)\b")
@@ -157,11 +168,16 @@ def extract(
             constants=constants,
             cpp_includes=included_paths(text) if header else (),
             included_sources=included_sources(text),
+            # A header may hold a node's base class and what it does; a source with no
+            # ROS marker is no node's (but a helper's caller need name no ROS API:
+            # ``declare(node, "rate")``).
+            parameter_traits=parameter_traits(text),
+            class_bases=cpp_class_bases(text) if header else (),
+            unexplained_literals=_unexplained(text, ()),
         )
     generation = package_generation or file_generation(text) or fallback_generation
     source = Source(text, _PARSER.parse(text))
     names, events = facts_of(source)
-    symbols = header or any(use.symbol for use in names)
     return FileFacts(
         path=path,
         language=Language.CPP,
@@ -170,8 +186,12 @@ def extract(
         events=tuple(sorted(events, key=lambda event: (event.scope, event.order))),
         parse_errors=_errors(error),
         literals=name_literals(text),
+        parameter_traits=parameter_traits(text),
+        class_bases=cpp_class_bases(text),
+        unexplained_literals=_unexplained(text, names),
         constants=constants,
-        cpp_includes=included_paths(text) if symbols else (),
+        # Every parsed file's: its node's parameters may be declared in what it includes.
+        cpp_includes=included_paths(text),
         tf_roles=tf_roles(source),
         included_sources=included_sources(text),
     )
@@ -227,7 +247,7 @@ _ANCHORS = word_pattern(_ANCHOR_WORDS)
 # other identifiers hold.
 _ANCHOR_PARTS = tuple(
     b"Node aram ervice create_ Action Stamped Transform transform ubscribe dvertise frame_id"
-    b" init ForMessage _for_message".split()
+    b" init ForMessage _for_message auto_declare".split()
 )
 if unfound := [w for w in _ANCHOR_WORDS if not any(p in w.encode() for p in _ANCHOR_PARTS)]:
     raise ValueError(f"anchor words holding none of _ANCHOR_PARTS: {unfound}")

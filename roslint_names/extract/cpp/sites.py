@@ -12,19 +12,28 @@ import re
 
 from tree_sitter import Node
 
-from roslint_names.model import Kind, NameUse, Role
+from roslint_names.model import Kind, NameUse, ParameterAccess, Role
 
 from .apis import (
     ACTION_FUNCTIONS,
     ACTIONLIB,
     ACTIONLIB_QUALIFIERS,
     CAMERA_ENDPOINTS,
+    DECLARE_OR_GET,
+    DECLARE_OR_GET_API,
+    DECLARE_PARAMETERS,
+    DECLARE_PARAMETERS_API,
     ENDPOINTS,
     FRAME_CONSTRUCTIONS,
     FRAME_FUNCTIONS,
+    GET_PARAMETERS,
+    GET_PARAMETERS_API,
     MAX_FRAME_ARGUMENTS,
     OPTIONS,
     OPTIONS_USERS,
+    PLUGIN_TYPE,
+    PLUGIN_TYPE_API,
+    PLUGIN_TYPE_SUFFIX,
     ROS1_PARAMETER_FUNCTIONS,
     ROS1_PARAMETERS,
     ROS2_PARAMETERS,
@@ -42,6 +51,7 @@ from .source import (
     Source,
     arguments,
     call_named_by,
+    compact,
     contains,
     enclosing_functions,
     is_field,
@@ -70,6 +80,7 @@ class Sites:
         self.handles = handles
         self.types = types
         self.names: list[NameUse] = []
+        self._clients: frozenset[str] | None = None  # ``_parameter_clients``, once asked
 
     # -- emitting -----------------------------------------------------------------------
 
@@ -82,9 +93,13 @@ class Sites:
         type_name: str | None = None,
         *,
         namespace: str | None = None,
+        access: ParameterAccess | None = None,
     ) -> None:
         if value is None:
             return
+        parameter = kind is Kind.PARAMETER and role is Role.PARAMETER
+        if parameter and value.dynamic and _implements_declaring_api(self.source, value.node):
+            access = None  # the API's own body: its callers' names are what it declares
         self.names.append(
             NameUse(
                 kind=kind,
@@ -97,6 +112,8 @@ class Sites:
                 namespace=namespace,
                 symbol=value.symbol,
                 absolute_prefix=value.prefix if value.dynamic else None,
+                access=access if parameter else None,
+                suffix=value.suffix if parameter and value.dynamic else None,
             )
         )
 
@@ -150,6 +167,14 @@ class Sites:
             self.parameter(call, ROS1_PARAMETERS[call.name])
         elif call.name in ROS2_PARAMETERS:
             self.parameter(call, ROS2_PARAMETERS[call.name])
+        elif call.name == DECLARE_OR_GET:
+            self.declare_or_get(call)
+        elif call.name == PLUGIN_TYPE and len(call.arguments) >= 2:
+            self.plugin_type(call)
+        elif call.name == DECLARE_PARAMETERS and call.qualifier == "":
+            self.declare_parameters(call)
+        elif call.name == GET_PARAMETERS and call.qualifier == "":
+            self.get_parameters(call)
         elif call.name in FRAME_FUNCTIONS:
             self.frames(call)
 
@@ -297,11 +322,114 @@ class Sites:
             return
         namespace = self.handles.namespace_of(call.receiver)
         name = self.argument(values, site.name)
-        self.emit(Kind.PARAMETER, Role.PARAMETER, site.api, name, namespace=namespace)
+        if name is not None and name.dynamic:
+            name = self.folder.local_field(values[site.name]) or name
+        access = site.access
+        if site.quiet_from is not None and len(values) >= site.quiet_from:
+            access = ParameterAccess.READ_QUIETLY
+        access = self._parameter_access(call, access)
+        self.emit(
+            Kind.PARAMETER, Role.PARAMETER, site.api, name, namespace=namespace, access=access
+        )
         if site.value is not None and name is not None and not name.dynamic:
             index = len(values) - 1 if site.value < 0 else site.value
             if index > site.name:
                 self.parameter_value(name.text, values, index, site.api, namespace)
+
+    def _parameter_access(
+        self, call: Call, access: ParameterAccess | None
+    ) -> ParameterAccess | None:
+        """A ROS 2 read through a parameter client (``rclcpp::SyncParametersClient``,
+        ``AsyncParametersClient``: ``client->get_parameters({"a"})``,
+        ``client->get_parameter<T>("a", default)``) asks a node by service, whatever node
+        it names: it reads no parameter of the calling node, and throws nothing."""
+        receiver = call.receiver
+        if receiver is None or access not in _READS_AND_CHECKS:
+            return access
+        spelled = self.source.text(receiver).lower()
+        if "client" in spelled:
+            return ParameterAccess.REMOTE
+        if self._clients is None:
+            self._clients = _parameter_clients(self.source)
+        if not self._clients:
+            return access
+        name = variable_name(self.source, unparenthesized(receiver))
+        return ParameterAccess.REMOTE if name in self._clients else access
+
+    def declare_or_get(self, call: Call) -> None:
+        """nav2's ``declare_or_get_parameter``: ``node->declare_or_get_parameter(name,
+        default)``, ``nav2::declare_or_get_parameter(node, name, default)`` or
+        ``(logger, interface, name, default)``: the name is the first string argument,
+        else where its form puts it."""
+        values = call.arguments
+        if not values:
+            return
+        index = 0 if call.receiver is not None else None
+        for candidate in range(min(len(values), 3)) if index is None else ():
+            if self.folder.static(values[candidate]) is not None or '"' in self.source.text(
+                values[candidate]
+            ):
+                index = candidate
+                break
+        if index is None:
+            first = self.source.text(values[0]).lower()
+            index = 2 if "logger" in first else 1 if call.qualifier or len(values) >= 3 else 0
+        name = self.argument(values, index)
+        access = ParameterAccess.DECLARE
+        self.emit(Kind.PARAMETER, Role.PARAMETER, DECLARE_OR_GET_API, name, access=access)
+        if name is not None and not name.dynamic and index + 1 < len(values):
+            self.parameter_value(name.text, values, index + 1, DECLARE_OR_GET_API, None)
+
+    def plugin_type(self, call: Call) -> None:
+        """nav2's ``get_plugin_type_param(node, plugin)`` declares ``plugin.plugin``."""
+        name = self.argument(call.arguments, 1)
+        if name is None:
+            return
+        if name.dynamic:
+            name = Value(name.text, True, name.node, suffix=PLUGIN_TYPE_SUFFIX)
+        else:
+            name = Value(name.text + PLUGIN_TYPE_SUFFIX, False, name.node)
+        access = ParameterAccess.DECLARE
+        self.emit(Kind.PARAMETER, Role.PARAMETER, PLUGIN_TYPE_API, name, access=access)
+
+    def declare_parameters(self, call: Call) -> None:
+        """``declare_parameters("ns", {{"a", 1}, {"b", 2}})`` declares ``ns.a`` and
+        ``ns.b``; a map the call does not spell declares names the linter cannot know."""
+        values = call.arguments
+        if len(values) < 2:
+            return
+        namespace = self.folder.fold(values[0])
+        entries = _initializer_entries(values[1])
+        access = ParameterAccess.DECLARE
+        if namespace.dynamic or entries is None:
+            unknown = Value(compact(self.source.text(values[1])), True, values[1])
+            api = DECLARE_PARAMETERS_API
+            self.emit(Kind.PARAMETER, Role.PARAMETER, api, unknown, access=access)
+            return
+        for entry in entries:
+            key = self.folder.fold(entry)
+            if not key.dynamic and namespace.text:
+                key = Value(f"{namespace.text}.{key.text}", False, key.node)
+            self.emit(Kind.PARAMETER, Role.PARAMETER, DECLARE_PARAMETERS_API, key, access=access)
+
+    def get_parameters(self, call: Call) -> None:
+        """``get_parameters({"a", "b"})`` reads each name, throwing for an undeclared one;
+        ``get_parameters("prefix", map)`` reads every parameter below ``prefix.``."""
+        values = call.arguments
+        if len(values) == 2:
+            prefix = self.argument(values, 0)
+            if prefix is not None and not prefix.dynamic and not prefix.text:
+                return  # ``get_parameters("", map)`` reads them all: it names none
+            access = self._parameter_access(call, ParameterAccess.READ_PREFIX)
+            self.emit(Kind.PARAMETER, Role.PARAMETER, GET_PARAMETERS_API, prefix, access=access)
+            return
+        names = _initializer_items(values[0]) if len(values) == 1 else None
+        if names is None:
+            return  # a vector the call does not spell: what it reads is unknown, and dynamic
+        access = self._parameter_access(call, ParameterAccess.READ)
+        for item in names:
+            value = self.folder.fold(item)
+            self.emit(Kind.PARAMETER, Role.PARAMETER, GET_PARAMETERS_API, value, access=access)
 
     def parameter_value(
         self, name: str, values: tuple[Node, ...], index: int, api: str, namespace: str | None
@@ -378,7 +506,7 @@ class Sites:
                 value = self.static_argument(construction.arguments, index)
                 self.emit(Kind.FRAME, Role.FRAME, f"{qualifier or 'tf'}::{name}", value)
         elif name == "Parameter" and qualifier == "rclcpp":
-            self.parameter(_as_call(construction), ParameterSite(0, 1, "rclcpp::Parameter"))
+            self.parameter(_as_call(construction), ParameterSite(0, 1, "rclcpp::Parameter", None))
 
     def node_handle(self, construction: Construction) -> None:
         """``NodeHandle(ns)``, ``NodeHandle(ns, remappings)``, ``NodeHandle(parent, ns)``."""
@@ -584,3 +712,87 @@ def _as_call(construction: Construction) -> Call:
         template=construction.template,
         arguments=construction.arguments,
     )
+
+
+_READS_AND_CHECKS = frozenset(
+    {
+        ParameterAccess.READ,
+        ParameterAccess.READ_QUIETLY,
+        ParameterAccess.READ_PREFIX,
+        ParameterAccess.CHECK,
+    }
+)
+# ``auto client = std::make_shared<rclcpp::SyncParametersClient>(...)``,
+# ``rclcpp::AsyncParametersClient::SharedPtr client_;``, ``client_ = ...ParametersClient...``
+_PARAMETER_CLIENT = re.compile(
+    rb"ParametersClient\b[^;(){}\n]{0,80}?\b([A-Za-z_]\w*)\s*[;=({]"
+    rb"|\b([A-Za-z_]\w*)\s*=[^;=]{0,80}?ParametersClient\b"
+)
+
+
+def _parameter_clients(source: Source) -> frozenset[str]:
+    """The variables and members the file declares as, or assigns, parameter clients."""
+    data = source.data
+    if b"ParametersClient" not in data:
+        return frozenset()
+    found = set()
+    for match in _PARAMETER_CLIENT.finditer(data):
+        name = match.group(1) or match.group(2)
+        if name:
+            found.add(name.decode("utf-8", "replace"))
+    return frozenset(found)
+
+
+def _initializer_items(node: Node) -> list[Node] | None:
+    """The elements of ``{"a", "b"}`` or ``std::vector<std::string>{"a", "b"}``."""
+    node = unparenthesized(node)
+    if node.type == "compound_literal_expression":
+        node = node.child_by_field_name("value") or node
+    if node.type != "initializer_list":
+        return None
+    return [child for child in node.named_children if child.type != "comment"]
+
+
+def _initializer_entries(node: Node) -> list[Node] | None:
+    """The keys of a map spelled in the call: ``{{"a", 1}, {"b", 2}}``; None when the
+    call does not spell it, or an element is not a pair."""
+    items = _initializer_items(node)
+    if items is None:
+        return None
+    keys = []
+    for item in items:
+        pair = _initializer_items(item)
+        if not pair:
+            return None
+        keys.append(pair[0])
+    return keys
+
+
+# The parameter APIs whose callers the linter reads (``apis``): their own bodies, when the
+# workspace holds them (nav2_ros_common's node_utils.hpp, ros2_control's
+# controller_interface_base.hpp), declare what each caller passes, not a name of their own.
+_DECLARING_APIS = frozenset(
+    {
+        "declare_parameter",
+        "declare_parameters",
+        "declare_parameter_if_not_declared",
+        DECLARE_OR_GET,
+        PLUGIN_TYPE,
+        "auto_declare",
+    }
+)
+
+
+def _implements_declaring_api(source: Source, node: Node) -> bool:
+    """Whether ``node`` is inside the definition of one of ``_DECLARING_APIS``."""
+    for function in enclosing_functions(node):
+        if function.type != "function_definition":
+            continue
+        declarator = function.child_by_field_name("declarator")
+        while declarator is not None and declarator.type != "function_declarator":
+            declarator = declarator.child_by_field_name("declarator")
+        name = None if declarator is None else declarator.child_by_field_name("declarator")
+        if name is not None:
+            spelled = source.text(name).rpartition("::")[2]
+            return spelled in _DECLARING_APIS
+    return False

@@ -11,7 +11,9 @@ function result, a ternary, a string the code may change.
 A constant that is assigned anywhere in the file, or set in a constructor's initializer
 list, is not a constant. A dynamic ``std::string`` sum that starts with an absolute literal
 (``"/planning/" + name``, or a string initialised once with one) keeps that literal as its
-``prefix``: the name is still unknown, but certain to be absolute.
+``prefix``: the name is still unknown, but certain to be absolute. One that ends with a
+literal (``plugin_name_ + ".max_vel_x"``) keeps it as its ``suffix``: a parameter under a
+run-time prefix.
 """
 
 from __future__ import annotations
@@ -68,6 +70,8 @@ class Value:
     symbol: str | None = None  # a dynamic identifier no declaration of the file binds
     # a dynamic value's certain absolute start: the literal of ``"/planning/" + name``
     prefix: str | None = None
+    # a dynamic value's certain end: the literal of ``name + ".max_vel_x"``
+    suffix: str | None = None
 
 
 @dataclass(frozen=True)
@@ -166,6 +170,16 @@ class Declarations:
         return Declaration(name, parent, value, function, constant, False, string)
 
 
+def _declares(identifier: Node) -> bool:
+    """Whether an identifier is the name a declaration declares."""
+    parent = identifier.parent
+    while parent is not None and parent.type in ("init_declarator", *_POINTER_LIKE):
+        if not is_field(parent, "declarator", identifier):
+            return False
+        identifier, parent = parent, parent.parent
+    return parent is not None and parent.type in _DECLARATIONS
+
+
 def _wraps_declarator(parent: Node, child: Node) -> bool:
     if parent.type == "reference_declarator":
         return True  # its declarator is not a named field
@@ -222,6 +236,54 @@ class Folder:
         value = self.fold(node)
         return None if value.dynamic else value.text
 
+    def local_field(self, node: Node) -> Value | None:
+        """A field of a local object the function sets once, plainly, before ``node``
+        reads it: ``descriptor.name = "colormap"; declare_parameter(descriptor.name, ...)``
+        (how image_pipeline names its parameters). None when anything else may write it:
+        another assignment, a setter (``set__name``), the object handed to a call first."""
+        access = unparenthesized(node)
+        if access.type != "field_expression":
+            return None
+        holder = access.child_by_field_name("argument")
+        field = access.child_by_field_name("field")
+        operator = access.child_by_field_name("operator")
+        functions = enclosing_functions(access)
+        if holder is None or field is None or holder.type != "identifier" or not functions:
+            return None
+        if operator is not None and self._source.text(operator) != ".":
+            return None
+        function, name, wanted = functions[0], self._source.text(holder), self._source.text(field)
+        writes: list[Node] = []
+        for occurrence in self._source.occurrences(name):
+            if not contains(function, occurrence) or occurrence == holder:
+                continue
+            parent = occurrence.parent
+            if parent is not None and parent.type == "field_expression":
+                member = parent.child_by_field_name("field")
+                spelled = "" if member is None else self._source.text(member)
+                outer = parent.parent
+                if spelled == f"set__{wanted}":
+                    return None
+                if (
+                    spelled == wanted
+                    and outer is not None
+                    and outer.type == "assignment_expression"
+                    and is_field(outer, "left", parent)
+                ):
+                    writes.append(outer)
+                continue
+            if occurrence.start_byte < access.start_byte and not _declares(occurrence):
+                return None  # handed to something before the use: it may set the field
+        if len(writes) != 1 or writes[0].end_byte > access.start_byte:
+            return None
+        statement = writes[0].parent
+        block = None if statement is None else statement.parent
+        if block is None or block.type != "compound_statement" or not contains(block, access):
+            return None  # set on one branch only
+        right = writes[0].child_by_field_name("right")
+        value = None if right is None else self.fold(right)
+        return None if value is None or value.dynamic else Value(value.text, False, node)
+
     def _fold(self, node: Node, depth: int) -> Value:
         expression = unparenthesized(node)
         kind = expression.type
@@ -236,8 +298,12 @@ class Folder:
                 spelling = compact(self._source.text(node))
                 return Value(spelling, True, node, symbol=compact(self._source.text(expression)))
             if text is None:
-                prefix = self._identifier_prefix(expression, depth)
-                return Value(compact(self._source.text(node)), True, node, prefix=prefix)
+                written = self._written_once(expression, depth)
+                prefix = None if written is None else written.prefix
+                suffix = None if written is None else written.suffix
+                return Value(
+                    compact(self._source.text(node)), True, node, prefix=prefix, suffix=suffix
+                )
         elif kind in ("call_expression", "compound_literal_expression"):
             wrapped = self._wrapped(expression)
             if wrapped is not None:
@@ -252,7 +318,8 @@ class Folder:
 
     def _sum(self, node: Node, expression: Node, depth: int) -> Value:
         """``"/planning/" + name``: dynamic, but certain to start with its absolute literal
-        (a ``std::string`` sum; a number added to a literal is pointer arithmetic)."""
+        (a ``std::string`` sum; a number added to a literal is pointer arithmetic);
+        ``name + ".max_vel_x"``: certain to end with its literal."""
         spelling = Value(compact(self._source.text(node)), True, node)
         operator = expression.child_by_field_name("operator")
         left = expression.child_by_field_name("left")
@@ -262,14 +329,18 @@ class Folder:
         if unparenthesized(right).type in _NOT_STRINGS or depth >= _MAX_DEPTH:
             return spelling
         start = self._fold(left, depth + 1)
+        suffix = None
         if not start.dynamic:
             end = self._fold(right, depth + 1)
             if not end.dynamic:  # kNs + "/cmd" of two constants
                 return Value(start.text + end.text, False, expression)
+            suffix = end.suffix
+        elif unparenthesized(right).type in STRING_LITERALS:  # plugin_name_ + ".max_vel_x"
+            suffix = literal_value(self._source, unparenthesized(right))
         prefix = start.prefix if start.dynamic else start.text
-        if prefix is None or not prefix.startswith("/"):
-            return spelling
-        return Value(spelling.text, True, node, prefix=prefix)
+        if prefix is not None and not prefix.startswith("/"):
+            prefix = None
+        return Value(spelling.text, True, node, prefix=prefix, suffix=suffix or None)
 
     def _member_constant(self, access: Node, depth: int) -> str | None:
         """``this->kTopic``, ``driver.kTopic``: a constant member of the file's classes, the
@@ -286,9 +357,10 @@ class Folder:
         values = {self._declaration_value(member, depth + 1) for member in members}
         return values.pop() if len(values) == 1 else None
 
-    def _identifier_prefix(self, expression: Node, depth: int) -> str | None:
-        """The absolute start of a string written once, where it is declared:
-        ``const std::string topic = "/planning/" + name;``."""
+    def _written_once(self, expression: Node, depth: int) -> Value | None:
+        """The dynamic value of a string written once, where it is declared, for the
+        absolute start and the end it certainly has: ``const std::string topic =
+        "/planning/" + name;``."""
         name_node = _named_identifier(expression)
         if name_node is None or depth >= _MAX_DEPTH:
             return None
@@ -300,7 +372,7 @@ class Folder:
         if writes is None or len(writes) != 1 or writes[0].value is None:
             return None
         value = self._fold(writes[0].value, depth + 1)
-        return value.prefix if value.dynamic else None
+        return value if value.dynamic else None
 
     def _concatenation(self, node: Node, depth: int) -> str | None:
         parts: list[str] = []

@@ -13,7 +13,7 @@ from enum import Enum
 import libcst as cst
 
 from roslint_names.extract.launch.common import is_frame_parameter
-from roslint_names.model import EventKind, Kind, Role
+from roslint_names.model import EventKind, Kind, ParameterAccess, Role
 
 
 @dataclass(frozen=True)
@@ -37,6 +37,7 @@ class Use:
     kind: Kind
     role: Role
     api: str  # for messages: "rospy.Publisher"
+    access: ParameterAccess | None = None  # a parameter's: ``PARAMETER_ACCESS`` by default
 
 
 @dataclass(frozen=True)
@@ -181,6 +182,8 @@ RCLPY_METHODS = _table(
      "0:name", None, None, None),
     ("describe_parameter", "rclpy.node.Node.describe_parameter", _PARAM, Role.PARAMETER,
      "0:name", None, None, None),
+    ("get_parameters_by_prefix", "rclpy.node.Node.get_parameters_by_prefix", _PARAM,
+     Role.PARAMETER, "0:prefix", None, None, None),
 )
 # fmt: on
 RCLPY_ALIASES = {
@@ -200,6 +203,30 @@ NODE_CLASSES = frozenset(
 NODE_FACTORIES = frozenset({"rclpy.create_node", *NODE_CLASSES})
 GET_PARAMETERS = "rclpy.node.Node.get_parameters"
 DECLARE_PARAMETERS = "rclpy.node.Node.declare_parameters"
+
+# What each API does with a parameter (rclpy/node.py: ``Node.get_parameter``,
+# ``get_parameters`` and ``describe_parameter`` raise ParameterNotDeclaredException for an
+# undeclared name unless undeclared parameters are allowed; ``get_parameter_or`` returns
+# the alternative). rospy has no declarations: every access reads or writes the server.
+_D, _R, _Q = ParameterAccess.DECLARE, ParameterAccess.READ, ParameterAccess.READ_QUIETLY
+_C, _W, _P = ParameterAccess.CHECK, ParameterAccess.WRITE, ParameterAccess.READ_PREFIX
+PARAMETER_ACCESS: dict[str, ParameterAccess] = {
+    "rospy.get_param": _R,
+    "rospy.get_param_cached": _R,
+    "rospy.set_param": _W,
+    "rospy.has_param": _C,
+    "rospy.delete_param": _W,
+    "rospy.search_param": _C,
+    "rclpy.node.Node.declare_parameter": _D,
+    DECLARE_PARAMETERS: _D,
+    "rclpy.node.Node.get_parameter": _R,
+    GET_PARAMETERS: _R,
+    "rclpy.node.Node.get_parameter_or": _Q,
+    "rclpy.node.Node.get_parameters_by_prefix": _P,
+    "rclpy.node.Node.has_parameter": _C,
+    "rclpy.node.Node.undeclare_parameter": _W,
+    "rclpy.node.Node.describe_parameter": _R,
+}
 
 # tf and tf2 lookups: the arguments holding frame ids.
 _TARGET, _SOURCE = arg("0:target_frame"), arg("1:source_frame")

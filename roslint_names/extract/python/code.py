@@ -28,6 +28,7 @@ from roslint_names.extract.python.apis import (
     MESSAGE_FILTERS,
     NODE_CLASSES,
     NODE_FACTORIES,
+    PARAMETER_ACCESS,
     RCLPY,
     RCLPY_ALIASES,
     RCLPY_METHODS,
@@ -52,6 +53,7 @@ from roslint_names.model import (
     Generation,
     Kind,
     NameUse,
+    ParameterAccess,
     Role,
     RuntimeEvent,
 )
@@ -241,15 +243,18 @@ class CodeExtractor:
         (never a literal number, list or lambda)."""
         call = site.call
         name = argument(call, api.name) if api.name else None
-        if api.use is None or name is None or not _may_hold_name(name):
+        use = api.use
+        if use is None or name is None or not _may_hold_name(name):
             return
+        if use.kind is Kind.PARAMETER and _through_client(call):
+            use = replace(use, access=ParameterAccess.REMOTE)
         type_name = None
         if api.type is not None:
             type_expr = argument(call, api.type)
             if type_expr is None or not _may_be_type(type_expr):
                 return
-            type_name = self.type_name(type_expr, site.context.scope, api.use.kind)
-        value = self.emit(site, name, api.use, type_name)
+            type_name = self.type_name(type_expr, site.context.scope, use.kind)
+        value = self.emit(site, name, use, type_name)
         if value is not None and api.default is not None:
             self.parameter_default(site, value, argument(call, api.default))
 
@@ -258,6 +263,8 @@ class CodeExtractor:
         names = argument(site.call, arg("0:names"))
         if isinstance(names, cst.List | cst.Tuple):
             use = Use(Kind.PARAMETER, Role.PARAMETER, GET_PARAMETERS)
+            if _through_client(site.call):
+                use = replace(use, access=ParameterAccess.REMOTE)
             for element in names.elements:
                 if _may_hold_name(element.value):
                     self.emit(site, element.value, use)
@@ -331,7 +338,10 @@ class CodeExtractor:
         scope = site.context.scope
         value = self.folder.value(expr, scope, at=site.context)
         prefix = self.folder.absolute_prefix(expr, scope) if value.dynamic else None
-        self.add(site.where(expr), use, value, type_name, prefix)
+        suffix = None
+        if value.dynamic and use.kind is Kind.PARAMETER:
+            suffix = self.folder.suffix(expr, scope)
+        self.add(site.where(expr), use, value, type_name, prefix, suffix=suffix)
         return None if value.dynamic else value.text
 
     def add(
@@ -341,9 +351,13 @@ class CodeExtractor:
         value: Value,
         type_name: str | None = None,
         absolute_prefix: str | None = None,
+        *,
+        suffix: str | None = None,
     ) -> None:
         """One fact per node and kind: ``lookup_transform(target_frame="map")`` is both a
         tf lookup and a frame keyword."""
+        if _access(use) is ParameterAccess.READ_PREFIX and not value.dynamic and not value.text:
+            return  # ``get_parameters_by_prefix("")`` reads them all: it names none
         key = (id(where.node), use.kind, use.role)
         if key in self._emitted:
             return
@@ -359,6 +373,8 @@ class CodeExtractor:
                 value.dynamic,
                 type_name,
                 absolute_prefix=absolute_prefix,
+                access=_access(use),
+                suffix=suffix,
             )
         )
 
@@ -467,3 +483,23 @@ def _node_base(site: ClassSite, known: dict[cst.ClassDef, ClassSite]) -> ClassSi
                 if isinstance(binding.defined, cst.ClassDef) and binding.defined in known:
                     return known[binding.defined]
     return None
+
+
+def _access(use: Use) -> ParameterAccess | None:
+    if use.kind is not Kind.PARAMETER or use.role is not Role.PARAMETER:
+        return None
+    return use.access or PARAMETER_ACCESS.get(use.api)
+
+
+def _through_client(call: cst.Call) -> bool:
+    """``client.get_parameters(["a"])`` on an rclpy ``AsyncParameterClient`` (or a
+    hand-made parameter service client) asks another node: not this node's parameter."""
+    func = call.func
+    if not isinstance(func, cst.Attribute):
+        return False
+    receiver = func.value
+    while isinstance(receiver, cst.Attribute):
+        if "client" in receiver.attr.value.lower():
+            return True
+        receiver = receiver.value
+    return isinstance(receiver, cst.Name) and "client" in receiver.value.lower()

@@ -111,6 +111,37 @@ class Folder:
                 return self._prefix(bindings[0].value, bindings[0].scope, depth + 1)
         return None
 
+    def suffix(self, expr: cst.BaseExpression, scope: Scope, depth: int = 0) -> str | None:
+        """The text a dynamic name certainly ends with: ``name + ".max_vel_x"``,
+        ``f"{name}.max_vel_x"``, or a name bound once to one of these; None when nothing
+        is certain."""
+        if depth > _MAX_DEPTH:
+            return None
+        if isinstance(expr, cst.BinaryOperation) and isinstance(expr.operator, cst.Add):
+            end = self.static(expr.right, scope, depth + 1)
+            return end or self.suffix(expr.right, scope, depth + 1)
+        if isinstance(expr, cst.FormattedString):
+            parts: list[str] = []
+            for part in reversed(expr.parts):
+                text = None
+                if isinstance(part, cst.FormattedStringText):
+                    text = _fstring_text(expr, part.value)
+                elif isinstance(part, cst.FormattedStringExpression) and not (
+                    part.format_spec or part.equal or part.conversion not in (None, "s")
+                ):
+                    text = self.static(part.expression, scope, depth + 1)
+                if text is None:
+                    break
+                parts.append(text)
+            return "".join(reversed(parts)) or None
+        if isinstance(expr, cst.Name):
+            bindings = scope.lookup(expr.value)
+            if len(bindings) == 1 and bindings[0].value is not None:
+                value = bindings[0].value
+                if self.static(value, bindings[0].scope, depth + 1) is None:
+                    return self.suffix(value, bindings[0].scope, depth + 1)
+        return None
+
     def _formatted_prefix(self, expr: cst.FormattedString, scope: Scope, depth: int) -> str:
         parts: list[str] = []
         for part in expr.parts:

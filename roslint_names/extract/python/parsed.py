@@ -14,7 +14,8 @@ from roslint_names.extract import evidence
 from roslint_names.extract.launch.python_launch import LaunchExtractor
 from roslint_names.extract.launch.python_values import LaunchCalls
 from roslint_names.extract.launch.substitution import Source
-from roslint_names.extract.literals import name_literals
+from roslint_names.extract.literals import name_literals, unexplained_literals
+from roslint_names.extract.parameter_traits import parameter_traits, python_class_bases
 from roslint_names.extract.python.code import CodeExtractor
 from roslint_names.extract.python.python2 import Rewritten, rewrite
 from roslint_names.extract.python.source import decode, parse
@@ -25,6 +26,7 @@ from roslint_names.model import (
     Generation,
     Language,
     LaunchArguments,
+    ParameterTrait,
     ParseError,
     Span,
 )
@@ -93,7 +95,20 @@ def extract_parsed(
         events=tuple(code.events),
         includes=tuple(launch.includes),
         literals=() if language is Language.LAUNCH_PYTHON else name_literals(text),
+        parameter_traits=() if language is Language.LAUNCH_PYTHON else _traits(text),
+        class_bases=() if language is Language.LAUNCH_PYTHON else _bases(text),
+        unexplained_literals=()
+        if language is Language.LAUNCH_PYTHON
+        else unexplained_literals(text.encode("utf-8", "surrogatepass"), names, python=True),
     )
+
+
+def _traits(text: str) -> tuple[ParameterTrait, ...]:
+    return parameter_traits(text.encode("utf-8", "surrogatepass"))
+
+
+def _bases(text: str) -> tuple[tuple[str, tuple[str, ...]], ...]:
+    return python_class_bases(text.encode("utf-8", "surrogatepass"))
 
 
 _Prepared = tuple[Walk, Locator, CodeExtractor, LaunchCalls, Generation, str]

@@ -191,8 +191,10 @@ def _edits(text: str) -> Iterator[tuple[int, int, str]]:
             brackets.pop()
         else:
             yield from _literal(token)
-    if significant:
-        yield from _close(statement, significant[-1])
+    # The file may end inside brackets (``print [`` and no more): the ``)`` goes after the
+    # last token of the statement, never after a line break.
+    last = next((token for token in reversed(significant) if token.kind != "newline"), None)
+    yield from _close(statement, last)
 
 
 def _statement_start(

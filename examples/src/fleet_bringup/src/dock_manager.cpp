@@ -15,7 +15,7 @@ public:
       "StartDocking",
       [this](const std::shared_ptr<std_srvs::srv::Trigger::Request>,
              std::shared_ptr<std_srvs::srv::Trigger::Response> response) {
-        RCLCPP_INFO(get_logger(), "docking at %s", get_parameter("dock_frame").as_string().c_str());
+        RCLCPP_INFO(get_logger(), "docking at %s", get_parameter("dockframe").as_string().c_str());
         response->success = true;
       });
   }
