@@ -62,7 +62,11 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
         if not all(undeclared for undeclared, _, _ in seen):
             continue
         _, use, _ = seen[0]
-        nodes = sorted({node.name for _, _, node in seen})
+        # Named only where a launch file starts the node: code no launch file starts is
+        # put in a node by its program's sources, and a library linked into several
+        # programs (ament_auto links each program with the package's libraries) would
+        # name a program that never builds the class that reads.
+        nodes = sorted({node.name for _, _, node in seen if node.launched_at})
         related = [
             (site, f"node '{node.name}' is started here")
             for _, _, node in seen
@@ -75,6 +79,8 @@ def _message(use: ParameterUse, nodes: list[str], node: NodeInstance) -> str:
     named = ", ".join(f"'{name}'" for name in nodes[:_MAX_NODES])
     more = f" and {len(nodes) - _MAX_NODES} more" if len(nodes) > _MAX_NODES else ""
     which = "the node that runs this code" if len(nodes) == 1 else "the nodes that run this code"
+    if not nodes:
+        which, named = "any code of its node", ""
     near = _near(use.name, node)
     fix = (
         f"read '{near}', which it declares, or declare this one"
@@ -82,7 +88,8 @@ def _message(use: ParameterUse, nodes: list[str], node: NodeInstance) -> str:
         else "declare it (declare_parameter) before reading it"
     )
     return (
-        f"parameter '{use.name}' is read here but never declared by {which} ({named}{more}):"
+        f"parameter '{use.name}' is read here but never declared by {which}"
+        f"{f' ({named}{more})' if named else ''}:"
         f" {_consequence(use)}; {fix}"
     )
 
