@@ -343,6 +343,7 @@ def test_graph_json_shows_each_node_parameters(run_cli: Any, tmp_path: Path) -> 
         "declared_under_prefix": [],
         "read_under_prefix": [],
         "read_below": [],
+        "reconfigure": [],
         "complete": True,
         "incomplete": [],
     }

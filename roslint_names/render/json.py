@@ -53,7 +53,9 @@ Fields:
     ``declared_under_prefix`` and ``read_under_prefix`` (arrays of strings) the names
     declared or read under a prefix known only at run time, as ``*`` and the literal end
     (``*.max_vel_x``); ``read_below`` (array of strings) the prefixes every parameter below
-    which is read (``get_parameters("filters", map)``); ``complete`` (boolean) whether
+    which is read (``get_parameters("filters", map)``); ``reconfigure`` (array of
+    strings) the dynamic_reconfigure ``.cfg`` files whose parameters the code's servers
+    read (ROS 1; their names are in ``read``); ``complete`` (boolean) whether
     those are all the names the code may declare or read; ``incomplete`` (array of
     strings) why not: ``no-code``, ``library`` (code no program or component is known to
     run), ``run-time-declaration``, ``run-time-read``, ``allow-undeclared``,
@@ -153,6 +155,7 @@ def _code_parameters(found: NodeParameters | None) -> dict[str, Any] | None:
         "declared_under_prefix": [f"*{suffix}" for suffix in found.declared_suffixes],
         "read_under_prefix": [f"*{suffix}" for suffix in found.read_suffixes],
         "read_below": list(found.read_prefixes),
+        "reconfigure": list(found.reconfigure),
         "complete": found.complete,
         "incomplete": [cause.value for cause in found.incomplete],
     }
