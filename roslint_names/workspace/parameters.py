@@ -211,13 +211,14 @@ class ParameterSets:
         self._classes: dict[str, list[str]] = {}  # class name -> files defining it
         self._by_name: dict[str, list[str]] = {}  # C++ file name -> its paths
         self._programs: set[str] = set()  # sources of every program and component
-        # ``NameConfig`` -> (package, .cfg path, config) of each .cfg generating it
-        self._configs: dict[str, list[tuple[str | None, str, ReconfigureConfig]]] = {}
+        # ``NameConfig`` -> (package, path) of each .cfg generating it
+        self._configs: dict[str, list[tuple[str | None, str]]] = {}
         for path, facts in sorted(index.facts.items()):
             if facts.reconfigure is not None and facts.reconfigure.name is not None:
                 package = facts.reconfigure.package or _package_name(index, path)
-                entry = (package, path, facts.reconfigure)
-                self._configs.setdefault(f"{facts.reconfigure.name}Config", []).append(entry)
+                self._configs.setdefault(f"{facts.reconfigure.name}Config", []).append(
+                    (package, path)
+                )
             if facts.language not in CODE_LANGUAGES or self._excluded(path):
                 continue
             for name, _ in facts.class_bases:
