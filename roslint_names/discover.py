@@ -43,6 +43,8 @@ _CONFIGURATION_SUFFIXES = frozenset(
 )
 _CPP_SUFFIXES = frozenset({".cpp", ".cc", ".cxx", ".c++", ".hpp", ".hh", ".hxx", ".h", ".ipp"})
 _YAML_LAUNCH_KEY = re.compile(rb"^launch\s*:", re.MULTILINE)
+# Every dynamic_reconfigure .cfg makes a ``ParameterGenerator()`` (parameter_generator_catkin).
+_RECONFIGURE_MARKER = b"ParameterGenerator"
 # `#!/usr/bin/env python3`, `#!/usr/bin/python`, `#!/usr/bin/env -S python3 -u`: the line
 # catkin_install_python rewrites and every ROS script without a `.py` suffix starts with.
 _PYTHON_SHEBANG = re.compile(rb"#![ \t]*\S*?(?:/env(?:[ \t]+-\S+)*[ \t]+|/)python[0-9.]*(?:\s|$)")
@@ -89,6 +91,7 @@ class _Sniff(Enum):
     XML = "xml"
     YAML = "yaml"
     SCRIPT = "script"  # no suffix at all: a ROS script is Python by its shebang
+    CFG = "cfg"  # a dynamic_reconfigure config, or an INI file (CPPLINT.cfg, tox.cfg)
 
 
 def classify(path: Path) -> Language | None:
@@ -105,6 +108,8 @@ def _decide(path: str | Path, by_name: Language | _Sniff | None) -> Language | N
         return Language.LAUNCH_YAML if _YAML_LAUNCH_KEY.search(_head(path)) else Language.PARAMETERS
     if by_name is _Sniff.SCRIPT:
         return Language.PYTHON if _PYTHON_SHEBANG.match(_head(path, _SHEBANG_BYTES)) else None
+    if by_name is _Sniff.CFG:
+        return Language.RECONFIGURE if _RECONFIGURE_MARKER in _head(path) else None
     return by_name
 
 
@@ -128,6 +133,8 @@ def _by_name(file_name: str) -> Language | _Sniff | None:
         return Language.CMAKE  # a module of the package's build: what it compiles counts
     if suffix == ".py":
         return Language.PYTHON
+    if suffix == ".cfg":
+        return _Sniff.CFG
     if suffix == ".srv":
         return Language.SERVICE_DEFINITION
     if name == "package.xml":

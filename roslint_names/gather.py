@@ -46,6 +46,7 @@ EXTRACTOR_MODULES: dict[Language, str] = {
     Language.SETUP_PY: "build.setup_py",
     Language.SETUP_CFG: "build.setup_py",
     Language.PARAMETERS: "parameter_file",
+    Language.RECONFIGURE: "build.reconfigure",
 }
 # Launch files an including file can hand arguments to (see ``workspace.launch_tree``).
 SPECIALISABLE = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.PYTHON})

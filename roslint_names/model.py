@@ -44,6 +44,9 @@ class Language(str, Enum):
     # A YAML file that is not a launch file: a parameter file (ROS 2 ``ros__parameters``,
     # ROS 1 ``rosparam``) or other configuration, as its content and package tell.
     PARAMETERS = "parameters"
+    # A dynamic_reconfigure ``.cfg``: a Python script catkin runs at build time to generate
+    # a node's reconfigurable parameters (``ReconfigureConfig``).
+    RECONFIGURE = "reconfigure"
 
 
 class Role(str, Enum):
@@ -209,6 +212,24 @@ class ParameterBlock:
 
 
 @dataclass(frozen=True)
+class ReconfigureConfig:
+    """What a dynamic_reconfigure ``.cfg`` file generates: the parameters of one config.
+
+    ``gen.generate(package, node, name)`` generates the C++ class ``package::nameConfig``
+    and the Python class ``package.cfg.nameConfig``; ``package`` and ``name`` are None
+    where the file does not spell them statically. ``parameters`` are the names of every
+    ``add`` (groups add to the same namespace), each with its literal's span;
+    ``complete`` is false where the file may add others the linter does not see (a name
+    built at run time, the generator handed to a helper).
+    """
+
+    package: str | None
+    name: str | None
+    parameters: tuple[tuple[str, Span], ...] = ()
+    complete: bool = True
+
+
+@dataclass(frozen=True)
 class LaunchNode:
     """A node started by a launch file, with the scope the file gives it.
 
@@ -244,6 +265,9 @@ class LaunchNode:
     # The parameter files handed to the node, in order (``parameters=[path]``, ``<param
     # from>``, ``<rosparam command="load" file>`` inside the node).
     parameter_files: tuple[ParameterLoad, ...] = ()
+    # Where each of ``parameters`` is written (its ``<param name>``, dictionary key or
+    # command-line key), in the same order.
+    parameter_spans: tuple[Span, ...] = ()
 
 
 # What an include hands the included file, sorted by name: each argument's value, None
@@ -410,6 +434,12 @@ class FileFacts:
     parameter_blocks: tuple[ParameterBlock, ...] = ()
     # A ROS 1 launch file: the ``<rosparam command="load" file>`` outside any node.
     parameter_loads: tuple[ParameterLoad, ...] = ()
+    # A dynamic_reconfigure ``.cfg``: the config it generates.
+    reconfigure: ReconfigureConfig | None = None
+    # Code: the dynamic_reconfigure configs it serves (``Server<pkg::NameConfig>``,
+    # rospy's ``Server(NameConfig, cb)``), as ``pkg::NameConfig`` or, where the file
+    # does not qualify it, ``NameConfig``.
+    reconfigure_servers: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -27,13 +27,14 @@ from .model import Language, Span
 
 # Keys separated by a comma or blanks; the separator is never empty, so no backtracking blow-up.
 _KEYS = r"([A-Za-z0-9_\-]+(?:(?:[ \t]*,[ \t]*|[ \t]+)[A-Za-z0-9_\-]+)*)"
-_NOQA_LANGUAGES = frozenset({Language.PYTHON, Language.LAUNCH_PYTHON})
+_NOQA_LANGUAGES = frozenset({Language.PYTHON, Language.LAUNCH_PYTHON, Language.RECONFIGURE})
 _XML_LANGUAGES = frozenset({Language.LAUNCH_XML, Language.URDF, Language.PACKAGE_XML})
 _YAML_LANGUAGES = frozenset({Language.LAUNCH_YAML, Language.PARAMETERS})
 _MARKER = {
     Language.CPP: "NOLINT",
     Language.PYTHON: "noqa",
     Language.LAUNCH_PYTHON: "noqa",
+    Language.RECONFIGURE: "noqa",  # a .cfg is a Python script
     Language.LAUNCH_XML: "roslint-names",
     Language.LAUNCH_YAML: "roslint-names",
     Language.PARAMETERS: "roslint-names",
@@ -135,7 +136,7 @@ def _in_line(line: str, number: int, language: Language) -> Iterable[Suppression
         for match in NOLINT.finditer(line):
             target = number + 1 if match.group(1) else number
             yield _make(match.group(2), frozenset({target}), number, match)
-    elif language in (Language.PYTHON, Language.LAUNCH_PYTHON):
+    elif language in _NOQA_LANGUAGES:
         for match in NOQA.finditer(line):
             yield _make(match.group(1), frozenset({number}), number, match)
     else:

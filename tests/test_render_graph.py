@@ -20,7 +20,15 @@ from roslint_names.render import dot as dot_render
 from roslint_names.render import json as json_render
 from roslint_names.render import mermaid as mermaid_render
 from roslint_names.render.view import MISMATCH_NOTE, layout
-from roslint_names.workspace.graph import EdgeKind, Endpoint, Graph, Location, NodeInstance
+from roslint_names.workspace.graph import (
+    EdgeKind,
+    Endpoint,
+    Graph,
+    Location,
+    NodeInstance,
+    ParameterSetting,
+    SettingSource,
+)
 
 FIXTURES = Path(__file__).parent / "fixtures" / "graph"
 BRINGUP = "src/bringup/launch/robots.launch.py"
@@ -128,12 +136,39 @@ def two_robots() -> Graph:
     return Graph(nodes, endpoints)
 
 
+PARAMS = "src/demo/config/listener.yaml"
+
+
+def setting(
+    name: str, location: Location, *, key: str | None = None, site: Location | None = None
+) -> ParameterSetting:
+    source = SettingSource.LAUNCH if key is None and site is None else SettingSource.FILE
+    return ParameterSetting(name, location, source, key=key, site=site)
+
+
 def small() -> Graph:
-    """The golden graph: a talker, a listener, a service and an action, one mismatch."""
+    """The golden graph: a talker, a listener, a service and an action, one mismatch; the
+    talker's parameter set in the launch file, the listener's seven in a file."""
     talker, listener, launch = "src/demo/src/talker.cpp", "src/demo/scripts/listener.py", DEMO
+    handed = at(launch, 5, 5)
+    listener_parameters = tuple(
+        setting(name, at(PARAMS, line, 5, len(name)), key="listener", site=handed)
+        for line, name in enumerate(
+            ["buffer_size", "qos.depth", "qos.reliability", "rate", "timeout", "topic", "verbose"],
+            start=3,
+        )
+    )
     nodes = (
-        instance("/talker", "demo", "talker", root=launch, launched_at=(at(launch, 3, 3),)),
-        instance("/listener", "demo", "listener.py", root=launch, launched_at=(at(launch, 4, 3),)),
+        replace(
+            instance("/talker", "demo", "talker", root=launch, launched_at=(at(launch, 3, 3),)),
+            parameter_settings=(setting("rate", at(launch, 3, 40, 4)),),
+        ),
+        replace(
+            instance(
+                "/listener", "demo", "listener.py", root=launch, launched_at=(at(launch, 4, 3),)
+            ),
+            parameter_settings=listener_parameters,
+        ),
     )
     endpoints = (
         endpoint("/talker", PUB, "/chatter", "std_msgs/String", at(talker, 12, 5)),
@@ -503,6 +538,7 @@ def test_json_nodes_carry_everything() -> None:
             },
         ],
         "remaps": [{"from": "/robot1/odom_raw", "to": "/robot1/odom"}],
+        "parameters": [],
         "code_parameters": None,  # a graph built by hand: not computed
     }
     idle = by_name(nodes, "/idle")

@@ -345,6 +345,7 @@ def test_graph_json_shows_each_node_parameters(run_cli: Any, tmp_path: Path) -> 
         "declared_under_prefix": [],
         "read_under_prefix": [],
         "read_below": [],
+        "reconfigure": [],
         "complete": True,
         "incomplete": [],
     }
@@ -405,3 +406,67 @@ def test_a_base_class_the_workspace_holds_is_followed(run_cli: Any, tmp_path: Pa
     allowing = ", allow_undeclared_parameters=True"
     write(base, "robot_common/base_node.py", base_node.format(options=allowing))
     assert findings(run_cli, tmp_path) == []
+
+
+DRIVER_LAUNCH_PY = """\
+from launch import LaunchDescription
+from launch.substitutions import PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    params = PathJoinSubstitution([FindPackageShare("wheel_driver"), "config", "driver.yaml"])
+    return LaunchDescription([
+        Node(
+            package="wheel_driver",
+            executable="wheel_driver",
+            name="wheel_driver",
+            parameters=[params, {"trim": 0.05}],
+        ),
+    ])
+"""
+
+
+def test_sarif_points_at_the_file_and_launch_that_set_the_undeclared_name(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """The file key and the inline value the launch gives 'gain' and 'trim' are never
+    read: SARIF carries them, and where the file is handed over, as related locations."""
+    directory = wheel_driver(tmp_path)
+    write(directory, "launch/driver.launch.py", DRIVER_LAUNCH_PY)
+    write(directory, "config/driver.yaml", "wheel_driver:\n  ros__parameters:\n    gain: 2.0\n")
+    result = run_cli(["check", "--format", "sarif", "--select", "RN407", "."], tmp_path)
+    assert result.exit_code == 1, result.stderr
+    results = json.loads(result.stdout)["runs"][0]["results"]
+    related = {
+        result["message"]["text"].split("'")[1]: [
+            (
+                location["physicalLocation"]["artifactLocation"]["uri"],
+                location["physicalLocation"]["region"]["startLine"],
+                location["message"]["text"],
+            )
+            for location in result["relatedLocations"]
+        ]
+        for result in results
+    }
+    launch = "src/wheel_driver/launch/driver.launch.py"
+    started = (launch, 13, "node '/wheel_driver' is started here")
+    assert related["gain"] == [
+        (
+            "src/wheel_driver/config/driver.yaml",
+            3,
+            "this file sets 'gain' on node '/wheel_driver' here; undeclared, it is never read",
+        ),
+        started,
+        (launch, 14, "the file is handed to node '/wheel_driver' here"),
+    ]
+    assert related["trim"] == [
+        started,
+        (
+            launch,
+            14,
+            "the launch file sets 'trim' on node '/wheel_driver' here; undeclared, "
+            "it is never read",
+        ),
+    ]

@@ -214,6 +214,7 @@ _EDITORS = {
     Language.CPP: _cpp,
     Language.PYTHON: _python,
     Language.LAUNCH_PYTHON: _python,
+    Language.RECONFIGURE: _python,
     Language.LAUNCH_YAML: _yaml,
     Language.PARAMETERS: _yaml,
     Language.LAUNCH_XML: _xml,

@@ -13,7 +13,10 @@ renamed with it:
   that is not one of those names (a helper's argument, a constant); in launch files,
   URDF and configuration no extractor reads (parameter YAML, rviz, ``.cfg``), any
   occurrence at all. Identifiers and the words of comments do not count, they are not
-  names; a quoted name in a comment does (the literals are found without a parse).
+  names; a quoted name in a comment does (the literals are found without a parse);
+- a dynamic_reconfigure ``.cfg``'s parameter blocks it: the name is also a field of the
+  class the build generates from it, which code reads as an identifier
+  (``config.max_vel_x``), and renaming the ``.cfg`` alone would break the build.
 
 A use a suppression keeps (``# noqa: RN203``) blocks the rename too: someone chose to keep
 that spelling. Documentation is not searched (``discover.text_files``).
@@ -35,6 +38,9 @@ from .fixing import located
 
 # Files whose names are string literals: elsewhere in them a word is an identifier.
 _CODE = frozenset({Language.CPP, Language.PYTHON, Language.LAUNCH_PYTHON, Language.SETUP_PY})
+
+# Files whose names become identifiers of generated code (``.cfg``: ``nameConfig`` fields).
+_GENERATING = frozenset({Language.RECONFIGURE})
 
 Read = Callable[[str], "bytes | None"]  # a display path's bytes; None when unreadable
 
@@ -101,7 +107,8 @@ class _Search:
                 continue
             line = lines[use.span.line - 1] if 0 < use.span.line <= len(lines) else None
             fix = Fix(use.value, rename_tokens(use.value, self._renamed), safe=False)
-            edit = None if use.kind is Kind.FRAME else located(fix, use.span, line)
+            held = use.kind is Kind.FRAME or (facts is not None and facts.language in _GENERATING)
+            edit = None if held else located(fix, use.span, line)
             if edit is None:
                 blocked |= words
             else:

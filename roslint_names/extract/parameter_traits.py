@@ -35,6 +35,17 @@ _DYNAMIC_RECONFIGURE = re.compile(
     rb"\bdynamic_reconfigure::Server\s*<|\bdynamic_reconfigure\.server\b"
     rb"|\bfrom\s+dynamic_reconfigure\.server\s+import\b"
 )
+# The config a server serves: ``dynamic_reconfigure::Server<amcl::AMCLConfig>`` (a
+# declaration, a ``new``, a ``make_shared``'s argument, a typedef), and rospy's
+# ``from amcl.cfg import AMCLConfig`` in a file that imports the server.
+_CPP_SERVER = re.compile(
+    rb"\bdynamic_reconfigure\s*::\s*Server\s*<\s*((?:::\s*)?[A-Za-z_][\w\s:]{0,200}?)\s*>"
+)
+_PYTHON_CONFIG_IMPORT = re.compile(
+    rb"(?m)^[ \t]*from[ \t]+([A-Za-z_]\w*)\.cfg[ \t]+import[ \t]*(?:\(([^()]*)\)|([\w \t,]+))"
+)
+_PYTHON_CONFIG_ALIAS = re.compile(r"(\w+)(?:\s+as\s+(\w+))?")
+_SPACE = re.compile(r"\s+")
 _TRAITS = (
     (b"allow_undeclared_parameters", _ALLOW_UNDECLARED, ParameterTrait.ALLOW_UNDECLARED),
     (
@@ -69,6 +80,31 @@ def parameter_traits(data: bytes) -> tuple[ParameterTrait, ...]:
     """The traits the file's text shows, in ``ParameterTrait`` order."""
     found = {trait for word, pattern, trait in _TRAITS if word in data and pattern.search(data)}
     return tuple(trait for trait in ParameterTrait if trait in found)
+
+
+def reconfigure_servers(data: bytes, *, python: bool) -> tuple[str, ...]:
+    """The dynamic_reconfigure configs the code serves, ``pkg::NameConfig`` or, where the
+    text does not qualify it (``using namespace``, the package's own namespace),
+    ``NameConfig``; sorted. Only where the text shows a server
+    (``ParameterTrait.DYNAMIC_RECONFIGURE``)."""
+    if b"dynamic_reconfigure" not in data or not _DYNAMIC_RECONFIGURE.search(data):
+        return ()
+    found: set[str] = set()
+    if python:
+        # ``from pkg.cfg import NameConfig`` is what rospy's Server is handed; a client
+        # needs no config class.
+        for match in _PYTHON_CONFIG_IMPORT.finditer(data):
+            package = match.group(1).decode("utf-8", "replace")
+            names = (match.group(2) or match.group(3)).decode("utf-8", "replace")
+            for part in names.split(","):
+                alias = _PYTHON_CONFIG_ALIAS.fullmatch(part.strip())
+                if alias and alias.group(1).endswith("Config"):
+                    found.add(f"{package}::{alias.group(1)}")
+    else:
+        for match in _CPP_SERVER.finditer(data):
+            written = _SPACE.sub("", match.group(1).decode("utf-8", "replace")).lstrip(":")
+            found.add(written)
+    return tuple(sorted(found))
 
 
 def cpp_class_bases(data: bytes) -> tuple[tuple[str, tuple[str, ...]], ...]:

@@ -45,6 +45,15 @@ Fields:
     and the node's own element last, each a location (below); empty when not launched;
     ``remaps`` (array) its remaps in force, each ``{"from": ..., "to": ...}`` with both sides
     fully qualified;
+    ``parameters`` (array) every parameter the launch sets on it, by ``name`` then place
+    (``workspace/parameter_settings.py``): ``name`` (string) as the node reads it (ROS 2
+    dotted; ROS 1 relative to the node's private namespace when below it, else fully
+    qualified); ``source`` (string) ``"launch"`` (the node's ``<param>``, its
+    ``parameters={...}``, ``-p`` or ``_name:=`` on its command line) or ``"file"`` (a
+    parameter file); ``key`` (string or null) the file's node key it is under (ROS 2
+    files); the location of the name as written (the ``<param name>``, the file's key);
+    ``site`` (a location, or null) where the launch hands the file over; ``conditional``
+    (boolean) whether a condition the linter cannot decide guards it;
     ``code_parameters`` (object, or null where the graph did not compute it) what the
     node's code does with parameters, looked for in its sources, what they include of
     their package, their base classes and (for declarations) the rest of their packages
@@ -53,7 +62,9 @@ Fields:
     ``declared_under_prefix`` and ``read_under_prefix`` (arrays of strings) the names
     declared or read under a prefix known only at run time, as ``*`` and the literal end
     (``*.max_vel_x``); ``read_below`` (array of strings) the prefixes every parameter below
-    which is read (``get_parameters("filters", map)``); ``complete`` (boolean) whether
+    which is read (``get_parameters("filters", map)``); ``reconfigure`` (array of
+    strings) the dynamic_reconfigure ``.cfg`` files whose parameters the code's servers
+    read (ROS 1; their names are in ``read``); ``complete`` (boolean) whether
     those are all the names the code may declare or read; ``incomplete`` (array of
     strings) why not: ``no-code``, ``library`` (code no program or component is known to
     run), ``run-time-declaration``, ``run-time-read``, ``allow-undeclared``,
@@ -91,7 +102,7 @@ from collections.abc import Iterable
 from typing import Any
 
 from ..model import Kind
-from ..workspace.graph import EdgeKind, Endpoint, Graph, Location, NodeInstance
+from ..workspace.graph import EdgeKind, Endpoint, Graph, Location, NodeInstance, ParameterSetting
 from ..workspace.parameters import NodeParameters
 
 FORMAT_VERSION = 1
@@ -140,7 +151,19 @@ def _node(node: NodeInstance) -> dict[str, Any]:
         "sources": list(node.sources),
         "launched_at": [_location(location) for location in node.launched_at],
         "remaps": [{"from": remap.source, "to": remap.target} for remap in node.remaps],
+        "parameters": [_setting(setting) for setting in node.parameter_settings],
         "code_parameters": _code_parameters(node.code_parameters),
+    }
+
+
+def _setting(setting: ParameterSetting) -> dict[str, Any]:
+    return {
+        "name": setting.name,
+        "source": setting.source.value,
+        "key": setting.key,
+        **_location(setting.location),
+        "site": None if setting.site is None else _location(setting.site),
+        "conditional": setting.conditional,
     }
 
 
@@ -153,6 +176,7 @@ def _code_parameters(found: NodeParameters | None) -> dict[str, Any] | None:
         "declared_under_prefix": [f"*{suffix}" for suffix in found.declared_suffixes],
         "read_under_prefix": [f"*{suffix}" for suffix in found.read_suffixes],
         "read_below": list(found.read_prefixes),
+        "reconfigure": list(found.reconfigure),
         "complete": found.complete,
         "incomplete": [cause.value for cause in found.incomplete],
     }

@@ -10,6 +10,9 @@ Both drawings need the same decisions, made once here so that they cannot drift 
 * Ids are a letter and an index in sorted order (``n0`` nodes, ``t0`` topics, ``s0``
   services, ``a0`` actions): ROS names hold ``/``, ``~`` and ``{}``, which neither format
   accepts in an id, and sorted indices make the output the same for the same graph.
+* A node lists the parameters the launch sets on it (``NodeInstance.parameter_settings``),
+  ``MAX_PARAMETERS`` at most, then how many more: a drawing stays readable with
+  navigation2's hundred-odd parameters per server; the JSON output has them all.
 * Arrows follow the data: publisher -> topic -> subscriber, client -> service -> server,
   action client -> action -> action server. Endpoints with the same node, resource and edge
   kind collapse to one arrow that keeps all their locations.
@@ -31,6 +34,7 @@ _KIND_ORDER = (Kind.TOPIC, Kind.SERVICE, Kind.ACTION)
 _PREFIX = {Kind.TOPIC: "t", Kind.SERVICE: "s", Kind.ACTION: "a"}
 _EXTRA_PREFIX = "r"  # a resource kind the graph should not hold; drawn rather than dropped
 MISMATCH_NOTE = "(types disagree)"
+MAX_PARAMETERS = 5  # parameter lines in a node's label before "and K more"
 
 
 @dataclass(frozen=True)
@@ -42,9 +46,11 @@ class NodeShape:
 
     @property
     def lines(self) -> tuple[str, ...]:
-        """The label, one entry per line, unescaped."""
+        """The label, one entry per line, unescaped: the name, ``package/executable``,
+        and the parameters the launch sets on it."""
         what = _package_executable(self.instance)
-        return (self.name, what) if what else (self.name,)
+        head = (self.name, what) if what else (self.name,)
+        return head + parameter_lines(self.instance)
 
 
 @dataclass(frozen=True)
@@ -109,7 +115,8 @@ def one_line(text: str) -> str:
 
 
 def node_summary(shape: NodeShape) -> str:
-    """Where a node comes from, for a comment or tooltip: launch chain, else its sources."""
+    """Where a node comes from, for a comment or tooltip: launch chain, else its sources;
+    and the files that set its parameters."""
     instance = shape.instance
     if instance is None:
         return "not in the graph's node list"
@@ -120,7 +127,21 @@ def node_summary(shape: NodeShape) -> str:
         parts.append("not launched")
     if instance.sources:
         parts.append("sources " + ", ".join(instance.sources))
+    files = sorted({setting.location.path for setting in instance.parameter_settings})
+    if files:
+        parts.append("parameters from " + ", ".join(files))
     return "; ".join(parts)
+
+
+def parameter_lines(instance: NodeInstance | None) -> tuple[str, ...]:
+    """``param NAME`` for each parameter the launch sets on the node, by name, at most
+    ``MAX_PARAMETERS``, then ``and K more parameters``."""
+    if instance is None:
+        return ()
+    names = sorted({setting.name for setting in instance.parameter_settings})
+    shown = tuple(f"param {name}" for name in names[:MAX_PARAMETERS])
+    more = len(names) - len(shown)
+    return shown + ((f"and {more} more parameter{'s' if more > 1 else ''}",) if more else ())
 
 
 def endpoint_summary(endpoint: Endpoint) -> str:

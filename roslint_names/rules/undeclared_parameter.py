@@ -21,6 +21,10 @@ class outside the workspace, code that is a program or component) and the name i
 declared nowhere in the node's code, by its client library, nor anywhere else in the
 workspace (a helper the linter does not follow may declare it). Code run by several nodes
 is reported only when every one of them is judged so.
+
+Its related locations are where each node is started and, where the launch sets the same
+name on the node (a ``<param>``, an inline dictionary, a parameter file's key), that
+place and where the file is handed over: a value given there is never read either.
 """
 
 from __future__ import annotations
@@ -30,7 +34,7 @@ from collections.abc import Iterator
 
 from ..model import ParameterAccess, Severity
 from ..rule import Rule, RuleContext, WorkspaceFinding
-from ..workspace.graph import Graph, Location, NodeInstance
+from ..workspace.graph import Graph, Location, NodeInstance, SettingSource
 from ..workspace.parameters import ParameterUse
 from .graph_common import finding, launch_site
 
@@ -72,7 +76,27 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
             for _, _, node in seen
             if (site := launch_site(node)) is not None
         ]
+        for _, _, node in seen:
+            related += _set_at(use.name, node)
         yield finding(location, _message(use, nodes, seen[0][2]), related)
+
+
+def _set_at(name: str, node: NodeInstance) -> list[tuple[Location, str]]:
+    """Where the launch sets ``name`` on the node: a value that is never read."""
+    found: list[tuple[Location, str]] = []
+    for setting in node.parameter_settings:
+        if setting.name != name:
+            continue
+        what = "the launch file" if setting.source is SettingSource.LAUNCH else "this file"
+        found.append(
+            (
+                setting.location,
+                f"{what} sets '{name}' on node '{node.name}' here; undeclared, it is never read",
+            )
+        )
+        if setting.site is not None:
+            found.append((setting.site, f"the file is handed to node '{node.name}' here"))
+    return found
 
 
 def _message(use: ParameterUse, nodes: list[str], node: NodeInstance) -> str:

@@ -21,6 +21,7 @@ from roslint_names.model import (
     Kind,
     Language,
     NameUse,
+    ParameterBlock,
     Role,
 )
 from roslint_names.names import NameResolutionError, resolve
@@ -34,11 +35,18 @@ from roslint_names.workspace.graph import (
     NodeInstance,
     NodeRemap,
     ParameterFileUse,
+    ParameterSetting,
     Reach,
 )
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
 from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Prepare, Specialise
 from roslint_names.workspace.parameter_files import ros1_names, ros2_names
+from roslint_names.workspace.parameter_settings import (
+    file_settings,
+    group_settings,
+    launch_settings,
+    ordered,
+)
 from roslint_names.workspace.parameters import ParameterSets
 
 _EDGES = {
@@ -107,18 +115,27 @@ def build(
         if built is not None:
             nodes.append(built[0])
             endpoints.extend(built[1])
-    loads = _group_loads(index, trees)
+    rooted_loads = _group_loads(index, trees)
+    loads = [use for _, use in rooted_loads]
     linked = {use.path for node in nodes for use in node.parameter_files}
     linked.update(use.path for use in loads)
+    blocks = {path: index.facts[path].parameter_blocks for path in sorted(linked)}
     parameters = ParameterSets(index, lambda path: path in unbuilt or _is_test(index, path))
-    nodes = [replace(node, code_parameters=parameters.of(node.sources)) for node in nodes]
+    nodes = [
+        replace(
+            node,
+            code_parameters=parameters.of(node.sources),
+            parameter_settings=_with_group_loads(node, rooted_loads, blocks),
+        )
+        for node in nodes
+    ]
     return Graph(
         tuple(sorted(set(nodes), key=NodeInstance.sort_key)),
         tuple(sorted(set(endpoints), key=Endpoint.sort_key)),
         index.companions(),
         _mentions(index, nodes),
         index.service_definitions(),
-        {path: index.facts[path].parameter_blocks for path in sorted(linked)},
+        blocks,
         tuple(sorted(set(loads))),
         frozenset(unnamed),
         parameter_declarations=parameters.declarations(),
@@ -176,8 +193,11 @@ def _launched_instance(
     ]
     names = _resolve_code(code, instance, remaps, launched.root, reach)
     composable = "::" in (launched.node.executable or "")  # a component's plugin class
-    files = _parameter_files(
+    files, file_set = _parameter_files(
         index, trees, launched, full_name, generation=generation, composable=composable
+    )
+    settings = launch_settings(
+        launched.node, launched.path, full_name, generation, launched.conditional
     )
     node = NodeInstance(
         name=full_name,
@@ -199,6 +219,7 @@ def _launched_instance(
         reach=reach,
         parameter_files=files,
         composable=composable,
+        parameter_settings=ordered([*settings, *file_set]),
     )
     return node, names.endpoints
 
@@ -220,13 +241,15 @@ def _parameter_files(
     *,
     generation: Generation,
     composable: bool,
-) -> tuple[ParameterFileUse, ...]:
-    """The parameter files the launch hands the node, with the names each sets on it.
+) -> tuple[tuple[ParameterFileUse, ...], list[ParameterSetting]]:
+    """The parameter files the launch hands the node, with the names each sets on it,
+    and each of those names with where its file writes it.
 
     ROS 1 loads a file inside ``<node>`` under the node's private namespace. A composable
     node the launch file names not gets only a file's ``/**`` entry from launch_ros
     (``workspace.parameters``)."""
     found: list[ParameterFileUse] = []
+    settings: list[ParameterSetting] = []
     for load in launched.node.parameter_files:
         path = _parameter_file(index, trees, launched.path, load.package, load.path)
         if path is None:
@@ -234,6 +257,7 @@ def _parameter_files(
         blocks = index.facts[path].parameter_blocks
         site = Location(launched.path, load.span)
         conditional = launched.conditional or load.conditional
+        matched = full_name if launched.node.name is not None or not composable else ""
         if generation is Generation.ROS1:
             namespace = (
                 load.namespace
@@ -241,17 +265,28 @@ def _parameter_files(
                 else f"{full_name}/{load.namespace}".rstrip("/")
             )
             names = ros1_names(blocks, namespace)
-            found.append(ParameterFileUse(path, site, namespace, names, conditional))
-            continue
-        matched = full_name if launched.node.name is not None or not composable else ""
-        names = ros2_names(blocks, matched, composable=composable)
-        found.append(ParameterFileUse(path, site, "", names, conditional))
-    return tuple(found)
+            use = ParameterFileUse(path, site, namespace, names, conditional)
+        else:
+            names = ros2_names(blocks, matched, composable=composable)
+            use = ParameterFileUse(path, site, "", names, conditional)
+        found.append(use)
+        settings.extend(
+            file_settings(
+                blocks,
+                use,
+                full_name,
+                generation=generation,
+                matched=matched,
+                composable=composable,
+            )
+        )
+    return tuple(found), settings
 
 
-def _group_loads(index: WorkspaceIndex, trees: LaunchTrees) -> list[ParameterFileUse]:
-    """ROS 1 ``<rosparam load>`` outside nodes, each with the names it sets."""
-    found: list[ParameterFileUse] = []
+def _group_loads(index: WorkspaceIndex, trees: LaunchTrees) -> list[tuple[str, ParameterFileUse]]:
+    """ROS 1 ``<rosparam load>`` outside nodes, each with the names it sets and the root
+    of the launch tree that loads it."""
+    found: list[tuple[str, ParameterFileUse]] = []
     for loaded in trees.loaded():
         load = loaded.load
         path = _parameter_file(index, trees, loaded.path, load.package, load.path)
@@ -259,8 +294,22 @@ def _group_loads(index: WorkspaceIndex, trees: LaunchTrees) -> list[ParameterFil
             continue
         names = ros1_names(index.facts[path].parameter_blocks, loaded.namespace)
         site = Location(loaded.path, load.span)
-        found.append(ParameterFileUse(path, site, loaded.namespace, names, loaded.conditional))
+        use = ParameterFileUse(path, site, loaded.namespace, names, loaded.conditional)
+        found.append((loaded.root, use))
     return found
+
+
+def _with_group_loads(
+    node: NodeInstance,
+    loads: Sequence[tuple[str, ParameterFileUse]],
+    blocks: dict[str, tuple[ParameterBlock, ...]],
+) -> tuple[ParameterSetting, ...]:
+    """The node's settings and, ROS 1, what its tree's group-level loads put in its
+    private namespace."""
+    if node.generation is not Generation.ROS1 or not node.root or not loads:
+        return node.parameter_settings
+    found = group_settings(node.name, node.root, loads, blocks)
+    return ordered([*node.parameter_settings, *found])
 
 
 def _unlaunched_programs(index: WorkspaceIndex, launched: set[str]) -> list[tuple[str, ...]]:

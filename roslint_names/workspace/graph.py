@@ -96,6 +96,32 @@ class ParameterFileUse:
     conditional: bool = False
 
 
+class SettingSource(str, Enum):
+    """How a launch sets a parameter on a node."""
+
+    LAUNCH = "launch"  # the node's <param>, its parameters={...}, -p or _name:= on its line
+    FILE = "file"  # a parameter file handed to the node or (ROS 1) loaded into its namespace
+
+
+@dataclass(frozen=True)
+class ParameterSetting:
+    """A parameter a launch sets on a node: its name as the node reads it (ROS 2: dotted;
+    ROS 1: relative to the node's private namespace when below it, else fully
+    qualified), where the name is written (the ``<param name>``, dictionary key or
+    command-line key; a parameter file's key), and for a file the node key it is under
+    (ROS 2) and where the launch hands the file over."""
+
+    name: str
+    location: Location
+    source: SettingSource
+    key: str | None = None
+    site: Location | None = None
+    conditional: bool = False
+
+    def sort_key(self) -> tuple[str, Location, str]:
+        return (self.name, self.location, self.source.value)
+
+
 @dataclass(frozen=True)
 class NodeInstance:
     """One node as it runs: launched by a launch tree, or code no launch file starts.
@@ -137,6 +163,8 @@ class NodeInstance:
     # The parameter files the launch hands it (ROS 1: loads into its private namespace).
     parameter_files: tuple[ParameterFileUse, ...] = ()
     composable: bool = False  # a component loaded into a container (launch_ros matches)
+    # Every parameter the launch sets on it, by name then place.
+    parameter_settings: tuple[ParameterSetting, ...] = ()
     test: bool = False  # a rostest ``<test>``: run alone, after the nodes are up
     reach: Reach = Reach(Generation.ROS2)
 

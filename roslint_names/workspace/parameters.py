@@ -15,6 +15,15 @@ dynamic_reconfigure, a base class the workspace does not hold, or code not (all)
 workspace. The causes are kept apart: a rule that judges reads of undeclared names asks
 only whether the *declarations* are all known (``declarations_complete``).
 
+A ROS 1 dynamic_reconfigure server reads every parameter of its config from its node
+handle's namespace, private by default (dynamic_reconfigure's ``server.h``,
+``Server::init`` and the generated ``__fromServer__``; ``server.py``, ``Server.__init__``);
+the config's names are its ``.cfg`` file's (``extract.build.reconfigure``, after
+``parameter_generator_catkin.py``'s ``ParameterGenerator.add`` and ``generate``). A node
+whose code serves ``pkg::NameConfig`` reads those names, written as its other reads are
+(relative to the handle), and is no longer incomplete for dynamic_reconfigure when every
+config its code serves is a ``.cfg`` of the workspace whose names are all known.
+
 Every ROS 2 node also holds what its client library declares for it: ``use_sim_time``
 (rclcpp's ``TimeSource::NodeState::attachNode`` in ``rclcpp/src/rclcpp/time_source.cpp``,
 rclpy's ``TimeSource.attach_node`` in ``rclpy/time_source.py``) and
@@ -42,6 +51,7 @@ from roslint_names.model import (
     NameUse,
     ParameterAccess,
     ParameterTrait,
+    ReconfigureConfig,
     Role,
 )
 from roslint_names.workspace.built import TRANSLATION_UNITS
@@ -131,6 +141,9 @@ class NodeParameters:
     # Constants of other packages the code declares parameters by, whose values the
     # workspace does not hold (``bond::msg::Constants::DISABLE_HEARTBEAT_TIMEOUT_PARAM``).
     declared_constants: tuple[str, ...] = ()
+    # The dynamic_reconfigure ``.cfg`` files whose parameters the code's servers read
+    # (their names are in ``read``).
+    reconfigure: tuple[str, ...] = ()
 
     @property
     def complete(self) -> bool:
@@ -198,7 +211,14 @@ class ParameterSets:
         self._classes: dict[str, list[str]] = {}  # class name -> files defining it
         self._by_name: dict[str, list[str]] = {}  # C++ file name -> its paths
         self._programs: set[str] = set()  # sources of every program and component
+        # ``NameConfig`` -> (package, path) of each .cfg generating it
+        self._configs: dict[str, list[tuple[str | None, str]]] = {}
         for path, facts in sorted(index.facts.items()):
+            if facts.reconfigure is not None and facts.reconfigure.name is not None:
+                package = facts.reconfigure.package or _package_name(index, path)
+                self._configs.setdefault(f"{facts.reconfigure.name}Config", []).append(
+                    (package, path)
+                )
             if facts.language not in CODE_LANGUAGES or self._excluded(path):
                 continue
             for name, _ in facts.class_bases:
@@ -247,6 +267,13 @@ class ParameterSets:
             causes.update(_TRAIT_CAUSES[trait] for trait in facts.parameter_traits)
             names.add(facts, causes)
             names.literals.update(facts.unexplained_literals)
+        configs: set[str] = set()
+        if Incomplete.DYNAMIC_RECONFIGURE in causes:
+            configs, known = self._served(own)
+            for path in configs:
+                names.read.update(name for name, _ in self._config_of(path).parameters)
+            if known:
+                causes.discard(Incomplete.DYNAMIC_RECONFIGURE)
         # The rest of the packages' code (a library the program links, a helper): its
         # declarations may be the node's too. Only declarations: what it reads, or leaves
         # open, is another node's business.
@@ -272,7 +299,45 @@ class ParameterSets:
             uses=uses,
             literals=tuple(sorted(names.literals)),
             declared_constants=tuple(sorted(names.constants)),
+            reconfigure=tuple(sorted(configs)),
         )
+
+    def _served(self, own: Iterable[str]) -> tuple[set[str], bool]:
+        """The ``.cfg`` files of the configs the code serves, and whether they are all
+        it serves, each known whole: every file that shows a server names its config,
+        and each config is one ``.cfg`` of the workspace with no name left open."""
+        found: set[str] = set()
+        known = True
+        for path in own:
+            facts = self._index.facts[path]
+            if ParameterTrait.DYNAMIC_RECONFIGURE not in facts.parameter_traits:
+                continue
+            known = known and bool(facts.reconfigure_servers)
+            for written in facts.reconfigure_servers:
+                config = self._config(written, path)
+                if config is None:
+                    known = False
+                    continue
+                found.add(config)
+                known = known and self._config_of(config).complete
+        return found, known and bool(found)
+
+    def _config(self, written: str, user: str) -> str | None:
+        """The ``.cfg`` generating the config ``written`` (``pkg::NameConfig``, or
+        ``NameConfig`` in the package's own namespace) that ``user`` serves."""
+        package, _, name = written.rpartition("::")
+        candidates = self._configs.get(name, [])
+        if package:
+            candidates = [entry for entry in candidates if entry[0] == package]
+        elif len(candidates) > 1:
+            own = _package_name(self._index, user)
+            candidates = [entry for entry in candidates if entry[0] == own]
+        return candidates[0][1] if len(candidates) == 1 else None
+
+    def _config_of(self, path: str) -> ReconfigureConfig:
+        config = self._index.facts[path].reconfigure
+        assert config is not None  # only paths of configs are kept
+        return config
 
     def _is_program(self, path: str) -> bool:
         return path in self._programs or _starts_runtime(self._index, path)
@@ -457,6 +522,11 @@ def _parameter_uses(facts: FileFacts) -> Iterable[NameUse]:
         for use in facts.names
         if use.kind is Kind.PARAMETER and use.role is Role.PARAMETER and use.access is not None
     )
+
+
+def _package_name(index: WorkspaceIndex, path: str) -> str | None:
+    package = index.package_of(path)
+    return None if package is None else package.name
 
 
 def _starts_runtime(index: WorkspaceIndex, path: str) -> bool:

@@ -19,7 +19,7 @@ from functools import partial
 from pathlib import Path
 
 from roslint_names.discover import classify
-from roslint_names.extract.build import cmake, setup_py
+from roslint_names.extract.build import cmake, reconfigure, setup_py
 from roslint_names.extract.cpp import extract as cpp
 from roslint_names.extract.launch import urdf
 from roslint_names.extract.launch import xml_launch as launch_xml
@@ -114,6 +114,14 @@ TARGETS: tuple[Target, ...] = (
         (Language.SETUP_CFG,),
         ("setup.cfg",),
         (b"[options.entry_points]\nconsole_scripts =\n    ",),
+    ),
+    # A dynamic_reconfigure .cfg: read with ``ast``, as Python 3 or the Python 2 it may be.
+    Target(
+        "reconfigure.extract",
+        reconfigure.extract,
+        (Language.RECONFIGURE,),
+        ("cfg/Planner.cfg",),
+        (b"gen = ParameterGenerator()\ngen.add(", b"ParameterGenerator\nprint `x`, 0777\n"),
     ),
 )
 

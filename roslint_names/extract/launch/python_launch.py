@@ -392,7 +392,8 @@ class LaunchExtractor(LaunchValues):
                 namespace="" if namespace is None else namespace,
                 span=self.locator.span(name_at.where() if name_at else _callee(action)),
                 remaps=tuple(scope.remaps + remaps),
-                parameters=tuple(parameters),
+                parameters=tuple(name for name, _ in parameters),
+                parameter_spans=tuple(span for _, span in parameters),
                 own_remaps=len(remaps),
                 anchored=anchored,
                 conditional=self.undecided_depth > 0,
@@ -466,11 +467,11 @@ class LaunchExtractor(LaunchValues):
 
     def parameters(
         self, action: ActionCall, scope: LaunchScope, path: str | None, label: str
-    ) -> list[str]:
-        """Names of ``parameters=[{...}]`` dictionaries (nested ones joined with '.');
-        parameter files and other substitutions are not read."""
+    ) -> list[tuple[str, Span]]:
+        """Names of ``parameters=[{...}]`` dictionaries (nested ones joined with '.'),
+        each with its key's span; parameter files and other substitutions are not read."""
         located = action.get(":parameters")
-        found: list[str] = []
+        found: list[tuple[str, Span]] = []
         for item in [] if located is None else self.items(located):
             dictionary = self.dictionary(item)
             if dictionary is not None:
@@ -513,8 +514,8 @@ class LaunchExtractor(LaunchValues):
         prefix: str | None,
         path: str | None,
         label: str,
-    ) -> list[str]:
-        found: list[str] = []
+    ) -> list[tuple[str, Span]]:
+        found: list[tuple[str, Span]] = []
         for key, value in self.pairs(dictionary):
             full = self.parameter_name(key, scope, prefix)
             nested = self.dictionary(value)
@@ -525,7 +526,7 @@ class LaunchExtractor(LaunchValues):
                 continue
             self.add(PARAMETER, f"{label}(parameters=)", key, full, path)
             if not full.dynamic:
-                found.append(full.text)
+                found.append((full.text, self.locator.span(key.where())))
                 if is_frame_parameter(full.text):
                     self.frame(value, scope, path, f"{label}(parameters=)")
         return found

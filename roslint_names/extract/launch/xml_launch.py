@@ -361,8 +361,9 @@ class LaunchWalker(ABC):
     @abstractmethod
     def node_contents(
         self, entity: Entity, scope: Scope, namespace: str | None, path: str | None
-    ) -> tuple[list[Remap], list[str]]:
-        """Emit the node's own remaps and parameters; return the static ones."""
+    ) -> tuple[list[Remap], list[tuple[str, Span]]]:
+        """Emit the node's own remaps and parameters; return the static ones (each
+        parameter with where its name is written)."""
 
     def node(self, entity: Entity, scope: Scope, spec: NodeSpec) -> None:
         """A node: its names, then one ``LaunchNode`` with its scope."""
@@ -397,7 +398,8 @@ class LaunchWalker(ABC):
                 namespace="" if namespace is None else namespace,
                 span=entity.span() if name_attribute is None else name_attribute.span,
                 remaps=tuple(scope.remaps + own_remaps),
-                parameters=tuple(child_parameters + line_parameters),
+                parameters=tuple(name for name, _ in child_parameters + line_parameters),
+                parameter_spans=tuple(span for _, span in child_parameters + line_parameters),
                 own_remaps=len(own_remaps),
                 anchored=inner.anchored,
                 conditional=scope.conditional or self.undecided(entity, scope),
@@ -487,10 +489,10 @@ class LaunchWalker(ABC):
 
     def command_line_names(
         self, arguments: Sequence[CommandLineName], namespace: str | None, path: str | None
-    ) -> tuple[list[Remap], list[str]]:
+    ) -> tuple[list[Remap], list[tuple[str, Span]]]:
         """Emit the names a node's command line sets; the static remaps and parameters."""
         remaps: list[Remap] = []
-        parameters: list[str] = []
+        parameters: list[tuple[str, Span]] = []
         for argument in arguments:
             api, key, value = argument.api, argument.key, argument.value
             if argument.meaning is Meaning.NODE:
@@ -504,11 +506,12 @@ class LaunchWalker(ABC):
                 remaps.extend([remap] if remap else [])
             elif argument.meaning is Meaning.PARAMETER:
                 self.emit(PARAMETER, api, argument.key_at, key, path)
-                parameters.extend([] if key.dynamic else [key.text])
+                parameters.extend([] if key.dynamic else [(key.text, argument.key_at.span)])
                 if not key.dynamic and is_frame_parameter(key.text):
                     self.emit(FRAME, api, argument.value_at, value, path)
             elif argument.meaning is Meaning.PRIVATE_PARAMETER and not key.dynamic:
-                parameters.append(key.text[1:])  # ROS 1 _rate:=10 sets ~rate
+                # ROS 1 _rate:=10 sets ~rate
+                parameters.append((key.text[1:], argument.key_at.span))
         return remaps, parameters
 
     def substitute_assignments(
@@ -630,22 +633,27 @@ class Ros1Launch(LaunchWalker):
         value = self.bindings.lookup(ARG, name)
         return None if value is None or value.dynamic else value.text
 
-    def param(self, entity: Entity, scope: Scope, namespace: str | None) -> str | None:
+    def param(self, entity: Entity, scope: Scope, namespace: str | None) -> tuple[str, Span] | None:
         """``<param name value>``: the name, and the value when the name is frame-like."""
         name = self.attribute(entity, "name", scope, PARAMETER, namespace)
-        if name is None:
+        written = entity.get("name")
+        if name is None or written is None:
             return None
         self.frame_value(entity, scope, name, namespace)
-        return None if name.dynamic else name.text
+        return None if name.dynamic else (name.text, written.span)
 
-    def rosparam(self, entity: Entity, scope: Scope, namespace: str | None) -> str | None:
+    def rosparam(
+        self, entity: Entity, scope: Scope, namespace: str | None
+    ) -> tuple[str, Span] | None:
         """``<rosparam ns param>``: the parameter lives in ``ns`` below the enclosing one."""
         ns = self.attribute(entity, "ns", scope, NAMESPACE, namespace)
         inner = namespace if ns is None else join_namespace(namespace, ns)
         param = self.attribute(entity, "param", scope, PARAMETER, inner)
-        if param is None or param.dynamic or (ns is not None and ns.dynamic):
+        written = entity.get("param")
+        if param is None or written is None or param.dynamic or (ns is not None and ns.dynamic):
             return None
-        return param.text if ns is None or not ns.text else f"{ns.text.rstrip('/')}/{param.text}"
+        name = param.text if ns is None or not ns.text else f"{ns.text.rstrip('/')}/{param.text}"
+        return name, written.span
 
     def loaded_namespace(self, entity: Entity, scope: Scope) -> str | None:
         """Where ``<rosparam command="load" file>`` puts the file's names, relative to
@@ -704,12 +712,12 @@ class Ros1Launch(LaunchWalker):
 
     def node_contents(
         self, entity: Entity, scope: Scope, namespace: str | None, path: str | None
-    ) -> tuple[list[Remap], list[str]]:
+    ) -> tuple[list[Remap], list[tuple[str, Span]]]:
         remaps: list[Remap] = []
-        parameters: list[str] = []
+        parameters: list[tuple[str, Span]] = []
         for child in entity.children():
             here = self.branch(child, scope)
-            found: Remap | str | None = None
+            found: Remap | tuple[str, Span] | None = None
             if child.kind == "remap":
                 found = self.remap(child, here, namespace)
             elif child.kind == "param":
@@ -875,12 +883,12 @@ class Ros2Launch(LaunchWalker):
         scope: Scope,
         prefix: str | None,
         owner: str | None,
-    ) -> list[str]:
+    ) -> list[tuple[str, Span]]:
         """Emit ``<param>`` names, nested ones joined with '.'; ``from=`` files skipped.
 
         ``prefix`` is the enclosing parameter's name ("" at the top, None when dynamic).
         """
-        found: list[str] = []
+        found: list[tuple[str, Span]] = []
         for entity in entities:
             if entity.get("from") is not None:
                 loaded = self.parameter_file(entity, "from", self.branch(entity, scope))
@@ -900,7 +908,7 @@ class Ros2Launch(LaunchWalker):
                 continue
             self.emit(PARAMETER, entity.api("name"), located, full, owner)
             self.frame_value(entity, scope, full, owner)
-            found.extend([] if full.dynamic else [full.text])
+            found.extend([] if full.dynamic else [(full.text, located.span)])
         return found
 
     def command_line(self, entity: Entity, scope: Scope) -> list[CommandLineName]:
@@ -914,7 +922,7 @@ class Ros2Launch(LaunchWalker):
 
     def node_contents(
         self, entity: Entity, scope: Scope, namespace: str | None, path: str | None
-    ) -> tuple[list[Remap], list[str]]:
+    ) -> tuple[list[Remap], list[tuple[str, Span]]]:
         remaps: list[Remap] = []
         for child in entity.nested("remap"):
             here = self.branch(child, scope)

@@ -15,7 +15,11 @@ from roslint_names.extract.launch.python_launch import LaunchExtractor
 from roslint_names.extract.launch.python_values import LaunchCalls
 from roslint_names.extract.launch.substitution import Source
 from roslint_names.extract.literals import name_literals, unexplained_literals
-from roslint_names.extract.parameter_traits import parameter_traits, python_class_bases
+from roslint_names.extract.parameter_traits import (
+    parameter_traits,
+    python_class_bases,
+    reconfigure_servers,
+)
 from roslint_names.extract.python.code import CodeExtractor
 from roslint_names.extract.python.python2 import Rewritten, rewrite
 from roslint_names.extract.python.source import decode, parse
@@ -96,6 +100,9 @@ def extract_parsed(
         includes=tuple(launch.includes),
         literals=() if language is Language.LAUNCH_PYTHON else name_literals(text),
         parameter_traits=() if language is Language.LAUNCH_PYTHON else _traits(text),
+        reconfigure_servers=()
+        if language is Language.LAUNCH_PYTHON
+        else reconfigure_servers(text.encode("utf-8", "surrogatepass"), python=True),
         class_bases=() if language is Language.LAUNCH_PYTHON else _bases(text),
         unexplained_literals=()
         if language is Language.LAUNCH_PYTHON
