@@ -39,8 +39,9 @@ def name_literal_spans(text: str) -> Iterator[tuple[int, int]]:
         yield found.span(1)
 
 
-# A parameter-shaped word: tokens joined by '.' or '/' (``FollowPath.max_vel_x``).
-_WORD = re.compile(rb"[A-Za-z_][A-Za-z0-9_]{0,63}(?:[./][A-Za-z0-9_]{1,64}){0,8}")
+# A parameter-shaped word: tokens joined by '.' or '/' (``FollowPath.max_vel_x``), in
+# ROS 1 perhaps private or absolute (``~hzerror``, ``/use_sim_time``).
+_WORD = re.compile(rb"(?:~/?|/)?[A-Za-z_][A-Za-z0-9_]{0,63}(?:[./][A-Za-z0-9_]{1,64}){0,8}")
 _LONGEST = 200  # longer strings are messages, not names: not even matched
 # String literals and comments, in order, so that a quote in a comment (``// "rate" is
 # ...``) is no string: the group holds a string's text, and is empty for the rest. C++ (a

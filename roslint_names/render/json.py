@@ -68,7 +68,8 @@ Fields:
     those are all the names the code may declare or read; ``incomplete`` (array of
     strings) why not: ``no-code``, ``library`` (code no program or component is known to
     run), ``run-time-declaration``, ``run-time-read``, ``allow-undeclared``,
-    ``from-overrides``, ``plugins``, ``generated``, ``dynamic-reconfigure``, ``base-class``.
+    ``from-overrides``, ``plugins``, ``generated``, ``dynamic-reconfigure``, ``base-class``,
+    ``search`` (ROS 1 ``searchParam``).
 ``topics``, ``services``, ``actions`` (arrays)
     One object per resolved name, by ``name``:
     ``name`` (string) the fully qualified name;

@@ -11,9 +11,10 @@ declarations, and causes of doubt, so it can only make a node's set more cautiou
 The set is incomplete, for one or more ``Incomplete`` causes, when names may be declared,
 read or accepted that no code of the workspace spells: names built at run time, undeclared
 parameters allowed, declarations from overrides, plugins, generated parameter code,
-dynamic_reconfigure, a base class the workspace does not hold, or code not (all) in the
-workspace. The causes are kept apart: a rule that judges reads of undeclared names asks
-only whether the *declarations* are all known (``declarations_complete``).
+dynamic_reconfigure, a base class the workspace does not hold, a ROS 1 search up the
+namespaces (``searchParam``), or code not (all) in the workspace. The causes are kept
+apart: a rule that judges reads of undeclared names asks only whether the *declarations*
+are all known (``declarations_complete``).
 
 A ROS 1 dynamic_reconfigure server reads every parameter of its config from its node
 handle's namespace, private by default (dynamic_reconfigure's ``server.h``,
@@ -83,6 +84,7 @@ class Incomplete(str, Enum):
     GENERATED = "generated"  # generate_parameter_library declares them
     DYNAMIC_RECONFIGURE = "dynamic-reconfigure"  # a .cfg file's parameters (ROS 1)
     BASE_CLASS = "base-class"  # derives from a class the workspace does not hold
+    SEARCH = "search"  # ROS 1 searchParam: reads a name found up the namespaces
 
 
 _TRAIT_CAUSES = {
@@ -184,13 +186,22 @@ def declared_by(name: str, names: Iterable[str], suffixes: Iterable[str]) -> boo
 @dataclass(frozen=True)
 class WorkspaceDeclarations:
     """Every parameter the workspace's ROS 2 code declares, statically or by its end: a
-    name declared nowhere in the workspace cannot have been declared by a helper of it."""
+    name declared nowhere in the workspace cannot have been declared by a helper of it.
+
+    ``mentioned``: what else the workspace's code may take a parameter by, on a node it
+    is handed: the static names its ROS 1 code reads, and the parameter-shaped strings of
+    any code that no API the linter knows takes (``FileFacts.unexplained_literals``); of
+    ROS 1 code without their ``~`` and slashes."""
 
     names: frozenset[str] = frozenset()
     suffixes: frozenset[str] = frozenset()
+    mentioned: frozenset[str] = frozenset()
 
     def declares(self, name: str) -> bool:
         return declared_by(name, self.names, self.suffixes)
+
+    def mentions(self, name: str) -> bool:
+        return self.declares(name) or name in self.mentioned
 
 
 class ParameterSets:
@@ -232,8 +243,23 @@ class ParameterSets:
     def declarations(self) -> WorkspaceDeclarations:
         names: set[str] = set()
         suffixes: set[str] = set()
+        mentioned: set[str] = set()
         for facts in self._index.facts.values():
-            if facts.language not in CODE_LANGUAGES or facts.generation is not Generation.ROS2:
+            if facts.language not in CODE_LANGUAGES:
+                continue
+            mentioned.update(facts.unexplained_literals)
+            if facts.generation is not Generation.ROS2:
+                mentioned.update(
+                    _bare(name)
+                    for name in (
+                        *facts.unexplained_literals,
+                        *(
+                            use.value
+                            for use in _parameter_uses(facts)
+                            if use.access in READS and not use.dynamic
+                        ),
+                    )
+                )
                 continue
             for use in _parameter_uses(facts):
                 if use.access is not ParameterAccess.DECLARE:
@@ -242,7 +268,7 @@ class ParameterSets:
                     names.add(use.value)
                 elif use.suffix:
                     suffixes.add(use.suffix)
-        return WorkspaceDeclarations(frozenset(names), frozenset(suffixes))
+        return WorkspaceDeclarations(frozenset(names), frozenset(suffixes), frozenset(mentioned))
 
     def of(self, sources: Sequence[str]) -> NodeParameters:
         key = tuple(sources)
@@ -471,6 +497,8 @@ class _Names:
     def add(self, facts: FileFacts, causes: set[Incomplete]) -> None:
         for use in _parameter_uses(facts):
             access = use.access
+            if use.api in _SEARCHES:
+                causes.add(Incomplete.SEARCH)
             if access is ParameterAccess.READ_PREFIX:
                 if use.dynamic:
                     causes.add(Incomplete.RUN_TIME_READ)
@@ -495,6 +523,16 @@ class _Names:
                 self.constants.add(use.symbol or "")
             else:
                 causes.add(cause)
+
+
+# ROS 1 searches: the name found (in the node's namespace or any above it) is read next,
+# by whatever key the search returns.
+_SEARCHES = frozenset({"ros::NodeHandle::searchParam", "ros::param::search", "rospy.search_param"})
+
+
+def _bare(name: str) -> str:
+    """A ROS 1 name without its private '~' and its slashes at either end."""
+    return name.lstrip("~").strip("/")
 
 
 def _constant(symbol: str | None) -> bool:
