@@ -37,6 +37,7 @@ from ..rule import Rule, RuleContext, WorkspaceFinding
 from ..workspace.graph import Graph, Location, NodeInstance, SettingSource
 from ..workspace.parameters import ParameterUse
 from .graph_common import finding, launch_site
+from .spelling import folded, one_edit
 
 _JUDGED = frozenset({ParameterAccess.READ, ParameterAccess.READ_QUIETLY})
 _MAX_NODES = 3
@@ -134,29 +135,11 @@ def _near(name: str, node: NodeInstance) -> str | None:
     parameters = node.code_parameters
     if parameters is None:
         return None
-    folded = _folded(name)
+    written = folded(name)
     for declared in parameters.declared:
-        if _folded(declared) == folded or _one_edit(declared, name):
+        if folded(declared) == written or one_edit(declared, name):
             return declared
     return None
-
-
-def _folded(name: str) -> str:
-    return name.lower().replace("_", "")
-
-
-def _one_edit(one: str, other: str) -> bool:
-    """One character inserted, removed or replaced."""
-    if abs(len(one) - len(other)) > 1 or one == other:
-        return False
-    if len(one) > len(other):
-        one, other = other, one
-    start = 0
-    while start < len(one) and one[start] == other[start]:
-        start += 1
-    if len(one) == len(other):
-        return one[start + 1 :] == other[start + 1 :]
-    return one[start:] == other[start + 1 :]
 
 
 RULE = Rule(
