@@ -27,7 +27,7 @@ def generate_launch_description():
                 package="fleet_bringup",
                 executable="battery_reporter",
                 name="batteryReporter",
-                parameters=[{"low_threshold": 0.15}],
+                parameters=[{"low_treshold": 0.15}],
             ),
         ]),
     ])
