@@ -78,6 +78,11 @@ GROUPS = {
     Language.CMAKE: "build",
     Language.SETUP_PY: "build",
     Language.SETUP_CFG: "build",
+    # dynamic_reconfigure configs: read with `ast`, as setup.py is.
+    Language.RECONFIGURE: "build",
+    # YAML that is no launch file: parameter files, composed with PyYAML (libyaml's loader
+    # where PyYAML has it, as the extractor does).
+    Language.PARAMETERS: "parameters",
 }
 PARSERS = ("tree_sitter", "tree_sitter_cpp", "libcst", "lxml", "yaml")
 NEEDED = {
@@ -308,6 +313,9 @@ def parse_floor(files: list[list[str]]) -> dict[str, Any]:
                 libcst.parse_module(data.decode("utf-8", errors="replace"))
             elif language is Language.LAUNCH_YAML:
                 yaml.compose(data.decode("utf-8", errors="replace"), Loader=yaml.SafeLoader)
+            elif language is Language.PARAMETERS:
+                loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+                yaml.compose(data.decode("utf-8", errors="replace"), Loader=loader)
             elif GROUPS[language] == "build":
                 pass  # read, not parsed: no parser of the floor reads build files
             else:
@@ -351,6 +359,10 @@ def _past_prefilter(data: bytes, language: Language) -> bool:
         return cpp.has_ros_marker(text)
     if language is Language.PYTHON:
         return python.may_hold_names(data)
+    if language is Language.PARAMETERS:
+        # A ROS 2 parameter file by its content; a ROS 1 package's YAML is composed too,
+        # but which package a file is in is not known here: left out, the floor stays low.
+        return b"ros__parameters" in data
     return GROUPS[language] != "build"
 
 

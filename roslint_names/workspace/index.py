@@ -53,6 +53,7 @@ class WorkspaceIndex:
         }
         self._package_by_directory = {p.directory: p for p in packages}
         self._package_of: dict[str, Package | None] = {}
+        self._package_of_path: dict[str, Package | None] = {}
         self._files_by_package: dict[str, list[str]] = {}
         for path in sorted(self.facts):
             owner = self.package_of(path)
@@ -65,7 +66,13 @@ class WorkspaceIndex:
     # -- packages -----------------------------------------------------------------------
 
     def package_of(self, path: str) -> Package | None:
-        return self._package_of_directory(parent(path))
+        # Memoised by path too: the graph asks about the same files hundreds of thousands
+        # of times (a node's code, followed through its includes).
+        try:
+            return self._package_of_path[path]
+        except KeyError:
+            package = self._package_of_path[path] = self._package_of_directory(parent(path))
+            return package
 
     def _package_of_directory(self, directory: str) -> Package | None:
         # Memoised: every file of the workspace is asked about, several times each.

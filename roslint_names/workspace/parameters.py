@@ -218,6 +218,8 @@ class ParameterSets:
         self._excluded = cache(excluded)
         self._memo: dict[tuple[str, ...], NodeParameters] = {}
         self._included_memo: dict[tuple[str, str], list[str]] = {}
+        self._implementations_memo: dict[str, list[str]] = {}
+        self._reached_memo: dict[str, list[str]] = {}
         self._package_memo: dict[str, tuple[set[str], set[str]]] = {}
         self._classes: dict[str, list[str]] = {}  # class name -> files defining it
         self._by_name: dict[str, list[str]] = {}  # C++ file name -> its paths
@@ -396,11 +398,8 @@ class ParameterSets:
             path, classes = pending.pop()
             facts = index.facts[path]
             nested = None if classes is None else set[str]()
-            for include in facts.cpp_includes:
-                for header in self._included(include, path):
-                    add(header, nested)
-                    for implementation in self._implementations(header):
-                        add(implementation, nested)
+            for found in self._reached(path):
+                add(found, nested)
             for name, bases in facts.class_bases:
                 if classes is not None and name not in classes:
                     continue
@@ -413,6 +412,19 @@ class ParameterSets:
                     for found in defined:
                         add(found, {base_name})
         return list(files), unknown
+
+    def _reached(self, path: str) -> list[str]:
+        """The headers ``path`` includes of its package, each followed by the files that
+        implement it; once per file, however many nodes' code holds it."""
+        found = self._reached_memo.get(path)
+        if found is None:
+            found = self._reached_memo[path] = [
+                reached
+                for include in self._index.facts[path].cpp_includes
+                for header in self._included(include, path)
+                for reached in (header, *self._implementations(header))
+            ]
+        return found
 
     def _included(self, include: str, includer: str) -> list[str]:
         """The files of the includer's package an ``#include`` may mean: ``include``
@@ -441,14 +453,17 @@ class ParameterSets:
         (``controller_server.hpp`` -> ``controller_server.cpp``)."""
         if header.lower().endswith(TRANSLATION_UNITS):
             return []  # an included source is its own implementation
-        package = self._index.package_of(header)
-        stem = posixpath.basename(header).rpartition(".")[0]
-        return [
-            path
-            for extension in TRANSLATION_UNITS
-            for path in self._by_name.get(stem + extension, [])
-            if self._index.package_of(path) == package
-        ]
+        found = self._implementations_memo.get(header)
+        if found is None:
+            package = self._index.package_of(header)
+            stem = posixpath.basename(header).rpartition(".")[0]
+            found = self._implementations_memo[header] = [
+                path
+                for extension in TRANSLATION_UNITS
+                for path in self._by_name.get(stem + extension, [])
+                if self._index.package_of(path) == package
+            ]
+        return found
 
     def _package_declarations(self, package: str) -> tuple[set[str], set[str]]:
         """The names (and ends of names) the package's code declares, tests aside."""
