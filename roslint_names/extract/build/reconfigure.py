@@ -39,6 +39,7 @@ import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from roslint_names.extract.build.ast_strings import folded_string
 from roslint_names.extract.build.setup_source import decode, parse
 from roslint_names.extract.launch.substitution import Source
 from roslint_names.extract.python.python2 import rewrite
@@ -226,14 +227,7 @@ class _Config(ast.NodeVisitor):
         return self.makes_generator(node)
 
     def string(self, node: ast.expr) -> str | None:
-        if isinstance(node, ast.Constant):
-            return node.value if isinstance(node.value, str) else None
-        if isinstance(node, ast.Name):
-            return self.strings.get(node.id)
-        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add):
-            left, right = self.string(node.left), self.string(node.right)
-            return left + right if left is not None and right is not None else None
-        return None
+        return folded_string(node, self.strings)
 
 
 def _argument(call: ast.Call, position: int, keyword: str) -> ast.expr | None:

@@ -20,6 +20,7 @@ import ast
 import re
 from collections.abc import Iterator
 
+from roslint_names.extract.build.ast_strings import folded_string
 from roslint_names.extract.build.setup_cfg import console_scripts, ini_console_scripts, program
 from roslint_names.extract.build.setup_source import decode, parse
 from roslint_names.model import (
@@ -82,13 +83,9 @@ class _Module:
 
     def string(self, node: ast.expr) -> str | None:
         """The string ``node`` evaluates to, when it is built from known strings."""
-        if isinstance(node, ast.Constant):
-            return node.value if isinstance(node.value, str) else None
-        if isinstance(node, ast.Name):
-            return self.strings.get(node.id)
-        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add):
-            left, right = self.string(node.left), self.string(node.right)
-            return left + right if left is not None and right is not None else None
+        return folded_string(node, self.strings, self._joined)
+
+    def _joined(self, node: ast.expr) -> str | None:
         if isinstance(node, ast.JoinedStr):
             parts = [self._formatted(value) for value in node.values]
             return None if None in parts else "".join(part for part in parts if part)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import ast
 import warnings
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from typing import cast
 
 import libcst as cst
@@ -121,18 +121,7 @@ class Folder:
             end = self.static(expr.right, scope, depth + 1)
             return end or self.suffix(expr.right, scope, depth + 1)
         if isinstance(expr, cst.FormattedString):
-            parts: list[str] = []
-            for part in reversed(expr.parts):
-                text = None
-                if isinstance(part, cst.FormattedStringText):
-                    text = _fstring_text(expr, part.value)
-                elif isinstance(part, cst.FormattedStringExpression) and not (
-                    part.format_spec or part.equal or part.conversion not in (None, "s")
-                ):
-                    text = self.static(part.expression, scope, depth + 1)
-                if text is None:
-                    break
-                parts.append(text)
+            parts = self._known_parts(expr, reversed(expr.parts), scope, depth)
             return "".join(reversed(parts)) or None
         if isinstance(expr, cst.Name):
             bindings = scope.lookup(expr.value)
@@ -143,8 +132,19 @@ class Folder:
         return None
 
     def _formatted_prefix(self, expr: cst.FormattedString, scope: Scope, depth: int) -> str:
-        parts: list[str] = []
-        for part in expr.parts:
+        return "".join(self._known_parts(expr, expr.parts, scope, depth))
+
+    def _known_parts(
+        self,
+        expr: cst.FormattedString,
+        parts: Iterable[cst.BaseFormattedStringContent],
+        scope: Scope,
+        depth: int,
+    ) -> list[str]:
+        """The texts of an f-string's ``parts``, in their order, up to the first the
+        folder cannot know (a format spec, a conversion, a dynamic value)."""
+        known: list[str] = []
+        for part in parts:
             text = None
             if isinstance(part, cst.FormattedStringText):
                 text = _fstring_text(expr, part.value)
@@ -154,8 +154,8 @@ class Folder:
                 text = self.static(part.expression, scope, depth + 1)
             if text is None:
                 break
-            parts.append(text)
-        return "".join(parts)
+            known.append(text)
+        return known
 
     def _agreed(self, bindings: Sequence[Binding], depth: int) -> str | None:
         """The value every binding gives, when they all give the same static one."""
