@@ -107,6 +107,27 @@ def write(root: Path, relative: str, text: str) -> Path:
     return path
 
 
+def ament_package(root: Path, name: str, cmake: str | None = None) -> Path:
+    """``src/<name>``: an ament package, with ``cmake`` as its CMakeLists.txt if given."""
+    directory = root / "src" / name
+    write(directory, "package.xml", AMENT_PACKAGE.format(name=name))
+    if cmake is not None:
+        write(directory, "CMakeLists.txt", cmake)
+    return directory
+
+
+def findings_of(run_cli: Any, root: Path, code: str) -> list[dict[str, Any]]:
+    """The JSON findings of one rule over the workspace at ``root``."""
+    result = run_cli(["check", "--format", "json", "--select", code, "."], root)
+    assert result.exit_code in (0, 1), result.stderr
+    found: list[dict[str, Any]] = result.findings()
+    return found
+
+
+def line_places(found: list[dict[str, Any]]) -> list[tuple[str, int]]:
+    return sorted((f["path"], f["line"]) for f in found)
+
+
 def write_package(root: Path, ros: int, name: str = "robot_bringup") -> Path:
     template = CATKIN_PACKAGE if ros == 1 else AMENT_PACKAGE
     return write(root, "package.xml", template.format(name=name))

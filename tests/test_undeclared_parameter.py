@@ -12,26 +12,17 @@ import json
 from pathlib import Path
 from typing import Any
 
-from conftest import AMENT_PACKAGE, write
+from conftest import ament_package, findings_of, line_places, write
 
 
 def findings(run_cli: Any, root: Path) -> list[dict[str, Any]]:
-    result = run_cli(["check", "--format", "json", "--select", "RN407", "."], root)
-    assert result.exit_code in (0, 1), result.stderr
-    found: list[dict[str, Any]] = result.findings()
-    return found
+    return findings_of(run_cli, root, "RN407")
 
 
-def places(found: list[dict[str, Any]]) -> list[tuple[str, int]]:
-    return sorted((f["path"], f["line"]) for f in found)
+places = line_places
 
 
-def package(root: Path, name: str, cmake: str | None = None) -> Path:
-    directory = root / "src" / name
-    write(directory, "package.xml", AMENT_PACKAGE.format(name=name))
-    if cmake is not None:
-        write(directory, "CMakeLists.txt", cmake)
-    return directory
+package = ament_package
 
 
 DRIVER_CMAKE = """\
