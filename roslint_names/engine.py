@@ -607,6 +607,7 @@ def report_graph(
                 item.finding.message,
                 item.finding.related,
                 answer=item.finding.answer,
+                decision=item.finding.decision,
             )
             for rule, item in items
             if rule.code not in ignored and not (judging.spared(rule.code) and judging.is_test())

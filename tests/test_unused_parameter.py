@@ -580,3 +580,19 @@ def test_ros1_reads_a_test_expects_to_fail_still_count(run_cli: Any, tmp_path: P
     misspelled = RATE_TEST.replace('name="tolerance"', 'name="tolerence"')
     write(directory, "test/chatter_rate.test", misspelled)
     assert places(findings(run_cli, tmp_path)) == [("src/rate_check/test/chatter_rate.test", 6)]
+
+
+def test_one_stale_setting_copied_into_several_launch_files_is_one_finding(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """autoware's map_projection_loader tests: four launch files set the same parameter
+    the node no longer declares. One decision (drop it), reported once with the copies
+    related."""
+    directory = path_controller(tmp_path, extra=", 'controller_frequncy': 10.0")
+    launch = CONTROLLER_LAUNCH.format(extra=", 'controller_frequncy': 10.0")
+    write(directory, "launch/controller_sim.launch.py", launch)
+    (found,) = findings(run_cli, tmp_path)
+    assert (found["path"], found["line"]) == ("src/path_controller/launch/controller.launch.py", 17)
+    assert found["message"].endswith("(also written at 1 other place)")
+    copies = [r for r in found["related"] if r["path"].endswith("controller_sim.launch.py")]
+    assert any(r["line"] == 17 for r in copies)

@@ -42,8 +42,9 @@ from __future__ import annotations
 
 from collections import defaultdict
 from collections.abc import Iterator
+from dataclasses import replace
 
-from ..model import Generation, Severity, Span
+from ..model import Decision, Generation, Kind, Severity, Span
 from ..rule import Rule, RuleContext, WorkspaceFinding
 from ..workspace.graph import Graph, Location, NodeInstance, ParameterSetting, SettingSource
 from ..workspace.parameters import NodeParameters, WorkspaceDeclarations
@@ -165,7 +166,17 @@ def _finding(
         if site is not None:
             related.append((site, f"node '{node.name}' is started here"))
         related.extend(_code(node, suggestion))
-    return finding(location, message, related)
+    # One stale setting copied into several launch files (autoware's four
+    # map_projection_loader tests all set ``use_local_projector``) is one decision:
+    # reported once, the copies related (``decisions``).
+    decision = Decision(
+        kind=Kind.PARAMETER,
+        name=setting.name,
+        generation=first.generation,
+        scope=" ".join(nodes),
+    )
+    found = finding(location, message, related)
+    return replace(found, finding=replace(found.finding, decision=decision))
 
 
 def _how(setting: ParameterSetting) -> str:
