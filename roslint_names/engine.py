@@ -356,40 +356,40 @@ class _FileChecks:
         """No finding in a file that its package's tests load expecting it to be refused
         (``extract.python.fixtures``): its mistakes are the test's point. ``displays``:
         the reported files' display paths."""
-        if not self._rejected:
-            return
-        for index, found in enumerate(self.per_file):
-            package = self.package_of(index) if found else None
-            name = displays[index].rpartition("/")[2]
-            if package is not None and name in self._rejected.get(package, ()):
-                self.per_file[index] = []
+        if self._rejected:
+            self._spare(displays, lambda _: True, self._is_rejected)
 
     def spare_unbuilt(self, displays: Sequence[str]) -> list[str]:
         """No finding of a rule about names in a C++ source that no build file of its
         package compiles (``workspace.built``): it never runs. The linter's own (RN0xx:
         a parse error, a suppression) stay. The files judged so, for ``--verbose``."""
-        spared: list[str] = []
-        for index, found in enumerate(self.per_file):
-            if not any(not is_linter_code(d.code) for d in found):
-                continue
-            if self._built.unbuilt(displays[index], self.package_of(index)):
-                self.per_file[index] = [d for d in found if is_linter_code(d.code)]
-                spared.append(displays[index])
-        return spared
+        return self._spare(displays, lambda d: not is_linter_code(d.code), self._built.unbuilt)
 
     def spare_rostest_named(self, displays: Sequence[str]) -> list[str]:
         """No finding about the node name a C++ source hands ``ros::init`` where only
         rostest starts what it is built into (``workspace.built``): roslaunch names the
         node (``rostest_replaces``). The files judged so, for ``--verbose``."""
-        spared: list[str] = []
+        return self._spare(displays, rostest_replaces, self._built.started_by_rostest)
+
+    def _spare(
+        self,
+        displays: Sequence[str],
+        spared: Callable[[Diagnostic], bool],
+        applies: Callable[[str, str | None], bool],
+    ) -> list[str]:
+        """Drop the ``spared`` findings of each file the workspace says they do not hold
+        for (``applies``, asked only of a file holding some); the files it did that to."""
+        changed: list[str] = []
         for index, found in enumerate(self.per_file):
-            kept = [diagnostic for diagnostic in found if not rostest_replaces(diagnostic)]
-            if len(kept) == len(found):
-                continue
-            if self._built.started_by_rostest(displays[index], self.package_of(index)):
+            kept = [diagnostic for diagnostic in found if not spared(diagnostic)]
+            if len(kept) != len(found) and applies(displays[index], self.package_of(index)):
                 self.per_file[index] = kept
-                spared.append(displays[index])
-        return spared
+                changed.append(displays[index])
+        return changed
+
+    def _is_rejected(self, display: str, package: str | None) -> bool:
+        name = display.rpartition("/")[2]
+        return package is not None and name in self._rejected.get(package, ())
 
     def finish(self) -> None:
         """Check the files that waited for the run's service types, wiring and constants."""
