@@ -47,7 +47,7 @@ from .run_inputs import RunInputs
 from .suppress import Suppression, find_suppressions, is_our_code
 from .symbols import PackageConstants, uses_constants
 from .templates import holds_placeholder, is_template
-from .test_code import is_test_code
+from .test_code import is_example_code, is_test_code
 from .types import parse_type
 from .wiring import WIRING_SOURCES, awaits_wiring, wired_by
 from .workers import Dispatcher
@@ -716,7 +716,9 @@ class _TestCodeFilter:
     def is_test(self) -> bool:
         if self._test is None:
             relative = _relative_to_root(self._facts.path, self._settings)
-            self._test = is_test_code(relative, self._facts.language, self._text, self._settings)
+            self._test = is_test_code(
+                relative, self._facts.language, self._text, self._settings
+            ) or is_example_code(relative, self._settings)
         return self._test
 
     def rules(self, codes: frozenset[str]) -> frozenset[str]:

@@ -15,17 +15,29 @@ Test code is judged for what breaks a test, not for style (``Rule.judges_test_co
 or when its content does: a gtest, gmock or Catch2 include in C++; an import of pytest,
 unittest, launch_testing, rostest or rosunit, or a ``generate_test_description`` in Python;
 a rostest ``<test>`` element in a launch file.
+
+Example code is judged as test code is (``is_example_code``): it shows how to use an API
+and runs alone, in the root namespace, so its names are what a reader copies, not a
+system's interfaces. ros2/demos' ``Client`` node or an ``examples/`` script's absolute
+action name are the example's choice; an illegal name still breaks it and is reported.
 """
 
 from __future__ import annotations
 
+import functools
 import re
+from pathlib import Path
 
 from .config import Settings
 from .model import Language
 
 _TEST_DIRECTORY = re.compile(r"tests?|test_.+|.+_tests", re.IGNORECASE)
 _TEST_STEM = re.compile(r"tests?|test_.+|.+_tests?", re.IGNORECASE)
+# A folder, package or file whose name starts or ends with one of these words holds
+# examples: ``examples/``, ``demo_nodes_cpp``, ``quality_of_service_demo``,
+# ``rospy_tutorials``, ``example_7``, ``ros2_control_demos``, ``example_nav_to_pose.py``.
+_EXAMPLE_WORD = r"(?:examples?|demos?|tutorials?|samples?)"
+_EXAMPLE_NAME = re.compile(rf"{_EXAMPLE_WORD}(?:[-_+].*)?|.*[-_+]{_EXAMPLE_WORD}", re.IGNORECASE)
 _CONTENT = {
     Language.CPP: re.compile(rb'^[ \t]*#[ \t]*include[ \t]*[<"](?:gtest|gmock|catch2)/', re.M),
     Language.PYTHON: re.compile(
@@ -62,6 +74,39 @@ def is_test_code(
         return False
     content = data.encode("utf-8", "surrogateescape") if isinstance(data, str) else data
     return pattern.search(content) is not None
+
+
+def is_example_code(relative_path: str, settings: Settings) -> bool:
+    """Whether the file at ``relative_path`` (below the settings' root, '/'-separated) is
+    example, demo or tutorial code: by its own name without suffixes, or the name of a
+    folder it is in, up to the workspace's source space.
+
+    The folders that count are the file's package's (its own folder among them) and those
+    between the package and the ``src`` folder that holds it, a repository's (``src/demos/
+    composition``: a package of ros2/demos), or the root's where the run starts inside a
+    repository (``cd demos``). Above the source space the folders are a workspace's,
+    whatever it is called: the examples workspace bundled with this linter holds products.
+    """
+    path = Path(relative_path)
+    if _EXAMPLE_NAME.fullmatch(path.name.split(".")[0]):
+        return True
+    if not path.is_absolute():
+        path = settings.root / path
+    folder, in_package = path.parent, False
+    while True:
+        if in_package and folder.name == "src":
+            return False
+        in_package = in_package or _is_package(folder)
+        if _EXAMPLE_NAME.fullmatch(folder.name):
+            return True
+        if folder in (settings.root, folder.parent):
+            return False
+        folder = folder.parent
+
+
+@functools.lru_cache(maxsize=4096)
+def _is_package(folder: Path) -> bool:
+    return (folder / "package.xml").is_file()
 
 
 def _configured(relative_path: str, patterns: tuple[str, ...]) -> bool:

@@ -121,11 +121,13 @@ def main():
     rclpy.spin({cls}())
 """
 
-DEMOS = {
+# ros2/demos' node names, in product packages (demo code itself is judged as test code):
+# six CamelCase names over four packages.
+PRODUCTS = {
     "composition": ["Client", "Server", "talker", "listener"],
-    "demo_nodes_cpp": ["TestNode", "add_two_ints_client", "add_two_ints_server", "talker"],
-    "demo_nodes_py": ["LoggerServiceNode", "TestNode", "listener_qos", "talker_qos"],
-    "quality_of_service_demo": ["MessageLostListener", "deadline", "lifespan", "liveliness"],
+    "robot_nodes_cpp": ["TestNode", "add_two_ints_client", "add_two_ints_server", "talker"],
+    "robot_nodes_py": ["LoggerServiceNode", "TestNode", "listener_qos", "talker_qos"],
+    "quality_of_service": ["MessageLostListener", "deadline", "lifespan", "liveliness"],
     "topic_monitor": ["topic_monitor", "data_publisher"],
 }
 
@@ -133,17 +135,17 @@ DEMOS = {
 def test_camel_case_names_spread_over_packages_are_slips_not_a_convention(
     run_cli: Any, tmp_path: Path
 ) -> None:
-    for package, names in DEMOS.items():
+    for package, names in PRODUCTS.items():
         write_package(tmp_path / package, 2, package)
         for index, name in enumerate(names):
             if package.endswith("_py"):
-                text = TALKER.format(cls=f"Demo{index}", name=name)
-                write(tmp_path, f"{package}/{package}/demo_{index}.py", text)
+                text = TALKER.format(cls=f"Node{index}", name=name)
+                write(tmp_path, f"{package}/{package}/node_{index}.py", text)
             else:
-                write(tmp_path, f"{package}/src/demo_{index}.cpp", CLIENT.format(name=name))
+                write(tmp_path, f"{package}/src/node_{index}.cpp", CLIENT.format(name=name))
     result = run_cli(["check", "--no-cache", "."], tmp_path)
     assert result.exit_code == 1
-    # demo_nodes_cpp's and demo_nodes_py's TestNode are one name: one finding (``decisions``)
+    # robot_nodes_cpp's and robot_nodes_py's TestNode are one name: one finding (``decisions``)
     assert result.stdout.count("[RN203 not-snake-case]") == 5
     assert "one decision" not in result.stderr
     statistics = run_cli(["check", "--no-cache", "--statistics", "."], tmp_path)

@@ -34,7 +34,7 @@ def places(finding: dict[str, Any]) -> list[tuple[str, int]]:
 
 WAIT_SET_CMAKE = """\
 cmake_minimum_required(VERSION 3.5)
-project(examples_rclcpp_wait_set)
+project(rclcpp_wait_set)
 find_package(ament_cmake REQUIRED)
 find_package(rclcpp REQUIRED)
 find_package(std_msgs REQUIRED)
@@ -155,8 +155,8 @@ int main(int argc, char * argv[])
 
 
 def wait_set_workspace(root: Path) -> None:
-    package = "src/examples/rclcpp/wait_set"
-    write(root, f"{package}/package.xml", AMENT_PACKAGE.format(name="examples_rclcpp_wait_set"))
+    package = "src/io_tools/rclcpp/wait_set"
+    write(root, f"{package}/package.xml", AMENT_PACKAGE.format(name="rclcpp_wait_set"))
     write(root, f"{package}/CMakeLists.txt", WAIT_SET_CMAKE)
     write(root, f"{package}/include/wait_set/random_talker.hpp", RANDOM_TALKER_HPP)
     write(root, f"{package}/include/wait_set/random_listener.hpp", RANDOM_LISTENER_HPP)
@@ -164,8 +164,8 @@ def wait_set_workspace(root: Path) -> None:
     write(root, f"{package}/src/wait_set_topics_and_timer.cpp", WAIT_SET_TOPICS_AND_TIMER_CPP)
 
 
-TALKER = "src/examples/rclcpp/wait_set/include/wait_set/random_talker.hpp"
-TOPICS_AND_TIMER = "src/examples/rclcpp/wait_set/src/wait_set_topics_and_timer.cpp"
+TALKER = "src/io_tools/rclcpp/wait_set/include/wait_set/random_talker.hpp"
+TOPICS_AND_TIMER = "src/io_tools/rclcpp/wait_set/src/wait_set_topics_and_timer.cpp"
 
 
 def test_a_topic_two_programs_publish_is_one_finding(run_cli: Any, tmp_path: Path) -> None:
@@ -195,7 +195,7 @@ def test_the_rename_of_the_one_finding_renames_every_place(run_cli: Any, tmp_pat
     assert len(found) == 3
     renamed = sorted((other["path"], other["line"]) for other in found[0]["fix"]["also"])
     assert renamed == [
-        ("src/examples/rclcpp/wait_set/include/wait_set/random_listener.hpp", 16),
+        ("src/io_tools/rclcpp/wait_set/include/wait_set/random_listener.hpp", 16),
         (TOPICS_AND_TIMER, 13),
         (TOPICS_AND_TIMER, 18),
     ]
@@ -411,7 +411,7 @@ private:
 };
 """
 TELEOP = "src/moveit2/moveit_py/moveit/servo_client/teleop.py"
-KEYBOARD = "src/moveit2/moveit_ros/moveit_servo/demos/servo_keyboard_input.cpp"
+KEYBOARD = "src/moveit2/moveit_ros/moveit_servo/tools/servo_keyboard_input.cpp"
 
 
 def test_a_decision_one_place_cannot_be_edited_at_has_no_fix(run_cli: Any, tmp_path: Path) -> None:
@@ -708,7 +708,7 @@ def main():
     rclpy.init()
     rclpy.spin(MotionPrimitiveExecutor())
 """
-MOTION_PRIMITIVES = "src/ur_robot_driver/examples/send_dummy_motion_primitives.py"
+MOTION_PRIMITIVES = "src/ur_robot_driver/scripts/send_dummy_motion_primitives.py"
 
 
 def test_an_actions_cancel_service_is_the_actions_decision(run_cli: Any, tmp_path: Path) -> None:

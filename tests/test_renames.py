@@ -244,10 +244,10 @@ def test_a_node_name_is_renamed_across_languages(run_cli: Any, tmp_path: Path) -
 
 def test_a_node_another_one_calls_by_name_is_not_renamed(run_cli: Any, tmp_path: Path) -> None:
     """ros2/demos' use_logger_service.py: the test node is handed the served node's name."""
-    write_package(tmp_path / "src/demo", 2, "demo")
+    write_package(tmp_path / "src/chatter", 2, "chatter")
     write(
         tmp_path,
-        "src/demo/demo/use_logger_service.py",
+        "src/chatter/chatter/use_logger_service.py",
         """import rclpy
 from rclpy.node import Node
 

@@ -10,7 +10,7 @@ from conftest import write, write_package
 
 from roslint_names.config import Settings
 from roslint_names.model import Language
-from roslint_names.test_code import is_test_code
+from roslint_names.test_code import is_example_code, is_test_code
 
 # An rclcpp gtest as ament packages write them: a CamelCase fixture node, an absolute
 # topic the node under test publishes in the root namespace, and one name that really
@@ -439,3 +439,101 @@ def test_a_launch_test_s_own_code_is_judged_as_code(run_cli: Any, tmp_path: Path
         (28, "RN202"),  # the action client
         (30, "RN202"),  # the subscription
     ]
+
+
+# ros2/demos' composition/src/client_component.cpp, reduced: the node name the tutorial
+# prints, and one name that breaks the demo (a space: rclcpp throws InvalidTopicNameError).
+DEMO_COMPONENT = """#include <memory>
+
+#include "example_interfaces/srv/add_two_ints.hpp"
+#include "rclcpp/rclcpp.hpp"
+
+namespace composition
+{
+
+class Client : public rclcpp::Node
+{
+public:
+  explicit Client(const rclcpp::NodeOptions & options)
+  : Node("Client", options)
+  {
+    client_ = create_client<example_interfaces::srv::AddTwoInts>("add_two_ints");
+    status_ = create_publisher<std_msgs::msg::String>("client status", 10);
+  }
+};
+
+}  // namespace composition
+"""
+
+# Universal_Robots_ROS2_Driver's ur_robot_driver/examples/move_until_example.py, reduced: an
+# example script that talks to the driver launched in the root namespace.
+EXAMPLE_SCRIPT = """import rclpy
+from rclpy.action import ActionClient
+from rclpy.node import Node
+from ur_msgs.action import TrajectoryUntil
+
+
+class MoveUntilExample(Node):
+    def __init__(self):
+        super().__init__("move_until_example")
+        self._client = ActionClient(self, TrajectoryUntil, "/trajectory_until_node/execute")
+
+
+def main():
+    rclpy.init()
+    rclpy.spin(MoveUntilExample())
+"""
+
+
+def test_example_code_is_judged_as_test_code(run_cli: Any, tmp_path: Path) -> None:
+    """Before, 'Client' (RN203) and the absolute action (RN202) were reported."""
+    write_package(tmp_path / "demos" / "composition", 2, "composition")
+    write(tmp_path, "demos/composition/src/client_component.cpp", DEMO_COMPONENT)
+    write_package(tmp_path / "ur_robot_driver", 2, "ur_robot_driver")
+    write(tmp_path, "ur_robot_driver/examples/move_until_example.py", EXAMPLE_SCRIPT)
+    result = run_cli(["check", "--format", "json", "."], tmp_path)
+    assert [(f["path"], f["line"], f["code"]) for f in result.findings()] == [
+        ("demos/composition/src/client_component.cpp", 16, "RN101"),
+    ]
+
+
+def test_a_run_inside_a_clone_of_an_example_repository_is_example_code(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """`cd demos && roslint-names check .`: no folder below the root says 'demo'."""
+    root = tmp_path / "demos"
+    write_package(root / "composition", 2, "composition")
+    write(root, "composition/src/client_component.cpp", DEMO_COMPONENT)
+    result = run_cli(["check", "--format", "json", "."], root)
+    assert [f["code"] for f in result.findings()] == ["RN101"]
+
+
+def test_the_same_code_in_a_product_package_is_judged_in_full(run_cli: Any, tmp_path: Path) -> None:
+    write_package(tmp_path / "robot_control", 2, "robot_control")
+    write(tmp_path, "robot_control/src/client_component.cpp", DEMO_COMPONENT)
+    write(tmp_path, "robot_control/scripts/move_until.py", EXAMPLE_SCRIPT)
+    result = run_cli(["check", "--format", "json", "."], tmp_path)
+    assert sorted(f["code"] for f in result.findings()) == ["RN101", "RN202", "RN203"]
+
+
+@pytest.mark.parametrize(
+    ("path", "expected"),
+    [
+        ("ur_robot_driver/examples/move_until_example.py", True),
+        ("demo_nodes_cpp/src/topics/talker.cpp", True),
+        ("quality_of_service_demo/rclcpp/src/message_lost_listener.cpp", True),
+        ("rospy_tutorials/006_parameters/param_talker.py", True),
+        ("example_7/reference_generator/send_trajectory.cpp", True),
+        ("ros2_control_demos/example_1/hardware/rrbot.cpp", True),
+        ("examples_rclcpp_minimal_publisher/member_function.cpp", True),
+        ("nav2_simple_commander/nav2_simple_commander/example_nav_to_pose.py", True),
+        ("moveit_servo/demos/servo_keyboard_input.cpp", True),
+        # Names that only contain the words.
+        ("robot/src/demodulator.cpp", False),
+        ("robot/src/counterexample_check.cpp", False),
+        ("autoware_sample_rate_limiter/src/node.cpp", False),
+        ("robot/launch/bringup.launch", False),
+    ],
+)
+def test_example_code_conventions(tmp_path: Path, path: str, expected: bool) -> None:
+    assert is_example_code(path, Settings(root=tmp_path / "ws")) is expected

@@ -99,10 +99,10 @@ EKF_FIXED = EKF_LAUNCH.replace('namespace="localization/"', 'namespace="localiza
 
 
 def _talker_and_listener(root: Path) -> tuple[Path, Path]:
-    write_package(root / "src/demo", 2, "demo")
+    write_package(root / "src/chatter", 2, "chatter")
     return (
-        write(root, "src/demo/src/talker.cpp", TALKER),
-        write(root, "src/demo/src/listener.cpp", LISTENER),
+        write(root, "src/chatter/src/talker.cpp", TALKER),
+        write(root, "src/chatter/src/listener.cpp", LISTENER),
     )
 
 
@@ -299,7 +299,7 @@ def test_a_rename_with_one_read_only_file_changes_nothing(run_cli: Any, tmp_path
     listener.chmod(0o444)
     result = run_cli(["check", "--no-cache", "--fix", "--unsafe-fixes", "."], tmp_path)
     assert (
-        "roslint-names: src/demo/src/listener.cpp: renames not applied: "
+        "roslint-names: src/chatter/src/listener.cpp: renames not applied: "
         "permission denied (the file is read-only)"
     ) in result.stderr
     assert "fixed 0 findings in 0 files" in result.stderr
@@ -311,8 +311,8 @@ def test_a_rename_with_one_read_only_file_changes_nothing(run_cli: Any, tmp_path
 def test_a_rename_writes_both_ends_and_names_the_files(run_cli: Any, tmp_path: Path) -> None:
     talker, listener = _talker_and_listener(tmp_path)
     result = run_cli(["check", "--no-cache", "--fix", "--unsafe-fixes", "."], tmp_path)
-    assert "roslint-names: wrote src/demo/src/listener.cpp" in result.stderr
-    assert "roslint-names: wrote src/demo/src/talker.cpp" in result.stderr
+    assert "roslint-names: wrote src/chatter/src/listener.cpp" in result.stderr
+    assert "roslint-names: wrote src/chatter/src/talker.cpp" in result.stderr
     assert talker.read_text(encoding="utf-8") == TALKER.replace("robotStatus", "robot_status")
     assert listener.read_text(encoding="utf-8") == LISTENER.replace("robotStatus", "robot_status")
     assert result.exit_code == 0
