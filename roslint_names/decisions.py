@@ -23,6 +23,10 @@ per-file findings are in (``one_per_decision``):
   is not stays a suppressed finding of its own, not merged: someone chose to keep the
   spelling there, and that holds a rename of it back.
 
+Then a file whose code writes every endpoint name absolute (``Decision.bound``, RN202)
+binds its node to the root namespace by one choice: what is left of its findings of the
+rule is joined the same way, kept at its first place.
+
 Only the reported files are grouped. In a run over some files (pre-commit passes the
 changed ones; the rest of the workspace is context), a place whose producer is in a
 context file is reported where it is: the files not linted have no findings to join.
@@ -31,7 +35,7 @@ context file is reported where it is: the files not linted have no findings to j
 from __future__ import annotations
 
 from collections import defaultdict
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import replace
 
 from .model import Decision, Diagnostic, Edit, Generation, Kind, RelatedLocation, Span
@@ -50,18 +54,36 @@ def one_per_decision(per_file: Sequence[Sequence[Diagnostic]]) -> list[list[Diag
         for position, diagnostic in enumerate(found):
             if diagnostic.decision is not None:
                 groups[_key(diagnostic.code, diagnostic.decision)].append((slot, position))
+    joined = _join(per_file, groups.values(), design=False)
+    # Then a file bound to the root by design (``Decision.bound``): what is left of its
+    # names' findings is one.
+    designs: dict[tuple[int, str], list[_Place]] = defaultdict(list)
+    for slot, found in enumerate(joined):
+        for position, diagnostic in enumerate(found):
+            if diagnostic.decision is not None and diagnostic.decision.bound:
+                designs[(slot, diagnostic.code)].append((slot, position))
+    return _join(joined, designs.values(), design=True)
+
+
+def _join(
+    per_file: Sequence[Sequence[Diagnostic]], groups: Iterable[list[_Place]], *, design: bool
+) -> list[list[Diagnostic]]:
+    """``per_file`` with each group of places reported once; ``design``: the groups are
+    files' designs, kept at their first place."""
     replaced: dict[_Place, Diagnostic | None] = {}
-    for places in groups.values():
+    for places in groups:
         if len(places) < 2:
             continue
-        kept_at, *others = sorted(places, key=lambda place: _preference(_at(per_file, place)))
+        kept_at, *others = sorted(
+            places, key=lambda place: _preference(_at(per_file, place), design=design)
+        )
         kept = _at(per_file, kept_at)
         joined = [
             place for place in others if kept.suppressed or not _at(per_file, place).suppressed
         ]
         if not joined:
             continue
-        replaced[kept_at] = _joined(kept, [_at(per_file, place) for place in joined])
+        replaced[kept_at] = _joined(kept, [_at(per_file, place) for place in joined], design)
         replaced.update((place, None) for place in joined)
     if not replaced:
         return [list(found) for found in per_file]
@@ -90,36 +112,51 @@ def _at(per_file: Sequence[Sequence[Diagnostic]], place: _Place) -> Diagnostic:
     return per_file[place[0]][place[1]]
 
 
-def _preference(diagnostic: Diagnostic) -> tuple[bool, tuple[str, int, int, str, str]]:
-    """A producer first, then path and line order."""
+def _preference(
+    diagnostic: Diagnostic, *, design: bool
+) -> tuple[bool, tuple[str, int, int, str, str]]:
+    """A producer first, then path and line order; a file's design at its first name."""
     decision = diagnostic.decision
-    producer = decision is not None and decision.producer
+    producer = decision is not None and decision.producer and not design
     return (not producer, diagnostic.sort_key())
 
 
-def _joined(kept: Diagnostic, others: list[Diagnostic]) -> Diagnostic:
+def _joined(kept: Diagnostic, others: list[Diagnostic], design: bool) -> Diagnostic:
     """``kept`` standing for ``others`` too: theirs as related locations, and one fix."""
     others = sorted(others, key=Diagnostic.sort_key)
     related = [*kept.related]
     for other in others:
-        related.append(RelatedLocation(other.path, other.span, _note(other)))
+        related.append(RelatedLocation(other.path, other.span, _note(other, design)))
         related.extend(other.related)
     count = len(others)
-    message = f"{kept.message} (also written at {count} other place{'s' if count > 1 else ''})"
+    places = f"{count} other place{'s' if count > 1 else ''}"
+    if design:
+        message = (
+            f"{kept.message} (every endpoint name of this file is absolute, {count} more: "
+            "one decision, its node is bound to the root namespace)"
+        )
+    else:
+        message = f"{kept.message} (also written at {places})"
     edit, also = _whole_fix(kept, others)
-    joined = (*kept.joined, *(replace(other, joined=()) for other in others))
+    joined = (
+        *kept.joined,
+        *(place for other in others for place in (replace(other, joined=()), *other.joined)),
+    )
     return replace(
         kept, message=message, related=tuple(related), edit=edit, also=also, joined=joined
     )
 
 
-def _note(diagnostic: Diagnostic) -> str:
+def _note(diagnostic: Diagnostic, design: bool) -> str:
     decision = diagnostic.decision
     assert decision is not None
     kind = decision.kind.value
     what = (
         f"a {kind} built from '{decision.name}'" if decision.prefix else f"{kind} '{decision.name}'"
     )
+    if design:
+        absolute = f"a {kind} built from the absolute" if decision.prefix else f"absolute {kind}"
+        return f"{absolute} '{decision.name}' here too"
     return f"{what} also written here" + (f" ({decision.api})" if decision.api else "")
 
 

@@ -504,6 +504,10 @@ class Decision:
     scope: str = ""
     producer: bool = False  # the place publishes, serves or serves the action: the source
     api: str = ""  # what the place hands the name to, for the note at it
+    # The file writes every endpoint name absolute: its node is bound to the root namespace
+    # by design, and what is left of the file's findings of the rule once each name is
+    # reported once is that one decision, whatever their names.
+    bound: bool = False
 
 
 @dataclass(frozen=True)

@@ -315,6 +315,7 @@ int main(int argc, char** argv)
   ros::NodeHandle nh;
   ros::Publisher out = nh.advertise<geometry_msgs::Twist>("/mobile_base/cmd_vel", 10);
   ros::Publisher raw = nh.advertise<geometry_msgs::Twist>("/raw", 10);  // NOLINT(runtime/int)
+  ros::Publisher level = nh.advertise<geometry_msgs::Twist>("level", 10);
   ros::spin();
 }
 """
@@ -326,6 +327,7 @@ rospy.init_node("teleop")
 pub = rospy.Publisher("/cmd_vel", Twist, queue_size=1)  # noqa: E501
 alt = rospy.Publisher("/cmd_vel_alt", \\
                       Twist, queue_size=1)
+status = rospy.Publisher("status", Twist, queue_size=1)
 """
 NOQA_LAUNCH = """<launch>
   <node name="base-driver" pkg="robot_base" type="driver_node"/>

@@ -720,3 +720,90 @@ def test_an_actions_cancel_service_is_the_actions_decision(run_cli: Any, tmp_pat
     found = check(run_cli, tmp_path, "--select", "RN202", ".").findings()
     assert [places(f) for f in found] == [[(MOTION_PRIMITIVES, 14), (MOTION_PRIMITIVES, 17)]]
     assert "absolute action" in found[0]["message"]
+
+
+# ---------------------------------------------------------------------------------------
+# MoveIt's moveit_joy (ROS 1), reduced: every name it writes is absolute, one of them a
+# topic the RViz plugin subscribes to as well; its end-effector topics come from the SRDF.
+
+JOY_MODULE_PY = """\
+import rospy
+from geometry_msgs.msg import PoseStamped
+from sensor_msgs.msg import Joy
+from std_msgs.msg import Empty
+
+
+class MoveitJoy:
+    def __init__(self):
+        self.plan_pub = rospy.Publisher("/rviz/moveit/plan", Empty, queue_size=5)
+        self.joy_pose_pub = rospy.Publisher("/joy_pose", PoseStamped, queue_size=1)
+        self.sub = rospy.Subscriber("/joy", Joy, self.joyCB, queue_size=1)
+
+    def updatePoseTopic(self, topics, index):
+        self.pose_pub = rospy.Publisher(topics[index], PoseStamped, queue_size=5)
+
+    def joyCB(self, msg):
+        pass
+
+
+if __name__ == "__main__":
+    rospy.init_node("moveit_joy")
+    MoveitJoy()
+    rospy.spin()
+"""
+PLAN_FRAME_CPP = """\
+#include <ros/ros.h>
+#include <std_msgs/Empty.h>
+
+class MotionPlanningFrame
+{
+public:
+  MotionPlanningFrame()
+  {
+    plan_subscriber_ = nh_.subscribe("/rviz/moveit/plan", 1, &MotionPlanningFrame::plan, this);
+    status_pub_ = nh_.advertise<std_msgs::Empty>("planning_status", 1);
+  }
+
+private:
+  void plan(const std_msgs::EmptyConstPtr& msg) {}
+  ros::NodeHandle nh_;
+  ros::Subscriber plan_subscriber_;
+  ros::Publisher status_pub_;
+};
+"""
+JOY_MODULE = "src/moveit/moveit_ros/visualization/src/moveit_ros_visualization/moveitjoy_module.py"
+PLAN_FRAME = "src/moveit/moveit_ros/visualization/motion_planning_rviz_plugin/src/frame.cpp"
+
+
+def test_a_file_that_writes_every_name_absolute_is_one_decision(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """Before, moveit_joy's three names were three findings: the file binds its node to the
+    root namespace, one choice. The plugin's subscription is the same topic (kept at the
+    publisher); the plugin itself, which writes a relative name, is no such design."""
+    visualization = "src/moveit/moveit_ros/visualization"
+    write(tmp_path, f"{visualization}/package.xml", CATKIN_PACKAGE.format(name="visualization"))
+    write(tmp_path, JOY_MODULE, JOY_MODULE_PY)
+    write(tmp_path, PLAN_FRAME, PLAN_FRAME_CPP)
+    found = check(run_cli, tmp_path, "--select", "RN202", "--unsafe-fixes", ".").findings()
+    assert [places(f) for f in found] == [
+        [(JOY_MODULE, 9), (PLAN_FRAME, 9), (JOY_MODULE, 10), (JOY_MODULE, 11)]
+    ]
+    assert "every endpoint name of this file is absolute, 2 more" in found[0]["message"]
+    notes = [place["message"] for place in found[0]["related"]]
+    assert notes[1:] == ["absolute topic '/joy_pose' here too", "absolute topic '/joy' here too"]
+    # One fix for the whole decision: every place made relative, or none.
+    fix = found[0]["fix"]
+    assert sorted((o["path"], o["line"]) for o in fix["also"]) == [
+        (PLAN_FRAME, 9),
+        (JOY_MODULE, 10),
+        (JOY_MODULE, 11),
+    ]
+
+
+def test_a_file_with_one_relative_name_is_judged_name_by_name(run_cli: Any, tmp_path: Path) -> None:
+    visualization = "src/moveit/moveit_ros/visualization"
+    write(tmp_path, f"{visualization}/package.xml", CATKIN_PACKAGE.format(name="visualization"))
+    write(tmp_path, JOY_MODULE, JOY_MODULE_PY.replace('"/joy"', '"joy"'))
+    found = check(run_cli, tmp_path, "--select", "RN202", ".").findings()
+    assert [places(f) for f in found] == [[(JOY_MODULE, 9)], [(JOY_MODULE, 10)]]

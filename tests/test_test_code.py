@@ -434,11 +434,11 @@ def test_a_launch_test_s_own_code_is_judged_as_code(run_cli: Any, tmp_path: Path
     write(tmp_path, "ur_robot_driver/test/urscript_interface.py", LAUNCH_TEST)
     write(tmp_path, "roslint-names.toml", '[test-code]\nextend-select = ["RN202", "RN203"]\n')
     result = run_cli(["check", "--format", "json", "."], tmp_path)
-    assert [(f["line"], f["code"]) for f in result.findings()] == [
-        (27, "RN202"),  # the publisher
-        (28, "RN202"),  # the action client
-        (30, "RN202"),  # the subscription
-    ]
+    # Every endpoint name of the file is absolute: one decision (``decisions``), at the
+    # publisher, with the action client and the subscription related.
+    assert [
+        (f["line"], f["code"], [place["line"] for place in f["related"]]) for f in result.findings()
+    ] == [(27, "RN202", [28, 30])]
 
 
 # ros2/demos' composition/src/client_component.cpp, reduced: the node name the tutorial

@@ -539,4 +539,7 @@ def test_the_language_server_judges_an_open_file_as_the_cli_does(tmp_path: Path)
     )
     session.check(package / "mesh_filter/CMakeLists.txt", built)
     found = session.check(nodelet, edited) or []
-    assert [(d.code, d.span.line) for d in found] == [("RN202", 10), ("RN202", 11)]
+    # Both its names are absolute: one decision, the node bound to the root namespace.
+    assert [(d.code, d.span.line, [r.span.line for r in d.related]) for d in found] == [
+        ("RN202", 10, [11])
+    ]

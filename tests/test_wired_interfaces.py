@@ -97,9 +97,16 @@ def autoware_workspace(root: Path, launch: str | None = PURE_PURSUIT_LAUNCH) -> 
 
 
 def absolute_names(run_cli: Any, root: Path, *arguments: str) -> list[tuple[str, int]]:
+    """The places of the RN202 findings: a file that writes only absolute names is one
+    finding, its other names related (``decisions``)."""
     result = run_cli(["check", "--format", "json", *arguments], root)
     assert result.exit_code in (0, 1), result.stderr
-    return [(f["path"], f["line"]) for f in result.findings() if f["code"] == "RN202"]
+    return [
+        (place["path"], place["line"])
+        for f in result.findings()
+        if f["code"] == "RN202"
+        for place in (f, *f["related"])
+    ]
 
 
 # Whole workspace, the .cpp alone (its workspace gathered as context), each with the
@@ -290,7 +297,7 @@ def test_a_one_file_run_follows_the_launch_files_through_the_run_cache(
     extractions.clear()
     after = check()
     assert "its result reused" not in after.stderr
-    assert [f["line"] for f in after.findings()] == [ODOMETRY_LINE, TRAJECTORY_LINE]
+    assert [(f["line"], len(f["related"])) for f in after.findings()] == [(ODOMETRY_LINE, 1)]
     assert extractions == [LAUNCH]
 
 
@@ -302,7 +309,12 @@ def test_an_editor_session_follows_the_launch_files(tmp_path: Path) -> None:
 
     def absolute() -> list[int]:
         found = session.check(root / CHECKER, CHECKER_CPP) or []
-        return [d.span.line for d in found if d.code == "RN202"]
+        return [
+            line
+            for d in found
+            if d.code == "RN202"
+            for line in (d.span.line, *(r.span.line for r in d.related))
+        ]
 
     assert absolute() == [TRAJECTORY_LINE]
     unwired = PURE_PURSUIT_LAUNCH.replace("/localization/kinematic_state", "odometry")

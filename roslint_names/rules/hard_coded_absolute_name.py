@@ -12,12 +12,20 @@ literal, without a fix, since the rest of the name is not known.
 A name the workspace's launch files remap a node to (``RuleContext.wired_names``) is one of
 the system's global interfaces, chosen where the system is assembled: code that writes it
 follows that choice, and is left alone. For a prefix, a wired name it starts will do.
+
+A file that writes every endpoint name absolute binds its node to the root namespace by
+design (moveit_joy's ``/joy``, ``/joy_pose`` and RViz's marker topic; a Gazebo plugin
+standing in for PR2's projector controller): that is one decision, reported once at its
+first name with the others related (``Decision.bound``), not once per name. A relative or
+private ``~`` name makes the file not bound; a name built at run time from no literal
+start says nothing either way (moveit_joy's end-effector topics, read from the SRDF).
 """
 
 from __future__ import annotations
 
 import re
 from collections.abc import Iterable, Iterator
+from dataclasses import replace
 
 from ..model import ENDPOINT_ROLES, Answer, FileFacts, Finding, Fix, Kind, Severity
 from ..names import is_valid
@@ -39,6 +47,26 @@ _ENDPOINT_KINDS = frozenset({Kind.TOPIC, Kind.SERVICE, Kind.ACTION})
 
 
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
+    findings = list(_findings(facts, context))
+    if len(findings) < 2 or not _bound_to_root(facts):
+        yield from findings
+        return
+    for finding in findings:
+        assert finding.decision is not None
+        yield replace(finding, decision=replace(finding.decision, bound=True))
+
+
+def _bound_to_root(facts: FileFacts) -> bool:
+    """Whether every endpoint name the file's code writes, where its start is known, is
+    absolute."""
+    return all(
+        use.value.startswith("/")
+        for use in static_uses(facts)
+        if in_code(use, facts) and use.role in ENDPOINT_ROLES and use.kind in _ENDPOINT_KINDS
+    )
+
+
+def _findings(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
     allowed = _Allowed(
         (
             *_names(context.options.get("allow", GLOBAL_BY_DESIGN)),
