@@ -6,6 +6,13 @@ name is one of the system's interfaces, chosen where the system is assembled. No
 that writes the same absolute name follows that decision rather than escaping it
 (``RuleContext.wired_names``).
 
+Where the launch files wire many names into one first level (Autoware's ``/planning/...``,
+``/localization/...``, ``/map/...``), that level is a tree of interfaces the system lays out
+(``wired_trees``): a name code writes under it (``/map/map_projector_info``,
+``"/planning/planning_factors/" + module``) is a branch of that same layout, chosen with it.
+One or two names under a level say nothing of the kind: ``/camera/image_raw`` wired once
+is one connection.
+
 Only a remap's target counts: it is where the launch author connects a node, the one
 place a launch file chooses a name for the graph. A remap's source names what some node's
 code already uses, often to move it away (``<remap from="/map" to="map"/>``), and a
@@ -14,7 +21,12 @@ parameter's value is a string the node may or may not use as a name.
 
 from __future__ import annotations
 
+import functools
+
 from .model import ENDPOINT_ROLES, FileFacts, Language, Role
+
+# Distinct wired names of two or more levels that make their first level a tree.
+TREE_BRANCHES = 3
 
 _WIRING_LANGUAGES = frozenset(
     {Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.LAUNCH_PYTHON, Language.URDF}
@@ -48,3 +60,22 @@ def awaits_wiring(facts: FileFacts) -> bool:
         and (use.absolute_prefix is not None or use.value.startswith("/"))
         for use in facts.names
     )
+
+
+@functools.lru_cache(maxsize=8)
+def wired_trees(wired: frozenset[str]) -> frozenset[str]:
+    """The first levels (``"/planning/"``) under which at least ``TREE_BRANCHES`` distinct
+    wired names of two or more levels lie."""
+    counts: dict[str, int] = {}
+    for name in wired:
+        first, separator, rest = name[1:].partition("/")
+        if separator and rest:
+            counts[f"/{first}/"] = counts.get(f"/{first}/", 0) + 1
+    return frozenset(level for level, count in counts.items() if count >= TREE_BRANCHES)
+
+
+def in_wired_tree(name: str, trees: frozenset[str]) -> bool:
+    """Whether the absolute ``name`` (or an absolute start) lies under one of ``trees``
+    below its first level."""
+    first, separator, _ = name[1:].partition("/")
+    return bool(separator) and f"/{first}/" in trees

@@ -322,3 +322,46 @@ def test_an_editor_session_follows_the_launch_files(tmp_path: Path) -> None:
     assert absolute() == [ODOMETRY_LINE, TRAJECTORY_LINE]
     session.close(root / LAUNCH)  # back to the file on disk, which wires it
     assert absolute() == [TRAJECTORY_LINE]
+
+
+# autoware.core's planning launch, reduced: three nodes' outputs wired into /planning/...,
+# which makes /planning a tree the system lays out.
+PLANNING_LAUNCH = """\
+<launch>
+  <node pkg="autoware_path_generator" exec="path_generator_node" name="path_generator">
+    <remap from="~/output/path" to="/planning/scenario_planning/lane_driving/path"/>
+  </node>
+  <node pkg="autoware_velocity_smoother" exec="velocity_smoother_node" name="velocity_smoother">
+    <remap from="~/input/trajectory" to="/planning/scenario_planning/scenario_selector/trajectory"/>
+    <remap from="~/output/trajectory" to="/planning/scenario_planning/smoother/trajectory"/>
+  </node>
+</launch>
+"""
+PLANNING_LAUNCH_FILE = "src/autoware_core_planning/launch/autoware_core_planning.launch.xml"
+
+
+@pytest.mark.parametrize(
+    ("wired", "expected"),
+    [
+        # Three wired names under /planning: the checker's trajectory is a branch of it.
+        (3, []),
+        # Two say nothing of a tree: the name is reported, as before.
+        (2, [(CHECKER, TRAJECTORY_LINE)]),
+    ],
+)
+def test_a_name_under_a_tree_the_launch_files_lay_out_is_left_alone(
+    run_cli: Any, tmp_path: Path, wired: int, expected: list[tuple[str, int]]
+) -> None:
+    root = autoware_workspace(tmp_path)
+    planning = root / "src" / "autoware_core_planning"
+    write(planning, "package.xml", AMENT_PACKAGE.format(name="autoware_core_planning"))
+    launch = PLANNING_LAUNCH
+    if wired == 2:
+        launch = launch.replace(
+            '    <remap from="~/input/trajectory" '
+            'to="/planning/scenario_planning/scenario_selector/trajectory"/>\n',
+            "",
+        )
+    write(root, PLANNING_LAUNCH_FILE, launch)
+    assert absolute_names(run_cli, root) == expected
+    assert absolute_names(run_cli, root, CHECKER) == expected

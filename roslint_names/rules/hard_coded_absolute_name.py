@@ -11,7 +11,9 @@ literal, without a fix, since the rest of the name is not known.
 
 A name the workspace's launch files remap a node to (``RuleContext.wired_names``) is one of
 the system's global interfaces, chosen where the system is assembled: code that writes it
-follows that choice, and is left alone. For a prefix, a wired name it starts will do.
+follows that choice, and is left alone. For a prefix, a wired name it starts will do. So
+is a name under a first level the launch files wire many names into (``wiring.
+wired_trees``: Autoware's ``/map/map_projector_info`` beside the ``/map/...`` remaps).
 
 A file that writes every endpoint name absolute binds its node to the root namespace by
 design (moveit_joy's ``/joy``, ``/joy_pose`` and RViz's marker topic; a Gazebo plugin
@@ -30,6 +32,7 @@ from dataclasses import replace
 from ..model import ENDPOINT_ROLES, Answer, FileFacts, Finding, Fix, Kind, Severity
 from ..names import is_valid
 from ..rule import Rule, RuleContext
+from ..wiring import in_wired_tree, wired_trees
 from .common import decision, in_code, label, static_uses
 
 GLOBAL_BY_DESIGN = (
@@ -73,7 +76,8 @@ def _findings(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             *_names(context.options.get("extend-allow", ())),
         )
     )
-    yield from _joined_at_run_time(facts, allowed, context.wired_names)
+    trees = wired_trees(context.wired_names)
+    yield from _joined_at_run_time(facts, allowed, context.wired_names, trees)
     for use in static_uses(facts):
         if (
             not in_code(use, facts)
@@ -82,6 +86,7 @@ def _findings(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
             or not use.value.startswith("/")
             or allowed.covers(use.value)
             or use.value in context.wired_names
+            or in_wired_tree(use.value, trees)
             or not is_valid(use.value, use.kind, facts.generation)
         ):
             continue
@@ -126,7 +131,7 @@ def _regex(pattern: str) -> str:
 
 
 def _joined_at_run_time(
-    facts: FileFacts, allowed: _Allowed, wired: frozenset[str]
+    facts: FileFacts, allowed: _Allowed, wired: frozenset[str], trees: frozenset[str]
 ) -> Iterator[Finding]:
     """Names built at run time whose absolute start is a literal: certain to escape."""
     for use in facts.names:
@@ -139,6 +144,7 @@ def _joined_at_run_time(
             or use.kind not in _ENDPOINT_KINDS
             or allowed.covers(prefix + "x")  # a name it starts: "/api/**" covers "/api/"
             or _starts_wired(prefix, wired)
+            or in_wired_tree(prefix, trees)
         ):
             continue
         yield Finding(
