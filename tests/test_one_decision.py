@@ -564,8 +564,7 @@ def test_add_noqa_writes_one_comment_for_the_decision(run_cli: Any, tmp_path: Pa
 
 
 # ---------------------------------------------------------------------------------------
-# gazebo_ros_pkgs' harness plugin (ROS 1): two topics built from the absolute "/" and the
-# model's name; here with a fixed first level, "/gazebo/", which makes them reported.
+# gazebo_ros_pkgs' harness plugin (ROS 1): two topics built from the absolute "/"
 
 HARNESS_CPP = """\
 #include <gazebo_plugins/gazebo_ros_harness.h>
@@ -580,13 +579,13 @@ void GazeboRosHarness::Load(physics::ModelPtr _parent, sdf::ElementPtr _sdf)
   this->rosnode_ = new ros::NodeHandle(this->robotNamespace_);
 
   ros::SubscribeOptions so = ros::SubscribeOptions::create<std_msgs::Float32>(
-      "/gazebo/" + _parent->GetName() + "/harness/velocity", 1,
+      "/" + _parent->GetName() + "/harness/velocity", 1,
     boost::bind(&GazeboRosHarness::OnVelocity, this, _1),
     ros::VoidPtr(), &this->queue_);
   this->velocitySub_ = this->rosnode_->subscribe(so);
 
   so = ros::SubscribeOptions::create<std_msgs::Bool>(
-    "/gazebo/" + _parent->GetName() + "/harness/detach", 1,
+    "/" + _parent->GetName() + "/harness/detach", 1,
     boost::bind(&GazeboRosHarness::OnDetach, this, _1),
     ros::VoidPtr(), &this->queue_);
   this->detachSub_ = this->rosnode_->subscribe(so);
@@ -603,18 +602,8 @@ def test_names_built_from_one_absolute_prefix_are_one_finding(run_cli: Any, tmp_
     harness = f"{plugins}/src/gazebo_ros_harness.cpp"
     assert [places(f) for f in found] == [[(harness, 13), (harness, 19)]]
     assert found[0]["related"][0]["message"] == (
-        "a topic built from '/gazebo/' also written here (ros::SubscribeOptions::create)"
+        "a topic built from '/' also written here (ros::SubscribeOptions::create)"
     )
-
-
-def test_a_first_level_computed_at_run_time_is_not_reported(run_cli: Any, tmp_path: Path) -> None:
-    """The plugin as written: '/' + the model's name separates each model's topics; before,
-    it was reported as escaping the namespace."""
-    plugins = "src/gazebo_ros_pkgs/gazebo_plugins"
-    write(tmp_path, f"{plugins}/package.xml", CATKIN_PACKAGE.format(name="gazebo_plugins"))
-    source = HARNESS_CPP.replace('"/gazebo/" + _parent', '"/" + _parent')
-    write(tmp_path, f"{plugins}/src/gazebo_ros_harness.cpp", source)
-    assert check(run_cli, tmp_path, "--select", "RN202", ".").findings() == []
 
 
 # ---------------------------------------------------------------------------------------

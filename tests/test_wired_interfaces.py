@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from conftest import AMENT_PACKAGE, write
+from conftest import AMENT_PACKAGE, CATKIN_PACKAGE, write
 
 from roslint_names.config import load_settings
 from roslint_names.registry import load_registry
@@ -240,6 +240,44 @@ def test_a_prefix_is_left_alone_when_a_wired_name_starts_with_it(
     write(adapi, "launch/adapi.launch.xml", ADAPI_LAUNCH.format(target=target))
     found = absolute_names(run_cli, tmp_path, FACTOR_INTERFACE)
     assert found == ([(FACTOR_INTERFACE, 20)] if reported else [])
+
+
+HARNESS_CPP = """\
+#include <gazebo/common/Plugin.hh>
+#include <ros/ros.h>
+#include <std_msgs/Float32.h>
+
+namespace gazebo
+{
+void GazeboRosHarness::Load(physics::ModelPtr _parent, sdf::ElementPtr _sdf)
+{
+  this->rosnode_ = new ros::NodeHandle(this->robotNamespace_);
+  ros::SubscribeOptions so = ros::SubscribeOptions::create<std_msgs::Float32>(
+      "/" + _parent->GetName() + "/harness/velocity", 1,
+    boost::bind(&GazeboRosHarness::OnVelocity, this, _1),
+    ros::VoidPtr(), &this->queue_);
+  this->velocitySub_ = this->rosnode_->subscribe(so);
+}
+}  // namespace gazebo
+"""
+HARNESS_LAUNCH = """\
+<launch>
+  <node name="teleop" pkg="teleop_twist_keyboard" type="teleop_twist_keyboard.py">
+    <remap from="cmd_vel" to="/box/harness/velocity"/>
+  </node>
+</launch>
+"""
+
+
+def test_a_bare_slash_prefix_says_nothing_of_the_interface(run_cli: Any, tmp_path: Path) -> None:
+    # gazebo_ros_pkgs' gazebo_ros_harness.cpp: "/" + the model's name; any absolute remap
+    # target starts with "/", and that says nothing of which name the plugin uses.
+    package = tmp_path / "src" / "gazebo_plugins"
+    write(package, "package.xml", CATKIN_PACKAGE.format(name="gazebo_plugins"))
+    write(package, "src/gazebo_ros_harness.cpp", HARNESS_CPP)
+    write(package, "launch/harness.launch", HARNESS_LAUNCH)
+    found = absolute_names(run_cli, tmp_path, "src")
+    assert found == [("src/gazebo_plugins/src/gazebo_ros_harness.cpp", 11)]
 
 
 def test_a_one_file_run_follows_the_launch_files_through_the_run_cache(

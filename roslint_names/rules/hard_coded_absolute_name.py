@@ -7,11 +7,7 @@ is assembled, not a default baked into a reusable node.
 
 A name joined at run time from an absolute literal (``"/planning/planning_factors/" +
 name``) is as certainly absolute (``NameUse.absolute_prefix``): it is reported by that
-literal, without a fix, since the rest of the name is not known. Where the literal does
-not fix a whole first level (``"/" + _parent->GetName() + "/harness/velocity"`` in
-gazebo_ros_pkgs' harness plugin, ``"/" + robot_name``), the first level is computed at run
-time, most often from the robot or model it serves: such names are separated per robot
-by the program itself, and are not reported.
+literal, without a fix, since the rest of the name is not known.
 
 A name the workspace's launch files remap a node to (``RuleContext.wired_names``) is one of
 the system's global interfaces, chosen where the system is assembled: code that writes it
@@ -146,7 +142,6 @@ def _joined_at_run_time(
             or not in_code(use, facts)
             or use.role not in ENDPOINT_ROLES
             or use.kind not in _ENDPOINT_KINDS
-            or "/" not in prefix[1:]  # the first level is computed: "/" + robot_name
             or allowed.covers(prefix + "x")  # a name it starts: "/api/**" covers "/api/"
             or _starts_wired(prefix, wired)
             or in_wired_tree(prefix, trees)
@@ -163,8 +158,10 @@ def _joined_at_run_time(
 
 
 def _starts_wired(prefix: str, wired: frozenset[str]) -> bool:
-    """Whether ``prefix`` (which fixes a whole first level) starts a wired name."""
-    return any(name.startswith(prefix) for name in wired)
+    """Whether ``prefix`` starts a wired name and fixes a whole level of it: ``"/"`` or
+    ``"/plan"`` (gazebo_ros_harness' ``"/" + _parent->GetName()``) say nothing of which
+    interface the name is."""
+    return "/" in prefix[1:] and any(name.startswith(prefix) for name in wired)
 
 
 def _names(option: object) -> tuple[str, ...]:
