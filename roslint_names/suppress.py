@@ -1,6 +1,10 @@
 """Inline suppressions, each in its language's own comment form.
 
-- C++: ``// NOLINT(RN202)`` on the line, ``// NOLINTNEXTLINE(RN202)`` on the line before.
+- C++: ``// roslint-names: ignore RN202`` on the line, or alone on the line before. The
+  form ``--add-noqa`` writes: cpplint (and ament_cpplint's copy, which ``colcon test`` runs)
+  reports an unknown category in ``NOLINT(...)`` as ``readability/nolint``, so a
+  suppression in that form would turn the ROS style gate red. ``// NOLINT(RN202)`` on the
+  line and ``// NOLINTNEXTLINE(RN202)`` on the line before are still read.
 - Python: ``# noqa: RN202`` on the line.
 - XML (launch, URDF, XACRO): ``<!-- roslint-names: ignore RN202 -->`` after the markup
   on the line, or alone on the line before (before a start tag written over several
@@ -18,6 +22,7 @@ text inside a string literal also counts, a price worth not parsing twice.
 
 from __future__ import annotations
 
+import heapq
 import re
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
@@ -30,22 +35,23 @@ _KEYS = r"([A-Za-z0-9_\-]+(?:(?:[ \t]*,[ \t]*|[ \t]+)[A-Za-z0-9_\-]+)*)"
 _NOQA_LANGUAGES = frozenset({Language.PYTHON, Language.LAUNCH_PYTHON, Language.RECONFIGURE})
 _XML_LANGUAGES = frozenset({Language.LAUNCH_XML, Language.URDF, Language.PACKAGE_XML})
 _YAML_LANGUAGES = frozenset({Language.LAUNCH_YAML, Language.PARAMETERS})
-_MARKER = {
-    Language.CPP: "NOLINT",
-    Language.PYTHON: "noqa",
-    Language.LAUNCH_PYTHON: "noqa",
-    Language.RECONFIGURE: "noqa",  # a .cfg is a Python script
-    Language.LAUNCH_XML: "roslint-names",
-    Language.LAUNCH_YAML: "roslint-names",
-    Language.PARAMETERS: "roslint-names",
-    Language.URDF: "roslint-names",
-    Language.PACKAGE_XML: "roslint-names",
-    Language.SERVICE_DEFINITION: "roslint-names",
+_MARKERS = {
+    Language.CPP: ("roslint-names", "NOLINT"),
+    Language.PYTHON: ("noqa",),
+    Language.LAUNCH_PYTHON: ("noqa",),
+    Language.RECONFIGURE: ("noqa",),  # a .cfg is a Python script
+    Language.LAUNCH_XML: ("roslint-names",),
+    Language.LAUNCH_YAML: ("roslint-names",),
+    Language.PARAMETERS: ("roslint-names",),
+    Language.URDF: ("roslint-names",),
+    Language.PACKAGE_XML: ("roslint-names",),
+    Language.SERVICE_DEFINITION: ("roslint-names",),
 }
 NOLINT = re.compile(r"//\s*NOLINT(NEXTLINE)?\(([^)]*)\)")
 NOQA = re.compile(r"#\s*noqa\s*:\s*" + _KEYS, re.IGNORECASE)
 XML_IGNORE = re.compile(r"<!--\s*roslint-names\s*:\s*ignore\s+" + _KEYS + r".*?-->")
 YAML_IGNORE = re.compile(r"#\s*roslint-names\s*:\s*ignore\s+" + _KEYS)
+CPP_IGNORE = re.compile(r"//\s*roslint-names\s*:\s*ignore\s+" + _KEYS)
 _LOOKS_LIKE_OUR_CODE = re.compile(r"^RN[0-9]+$", re.IGNORECASE)
 
 
@@ -67,10 +73,11 @@ def may_hold_suppression(data: bytes) -> bool:
 
 
 def find_suppressions(text: str, language: Language) -> list[Suppression]:
-    marker = _MARKER.get(language)
-    if marker is None:
+    markers = _MARKERS.get(language)
+    if markers is None:
         return []  # build files: context for the graph, nothing in them is reported
-    if marker not in text and not (
+    markers = tuple(marker for marker in markers if marker in text)
+    if not markers and not (
         language in _NOQA_LANGUAGES and "NOQA" in text  # flake8 accepts either case
     ):
         return []  # most files hold no suppression: one substring search, not a regex per line
@@ -83,7 +90,7 @@ def find_suppressions(text: str, language: Language) -> list[Suppression]:
         # it): a file with one NOLINT among thousands of lines is not split into them.
         number, start = 1, 0
         searching = _CASELESS_MARKER if language in _NOQA_LANGUAGES else None
-        for at in _marker_positions(text, marker, searching):
+        for at in _marker_positions(text, markers, searching):
             if at < start:
                 continue  # a second marker on the line just scanned
             number += text.count("\n", start, at)
@@ -100,11 +107,18 @@ def find_suppressions(text: str, language: Language) -> list[Suppression]:
 _CASELESS_MARKER = re.compile("noqa", re.IGNORECASE)  # as ``NOQA`` matches it
 
 
-def _marker_positions(text: str, marker: str, caseless: re.Pattern[str] | None) -> Iterator[int]:
-    """Where ``marker`` occurs in ``text``, in order (in any case for ``caseless``)."""
+def _marker_positions(
+    text: str, markers: tuple[str, ...], caseless: re.Pattern[str] | None
+) -> Iterator[int]:
+    """Where any of ``markers`` occurs in ``text``, in order (in any case for
+    ``caseless``)."""
     if caseless is not None:
         yield from (match.start() for match in caseless.finditer(text))
         return
+    yield from heapq.merge(*(_positions(text, marker) for marker in markers))
+
+
+def _positions(text: str, marker: str) -> Iterator[int]:
     at = text.find(marker)
     while at >= 0:
         yield at
@@ -136,16 +150,22 @@ def _in_line(line: str, number: int, language: Language) -> Iterable[Suppression
         for match in NOLINT.finditer(line):
             target = number + 1 if match.group(1) else number
             yield _make(match.group(2), frozenset({target}), number, match)
+        yield from _ignore_comments(line, number, CPP_IGNORE)
     elif language in _NOQA_LANGUAGES:
         for match in NOQA.finditer(line):
             yield _make(match.group(1), frozenset({number}), number, match)
     else:
         pattern = YAML_IGNORE if language in _YAML_LANGUAGES else XML_IGNORE
-        for match in pattern.finditer(line):
-            # Alone on its line, the comment is about the next line; after markup, its own.
-            alone = not line[: match.start()].strip()
-            lines = frozenset({number, number + 1}) if alone else frozenset({number})
-            yield _make(match.group(1), lines, number, match)
+        yield from _ignore_comments(line, number, pattern)
+
+
+def _ignore_comments(line: str, number: int, pattern: re.Pattern[str]) -> Iterator[Suppression]:
+    """``roslint-names: ignore`` comments: alone on its line, one is about the next line;
+    after code or markup, about its own."""
+    for match in pattern.finditer(line):
+        alone = not line[: match.start()].strip()
+        lines = frozenset({number, number + 1}) if alone else frozenset({number})
+        yield _make(match.group(1), lines, number, match)
 
 
 def split_keys(keys_text: str) -> list[str]:

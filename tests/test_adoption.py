@@ -360,8 +360,14 @@ def test_add_noqa_writes_each_language_s_comment_and_merges_existing_ones(
     assert added.exit_code == 1
 
     cpp = (tmp_path / "src/base/src/smoother.cpp").read_text(encoding="utf-8").splitlines()
-    assert cpp[10].endswith('("/mobile_base/cmd_vel", 10);  // NOLINT(RN202)')
-    assert cpp[11].endswith("  // NOLINT(runtime/int, RN202)")
+    # Both lines are too long for the comment after them (80 columns): on the line before.
+    assert cpp[10:14] == [
+        "  // roslint-names: ignore RN202",
+        '  ros::Publisher out = nh.advertise<geometry_msgs::Twist>("/mobile_base/cmd_vel", 10);',
+        "  // roslint-names: ignore RN202",
+        '  ros::Publisher raw = nh.advertise<geometry_msgs::Twist>("/raw", 10);  '
+        "// NOLINT(runtime/int)",
+    ]
     python = (tmp_path / "src/base/scripts/teleop").read_text(encoding="utf-8").splitlines()
     assert python[4].endswith('rospy.init_node("teleop")')
     assert python[5].endswith("  # noqa: E501, RN202")
@@ -499,7 +505,11 @@ def test_edits_count_lines_as_the_parsers_do(run_cli: Any, tmp_path: Path) -> No
     write(tmp_path, "src/odom/src/odom_broadcaster.cpp", source)
     run_cli(["check", "--add-noqa", "."], tmp_path)
     noqa = (tmp_path / "src/odom/src/odom_broadcaster.cpp").read_text(encoding="utf-8")
-    assert '"/odom";  // tf2 refuses it  // NOLINT(RN205)' in noqa
+    # Appended, the comment would pass 80 columns: alone on the line before.
+    assert (
+        '    // roslint-names: ignore RN205\n    msg_.header.frame_id = "/odom";  // tf2 refuses it'
+        in noqa
+    )
 
 
 def test_a_byte_order_mark_survives_a_fix_and_shifts_nothing(run_cli: Any, tmp_path: Path) -> None:

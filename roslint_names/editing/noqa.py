@@ -1,7 +1,10 @@
 """``check --add-noqa``: a suppression comment for every current finding, in its file's form.
 
-- C++: `` // NOLINT(RN202)`` at the end of the line, merged into a ``NOLINT(...)`` already
-  there (cpplint's and clang-tidy's codes stay);
+- C++: ``  // roslint-names: ignore RN202`` at the end of the line, or alone on the line
+  before where the line would pass 80 columns (cpplint's default limit; ament_cpplint's
+  is 100), merged into such a comment already there. cpplint reports any category it does
+  not know inside ``NOLINT(...)``, so our codes never go there; ones an older version wrote
+  there are moved out (``NOLINT(runtime/int, RN202)`` keeps ``runtime/int``);
 - Python: ``  # noqa: RN202``, merged into a ``# noqa: E501`` already there;
 - launch XML, URDF, XACRO: `` <!-- roslint-names: ignore RN202 -->`` after the markup; a
   finding inside a start tag written over several lines (an attribute on a line of its
@@ -26,7 +29,7 @@ from dataclasses import dataclass
 
 from ..lines import split_lines, split_lines_keeping_ends
 from ..model import Diagnostic, Language
-from ..suppress import NOLINT, NOQA, XML_IGNORE, YAML_IGNORE, split_keys
+from ..suppress import CPP_IGNORE, NOLINT, NOQA, XML_IGNORE, YAML_IGNORE, is_our_code, split_keys
 from .files import Change, Snapshot
 
 
@@ -49,6 +52,8 @@ def add_noqa(
     for diagnostic in diagnostics:
         if not diagnostic.suppressed and not diagnostic.baselined:
             wanted[diagnostic.path][diagnostic.span.line].add(diagnostic.code)
+        elif diagnostic.suppressed and languages.get(diagnostic.path) is Language.CPP:
+            wanted[diagnostic.path]  # its suppressions may be in a form to move out of NOLINT
     added = files = 0
     left: list[tuple[str, int, str]] = []
     writes: list[Change] = []
@@ -57,6 +62,8 @@ def add_noqa(
         data, why = snapshot.for_edit(path)
         if data is None:
             left.extend((path, line, why) for line in by_line)
+            continue
+        if not by_line and b"NOLINT" not in data:
             continue
         try:
             text = data.decode("utf-8")
@@ -128,16 +135,74 @@ def _append(
 
 
 def _cpp(lines: list[str], text: str, by_line: dict[int, set[str]]) -> _Edit:
+    wanted: dict[int, set[str]] = defaultdict(set)
     refused: list[tuple[int, str]] = []
-    count = 0
-    for number, codes in sorted(by_line.items()):
-        body, _ = _body_and_ending(lines[number - 1])
-        if body.endswith("\\"):
+    for number, codes in by_line.items():
+        if _in_macro(lines, number):
             refused.append((number, "the line continues a macro"))
-            continue
-        _append(lines, number, codes, NOLINT, make="  // NOLINT({})", group=2)
+        else:
+            wanted[number] |= codes
+    count = _move_out_of_nolint(lines, wanted)
+    for number, codes in sorted(wanted.items(), reverse=True):  # bottom up: lines shift
         count += 1
-    return count, refused
+        body, ending = _body_and_ending(lines[number - 1])
+        previous = _body_and_ending(lines[number - 2])[0] if number >= 2 else ""
+        before = CPP_IGNORE.search(previous)
+        if CPP_IGNORE.search(body) is not None:
+            _append(lines, number, codes, CPP_IGNORE, make="")
+        elif before is not None and not previous[: before.start()].strip():
+            _append(lines, number - 1, codes, CPP_IGNORE, make="")
+        elif len(body.rstrip()) + len(_cpp_comment(codes)) + 2 <= CPP_LINE_LIMIT:
+            _append(lines, number, codes, CPP_IGNORE, make="  " + _cpp_comment(codes))
+        else:
+            indent = body[: len(body) - len(body.lstrip(" \t"))]
+            lines.insert(number - 1, indent + _cpp_comment(codes) + (ending or "\n"))
+    return count, sorted(refused)
+
+
+# cpplint's default --linelength: a comment that would push a line past it is written on
+# the line before instead, so no line length check fails because of it.
+CPP_LINE_LIMIT = 80
+
+
+def _cpp_comment(codes: Iterable[str]) -> str:
+    return f"// roslint-names: ignore {', '.join(sorted(codes))}"
+
+
+def _in_macro(lines: list[str], number: int) -> bool:
+    """Whether the line continues a macro or is continued: a ``//`` comment there would
+    swallow the backslash, and a line inserted before it would end the macro."""
+    body = _body_and_ending(lines[number - 1])[0]
+    previous = _body_and_ending(lines[number - 2])[0] if number >= 2 else ""
+    return body.endswith("\\") or previous.endswith("\\")
+
+
+def _move_out_of_nolint(lines: list[str], wanted: dict[int, set[str]]) -> int:
+    """Our codes out of every ``NOLINT(...)`` and ``NOLINTNEXTLINE(...)`` comment: a
+    ``NOLINTNEXTLINE`` of ours alone on its line becomes our comment in its place, the
+    others' codes join ``wanted`` for the line they silence, and a ``NOLINT`` left with no
+    code goes. The number of comments rewritten in place."""
+    rewritten = 0
+    for number in range(1, len(lines) + 1):
+        body, ending = _body_and_ending(lines[number - 1])
+        for match in reversed(list(NOLINT.finditer(body))):
+            keys = split_keys(match.group(2))
+            ours = {key.upper() for key in keys if is_our_code(key)}
+            target = number + 1 if match.group(1) else number
+            if not ours or target > len(lines) or _in_macro(lines, target):
+                continue
+            kept = [key for key in keys if not is_our_code(key)]
+            if kept:
+                body = body[: match.start(2)] + ", ".join(kept) + body[match.end(2) :]
+                wanted[target] |= ours
+            elif match.group(1) and not (body[: match.start()] + body[match.end() :]).strip():
+                body = body[: match.start()] + _cpp_comment(ours)
+                rewritten += 1
+            else:
+                body = body[: match.start()].rstrip() + body[match.end() :]
+                wanted[target] |= ours
+        lines[number - 1] = body + ending
+    return rewritten
 
 
 def _python(lines: list[str], text: str, by_line: dict[int, set[str]]) -> _Edit:
