@@ -582,6 +582,20 @@ def test_ros1_reads_a_test_expects_to_fail_still_count(run_cli: Any, tmp_path: P
     assert places(findings(run_cli, tmp_path)) == [("src/rate_check/test/chatter_rate.test", 6)]
 
 
+def test_a_test_without_a_name_runs_as_its_test_name(run_cli: Any, tmp_path: Path) -> None:
+    """MoveIt's pilz integration tests: roslaunch names a <test> without a name after its
+    test-name (``XmlLoader._node_tag``); before, the message named the node by the name
+    the code hands ``rospy.init_node``, a node that never runs."""
+    directory = tmp_path / "src" / "rate_check"
+    write(directory, "package.xml", CATKIN_PACKAGE.format(name="rate_check"))
+    write(directory, "nodes/rate_test", RATE_TEST_NODE)
+    unnamed = RATE_TEST.replace(' name="rate_test"', "").replace('"tolerance"', '"tolerence"')
+    write(directory, "test/chatter_rate.test", unnamed)
+    found = findings(run_cli, tmp_path)
+    assert places(found) == [("src/rate_check/test/chatter_rate.test", 6)]
+    assert "for node '/chatter_rate'" in found[0]["message"]
+
+
 def test_one_stale_setting_copied_into_several_launch_files_is_one_finding(
     run_cli: Any, tmp_path: Path
 ) -> None:

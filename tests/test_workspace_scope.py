@@ -285,10 +285,20 @@ def test_rostest_tests_of_one_name_run_one_after_the_other(run_cli: Any, tmp_pat
     write(tmp_path, "src/master_tests/package.xml", catkin_package("master_tests"))
     write(tmp_path, "src/master_tests/scripts/talker.py", TALKER_PY)
     test_tags = (
-        '  <test test-name="simple_api" pkg="master_tests" type="talker.py" args="--simple"/>\n'
-        '  <test test-name="register" pkg="master_tests" type="talker.py" args="--register"/>\n'
+        '  <test test-name="simple_api" name="talker" pkg="master_tests" type="talker.py"/>\n'
+        '  <test test-name="register" name="talker" pkg="master_tests" type="talker.py"/>\n'
     )
     write(tmp_path, "src/master_tests/test/api.test", f"<launch>\n{test_tags}</launch>\n")
+    assert findings(run_cli, tmp_path, ".") == []
+    # Without a name each test runs as its test-name (roslaunch's XmlLoader._node_tag):
+    # beside a node named as the code names it, nothing clashes.
+    unnamed = test_tags.replace(' name="talker"', "")
+    write(
+        tmp_path,
+        "src/master_tests/test/api.test",
+        '<launch>\n  <node name="talker" pkg="master_tests" type="talker.py"/>\n'
+        f"{unnamed}</launch>\n",
+    )
     assert findings(run_cli, tmp_path, ".") == []
     # A node runs the whole time: a test of its name clashes with it.
     write(

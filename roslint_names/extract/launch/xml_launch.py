@@ -381,6 +381,9 @@ class LaunchWalker(ABC):
         name_attribute = entity.get("name")
         name_value = self.attribute(entity, "name", scope, NODE, namespace)
         name = _node_name(name_value, arguments)
+        test_name = self.test_node_name(entity, scope) if name_attribute is None else None
+        if test_name is not None:
+            name = None if test_name.dynamic else test_name.text
         path = node_path(namespace, name)
         line_remaps, line_parameters = self.command_line_names(arguments, namespace, path)
         self.node_files = []
@@ -403,11 +406,20 @@ class LaunchWalker(ABC):
                 own_remaps=len(own_remaps),
                 anchored=inner.anchored,
                 conditional=scope.conditional or self.undecided(entity, scope),
-                dynamic_name=name is None and _names_node(name_value, arguments),
+                dynamic_name=name is None
+                and (test_name is not None or _names_node(name_value, arguments)),
                 test=entity.kind == "test",
                 parameter_files=files,
             )
         )
+
+    def test_node_name(self, entity: Entity, scope: Scope) -> Value | None:
+        """A ROS 1 ``<test>`` without a name runs as its ``test-name``: roslaunch's
+        ``XmlLoader._node_tag`` takes ``name = test_name`` and passes ``__name:=`` with it."""
+        if entity.kind != "test" or self.dialect is not Dialect.ROS1:
+            return None
+        located = entity.get("test-name")
+        return None if located is None else self.value(located, scope)
 
     def broadcast_frames(
         self, entity: Entity, scope: Scope, spec: NodeSpec, path: str | None
