@@ -137,3 +137,19 @@ def test_the_gitlab_job_writes_code_quality_and_junit_reports(tmp_path: Path) ->
     suite = etree.parse(str(root / reports["junit"])).getroot()
     JUNIT.assertValid(suite)
     assert suite.get("failures") == "1"
+
+
+def test_the_action_installs_the_ref_it_was_used_at(tmp_path: Path) -> None:
+    """Before, the action installed `roslint-names` from PyPI, where no release exists yet;
+    now its own checkout (``github.action_path``), unless a release is asked for."""
+    shim = tmp_path / "bin"
+    shim.mkdir()
+    (shim / "python").write_text('#!/bin/sh\necho "$@"\n')
+    (shim / "python").chmod(0o755)
+    step = _step(_action(), "Install roslint-names")
+    env = {**os.environ, "PATH": f"{shim}{os.pathsep}{os.environ['PATH']}"}
+    own = _bash(step["run"], tmp_path, {**env, "VERSION": "", "ACTION_PATH": str(REPOSITORY)})
+    assert own.stdout.split() == ["-m", "pip", "install", "--quiet", str(REPOSITORY)]
+    assert step["env"]["ACTION_PATH"] == "${{ github.action_path }}"
+    release = _bash(step["run"], tmp_path, {**env, "VERSION": "0.2.0", "ACTION_PATH": "/a"})
+    assert release.stdout.split()[-1] == "roslint-names==0.2.0"

@@ -220,3 +220,20 @@ def test_non_utf8_file_name_is_reported_readably(run_cli: Any, tmp_path: Path) -
     sarif = json.loads(run_cli(["check", "--format", "sarif", "."], tmp_path).stdout)
     location = sarif["runs"][0]["results"][0]["locations"][0]["physicalLocation"]
     assert location["artifactLocation"]["uri"] == "caf%5Cxe9.launch"
+
+
+def test_python_m_runs_the_command_line(tmp_path: Path) -> None:
+    """Before, ``python -m roslint_names`` said the package cannot be executed."""
+    write_package(tmp_path / "robot", 1, "robot")
+    launch = '<launch><node name="a-b" pkg="p" type="t"/></launch>\n'
+    write(tmp_path, "robot/launch/robot.launch", launch)
+    done = subprocess.run(
+        [sys.executable, "-m", "roslint_names", "--no-cache", "."],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert done.returncode == 1, done.stderr
+    assert "robot/launch/robot.launch:1:" in done.stdout
+    assert "[RN101 illegal-name]" in done.stdout

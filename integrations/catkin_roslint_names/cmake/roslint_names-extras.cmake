@@ -22,7 +22,7 @@ function(roslint_names_add_test)
   find_program(roslint_names_BIN NAMES "roslint-names")
   if(NOT roslint_names_BIN)
     message(FATAL_ERROR "roslint_names_add_test() could not find program 'roslint-names'; "
-      "install it with: pip install roslint-names")
+      "install it with: pip install \"roslint-names @ git+https://github.com/roslint-names/roslint-names\"")
   endif()
 
   set(options "--ros" "${ARG_ROS}")
