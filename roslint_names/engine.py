@@ -649,6 +649,10 @@ def check_file(
     if contexts is None:
         contexts = rule_contexts(registry, settings, known_service_types, wired_names)
     to_diagnostic = _DiagnosticFactory(facts, settings, text)
+    # Whether the file is test code is asked only when the answer can change something.
+    if test_rules is None:
+        test_rules = test_code_codes(settings, registry)
+    judging = _TestCodeFilter(facts, text, settings, test_rules)
     diagnostics = [
         to_diagnostic(
             rule,
@@ -662,16 +666,13 @@ def check_file(
         for rule in registry.rules
         if rule.code in active and rule.check is not None
         for finding in rule.check(facts, contexts[rule.code])
+        if not (finding.deployment_only and judging.is_test())
     ]
     suppressions = find_suppressions(text, facts.language)
-    # Whether the file is test code is asked only when the answer can change something.
-    if test_rules is None:
-        test_rules = test_code_codes(settings, registry)
     if diagnostics and is_template(_relative_to_root(facts.path, settings)):
         diagnostics = [
             d for d in diagnostics if d.source_line is None or not holds_placeholder(d.source_line)
         ]
-    judging = _TestCodeFilter(facts, text, settings, test_rules)
     if suppressions or any(judging.spared(d.code) for d in diagnostics):
         enabled = judging.rules(enabled)
         active = judging.rules(active)

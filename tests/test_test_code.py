@@ -537,3 +537,66 @@ def test_the_same_code_in_a_product_package_is_judged_in_full(run_cli: Any, tmp_
 )
 def test_example_code_conventions(tmp_path: Path, path: str, expected: bool) -> None:
     assert is_example_code(path, Settings(root=tmp_path / "ws")) is expected
+
+
+# ros_comm's test_rospy/test/rostest/test_service_order.py, reduced: the test that rospy
+# lets a service be declared before init_node (#530), and a private one, which lands
+# under /unnamed where the test will never find it.
+SERVICE_ORDER_PY = """\
+import sys
+import unittest
+
+import rospy
+import rostest
+from test_rospy.srv import EmptyReqSrv, EmptyReqSrvResponse
+
+
+def handle(req):
+    return EmptyReqSrvResponse(123456)
+
+
+def service_before():
+    s = rospy.Service('service_order_before', EmptyReqSrv, handle)
+    rospy.init_node('service_before')
+    rospy.spin()
+
+
+def private_before():
+    s = rospy.Service('~private_order_before', EmptyReqSrv, handle)
+    rospy.init_node('private_before')
+    rospy.spin()
+
+
+class TestServiceOrder(unittest.TestCase):
+    def test_before(self):
+        rospy.wait_for_service('service_order_before', 10.0)
+
+
+if __name__ == '__main__':
+    if '--before' in sys.argv:
+        service_before()
+    else:
+        rostest.run('test_rospy', 'rospy_service_decl_order', TestServiceOrder, sys.argv)
+"""
+
+
+def test_a_service_before_init_in_a_test_is_judged_only_where_it_breaks_the_test(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """Before, both services were RN301 findings; made before init_node, the first works
+    in the root namespace the test runs it in, and only launch remaps would miss it."""
+    write_package(tmp_path / "test_rospy", 1, "test_rospy")
+    write(tmp_path, "test_rospy/test/rostest/test_service_order.py", SERVICE_ORDER_PY)
+    result = run_cli(["check", "--format", "json", "--select", "RN301", "."], tmp_path)
+    assert [(f["line"], f["code"]) for f in result.findings()] == [(20, "RN301")]
+    # Outside tests, the same code misses the launch file's remaps: reported.
+    node = SERVICE_ORDER_PY.partition("\n\nclass ")[0].replace("import rostest\n", "")
+    node = node.replace("import unittest\n", "")
+    write_package(tmp_path / "order_services", 1, "order_services")
+    write(tmp_path, "order_services/nodes/service_order.py", node)
+    result = run_cli(["check", "--format", "json", "--select", "RN301", "."], tmp_path)
+    assert [(f["path"], f["line"]) for f in result.findings()] == [
+        ("order_services/nodes/service_order.py", 12),
+        ("order_services/nodes/service_order.py", 18),
+        ("test_rospy/test/rostest/test_service_order.py", 20),
+    ]

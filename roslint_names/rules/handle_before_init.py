@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from ..model import EventKind, FileFacts, Finding, RuntimeEvent, Severity
+from ..model import EventKind, FileFacts, Finding, RuntimeEvent, Severity, Span
 from ..rule import Rule, RuleContext
 
 
@@ -37,7 +37,31 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
                 event.span,
                 f"{event.api} is created before {init.api} (line {init.span.line}); "
                 "initialise first",
+                deployment_only=_misses_remaps_only(event, facts),
             )
+
+
+_LENIENT = frozenset({"rospy.Service", "rospy.ServiceProxy"})
+
+
+def _misses_remaps_only(event: RuntimeEvent, facts: FileFacts) -> bool:
+    """A rospy service or proxy of a name that is not private, made before
+    ``init_node``: it works, resolved in the root namespace without the launch file's
+    remaps (``rospy.names.resolve_name`` before ``initialize_mappings``). A test or an
+    example runs it as written: ros_comm's test_service_order.py does so on purpose."""
+    if event.api not in _LENIENT:
+        return False
+    after = (event.span.end_line, event.span.end_column)
+    name = min(
+        (use for use in facts.names if use.api == event.api and _start(use.span) >= after),
+        key=lambda use: _start(use.span),
+        default=None,
+    )
+    return name is not None and not name.value.startswith("~")
+
+
+def _start(span: Span) -> tuple[int, int]:
+    return (span.line, span.column)
 
 
 RULE = Rule(
