@@ -211,9 +211,13 @@ def test_a_launch_file_named_test_but_holding_no_test_is_judged_in_full(
         ("talker/scripts/check.py", Language.PYTHON, "import unittest\n", True),
         ("talker/scripts/check.py", Language.PYTHON, "from launch_testing import x\n", True),
         ("bringup/launch/all.launch", Language.LAUNCH_XML, '<launch><test name="t"/>', True),
-        # Not tests: a package that tests nothing, names that only contain "test".
-        ("autoware_test_utils/src/topic_snapshot_saver.cpp", Language.CPP, "", False),
-        ("hardware_interface_testing/src/mock.cpp", Language.CPP, "", False),
+        # Test support: code that exists for tests (before, judged in full).
+        ("autoware_test_utils/src/topic_snapshot_saver.cpp", Language.CPP, "", True),
+        ("hardware_interface_testing/src/mock.cpp", Language.CPP, "", True),
+        ("autoware/testing/autoware_testing/src/fake.cpp", Language.CPP, "", True),
+        # Not tests: names that only contain "test".
+        ("robot/src/testimonial_viewer.cpp", Language.CPP, "", False),
+        ("attestation/src/signer.cpp", Language.CPP, "", False),
         ("robot/src/latest_scan.cpp", Language.CPP, "", False),
         ("robot/scripts/contest.py", Language.PYTHON, "# unittest-like\n", False),
         ("robot/launch/robot.launch", Language.LAUNCH_XML, "<launch><node/></launch>", False),
