@@ -48,7 +48,7 @@ def test_max_file_size_is_configurable(run_cli: Any, tmp_path: Path) -> None:
     result = check(run_cli, tmp_path, "--verbose")
     assert (result.exit_code, result.findings()) == (0, [])
     assert "skipped launch/robot.launch: 0.0 MiB, above max-file-size (0.0 MiB)" in result.stderr
-    assert result.stderr.splitlines()[-1] == "All checks passed: 0 files, no problems."
+    assert result.stderr.splitlines()[-1] == "All checks passed: 0 files checked, no problems."
 
 
 def test_a_bad_max_file_size_names_the_key_and_the_file(run_cli: Any, tmp_path: Path) -> None:

@@ -175,7 +175,7 @@ def test_named_link_loop_and_empty_directory_are_said(run_cli: Any, tmp_path: Pa
     assert result.stderr.splitlines() == [
         "roslint-names: warning: launch: no file to lint in this directory",
         f"roslint-names: warning: scripts: not linted: {os.strerror(errno.ELOOP)}",
-        "All checks passed: 0 files, no problems.",
+        "All checks passed: 0 files checked, no problems.",
     ]
 
 

@@ -163,18 +163,23 @@ def test_without_a_source_line_show_source_prints_just_the_finding() -> None:
     assert text((diagnostic,), show_source=True) == text((diagnostic,))
 
 
-def test_summary_counts_problems_by_severity() -> None:
-    assert summary(sample.DIAGNOSTICS, 12) == "Found 4 problems (1 error, 3 warnings) in 12 files."
-    assert summary((sample.RN101,), 1) == "Found 1 problem (1 error) in 1 file."
+def test_summary_counts_problems_by_severity_and_the_files_they_are_in() -> None:
+    """Before, 'in 12 files' counted the files checked, which read as files with problems."""
+    assert summary(sample.DIAGNOSTICS, 12) == (
+        "Found 4 problems (1 error, 3 warnings) in 3 files (12 files checked)."
+    )
+    assert summary((sample.RN101,), 1) == "Found 1 problem (1 error) in 1 file (1 file checked)."
     assert (
         summary((sample.RN401, sample.RN202_UNICODE), 3)
-        == "Found 2 problems (2 warnings) in 3 files."
+        == "Found 2 problems (2 warnings) in 2 files (3 files checked)."
     )
 
 
 def test_summary_when_all_is_well() -> None:
-    assert summary((), 12) == "All checks passed: 12 files, no problems."
-    assert summary((sample.RN101_SUPPRESSED,), 1) == "All checks passed: 1 file, no problems."
+    assert summary((), 12) == "All checks passed: 12 files checked, no problems."
+    assert summary((sample.RN101_SUPPRESSED,), 1) == (
+        "All checks passed: 1 file checked, no problems."
+    )
 
 
 def test_statistics_most_frequent_first_then_by_code() -> None:

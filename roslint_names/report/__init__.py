@@ -62,21 +62,24 @@ def render(
 def summary(diagnostics: Sequence[Diagnostic], files_checked: int) -> str:
     """One line for stderr; suppressed diagnostics do not count.
 
-    ``Found 3 problems (2 errors, 1 warning) in 12 files.`` or
-    ``All checks passed: 12 files, no problems.``
+    ``Found 3 problems (2 errors, 1 warning) in 2 files (12 files checked).`` or
+    ``All checks passed: 12 files checked, no problems.``: the files with problems apart
+    from the files checked, which "in 12 files" left one to confuse.
     """
     shown = visible(diagnostics)
-    files = plural(files_checked, "file")
+    checked = f"{plural(files_checked, 'file')} checked"
     baselined = sum(1 for d in diagnostics if d.baselined)
-    known = f" ({baselined} more in the baseline)" if baselined else ""
+    known = f"{baselined} more in the baseline" if baselined else ""
     if not shown:
         new = "new " if baselined else ""
-        return f"All checks passed: {files}, no {new}problems{known}."
+        return f"All checks passed: {checked}, no {new}problems{f' ({known})' if known else ''}."
     errors = sum(1 for diagnostic in shown if diagnostic.severity is Severity.ERROR)
     warnings = len(shown) - errors
     counts = ((errors, "error"), (warnings, "warning"))
     detail = ", ".join(plural(count, noun) for count, noun in counts if count)
-    return f"Found {plural(len(shown), 'problem')} ({detail}) in {files}{known}."
+    where = plural(len({diagnostic.path for diagnostic in shown}), "file")
+    checked += f"; {known}" if known else ""
+    return f"Found {plural(len(shown), 'problem')} ({detail}) in {where} ({checked})."
 
 
 def statistics(diagnostics: Sequence[Diagnostic], rules: Sequence[RuleMeta]) -> str:

@@ -44,7 +44,8 @@ ORIGINALS: dict[str, bytes] = {
     if path.is_file() and path.name != CONFIG
 } | ADDED
 _SUMMARY = re.compile(
-    r"Found \d+ problems? \(.*\) in \d+ files?\.|All checks passed: \d+ files?, no problems\."
+    r"Found \d+ problems? \(.*\) in \d+ files? \(\d+ files? checked\)\."
+    r"|All checks passed: \d+ files? checked, no problems\."
 )
 # --verbose: where the cache is, files skipped (too large, binary), cache problems.
 _VERBOSE = re.compile(r"roslint-names: (?:cache|skipped|warning:) .*")
