@@ -50,6 +50,7 @@ from .progress import ProgressBar
 from .progress import wanted as progress_wanted
 from .registry import Registry, RegistryError, load_registry
 from .report import FORMATS, ReportContext, render, statistics, summary
+from .report.base import plural
 
 EXIT_CLEAN = 0
 EXIT_FINDINGS = 1
@@ -313,12 +314,16 @@ def _run_check(options: argparse.Namespace) -> int:
             print(f"roslint-names: {path}: {why}", file=sys.stderr)
         if options.diff:
             _write(fixed.diff(), options.output)
+            if not fixed.writes:
+                print("roslint-names: no fix to show", file=sys.stderr)
+            _say_what_was_not_fixed(diagnostics, options.unsafe_fixes)
             return EXIT_FINDINGS if fixed.writes else EXIT_CLEAN
         fixing.write(fixed, snapshot)
         for change in fixed.writes:
             print(f"roslint-names: wrote {change.display}", file=sys.stderr)
-        files = len(fixed.writes)
-        print(f"roslint-names: fixed {fixed.fixed} findings in {files} files", file=sys.stderr)
+        made = f"{plural(fixed.fixed, 'finding')} in {plural(len(fixed.writes), 'file')}"
+        print(f"roslint-names: fixed {made}", file=sys.stderr)
+        _say_what_was_not_fixed(diagnostics, options.unsafe_fixes)
         # What is left, as a run after the fixes reports it.
         return int(_run_check(argparse.Namespace(**{**vars(options), "fix": False})))
     metas = [rule_meta(rule) for rule in registry.rules]
@@ -373,6 +378,33 @@ def _linted_roots(paths: Sequence[Path], cwd: Path, *, renaming: bool) -> list[P
             if path.exists()
         }
     )
+
+
+def _say_what_was_not_fixed(diagnostics: Sequence[Diagnostic], unsafe: bool) -> None:
+    """After --fix or --diff: the fixes left for --unsafe-fixes, and each rename held back
+    with its reason (ruff's "N hidden fixes can be enabled with --unsafe-fixes")."""
+    reported = [d for d in diagnostics if not d.suppressed and not d.baselined]
+    if not unsafe:
+        waiting = sum(
+            1
+            for d in reported
+            if d.renaming is not None or (d.edit is not None and not d.edit.safe)
+        )
+        if waiting:
+            print(
+                f"roslint-names: {waiting} more {'fix' if waiting == 1 else 'fixes'} with "
+                "--unsafe-fixes: they change a name the running system uses (review them "
+                "with --diff --unsafe-fixes)",
+                file=sys.stderr,
+            )
+    for diagnostic in reported:
+        if diagnostic.held_back:
+            where = f"{diagnostic.path}:{diagnostic.span.line}"
+            print(
+                f"roslint-names: {where}: {diagnostic.code} rename not offered, "
+                f"{diagnostic.held_back}",
+                file=sys.stderr,
+            )
 
 
 def _resolve_renames(

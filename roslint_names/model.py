@@ -555,6 +555,8 @@ class Diagnostic:
     # A rename not yet offered: ``renames.resolve`` turns it into ``edit`` and ``also``
     # once it has seen every use of the name, or drops it.
     renaming: Fix | None = None
+    # Why a rename was not offered (``renames.resolve``): what --fix and --diff say of it.
+    held_back: str = field(default="", compare=False)
     answer: Answer | None = field(default=None, compare=False)  # Finding.answer
     # The display directory of the file's package ("" for the run's root; None outside
     # any package, and for graph rules' findings, whose answers count across the run):

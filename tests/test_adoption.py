@@ -462,7 +462,7 @@ def test_safe_fixes_are_marked_shown_as_a_diff_and_applied(run_cli: Any, tmp_pat
     assert "fixed 0 findings in 0 files" in again.stderr
 
     unsafe = run_cli(["check", "--fix", "--unsafe-fixes", "."], tmp_path)
-    assert "fixed 1 findings in 1 files" in unsafe.stderr
+    assert "fixed 1 finding in 1 file" in unsafe.stderr
     assert unsafe.exit_code == 0
     legacy = (tmp_path / "src/legacy/launch/ekf.launch").read_text(encoding="utf-8")
     assert '<param name="map_frame" value="map"/>' in legacy

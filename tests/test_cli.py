@@ -237,3 +237,53 @@ def test_python_m_runs_the_command_line(tmp_path: Path) -> None:
     assert done.returncode == 1, done.stderr
     assert "robot/launch/robot.launch:1:" in done.stdout
     assert "[RN101 illegal-name]" in done.stdout
+
+
+# A roscpp node whose every finding has only an unsafe fix (a rename, an absolute name),
+# and one safe one (a trailing slash).
+SMOOTHER_CPP = """\
+#include <ros/ros.h>
+#include <geometry_msgs/Twist.h>
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "velocitySmoother");
+  ros::NodeHandle nh;
+  ros::Publisher out = nh.advertise<geometry_msgs::Twist>("/cmd_vel", 10);
+  ros::spin();
+}
+"""
+
+
+def test_fix_and_diff_say_what_needs_unsafe_fixes(run_cli: Any, tmp_path: Path) -> None:
+    """Before, --diff printed nothing and --fix said 'fixed 0 findings' with exit 0."""
+    write_package(tmp_path / "base", 1, "base")
+    node = write(tmp_path, "base/src/smoother.cpp", SMOOTHER_CPP)
+    diff = run_cli(["check", "--diff", "."], tmp_path)
+    assert diff.stdout == ""
+    assert "roslint-names: no fix to show" in diff.stderr
+    assert "roslint-names: 2 more fixes with --unsafe-fixes" in diff.stderr
+    fixed = run_cli(["check", "--fix", "."], tmp_path)
+    assert "roslint-names: fixed 0 findings in 0 files" in fixed.stderr
+    assert "roslint-names: 2 more fixes with --unsafe-fixes" in fixed.stderr
+    assert fixed.exit_code == 1
+    assert node.read_text(encoding="utf-8") == SMOOTHER_CPP
+    both = run_cli(["check", "--diff", "--unsafe-fixes", "."], tmp_path)
+    assert '+  ros::init(argc, argv, "velocity_smoother");' in both.stdout
+    assert "--unsafe-fixes:" not in both.stderr
+
+
+def test_a_rename_held_back_is_named_with_its_reason(run_cli: Any, tmp_path: Path) -> None:
+    """Before, the rename was dropped without a word."""
+    write_package(tmp_path / "base", 1, "base")
+    write(tmp_path, "base/src/smoother.cpp", SMOOTHER_CPP)
+    kept = SMOOTHER_CPP.replace(
+        '"velocitySmoother");', '"velocitySmoother");  // roslint-names: ignore RN203'
+    )
+    write(tmp_path, "base/src/smoother_main.cpp", kept)
+    diff = run_cli(["check", "--diff", "--unsafe-fixes", "--select", "RN203", "."], tmp_path)
+    assert diff.stdout == ""
+    assert (
+        "roslint-names: base/src/smoother.cpp:6: RN203 rename not offered, "
+        "'velocitySmoother': a suppression keeps it at base/src/smoother_main.cpp:6"
+    ) in diff.stderr

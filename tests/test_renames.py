@@ -233,7 +233,7 @@ def test_a_node_name_is_renamed_across_languages(run_cli: Any, tmp_path: Path) -
         "src/robot/launch/robot.launch.xml",
     ]
     fixed = _check(run_cli, tmp_path, "--fix")
-    assert "fixed 1 findings in 3 files" in fixed.stderr
+    assert "fixed 1 finding in 3 files" in fixed.stderr
     assert fixed.findings() == []
     launch = (tmp_path / "src/imu_tools/launch/imu.launch.py").read_text(encoding="utf-8")
     assert launch == IMU_LAUNCH_PY.replace("'ImuFilter'", "'imu_filter'")

@@ -67,19 +67,19 @@ def resolve(
     if not pending:
         return list(diagnostics)
     renamed = {old: new for fix in pending for old, new in fix.tokens}
-    blocked = {
-        old
-        for d in diagnostics
-        if d.suppressed and d.renaming is not None
-        for old, _ in d.renaming.tokens
-    }
+    blocked: dict[str, str] = {}  # word -> why it cannot be renamed (the first place found)
+    for d in diagnostics:
+        if d.suppressed and d.renaming is not None:
+            for old, _ in d.renaming.tokens:
+                blocked.setdefault(old, f"a suppression keeps it at {d.path}:{d.span.line}")
     facts_of = {file_facts.path: file_facts for file_facts in facts}
     search = _Search(renamed, read)
     uses: list[_Use] = []
     for path in sorted({*files, *facts_of}):
         found, blocking = search.file(path, facts_of.get(path))
         uses += found
-        blocked |= blocking
+        for word, why in blocking.items():
+            blocked.setdefault(word, why)
     return [_resolved(d, uses, blocked) for d in diagnostics]
 
 
@@ -93,26 +93,33 @@ class _Search:
         # A first look at the bytes: nearly no file holds any of the words at all.
         self._any = re.compile(b"|".join(re.escape(word.encode("utf-8")) for word in renamed))
 
-    def file(self, path: str, facts: FileFacts | None) -> tuple[list[_Use], set[str]]:
+    def file(self, path: str, facts: FileFacts | None) -> tuple[list[_Use], dict[str, str]]:
+        """The uses of the words in the file, and each word the file blocks, with why."""
         data = self._read(path)
         if data is None or self._any.search(data) is None:
-            return [], set()
+            return [], {}
         text = decode_for_display(data)
         lines = split_lines(text)
         uses: list[_Use] = []
-        blocked: set[str] = set()
+        blocked: dict[str, str] = {}
         for use in () if facts is None else facts.names:
             words = set(self._words.findall(use.value))
             if use.dynamic or not words:
                 continue
             line = lines[use.span.line - 1] if 0 < use.span.line <= len(lines) else None
             fix = Fix(use.value, rename_tokens(use.value, self._renamed), safe=False)
-            held = use.kind is Kind.FRAME or (facts is not None and facts.language in _GENERATING)
-            edit = None if held else located(fix, use.span, line)
-            if edit is None:
-                blocked |= words
+            where = f"{path}:{use.span.line}"
+            if use.kind is Kind.FRAME:
+                why = f"{where} names a tf frame with it, which is not this rule's to rename"
+            elif facts is not None and facts.language in _GENERATING:
+                why = f"{where} generates code from it (a dynamic_reconfigure field)"
+            elif (edit := located(fix, use.span, line)) is None:
+                why = f"{where} does not spell the name where it is used (a constant)"
             else:
                 uses.append(_Use(path, use, replace(edit, path=path)))
+                continue
+            for word in words:
+                blocked.setdefault(word, why)
         covered = [use.edit.span for use in uses]
         starts: list[int] = []
         code = facts is not None and facts.language in _CODE
@@ -125,18 +132,23 @@ class _Search:
                     span.line == number and span.column <= column < span.end_column
                     for span in covered
                 ):
-                    blocked.add(found.group())
+                    blocked.setdefault(
+                        found.group(), f"{path}:{number} writes it where no name is read"
+                    )
         return uses, blocked
 
 
-def _resolved(diagnostic: Diagnostic, uses: list[_Use], blocked: set[str]) -> Diagnostic:
+def _resolved(diagnostic: Diagnostic, uses: list[_Use], blocked: dict[str, str]) -> Diagnostic:
     fix = diagnostic.renaming
     if fix is None:
         return diagnostic
     mine = dict(fix.tokens)
     edit = located(fix, diagnostic.span, diagnostic.source_line)
-    if edit is None or not mine.keys().isdisjoint(blocked):
-        return replace(diagnostic, renaming=None)
+    if edit is None:
+        return replace(diagnostic, renaming=None, held_back="the name is not spelled here")
+    why = next((f"'{word}': {blocked[word]}" for word in sorted(mine) if word in blocked), None)
+    if why is not None:
+        return replace(diagnostic, renaming=None, held_back=why)
     words = token_pattern(mine)
     also = {
         (use.path, use.edit.span): replace(use.edit, text=rename_tokens(use.use.value, mine))
