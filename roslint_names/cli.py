@@ -291,6 +291,10 @@ def _run_check(options: argparse.Namespace) -> int:
         bar.close()  # erased before the report and the summary are written
     if options.verbose:
         _print_run_details(result, cache, options.cache_dir or default_cache_directory())
+        from .fates import fates  # what became of each file: only --verbose asks
+
+        for display, fate in fates(lintable(sources), settings):
+            print(f"roslint-names: {display}: {fate}", file=sys.stderr)
     if options.changed_since is not None:
         diagnostics = gate(diagnostics, changed_lines(options.changed_since, cwd), cwd)
     if options.write_baseline is not None:

@@ -466,7 +466,7 @@ def launch_wiring(
     wired = wired_by(facts)
     if not wired:
         return wired
-    relative = _relative_to_root(facts.path, settings)
+    relative = relative_to_root(facts.path, settings)
     if os.path.isabs(relative) and not os.path.isabs(facts.path):
         # A per-file run's context lies outside the root (the named files' directory):
         # its directories are those below the working directory, as displayed, not those
@@ -669,7 +669,7 @@ def check_file(
         if not (finding.deployment_only and judging.is_test())
     ]
     suppressions = find_suppressions(text, facts.language)
-    if diagnostics and is_template(_relative_to_root(facts.path, settings)):
+    if diagnostics and is_template(relative_to_root(facts.path, settings)):
         diagnostics = [
             d for d in diagnostics if d.source_line is None or not holds_placeholder(d.source_line)
         ]
@@ -716,7 +716,7 @@ class _TestCodeFilter:
 
     def is_test(self) -> bool:
         if self._test is None:
-            relative = _relative_to_root(self._facts.path, self._settings)
+            relative = relative_to_root(self._facts.path, self._settings)
             self._test = is_test_code(
                 relative, self._facts.language, self._text, self._settings
             ) or is_example_code(relative, self._settings)
@@ -872,10 +872,10 @@ def _per_file_ignored(display: str, settings: Settings, registry: Registry) -> f
     took 36 ms, 2% of a re-run from cached facts."""
     if not settings.per_file_ignores:
         return frozenset()
-    return ignored_for_path(settings, _relative_to_root(display, settings), registry)
+    return ignored_for_path(settings, relative_to_root(display, settings), registry)
 
 
-def _relative_to_root(display: str, settings: Settings) -> str:
+def relative_to_root(display: str, settings: Settings) -> str:
     """Where per-file ignores look: the file's path below the root, else its absolute
     path. String operations, not ``Path.relative_to``: with per-file-ignores configured
     this runs for every file."""

@@ -287,3 +287,26 @@ def test_a_rename_held_back_is_named_with_its_reason(run_cli: Any, tmp_path: Pat
         "roslint-names: base/src/smoother.cpp:6: RN203 rename not offered, "
         "'velocitySmoother': a suppression keeps it at base/src/smoother_main.cpp:6"
     ) in diff.stderr
+
+
+def test_verbose_says_what_became_of_each_file(run_cli: Any, tmp_path: Path) -> None:
+    """Before, --verbose said only where the cache was: a file with no finding could have
+    been checked in full, judged as test code, or never parsed."""
+    write_package(tmp_path / "base", 1, "base")
+    write(tmp_path, "base/src/smoother.cpp", SMOOTHER_CPP)
+    write(tmp_path, "base/src/filter_math.cpp", "double lowpass(double x) { return x; }\n")
+    write(tmp_path, "base/test/test_smoother.cpp", "#include <gtest/gtest.h>\n" + SMOOTHER_CPP)
+    write(tmp_path, "base/examples/smoother_demo.cpp", SMOOTHER_CPP)
+    write(tmp_path, "base/scripts/plot.py", "import matplotlib\n")
+    result = run_cli(["check", "--verbose", "--no-cache", "."], tmp_path)
+    said = [line for line in result.stderr.splitlines() if line.startswith("roslint-names: base")]
+    assert sorted(said) == [
+        "roslint-names: base/examples/smoother_demo.cpp: example code: judged by the "
+        "[test-code] rules only",
+        "roslint-names: base/scripts/plot.py: not parsed: it imports no ROS client library "
+        "and holds no launch description",
+        "roslint-names: base/src/filter_math.cpp: not parsed: it names no roscpp or rclcpp API",
+        "roslint-names: base/src/smoother.cpp: checked",
+        "roslint-names: base/test/test_smoother.cpp: test code: judged by the [test-code] "
+        "rules only",
+    ]

@@ -47,8 +47,12 @@ _SUMMARY = re.compile(
     r"Found \d+ problems? \(.*\) in \d+ files? \(\d+ files? checked\)\."
     r"|All checks passed: \d+ files? checked, no problems\."
 )
-# --verbose: where the cache is, files skipped (too large, binary), cache problems.
-_VERBOSE = re.compile(r"roslint-names: (?:cache|skipped|warning:) .*")
+# --verbose: where the cache is, files skipped (too large, binary), cache problems, and
+# what became of each file.
+_VERBOSE = re.compile(
+    r"roslint-names: (?:cache|skipped|warning:) .*"
+    r"|roslint-names: \S.*: (?:checked|not parsed: .*|(?:test|example) code: .*)"
+)
 
 
 @dataclass(frozen=True)
