@@ -43,14 +43,16 @@ from .editing.changes import ChangesError, changed_lines, gate
 from .editing.files import Snapshot, WriteError, write_new
 from .editing.noqa import add_noqa
 from .engine import LintResult, RunOptions, lint, lintable, recheck
+from .extract.python.extract import is_launch_path
 from .generation import PackageGenerations
-from .model import Diagnostic, FileFacts, Generation, Kind
+from .model import Diagnostic, FileFacts, Generation, Kind, Language
 from .names import Problem, check_name
 from .progress import ProgressBar
 from .progress import wanted as progress_wanted
 from .registry import Registry, RegistryError, load_registry
 from .report import FORMATS, ReportContext, render, statistics, summary
 from .report.base import plural
+from .workspace.graph import launched_by
 
 EXIT_CLEAN = 0
 EXIT_FINDINGS = 1
@@ -543,8 +545,27 @@ def _run_graph(options: argparse.Namespace) -> int:
     run = RunOptions(jobs=options.jobs, cache=_facts_cache(options))
     result = lint(sources, settings, registry, run, context=workspace, want_graph=True)
     assert result.graph is not None
-    _write(RENDERERS[options.format](result.graph), options.output)
+    graph = result.graph
+    launch_files = _launch_files_named(options.paths, sources)
+    if launch_files:
+        graph = launched_by(graph, launch_files)
+    _write(RENDERERS[options.format](graph), options.output)
     return EXIT_CLEAN
+
+
+def _launch_files_named(paths: Sequence[Path], sources: Sequence[SourceFile]) -> frozenset[str]:
+    """The display paths of the launch files ``graph`` was given, when every path given
+    is one: then it draws what they start, not their whole workspace."""
+    named = {source.display for source in sources if _is_launch_file(source)}
+    if not named or len(named) != len(sources) or any(Path(p).is_dir() for p in paths):
+        return frozenset()
+    return frozenset(named)
+
+
+def _is_launch_file(source: SourceFile) -> bool:
+    return source.language in (Language.LAUNCH_XML, Language.LAUNCH_YAML) or (
+        source.language is Language.PYTHON and is_launch_path(source.display)
+    )
 
 
 def _facts_cache(options: argparse.Namespace) -> FactsCache | None:

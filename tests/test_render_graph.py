@@ -13,6 +13,7 @@ from typing import Any
 from xml.etree import ElementTree
 
 import pytest
+from conftest import write, write_package
 
 from roslint_names.model import Generation, Kind, Remap, Span
 from roslint_names.render import FORMATS, RENDERERS, render
@@ -423,6 +424,10 @@ MM_LINE = re.compile(
             *(rf"    {MM_ID}{opening}{MM_LABEL}{closing}" for opening, closing in MM_SHAPES),
             rf"    {MM_ID} (?:-->|-\.->|==>)\|[a-z ]+\| {MM_ID}",
             r"    classDef mismatch stroke:red,color:red",
+            rf"    subgraph c\d+\[{MM_LABEL}\]",
+            r"    end",
+            r"        %% [^{}\n]*",
+            *(rf"        {MM_ID}{opening}{MM_LABEL}{closing}" for opening, closing in MM_SHAPES),
             rf"    class {MM_ID}(?:,{MM_ID})* mismatch",
         ]
     )
@@ -628,3 +633,81 @@ def test_json_every_field_is_documented_in_the_module_docstring() -> None:
     keys |= set(loaded["nodes"][0]["launched_at"][0])
     for key in sorted(keys):
         assert f"``{key}``" in doc, key
+
+
+# --- launch trees as boxes ----------------------------------------------------------------
+
+
+SCAN = "sensor_msgs/LaserScan"
+NODE_CPP, CLIENT_CPP = "src/rplidar_ros/src/node.cpp", "src/rplidar_ros/src/client.cpp"
+
+
+def alternatives() -> Graph:
+    """rplidar_ros, reduced: two alternative launch files each start /rplidarNode, which
+    publishes /scan; a node no launch file starts reads it."""
+    nodes = (
+        instance("/rplidarNode", "rplidar_ros", "rplidarNode", root="launch/rplidar_a1.launch"),
+        instance("/rplidarNode", "rplidar_ros", "rplidarNode", root="launch/rplidar_s2.launch"),
+        instance("/scan_client", "rplidar_ros", "rplidarNodeClient", root=""),
+    )
+    endpoints = (
+        endpoint("/rplidarNode", PUB, "/scan", SCAN, at(NODE_CPP, 3, 5), root=nodes[0].root),
+        endpoint("/rplidarNode", PUB, "/scan", SCAN, at(NODE_CPP, 3, 5), root=nodes[1].root),
+        endpoint("/scan_client", SUB, "/scan", SCAN, at(CLIENT_CPP, 4, 5), root=""),
+    )
+    return Graph(nodes, endpoints)
+
+
+def test_alternative_launch_trees_are_boxes_in_dot() -> None:
+    """Before, both /rplidarNode were drawn among every other node, unlabelled."""
+    source = dot_render.render(alternatives())
+    assert source.count("subgraph cluster_") == 2
+    assert 'label="launch/rplidar_a1.launch";' in source
+    texts, _ = svg_texts_and_titles(run_dot(source))
+    assert {"launch/rplidar_a1.launch", "launch/rplidar_s2.launch"} <= set(texts)
+    assert dot_render.render(small()).count("subgraph") == 0  # one tree: no box
+
+
+def test_alternative_launch_trees_are_subgraphs_in_mermaid() -> None:
+    lines = mermaid_render.render(alternatives()).splitlines()
+    for line in lines[1:]:
+        assert MM_LINE.fullmatch(line), line
+    assert lines.count("    end") == 2
+    assert '    subgraph c0["launch/rplidar_a1.launch"]' in lines
+    client = next(i for i, line in enumerate(lines) if "/scan_client" in line and "%%" not in line)
+    assert not lines[client].startswith("        ")  # not launched: outside every box
+
+
+RPLIDAR_LAUNCH = """<launch>
+  <node name="rplidarNode" pkg="rplidar_ros" type="rplidarNode" output="screen">
+    <param name="serial_port" value="/dev/ttyUSB0"/>
+  </node>
+</launch>
+"""
+VIEW_LAUNCH = """<launch>
+  <include file="$(find rplidar_ros)/launch/rplidar_a1.launch"/>
+  <node name="rviz" pkg="rviz" type="rviz"/>
+</launch>
+"""
+
+
+def test_graph_of_a_launch_file_draws_what_it_starts(run_cli: Any, tmp_path: Path) -> None:
+    """Before, `graph launch/view_rplidar.launch` drew the whole workspace: every
+    alternative launch file's /rplidarNode, ungrouped."""
+    write_package(tmp_path / "src/rplidar_ros", 1, "rplidar_ros")
+    for name in ("rplidar_a1", "rplidar_s2", "rplidar_a3"):
+        write(tmp_path, f"src/rplidar_ros/launch/{name}.launch", RPLIDAR_LAUNCH)
+    write(tmp_path, "src/rplidar_ros/launch/view_rplidar.launch", VIEW_LAUNCH)
+
+    def nodes(*paths: str) -> list[tuple[str, str]]:
+        result = run_cli(["graph", "--format", "json", "--no-cache", *paths], tmp_path)
+        return [(node["name"], node["root"]) for node in json.loads(result.stdout)["nodes"]]
+
+    view = "src/rplidar_ros/launch/view_rplidar.launch"
+    assert nodes(view) == [("/rplidarNode", view), ("/rviz", view)]
+    # A file another includes is drawn as its includers launch it.
+    assert nodes("src/rplidar_ros/launch/rplidar_a1.launch") == [("/rplidarNode", view)]
+    # The whole package: every tree, each in its own box.
+    assert len(nodes("src/rplidar_ros")) == 4
+    dot = run_cli(["graph", "--format", "dot", "--no-cache", "src/rplidar_ros"], tmp_path).stdout
+    assert dot.count("subgraph cluster_") == 3

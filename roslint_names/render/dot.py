@@ -12,6 +12,9 @@ action client -> action -> action server. Each arrow is labelled with its edge k
 arrows are solid, service arrows dashed, action arrows bold. Endpoints with the same node,
 resource and edge kind share one arrow.
 
+Where several launch trees are drawn, each one's nodes sit in a dashed ``cluster_N``
+subgraph labelled with its launch file.
+
 Source locations ride along as ``tooltip`` attributes (``src/talker.cpp:12:5``, shown when
 hovering in an SVG) and as ``//`` comments above each statement. Ids are ``n0``, ``t0``,
 ``s0``, ``a0`` in sorted order, so the same graph always gives the same bytes.
@@ -59,8 +62,14 @@ _HEADER = (
 def render(graph: Graph) -> str:
     drawing = layout(graph)
     lines = list(_HEADER)
-    for node in drawing.nodes:
+    for node in drawing.unclustered():
         lines.extend(_node(node))
+    for index, (root, nodes) in enumerate(drawing.clusters()):
+        lines.append(f"{_INDENT}subgraph cluster_{index} {{")
+        lines.append(f"{_INDENT * 2}label={quote(root)};")
+        lines.append(f"{_INDENT * 2}style=dashed;")
+        lines.extend(_INDENT + line for node in nodes for line in _node(node))
+        lines.append(f"{_INDENT}}}")
     for resource in drawing.resources:
         lines.extend(_resource(resource))
     for arrow in drawing.arrows:

@@ -12,6 +12,9 @@ action client -> action -> action server; topic arrows are solid (``-->``), serv
 dotted (``-.->``), action arrows thick (``==>``), each labelled with its edge kind.
 Endpoints with the same node, resource and edge kind share one arrow.
 
+Where several launch trees are drawn, each one's nodes sit in a ``subgraph cN["file"]``
+block labelled with its launch file.
+
 Mermaid on GitHub takes no free-form attributes and no click handlers, so source locations
 are ``%%`` comments on their own line above each node and arrow. Labels are always quoted,
 and every character Mermaid reads as syntax even inside quotes is written as an entity code
@@ -75,8 +78,12 @@ _HEADER = (
 def render(graph: Graph) -> str:
     drawing = layout(graph)
     lines = list(_HEADER)
-    for node in drawing.nodes:
+    for node in drawing.unclustered():
         lines.extend(_node(node))
+    for index, (root, nodes) in enumerate(drawing.clusters()):
+        lines.append(f"{_INDENT}subgraph c{index}[{_label((root,))}]")
+        lines.extend(_INDENT + line for node in nodes for line in _node(node))
+        lines.append(f"{_INDENT}end")
     for resource in drawing.resources:
         lines.append(
             _shape(resource.ident, _RESOURCE_SHAPES.get(resource.kind, ("[", "]")), resource.lines)

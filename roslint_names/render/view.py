@@ -16,6 +16,11 @@ Both drawings need the same decisions, made once here so that they cannot drift 
 * Arrows follow the data: publisher -> topic -> subscriber, client -> service -> server,
   action client -> action -> action server. Endpoints with the same node, resource and edge
   kind collapse to one arrow that keeps all their locations.
+* Where the graph holds more than one launch tree, each tree's nodes are drawn in a box
+  labelled with its launch file (``Drawing.clusters``): a package's alternative launch
+  files (rplidar_ros' fourteen ``/rplidarNode``) are then alternatives side by side, not
+  one crowd. Nodes no launch file starts stay outside every box, and so do the topics,
+  which the trees may share.
 """
 
 from __future__ import annotations
@@ -87,6 +92,23 @@ class Drawing:
     nodes: tuple[NodeShape, ...]
     resources: tuple[ResourceShape, ...]
     arrows: tuple[Arrow, ...]
+
+    def clusters(self) -> tuple[tuple[str, tuple[NodeShape, ...]], ...]:
+        """(launch file, its nodes) for each launch tree, in path order, when there are
+        several; empty when there is at most one tree to draw."""
+        roots: dict[str, list[NodeShape]] = defaultdict(list)
+        for node in self.nodes:
+            if node.root:
+                roots[node.root].append(node)
+        if len(roots) < 2:
+            return ()
+        return tuple((root, tuple(roots[root])) for root in sorted(roots))
+
+    def unclustered(self) -> tuple[NodeShape, ...]:
+        """The nodes drawn outside every box: all of them when there are no boxes."""
+        if not self.clusters():
+            return self.nodes
+        return tuple(node for node in self.nodes if not node.root)
 
 
 def layout(graph: Graph) -> Drawing:

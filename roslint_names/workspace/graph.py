@@ -8,7 +8,7 @@ runs over one tree give equal graphs.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import Enum
 from typing import TYPE_CHECKING, Protocol
 
@@ -256,3 +256,17 @@ class Graph:
     def resources(self, kind: Kind) -> list[str]:
         """Every resolved name of one kind, sorted."""
         return sorted({e.resource for e in self.endpoints if e.resource_kind is kind})
+
+
+def launched_by(graph: Graph, launch_files: frozenset[str]) -> Graph:
+    """The part of ``graph`` that the launch files (display paths) start: the node
+    instances whose launch chain passes through one of them, a file included by another
+    drawn as its includers launch it, and those nodes' endpoints."""
+    nodes = tuple(
+        node
+        for node in graph.nodes
+        if node.root in launch_files or any(site.path in launch_files for site in node.launched_at)
+    )
+    kept = {(node.name, node.root) for node in nodes}
+    endpoints = tuple(e for e in graph.endpoints if (e.node, e.root) in kept)
+    return replace(graph, nodes=nodes, endpoints=endpoints)
