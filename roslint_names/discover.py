@@ -406,6 +406,23 @@ def workspace_root(path: Path) -> Path | None:
     return None
 
 
+def editor_workspace(directory: Path) -> Path | None:
+    """The workspace an editor that opened ``directory`` works in: the nearest directory at
+    or above it whose ``src/`` holds packages (an editor rooted at a package still sees the
+    packages beside it), else the git root at or above it, else ``directory`` itself where
+    it is a package or holds some; None for any other directory (a home directory, a
+    download folder), which is never read whole."""
+    for candidate in (directory, *directory.parents):
+        source = candidate / "src"
+        if source.is_dir() and _holds_packages(source):
+            return candidate
+        if (candidate / ".git").exists():
+            return candidate
+    if (directory / "package.xml").is_file() or _holds_packages(directory):
+        return directory
+    return None
+
+
 def _holds_packages(directory: Path) -> bool:
     """A package.xml one or two levels down (``src/pkg``, ``src/repo/pkg``)."""
     return any(directory.glob("*/package.xml")) or any(directory.glob("*/*/package.xml"))

@@ -55,7 +55,7 @@ from .cache import FactsCache
 from .cache import default_directory as default_cache_directory
 from .catalog import CatalogError, load_doc
 from .config import ConfigError, load_settings
-from .discover import classify
+from .discover import classify, editor_workspace
 from .editing.noqa import with_suppressions
 from .lines import split_lines
 from .model import Diagnostic, Edit, Severity, Span
@@ -241,7 +241,12 @@ class RoslintServer(LanguageServer):
         return await self._loading
 
     async def _load(self) -> Session | None:
-        root = Path(self.workspace.root_path or os.getcwd())
+        opened = Path(self.workspace.root_path or os.getcwd()).absolute()
+        # The editor's root may be a package (the graph rules then miss the packages beside
+        # it) or any directory at all (reading a home directory takes minutes): the
+        # workspace is found from it, and none is read where there is none.
+        workspace = editor_workspace(opened)
+        root = opened if workspace is None else workspace
         try:
             registry = load_registry()
             settings = load_settings(None, root, registry)
@@ -254,7 +259,13 @@ class RoslintServer(LanguageServer):
         cache = None if directory is None else FactsCache(directory.absolute())
         os.chdir(root)  # the engine shows and matches paths relative to the workspace
         session = Session(root, settings, registry, cache)
-        await self._worker.run(session.load)
+        if workspace is None:
+            self.log_line(
+                f"{opened} is in no ROS workspace (no src/ with packages, no git root, no "
+                "package): only the open documents are checked"
+            )
+        else:
+            await self._worker.run(session.load)
         self.session = session
         return session
 

@@ -191,3 +191,66 @@ def test_without_pygls_the_command_says_what_to_install(
     result = run_cli(["server"], tmp_path)
     assert result.exit_code == 2
     assert "install roslint-names[server]" in result.stderr
+
+
+async def _first_findings(opened: Path, document: Path, cache: Path, wanted: str) -> list[str]:
+    """Start the server rooted at ``opened``, open ``document`` with a launch file's text
+    that includes the teleop package's, and return the codes published once ``wanted``
+    is among them, then the lines the server logged."""
+    uri = from_fs_path(str(document))
+    assert uri is not None
+    client = Client()
+    logged: list[str] = []
+
+    @client.lsp.feature(types.WINDOW_LOG_MESSAGE)
+    def log_message(params: types.LogMessageParams) -> None:
+        logged.append(params.message)
+
+    await client.lsp.start_io(*SERVER, env={"XDG_CACHE_HOME": str(cache), "PATH": ""})
+    try:
+        await client.lsp.initialize_async(
+            types.InitializeParams(
+                capabilities=types.ClientCapabilities(), root_uri=from_fs_path(str(opened))
+            )
+        )
+        client.lsp.initialized(types.InitializedParams())
+        text = document.read_text(encoding="utf-8")
+        client.lsp.text_document_did_open(
+            types.DidOpenTextDocumentParams(
+                types.TextDocumentItem(uri=uri, language_id="xml", version=1, text=text)
+            )
+        )
+        found = await client.until(uri, lambda d: wanted in _codes(d))
+        await client.lsp.shutdown_async(None)
+        return [*_codes(found), *logged]
+    finally:
+        client.lsp.exit(None)
+        await client.lsp.stop()
+
+
+TWICE_LAUNCH = ROBOT_LAUNCH.replace("base-driver", "base_driver").replace(
+    "  </group>", '    <include file="$(find teleop)/launch/teleop.launch"/>\n  </group>'
+)
+
+
+def test_an_editor_rooted_at_a_package_sees_the_packages_beside_it(tmp_path: Path) -> None:
+    """Neovim's root_dir rule gives the package on some versions: before, the server read
+    that package alone and the cross-package duplicate (RN402) never showed."""
+    root = tmp_path / "ws"
+    write_package(root / "src/robot_bringup", 1)
+    launch = write(root, "src/robot_bringup/launch/robot.launch", TWICE_LAUNCH)
+    write_package(root / "src/teleop", 1, "teleop")
+    write(root, "src/teleop/launch/teleop.launch", TELEOP_LAUNCH)
+    opened = root / "src/robot_bringup"
+    said = asyncio.run(_first_findings(opened, launch, tmp_path / "cache", "RN402"))
+    assert "RN402" in said
+
+
+def test_an_editor_rooted_outside_any_workspace_reads_only_its_documents(tmp_path: Path) -> None:
+    """Before, the server read the whole directory (9.5 s for a home directory)."""
+    home = tmp_path / "home"
+    launch = write(home, "Downloads/robot.launch", ROBOT_LAUNCH)
+    write(home, "notes/todo.py", "import rospy\nrospy.init_node('a-b')\n")
+    said = asyncio.run(_first_findings(home, launch, tmp_path / "cache", "RN101"))
+    assert "RN101" in said
+    assert any("is in no ROS workspace" in line for line in said)
