@@ -239,8 +239,8 @@ def test_python_m_runs_the_command_line(tmp_path: Path) -> None:
     assert "[RN101 illegal-name]" in done.stdout
 
 
-# A roscpp node whose every finding has only an unsafe fix (a rename, an absolute name),
-# and one safe one (a trailing slash).
+# A roscpp node whose every finding has only an unsafe fix: a rename (RN203) and an
+# absolute name made relative (RN202).
 SMOOTHER_CPP = """\
 #include <ros/ros.h>
 #include <geometry_msgs/Twist.h>
