@@ -5,9 +5,10 @@ Test code is judged for what breaks a test, not for style (``Rule.judges_test_co
 
 - a folder named ``test`` or ``tests`` (ament and catkin put tests there), or a test
   package's folder (``test_*``, ``*_tests``: ``test_rclcpp``, ``nav2_system_tests``), or
-  one of test support code (``testing``, ``*_testing``, ``*_test_utils``: Autoware's
-  ``testing/autoware_test_utils``, ros2_control's ``hardware_interface_testing``), which
-  exists for tests;
+  one of test support code (``testing``, ``*_testing``, ``*_test_utils``,
+  ``*_test_nodes``: Autoware's ``testing/autoware_test_utils``, ros2_control's
+  ``hardware_interface_testing``, ros2_controllers' ``ros2_controllers_test_nodes``),
+  which exists for tests;
 - a test file's name: ``test_*``, ``*_test``, ``*_tests`` or ``test`` before the first dot
   (``test_node.py``, ``buffer_core_test.cpp``), a rostest ``.test`` file, a launch_testing
   ``*.test.py``; but not for a launch file, which is test code by its content alone:
@@ -35,7 +36,8 @@ from .config import Settings
 from .model import Language
 
 _TEST_DIRECTORY = re.compile(
-    r"tests?|test_.+|.+_tests|(?:.+_)?testing|.+_test_(?:utils?|tools|helpers)", re.IGNORECASE
+    r"tests?|test_.+|.+_tests|(?:.+_)?testing|.+_test_(?:utils?|tools|helpers|nodes)",
+    re.IGNORECASE,
 )
 _TEST_STEM = re.compile(r"tests?|test_.+|.+_tests?", re.IGNORECASE)
 # A folder, package or file whose name starts or ends with one of these words holds

@@ -215,6 +215,12 @@ def test_a_launch_file_named_test_but_holding_no_test_is_judged_in_full(
         ("autoware_test_utils/src/topic_snapshot_saver.cpp", Language.CPP, "", True),
         ("hardware_interface_testing/src/mock.cpp", Language.CPP, "", True),
         ("autoware/testing/autoware_testing/src/fake.cpp", Language.CPP, "", True),
+        (
+            "ros2_controllers_test_nodes/ros2_controllers_test_nodes/publisher.py",
+            Language.PYTHON,
+            "",
+            True,
+        ),
         # Not tests: names that only contain "test".
         ("robot/src/testimonial_viewer.cpp", Language.CPP, "", False),
         ("attestation/src/signer.cpp", Language.CPP, "", False),
