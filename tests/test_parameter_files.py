@@ -334,6 +334,71 @@ def test_the_graph_links_a_nav2_style_bringup() -> None:
     ]
 
 
+# nav2_bringup's navigation_launch.py, reduced: every server gets the parameter file through
+# nav2_common's RewrittenYaml, under the namespace argument as root key.
+REWRITTEN_LAUNCH_PY = """\
+import os
+
+from ament_index_python.packages import get_package_share_directory
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node
+from launch_ros.descriptions import ParameterFile
+from nav2_common.launch import RewrittenYaml
+
+
+def generate_launch_description():
+    bringup_dir = get_package_share_directory("nav_bringup")
+    namespace = LaunchConfiguration("namespace")
+    params_file = LaunchConfiguration("params_file")
+    configured_params = ParameterFile(
+        RewrittenYaml(
+            source_file=params_file,
+            root_key=namespace,
+            param_rewrites={"autostart": "true"},
+            convert_types=True,
+        ),
+        allow_substs=True,
+    )
+    return LaunchDescription([
+        DeclareLaunchArgument("namespace", default_value=""),
+        DeclareLaunchArgument(
+            "params_file",
+            default_value=os.path.join(bringup_dir, "config", "nav2_params.yaml"),
+        ),
+        Node(
+            package="nav2_controller",
+            executable="controller_server",
+            name="controller_server",
+            parameters=[configured_params],
+        ),
+    ])
+"""
+
+
+def test_the_graph_reads_the_file_nav2s_rewritten_yaml_rewrites() -> None:
+    """Before, the RewrittenYaml call was no file: none of nav2_bringup's servers had
+    a parameter file, and RN405/RN406 never judged nav2_params.yaml."""
+    files = {
+        "src/nav_bringup/launch/navigation.launch.py": (REWRITTEN_LAUNCH_PY, ROS2),
+        "src/nav_bringup/config/nav2_params.yaml": (NAV2_PARAMS, ROS2),
+    }
+    graph = _graph(files, [Package("nav_bringup", "src/nav_bringup", generation=ROS2)])
+    (server,) = graph.nodes[0].parameter_files
+    assert server.path == "src/nav_bringup/config/nav2_params.yaml"
+    assert "FollowPath.max_vel_x" in server.names
+    # Keys renamed, or nested under a namespace of the call's own: no file to read.
+    for old, new in (
+        ("convert_types=True,", 'key_rewrites={"a": "b"},'),
+        ("root_key=namespace,", 'root_key="robot9",'),
+    ):
+        rewritten = REWRITTEN_LAUNCH_PY.replace(old, new)
+        files["src/nav_bringup/launch/navigation.launch.py"] = (rewritten, ROS2)
+        graph = _graph(files, [Package("nav_bringup", "src/nav_bringup", generation=ROS2)])
+        assert all(not handed.names for handed in graph.nodes[0].parameter_files)
+
+
 # ---------------------------------------------------------------------------------------
 # How keys match (rclcpp's is_node_name_matched, launch_ros's to_parameters_list)
 

@@ -67,6 +67,9 @@ from roslint_names.model import (
 
 _IF = ("launch", "IfCondition")
 _PARAMETER_FILE = ("launch_ros", "ParameterFile")
+# nav2_common's substitution that rewrites a parameter file's values (and, with
+# ``key_rewrites``, its keys) into a temporary copy: nav2_bringup hands every server one.
+_REWRITTEN_YAML = ("nav2_common", "RewrittenYaml")
 _UNLESS = ("launch", "UnlessCondition")
 _ROOTS = ("generate_launch_description", "generate_test_description")
 # Keywords, current then pre-Foxy spelling (node_name, node_namespace...).
@@ -504,8 +507,31 @@ class LaunchExtractor(LaunchValues):
             class_key(name) == _PARAMETER_FILE for name in item.scope.qualified(expr.func)
         ):
             path = call_argument(expr, item.context, "0:param_file")
-            return item if path is None else path
+            return item if path is None else self.parameter_file_path(path, depth + 1)
+        if isinstance(expr, cst.Call) and any(
+            class_key(name) == _REWRITTEN_YAML for name in item.scope.qualified(expr.func)
+        ):
+            return self.rewritten_source(expr, item)
         return item
+
+    def rewritten_source(self, call: cst.Call, item: Written) -> Written:
+        """The file ``RewrittenYaml`` rewrites, where its keys stay the file's: new values
+        (``param_rewrites``, ``value_rewrites``) change no name, and ``root_key`` nests the
+        file under the namespace nav2_bringup pushes onto the same nodes (a launch
+        argument), which moves the keys and the nodes alike. ``key_rewrites`` renames keys,
+        and a literal ``root_key`` nests them under a namespace of its own: the call itself
+        then, which names no file the linter can read."""
+        source = call_argument(call, item.context, "0:source_file")
+        root_key = call_argument(call, item.context, "2:root_key")
+        renames_keys = call_argument(call, item.context, "3:key_rewrites") is not None
+        nests = (
+            root_key is not None
+            and isinstance(root_key.expr, cst.SimpleString)
+            and bool(root_key.expr.evaluated_value)
+        )
+        if source is None or renames_keys or nests:
+            return item
+        return source
 
     def parameter_dict(
         self,
