@@ -295,7 +295,12 @@ def _run_check(options: argparse.Namespace) -> int:
         _print_run_details(result, cache, options.cache_dir or default_cache_directory())
         from .fates import fates  # what became of each file: only --verbose asks
 
-        for display, fate in fates(lintable(sources), settings):
+        # Of the files named one by one: a directory's thousands of files would cost a
+        # read each, and the question is "why does my file show nothing?".
+        named = {(cwd / path).absolute() for path in options.paths if (cwd / path).is_file()}
+        for display, fate in fates(
+            [source for source in lintable(sources) if source.path in named], settings
+        ):
             print(f"roslint-names: {display}: {fate}", file=sys.stderr)
     if options.changed_since is not None:
         diagnostics = gate(diagnostics, changed_lines(options.changed_since, cwd), cwd)

@@ -289,7 +289,7 @@ def test_a_rename_held_back_is_named_with_its_reason(run_cli: Any, tmp_path: Pat
     ) in diff.stderr
 
 
-def test_verbose_says_what_became_of_each_file(run_cli: Any, tmp_path: Path) -> None:
+def test_verbose_says_what_became_of_each_file_named(run_cli: Any, tmp_path: Path) -> None:
     """Before, --verbose said only where the cache was: a file with no finding could have
     been checked in full, judged as test code, or never parsed."""
     write_package(tmp_path / "base", 1, "base")
@@ -298,7 +298,14 @@ def test_verbose_says_what_became_of_each_file(run_cli: Any, tmp_path: Path) -> 
     write(tmp_path, "base/test/test_smoother.cpp", "#include <gtest/gtest.h>\n" + SMOOTHER_CPP)
     write(tmp_path, "base/examples/smoother_demo.cpp", SMOOTHER_CPP)
     write(tmp_path, "base/scripts/plot.py", "import matplotlib\n")
-    result = run_cli(["check", "--verbose", "--no-cache", "."], tmp_path)
+    named = [
+        "base/examples/smoother_demo.cpp",
+        "base/scripts/plot.py",
+        "base/src/filter_math.cpp",
+        "base/src/smoother.cpp",
+        "base/test/test_smoother.cpp",
+    ]
+    result = run_cli(["check", "--verbose", "--no-cache", *named], tmp_path)
     said = [line for line in result.stderr.splitlines() if line.startswith("roslint-names: base")]
     assert sorted(said) == [
         "roslint-names: base/examples/smoother_demo.cpp: example code: judged by the "
@@ -310,3 +317,6 @@ def test_verbose_says_what_became_of_each_file(run_cli: Any, tmp_path: Path) -> 
         "roslint-names: base/test/test_smoother.cpp: test code: judged by the [test-code] "
         "rules only",
     ]
+    # A directory's files are not listed one by one (each would be read again).
+    whole = run_cli(["check", "--verbose", "--no-cache", "."], tmp_path)
+    assert ": checked" not in whole.stderr
