@@ -111,6 +111,21 @@ def test_hook_fails_on_a_bad_launch_file_and_passes_once_fixed(tmp_path: Path) -
     )
     assert "src/robot_bringup/test/odom.test:3:63: error: node name 'odom hz'" in failed.stdout
 
+    # What the README offers to try the hook before adding it: `pre-commit try-repo` with a
+    # clone, run from the project (before, untested).
+    try_repo = [sys.executable, "-m", "pre_commit", "try-repo", str(hook_repository)]
+    tried = subprocess.run(
+        [*try_repo, "roslint-names", "--all-files", "--color", "never"],
+        cwd=project,
+        env=environment,
+        capture_output=True,
+        text=True,
+        check=False,
+        timeout=600,
+    )
+    assert tried.returncode == 1, tried.stdout + tried.stderr
+    assert "node name 'base-driver'" in tried.stdout
+
     launch.write_text(GOOD_LAUNCH, encoding="utf-8")
     script.write_text(BAD_SCRIPT.replace("teleop-keyboard", "teleop_keyboard"), encoding="utf-8")
     rostest.write_text(BAD_ROSTEST.replace("odom hz", "odom_hz"), encoding="utf-8")
