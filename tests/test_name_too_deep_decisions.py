@@ -446,3 +446,57 @@ def test_an_input_remap_of_a_node_named_by_its_code_is_reported_once(
             " has 5 levels; the limit is 4 (max-depth)",
         )
     ]
+
+
+# ---------------------------------------------------------------------------------------
+# One copy per robot: husky's multi-robot playpen, reduced
+
+REALSENSE_LAUNCH = """\
+<launch>
+  <node pkg="pointcloud_to_laserscan" type="pointcloud_to_laserscan_node"
+        name="realsense_to_laserscan">
+    <remap from="cloud_in" to="realsense/depth/color/points"/>
+    <remap from="scan" to="realsense/scan"/>
+  </node>
+</launch>
+"""
+SPAWN_LAUNCH = """\
+<launch>
+  <arg name="robot_namespace" default="/"/>
+  <group ns="$(arg robot_namespace)">
+    <include file="$(find husky_gazebo)/launch/realsense.launch"/>
+  </group>
+</launch>
+"""
+PLAYPEN_LAUNCH = """\
+<launch>
+  <include file="$(find husky_gazebo)/launch/spawn_husky.launch">
+    <arg name="robot_namespace" value="husky_alpha"/>
+  </include>
+  <include file="$(find husky_gazebo)/launch/spawn_husky.launch">
+    <arg name="robot_namespace" value="husky_beta"/>
+  </include>
+</launch>
+"""
+
+
+def husky_workspace(root: Path, playpen: str) -> None:
+    package = root / "src" / "husky_gazebo"
+    write(package, "package.xml", CATKIN_PACKAGE.format(name="husky_gazebo"))
+    write(package, "launch/realsense.launch", REALSENSE_LAUNCH)
+    write(package, "launch/spawn_husky.launch", SPAWN_LAUNCH)
+    write(package, "launch/multi_husky_playpen.launch", playpen)
+
+
+def test_a_level_each_robots_copy_differs_in_is_not_counted(run_cli: Any, tmp_path: Path) -> None:
+    """Before, '/husky_alpha/realsense/depth/color/points' was 5 levels: the robot's own
+    namespace, the separation RN202 asks for, counted against the name."""
+    husky_workspace(tmp_path, PLAYPEN_LAUNCH)
+    assert deep_findings(run_cli, tmp_path) == []
+
+
+def test_one_namespaced_copy_gives_no_such_evidence(run_cli: Any, tmp_path: Path) -> None:
+    one_robot = PLAYPEN_LAUNCH.split("  <include", 2)
+    husky_workspace(tmp_path, "<launch>\n  <include" + one_robot[1] + "</launch>\n")
+    (found,) = deep_findings(run_cli, tmp_path)
+    assert "resolves to '/husky_alpha/realsense/depth/color/points'" in found["message"]

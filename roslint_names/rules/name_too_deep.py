@@ -151,8 +151,28 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
         if location in merged:
             continue  # an image transport's subtopic of a remap reported beside it
         ordered = sorted(launches.values(), key=_by_name)
+        if _deep_only_by_instance(ordered, limit):
+            continue  # one copy per robot: the robot's namespace is no level of the name
         yield _deep_remap_finding(location, ordered, limit, wired, transports.get(location, []))
     yield from _pushed_endpoints(graph, remapped, limit, wired)
+
+
+def _deep_only_by_instance(launches: list[_Launch], limit: int) -> bool:
+    """Whether a remap launched for several copies of a node is too deep only by the levels
+    in which the copies' targets differ: husky's ``multi_husky_playpen.launch`` includes one
+    spawn file for ``husky_alpha``, ``husky_beta`` and ``husky_gamma``. Such a level is each
+    robot's namespace, the separation RN202 asks for, not a level anyone chose for the
+    name; one copy alone gives no such evidence."""
+    if len(launches) < 2:
+        return False
+    targets = [launch.remap.target.strip("/").split("/") for launch in launches]
+    if len({len(levels) for levels in targets}) != 1:
+        return False
+    differing = sum(1 for level in zip(*targets, strict=True) if len(set(level)) > 1)
+    return differing > 0 and all(
+        chosen_depth(launch.remap.target, Kind.TOPIC, launch.node.generation) - differing <= limit
+        for launch in launches
+    )
 
 
 def _transport_remaps(
