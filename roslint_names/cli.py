@@ -521,7 +521,7 @@ def _workspace_context(
     workspace."""
     enabled = enabled_codes(settings, registry)
     workspace_rules = any(
-        (rule.check_workspace or rule.reads_wiring) and rule.code in enabled
+        (rule.check_workspace or rule.reads_wiring or rule.reads_plugins) and rule.code in enabled
         for rule in registry.rules
     )
     if not (workspace_rules or for_graph):

@@ -27,7 +27,12 @@ from .gather import (
     extract_file,
     gave_up,
 )
-from .generation import PackageGenerations, service_types, visible_service_types
+from .generation import (
+    PackageGenerations,
+    service_types,
+    visible_service_types,
+    workspace_plugin_names,
+)
 from .lines import split_lines
 from .model import (
     Answer,
@@ -138,6 +143,9 @@ def lint(
     keep_facts = bool(graph_rules) or want_graph or want_facts
     files = lintable(sources)
     reported = len(files)
+    # Read from the manifests of the whole workspace (``plugins``) before the run is keyed,
+    # which then covers every description they export.
+    plugin_names = workspace_plugin_names([*sources, *context], packages)
     if not keep_facts and wiring:
         # Only what may wire names: parsing every C++ file of the workspace would be the
         # whole cost of a one-file run, for nothing.
@@ -180,6 +188,7 @@ def lint(
         registry=registry,
         enabled=enabled,
         service_types=set(service_types(workspace, packages)),
+        plugin_names=plugin_names,
         keep_facts=keep_facts,
         wiring=wiring,
         progress=run.progress,
@@ -298,6 +307,7 @@ class _FileChecks:
     registry: Registry
     enabled: frozenset[str]
     service_types: set[tuple[Generation | None, str]]
+    plugin_names: frozenset[str]  # ``plugins``: the workspace's pluginlib plugin names
     keep_facts: bool
     wiring: bool  # a rule reads the names the launch files wire
     progress: Progress | None
@@ -321,7 +331,7 @@ class _FileChecks:
         self._test_rules = test_code_codes(self.settings, self.registry)
         # Built once for the run, not once per rule per file: most files compare with no
         # service type (those that do wait for ``finish`` and get their own).
-        self._contexts = rule_contexts(self.registry, self.settings)
+        self._contexts = rule_contexts(self.registry, self.settings, plugin_names=self.plugin_names)
 
     def take(self, index: int, facts: FileFacts, data: bytes | None) -> None:
         if self.keep_facts:
@@ -398,7 +408,10 @@ class _FileChecks:
             if facts is not None:
                 self._all_facts[index] = self._constants.resolve(facts, self.package_of(index))
         wired = frozenset(self._wired)
-        contexts = rule_contexts(self.registry, self.settings, wired_names=wired)
+        plugins = self.plugin_names
+        contexts = rule_contexts(
+            self.registry, self.settings, wired_names=wired, plugin_names=plugins
+        )
         for index, extracted, data in self._waiting:
             facts = self._constants.resolve(extracted, self.package_of(index))
             if self.keep_facts:
@@ -408,7 +421,10 @@ class _FileChecks:
                     service_types_of(self.service_types, facts.generation), self.visible_of(index)
                 )
                 self._check(
-                    index, facts, data, rule_contexts(self.registry, self.settings, known, wired)
+                    index,
+                    facts,
+                    data,
+                    rule_contexts(self.registry, self.settings, known, wired, plugins),
                 )
             else:
                 self._check(index, facts, data, contexts)
@@ -635,6 +651,7 @@ def check_file(
     *,
     known_service_types: frozenset[str] = frozenset(),
     wired_names: frozenset[str] = frozenset(),
+    plugin_names: frozenset[str] = frozenset(),
     test_rules: frozenset[str] | None = None,
     contexts: Mapping[str, RuleContext] | None = None,
 ) -> tuple[list[Diagnostic], list[Suppression]]:
@@ -647,7 +664,7 @@ def check_file(
     and wiring, when the caller checks many files with the same."""
     active = enabled - _per_file_ignored(facts.path, settings, registry)
     if contexts is None:
-        contexts = rule_contexts(registry, settings, known_service_types, wired_names)
+        contexts = rule_contexts(registry, settings, known_service_types, wired_names, plugin_names)
     to_diagnostic = _DiagnosticFactory(facts, settings, text)
     # Whether the file is test code is asked only when the answer can change something.
     if test_rules is None:
@@ -754,13 +771,18 @@ def rule_contexts(
     settings: Settings,
     known_service_types: frozenset[str] = frozenset(),
     wired_names: frozenset[str] = frozenset(),
+    plugin_names: frozenset[str] = frozenset(),
 ) -> dict[str, RuleContext]:
     """Each per-file rule's context: the same for every file of a run that has the same
     service types to compare with (nearly all: none). The wiring goes to the rules that
     read it only."""
     return {
         rule.code: _context(
-            rule, settings, known_service_types, wired_names if rule.reads_wiring else frozenset()
+            rule,
+            settings,
+            known_service_types,
+            wired_names if rule.reads_wiring else frozenset(),
+            plugin_names,
         )
         for rule in registry.rules
         if rule.check is not None
@@ -772,6 +794,7 @@ def _context(
     settings: Settings,
     known_service_types: frozenset[str],
     wired_names: frozenset[str] = frozenset(),
+    plugin_names: frozenset[str] = frozenset(),
 ) -> RuleContext:
     options = {**rule.options, **settings.rule_options.get(rule.code, {})}
     return RuleContext(
@@ -780,6 +803,7 @@ def _context(
         policies=settings.policies,
         known_service_types=known_service_types,
         wired_names=wired_names,
+        plugin_names=plugin_names,
     )
 
 

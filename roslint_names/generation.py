@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .model import Generation, Language
+from .plugins import exported_descriptions, plugin_names
 
 if TYPE_CHECKING:
     from .discover import SourceFile
@@ -82,6 +83,10 @@ class _Package:
 _NO_PACKAGE = _Package(None, None)
 
 
+# A plugin description is a short XML file; a larger one is no such file.
+_MAX_DESCRIPTION = 1 << 20
+
+
 class PackageGenerations:
     """Nearest-package.xml lookup with one read per directory for the whole run."""
 
@@ -92,8 +97,11 @@ class PackageGenerations:
         # And by file: a run asks about each file several times (keying it, extracting
         # it, its package for the graph), and even ``os.path.dirname`` costs more than this.
         self._by_file: dict[Path, _Package] = {}
-        # Every package.xml read, with its text: what a cached run's result depends on.
+        # Every package.xml read, and every plugin description one exports, with its text:
+        # what a cached run's result depends on.
         self.manifests: dict[Path, str] = {}
+        # The names pluginlib gives the plugins those descriptions declare (``plugins``).
+        self.plugin_names: set[str] = set()
 
     def for_file(self, path: Path) -> Generation | None:
         return self._for_file(path).generation
@@ -117,6 +125,17 @@ class PackageGenerations:
             return None
         return package.depends | {package.name}
 
+    def _read_plugin_descriptions(self, directory: str, manifest: str) -> None:
+        for relative in exported_descriptions(manifest):
+            description = os.path.normpath(os.path.join(directory, relative))
+            try:
+                with open(description, encoding="utf-8", errors="replace") as stream:
+                    text = stream.read(_MAX_DESCRIPTION)
+            except OSError:
+                continue  # a missing description declares nothing
+            self.manifests[Path(description)] = text
+            self.plugin_names |= plugin_names(text)
+
     def _for_file(self, path: Path) -> _Package:
         found = self._by_file.get(path)
         if found is None:
@@ -136,6 +155,7 @@ class PackageGenerations:
             except OSError:
                 text = ""
             self.manifests[Path(manifest)] = text
+            self._read_plugin_descriptions(directory, text)
             package = _Package(
                 package_xml_name(text),
                 package_xml_generation(text),
@@ -148,6 +168,15 @@ class PackageGenerations:
             package = self._for_directory(os.path.dirname(directory))
         self._by_directory[directory] = package
         return package
+
+
+def workspace_plugin_names(
+    sources: Iterable[SourceFile], packages: PackageGenerations
+) -> frozenset[str]:
+    """The names pluginlib gives the plugins the packages of ``sources`` export."""
+    for source in sources:
+        packages.for_file(source.path)
+    return frozenset(packages.plugin_names)
 
 
 def visible_service_types(types: frozenset[str], visible: frozenset[str] | None) -> frozenset[str]:

@@ -40,6 +40,9 @@ class RuleContext:
     # The absolute names the workspace's launch files remap nodes to (``wiring``), given
     # to a rule that asks for them (``Rule.reads_wiring``); empty for the others.
     wired_names: frozenset[str] = frozenset()
+    # The names pluginlib gives the plugins the workspace's packages export (``plugins``):
+    # a namespace spelled so is a plugin's class name, not the writer's choice (RN203).
+    plugin_names: frozenset[str] = frozenset()
 
 
 Check = Callable[[FileFacts, RuleContext], Iterable[Finding]]
@@ -80,6 +83,9 @@ class Rule:
     # gathers the launch files of the rest of their workspace, so that its answer is the
     # whole workspace's.
     reads_wiring: bool = False
+    # Whether ``check`` reads ``RuleContext.plugin_names``: a run over some files then
+    # reads the package.xml files of the rest of their workspace (not their sources).
+    reads_plugins: bool = False
 
     def severity_for(self, generation: Generation) -> Severity:
         if generation is Generation.ROS1 and self.ros1_severity is not None:

@@ -50,7 +50,12 @@ from .gather import (
     extract_batch,
     extract_file,
 )
-from .generation import PackageGenerations, service_types, visible_service_types
+from .generation import (
+    PackageGenerations,
+    service_types,
+    visible_service_types,
+    workspace_plugin_names,
+)
 from .model import Diagnostic, FileFacts, Generation
 from .reading import read_file, too_large
 from .registry import Registry
@@ -103,6 +108,7 @@ class Session:
         self._sources: dict[str, SourceFile] = {}
         self._facts: dict[str, FileFacts] = {}
         self._service_types: set[tuple[Generation | None, str]] = set()
+        self._plugin_names: frozenset[str] = frozenset()  # ``plugins``
         # The absolute names each launch file wires (RN202), for the files that wire some.
         self._wired_of: dict[str, frozenset[str]] = {}
         self._open: dict[str, _Checked] = {}
@@ -131,6 +137,7 @@ class Session:
             if diagnostic.code in self._graph_codes:
                 self._graph_found.setdefault(diagnostic.path, []).append(diagnostic)
         self._service_types = set(service_types(sources, self._packages))
+        self._plugin_names = workspace_plugin_names(sources, self._packages)
         self._workspace_packages = workspace_packages(sources, self._packages)
         self._specialiser = Specialiser(
             sources,
@@ -195,6 +202,7 @@ class Session:
             self._enabled,
             known_service_types=known,
             wired_names=frozenset().union(*self._wired_of.values()),
+            plugin_names=self._plugin_names,
             test_rules=self._test_rules,
         )
         # One document at a time: its own places of a decision are one finding, as a

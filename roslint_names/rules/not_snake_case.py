@@ -45,7 +45,12 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
         name_tokens = tokens(_own_part(use, facts), use.kind)
         if name_tokens and (name_tokens[-1] in TRANSPORT_SUFFIXES or spelled_as_type(use)):
             name_tokens = name_tokens[:-1]  # image_transport's spelling; RN204's finding
-        bad = [token for token in name_tokens if not is_snake_case(token)]
+        # A plugin's name (``~/TrajectoryPlannerROS``) is its class's: not chosen here.
+        bad = [
+            token
+            for token in name_tokens
+            if not is_snake_case(token) and token not in context.plugin_names
+        ]
         if not bad or (ignored is not None and _covered(ignored, use.value, bad)):
             continue
         quoted = ", ".join(f"'{token}'" for token in bad)
@@ -138,4 +143,5 @@ RULE = Rule(
     options={IGNORE_NAMES: ()},
     option_error=option_error,
     judges_test_code=False,
+    reads_plugins=True,
 )

@@ -1,0 +1,95 @@
+"""RN203 and pluginlib: a namespace that is a plugin's name is its class's, not the
+writer's choice (``plugins``)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from conftest import CATKIN_PACKAGE, write
+
+from roslint_names.plugins import exported_descriptions, plugin_names
+
+# ROS 1 navigation, reduced: base_local_planner exports TrajectoryPlannerROS to nav_core,
+# and rotate_recovery reads the planner's parameters under the name move_base gives it.
+BLP_MANIFEST = CATKIN_PACKAGE.format(name="base_local_planner").replace(
+    "</package>",
+    '  <export>\n    <nav_core plugin="${prefix}/blp_plugin.xml" />\n  </export>\n</package>',
+)
+BLP_PLUGIN_XML = """\
+<library path="lib/libtrajectory_planner_ros">
+  <class name="base_local_planner/TrajectoryPlannerROS"
+         type="base_local_planner::TrajectoryPlannerROS"
+         base_class_type="nav_core::BaseLocalPlanner">
+    <description>A local planner using either a DWA or Trajectory Rollout approach.</description>
+  </class>
+</library>
+"""
+ROTATE_RECOVERY_CPP = """\
+#include <ros/ros.h>
+#include <rotate_recovery/rotate_recovery.h>
+
+namespace rotate_recovery
+{
+void RotateRecovery::initialize(std::string name, tf2_ros::Buffer*,
+                                costmap_2d::Costmap2DROS*, costmap_2d::Costmap2DROS* local_costmap)
+{
+  ros::NodeHandle private_nh("~/" + name);
+  ros::NodeHandle blp_nh("~/TrajectoryPlannerROS");
+  private_nh.param("sim_granularity", sim_granularity_, 0.017);
+  blp_nh.param("acc_lim_th", acc_lim_th_, 3.2);
+}
+}  // namespace rotate_recovery
+"""
+RECOVERY = "src/navigation/rotate_recovery/src/rotate_recovery.cpp"
+
+
+def navigation(root: Path, plugin_xml: str = BLP_PLUGIN_XML) -> None:
+    blp = root / "src/navigation/base_local_planner"
+    write(blp, "package.xml", BLP_MANIFEST)
+    write(blp, "blp_plugin.xml", plugin_xml)
+    recovery = root / "src/navigation/rotate_recovery"
+    write(recovery, "package.xml", CATKIN_PACKAGE.format(name="rotate_recovery"))
+    write(root, RECOVERY, ROTATE_RECOVERY_CPP)
+
+
+def rn203(run_cli: Any, root: Path, *paths: str) -> list[tuple[str, int]]:
+    result = run_cli(["check", "--format", "json", "--select", "RN203", *(paths or ".")], root)
+    assert result.exit_code in (0, 1), result.stderr
+    return [(f["path"], f["line"]) for f in result.findings()]
+
+
+def test_a_plugins_name_as_a_namespace_is_not_the_writers(run_cli: Any, tmp_path: Path) -> None:
+    """Before, RN203 asked for '~/trajectory_planner_ros', where nothing would be read."""
+    navigation(tmp_path)
+    assert rn203(run_cli, tmp_path) == []
+    assert rn203(run_cli, tmp_path, RECOVERY) == []  # a pre-commit run over the file
+
+
+def test_without_the_plugin_the_name_is_the_writers(run_cli: Any, tmp_path: Path) -> None:
+    navigation(tmp_path, BLP_PLUGIN_XML.replace('TrajectoryPlannerROS"\n', 'Planner"\n'))
+    assert rn203(run_cli, tmp_path) == [(RECOVERY, 10)]
+
+
+def test_an_edited_description_is_read_again(run_cli: Any, tmp_path: Path) -> None:
+    """The stored result of a run depends on the descriptions too: no stale answer."""
+    navigation(tmp_path)
+    assert rn203(run_cli, tmp_path) == []
+    renamed = BLP_PLUGIN_XML.replace("base_local_planner/TrajectoryPlannerROS", "blp/Planner")
+    renamed = renamed.replace("base_local_planner::TrajectoryPlannerROS", "blp::Planner")
+    write(tmp_path, "src/navigation/base_local_planner/blp_plugin.xml", renamed)
+    assert rn203(run_cli, tmp_path) == [(RECOVERY, 10)]
+
+
+def test_descriptions_and_names_as_pluginlib_reads_them() -> None:
+    manifest = BLP_MANIFEST.replace(
+        "</export>", '<!-- <rviz plugin="${prefix}/old.xml"/> -->\n  </export>'
+    )
+    assert exported_descriptions(manifest) == ["blp_plugin.xml"]
+    assert plugin_names(BLP_PLUGIN_XML) == {"TrajectoryPlannerROS"}
+    # ROS 2: a class without a name is looked up by its type.
+    ros2 = (
+        '<library path="x"><class type="nav2_mppi_controller::MPPIController" '
+        'base_class_type="nav2_core::Controller"/></library>'
+    )
+    assert plugin_names(ros2) == {"MPPIController"}
