@@ -93,3 +93,17 @@ def test_descriptions_and_names_as_pluginlib_reads_them() -> None:
         'base_class_type="nav2_core::Controller"/></library>'
     )
     assert plugin_names(ros2) == {"MPPIController"}
+
+
+def test_a_node_named_like_a_plugin_class_is_the_writers_choice(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """slam_toolbox's RViz panel names its own node 'SlamToolboxPlugin', the class's name:
+    pluginlib gives that name to no node, so the writer chose it."""
+    navigation(tmp_path)
+    node = ROTATE_RECOVERY_CPP.replace(
+        '  ros::NodeHandle private_nh("~/" + name);',
+        '  auto node = rclcpp::Node::make_shared("TrajectoryPlannerROS");',
+    )
+    write(tmp_path, RECOVERY, node)
+    assert rn203(run_cli, tmp_path) == [(RECOVERY, 9)]

@@ -33,6 +33,9 @@ SETTING = f"rules.RN203.{IGNORE_NAMES}"  # what a finding's answer names
 _PATTERN = re.compile(r"[A-Za-z0-9_/~.{}*]+")
 
 
+_PLUGIN_SCOPES = frozenset({Kind.NAMESPACE, Kind.PARAMETER})
+
+
 def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
     ignored = _ignored(_patterns(context.options.get(IGNORE_NAMES, ())))
     written = {(use.kind, use.value) for use in static_uses(facts)}
@@ -45,12 +48,11 @@ def check(facts: FileFacts, context: RuleContext) -> Iterator[Finding]:
         name_tokens = tokens(_own_part(use, facts), use.kind)
         if name_tokens and (name_tokens[-1] in TRANSPORT_SUFFIXES or spelled_as_type(use)):
             name_tokens = name_tokens[:-1]  # image_transport's spelling; RN204's finding
-        # A plugin's name (``~/TrajectoryPlannerROS``) is its class's: not chosen here.
-        bad = [
-            token
-            for token in name_tokens
-            if not is_snake_case(token) and token not in context.plugin_names
-        ]
+        # A plugin's name where pluginlib gives it, a namespace of the parameters a plugin
+        # reads (``~/TrajectoryPlannerROS``), is its class's: not chosen here. A node or a
+        # topic named like the class is the writer's choice.
+        plugins = context.plugin_names if use.kind in _PLUGIN_SCOPES else frozenset()
+        bad = [token for token in name_tokens if not is_snake_case(token) and token not in plugins]
         if not bad or (ignored is not None and _covered(ignored, use.value, bad)):
             continue
         quoted = ", ".join(f"'{token}'" for token in bad)
