@@ -89,9 +89,9 @@ def test_hook_fails_on_a_bad_launch_file_and_passes_once_fixed(tmp_path: Path) -
     environment = {**os.environ, "PRE_COMMIT_HOME": str(tmp_path / "cache")}
     environment.pop("VIRTUAL_ENV", None)
 
-    def run_hooks() -> subprocess.CompletedProcess[str]:
+    def pre_commit(*arguments: str) -> subprocess.CompletedProcess[str]:
         return subprocess.run(
-            [sys.executable, "-m", "pre_commit", "run", "--all-files", "--color", "never"],
+            [sys.executable, "-m", "pre_commit", *arguments, "--all-files", "--color", "never"],
             cwd=project,
             env=environment,
             capture_output=True,
@@ -100,7 +100,7 @@ def test_hook_fails_on_a_bad_launch_file_and_passes_once_fixed(tmp_path: Path) -
             timeout=600,
         )
 
-    failed = run_hooks()
+    failed = pre_commit("run")
     assert failed.returncode == 1, failed.stdout + failed.stderr
     assert "src/robot_bringup/launch/robot.launch:2:15: error: node name 'base-driver'" in (
         failed.stdout
@@ -113,16 +113,7 @@ def test_hook_fails_on_a_bad_launch_file_and_passes_once_fixed(tmp_path: Path) -
 
     # What the README offers to try the hook before adding it: `pre-commit try-repo` with a
     # clone, run from the project (before, untested).
-    try_repo = [sys.executable, "-m", "pre_commit", "try-repo", str(hook_repository)]
-    tried = subprocess.run(
-        [*try_repo, "roslint-names", "--all-files", "--color", "never"],
-        cwd=project,
-        env=environment,
-        capture_output=True,
-        text=True,
-        check=False,
-        timeout=600,
-    )
+    tried = pre_commit("try-repo", str(hook_repository), "roslint-names")
     assert tried.returncode == 1, tried.stdout + tried.stderr
     assert "node name 'base-driver'" in tried.stdout
 
@@ -130,6 +121,6 @@ def test_hook_fails_on_a_bad_launch_file_and_passes_once_fixed(tmp_path: Path) -
     script.write_text(BAD_SCRIPT.replace("teleop-keyboard", "teleop_keyboard"), encoding="utf-8")
     rostest.write_text(BAD_ROSTEST.replace("odom hz", "odom_hz"), encoding="utf-8")
     commit_all(project)
-    passed = run_hooks()
+    passed = pre_commit("run")
     assert passed.returncode == 0, passed.stdout + passed.stderr
     assert "Passed" in passed.stdout
