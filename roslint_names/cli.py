@@ -293,15 +293,16 @@ def _run_check(options: argparse.Namespace) -> int:
         bar.close()  # erased before the report and the summary are written
     if options.verbose:
         _print_run_details(result, cache, options.cache_dir or default_cache_directory())
-        from .fates import fates  # what became of each file: only --verbose asks
+        from .fates import fates, unchecked  # what became of each file: --verbose only
 
         # Of the files named one by one: a directory's thousands of files would cost a
         # read each, and the question is "why does my file show nothing?".
         named = {(cwd / path).absolute() for path in options.paths if (cwd / path).is_file()}
-        for display, fate in fates(
-            [source for source in lintable(sources) if source.path in named], settings
-        ):
+        linted = [source for source in lintable(sources) if source.path in named]
+        for display, fate in fates(linted, settings):
             print(f"roslint-names: {display}: {fate}", file=sys.stderr)
+        for path in sorted(named - {source.path for source in linted}):
+            print(f"roslint-names: {display_path(path, cwd)}: {unchecked(path)}", file=sys.stderr)
     if options.changed_since is not None:
         diagnostics = gate(diagnostics, changed_lines(options.changed_since, cwd), cwd)
     if options.write_baseline is not None:

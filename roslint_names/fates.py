@@ -9,10 +9,12 @@ saying so, a file with no finding is indistinguishable from one that was never l
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
+from pathlib import Path
 
 from .config import Settings
-from .discover import SourceFile
+from .discover import SourceFile, classify
 from .engine import relative_to_root
+from .gather import EXTRACTOR_MODULES
 from .model import Language
 from .reading import read_file
 from .test_code import is_example_code, is_test_code
@@ -44,3 +46,13 @@ def _fate(source: SourceFile, data: bytes, settings: Settings) -> str:
     if is_example_code(relative, settings):
         return "example code: judged by the [test-code] rules only"
     return "checked"
+
+
+def unchecked(path: Path) -> str:
+    """Why a file named on the command line is not among the files the run checks."""
+    language = classify(path)
+    if language is None:
+        return "not checked: no kind of file the linter reads"
+    if language not in EXTRACTOR_MODULES:
+        return "not checked: read only for what it says of its package"
+    return "not checked: the configuration's exclude covers it"

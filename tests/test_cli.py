@@ -317,6 +317,18 @@ def test_verbose_says_what_became_of_each_file_named(run_cli: Any, tmp_path: Pat
         "roslint-names: base/test/test_smoother.cpp: test code: judged by the [test-code] "
         "rules only",
     ]
+    # Named files the run does not check say why.
+    write(tmp_path, "roslint-names.toml", 'exclude = ["base/src/legacy.cpp"]\n')
+    write(tmp_path, "base/src/legacy.cpp", SMOOTHER_CPP)
+    write(tmp_path, "base/NOTES.txt", "velocitySmoother is renamed in 2.0\n")
+    named = ["base/src/legacy.cpp", "base/NOTES.txt", "base/package.xml"]
+    result = run_cli(["check", "--verbose", "--no-cache", *named], tmp_path)
+    said = [line for line in result.stderr.splitlines() if line.startswith("roslint-names: base")]
+    assert said == [
+        "roslint-names: base/NOTES.txt: not checked: no kind of file the linter reads",
+        "roslint-names: base/package.xml: not checked: read only for what it says of its package",
+        "roslint-names: base/src/legacy.cpp: not checked: the configuration's exclude covers it",
+    ]
     # A directory's files are not listed one by one (each would be read again).
     whole = run_cli(["check", "--verbose", "--no-cache", "."], tmp_path)
     assert ": checked" not in whole.stderr
