@@ -37,8 +37,9 @@ import logging
 import os
 import queue
 import threading
+import time
 from collections.abc import Callable, Generator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, TypeVar
 from urllib.parse import unquote
@@ -54,12 +55,12 @@ from . import __version__
 from .cache import FactsCache
 from .cache import default_directory as default_cache_directory
 from .catalog import CatalogError, load_doc
-from .config import ConfigError, load_settings
+from .config import ConfigError, Settings, load_settings
 from .discover import classify, editor_workspace
 from .editing.noqa import with_suppressions
 from .lines import split_lines
 from .model import Diagnostic, Edit, Severity, Span
-from .registry import load_registry
+from .registry import Registry, load_registry
 from .session import Session
 
 TYPING_PAUSE_S = 0.1  # a change is checked once the user has paused this long
@@ -171,6 +172,38 @@ class _Protocol(LanguageServerProtocol):
         return False
 
 
+@dataclass(frozen=True)
+class _Prepared:
+    """The workspace the editor's root lies in, and its settings."""
+
+    opened: Path  # the editor's root
+    in_workspace: bool  # False: a directory no workspace holds, never read whole
+    root: Path
+    settings: Settings
+    registry: Registry
+
+
+def _first_look(prepared: _Prepared, path: Path, text: str) -> list[Diagnostic] | None:
+    """A document's findings from its own text alone, on a session of its own that has read
+    nothing: the rules that take something from other files (the names launch files wire,
+    the plugins packages export, the service types of the workspace) wait for the real one,
+    so that nothing published now is taken back."""
+    waiting = tuple(
+        rule.code
+        for rule in prepared.registry.rules
+        if rule.reads_wiring or rule.reads_plugins or rule.code in _READS_SERVICE_TYPES
+    )
+    settings = replace(prepared.settings, ignore=(*prepared.settings.ignore, *waiting))
+    session = Session(prepared.root, settings, prepared.registry, None)
+    if session.skip_reason(text) is not None:
+        return None  # too large to check: the real session says so, once
+    return session.check(path, text)
+
+
+# RN204 compares a service's name with the service types the workspace defines.
+_READS_SERVICE_TYPES = frozenset({"RN204"})
+
+
 class _Worker:
     """One daemon thread that runs the session's work, one job at a time, in order.
 
@@ -211,6 +244,7 @@ class RoslintServer(LanguageServer):
         self._pending: dict[str, asyncio.Task[None]] = {}
         self._graph: asyncio.Task[None] | None = None
         self._loading: asyncio.Task[Session | None] | None = None
+        self._prepared: _Prepared | None = None
         self._worker = _Worker()
         self._skipped: set[str] = set()  # documents above max-file-size, logged once
 
@@ -236,11 +270,17 @@ class RoslintServer(LanguageServer):
         return str(getattr(negotiated, "value", negotiated or "utf-16"))
 
     async def ready_session(self) -> Session | None:
-        if self._loading is None:
-            self._loading = asyncio.ensure_future(self._load())
-        return await self._loading
+        return await self._start_loading()
 
-    async def _load(self) -> Session | None:
+    def _start_loading(self) -> asyncio.Task[Session | None]:
+        if self._loading is None:
+            self._prepared = self._prepare()
+            self._loading = asyncio.ensure_future(self._read(self._prepared))
+        return self._loading
+
+    def _prepare(self) -> _Prepared | None:
+        """Where the workspace is and its settings; None (said in a message) when its
+        configuration is broken."""
         opened = Path(self.workspace.root_path or os.getcwd()).absolute()
         # The editor's root may be a package (the graph rules then miss the packages beside
         # it) or any directory at all (reading a home directory takes minutes): the
@@ -255,17 +295,26 @@ class RoslintServer(LanguageServer):
                 types.ShowMessageParams(types.MessageType.Error, f"roslint-names: {error}")
             )
             return None
+        os.chdir(root)  # the engine shows and matches paths relative to the workspace
+        return _Prepared(opened, workspace is not None, root, settings, registry)
+
+    async def _read(self, prepared: _Prepared | None) -> Session | None:
+        if prepared is None:
+            return None
         directory = default_cache_directory()
         cache = None if directory is None else FactsCache(directory.absolute())
-        os.chdir(root)  # the engine shows and matches paths relative to the workspace
-        session = Session(root, settings, registry, cache)
-        if workspace is None:
+        session = Session(prepared.root, prepared.settings, prepared.registry, cache)
+        if not prepared.in_workspace:
             self.log_line(
-                f"{opened} is in no ROS workspace (no src/ with packages, no git root, no "
-                "package): only the open documents are checked"
+                f"{prepared.opened} is in no ROS workspace (no src/ with packages, no git "
+                "root, no package): only the open documents are checked"
             )
         else:
+            started = time.monotonic()
             await self._worker.run(session.load)
+            self.log_line(
+                f"read the workspace {prepared.root} in {time.monotonic() - started:.1f} s"
+            )
         self.session = session
         return session
 
@@ -278,9 +327,17 @@ class RoslintServer(LanguageServer):
 
     async def _check(self, uri: str, delay: float) -> None:
         await asyncio.sleep(delay)
-        session = await self.ready_session()
+        loading = self._start_loading()
         path = to_fs_path(uri)
         document = self.workspace.text_documents.get(unquote(uri))
+        if not loading.done() and self._prepared is not None and path and document:
+            # While the workspace is read (seconds, on a large one), the document's own
+            # findings: those that need no other file; the rest follow once it is read.
+            text = document.source
+            early = await asyncio.to_thread(_first_look, self._prepared, Path(path), text)
+            if early is not None and not loading.done():
+                self.publish(uri, text, early)
+        session = await loading
         if session is None or path is None or document is None:
             return
         text = document.source
