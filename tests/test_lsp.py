@@ -201,10 +201,15 @@ def test_without_pygls_the_command_says_what_to_install(
     assert "install roslint-names[server]" in result.stderr
 
 
-async def _first_findings(opened: Path, document: Path, cache: Path, wanted: str) -> list[str]:
-    """Start the server rooted at ``opened``, open ``document`` with a launch file's text
-    that includes the teleop package's, and return the codes published once ``wanted``
-    is among them, then the lines the server logged."""
+async def _opened(
+    root: Path,
+    document: Path,
+    cache: Path,
+    done: Callable[[Client, list[types.Diagnostic]], bool],
+    timeout: float = 60,
+) -> Client:
+    """The client of a server rooted at ``root`` once ``document`` (a launch file) is open
+    and ``done`` accepts what it published for it; the server is shut down."""
     uri = from_fs_path(str(document))
     assert uri is not None
     client = Client()
@@ -212,7 +217,7 @@ async def _first_findings(opened: Path, document: Path, cache: Path, wanted: str
     try:
         await client.lsp.initialize_async(
             types.InitializeParams(
-                capabilities=types.ClientCapabilities(), root_uri=from_fs_path(str(opened))
+                capabilities=types.ClientCapabilities(), root_uri=from_fs_path(str(root))
             )
         )
         client.lsp.initialized(types.InitializedParams())
@@ -222,12 +227,20 @@ async def _first_findings(opened: Path, document: Path, cache: Path, wanted: str
                 types.TextDocumentItem(uri=uri, language_id="xml", version=1, text=text)
             )
         )
-        found = await client.until(uri, lambda d: wanted in _codes(d))
+        await client.until(uri, lambda found: done(client, found), timeout)
         await client.lsp.shutdown_async(None)
-        return [*_codes(found), *(what for kind, what in client.arrived if kind == "log")]
+        return client
     finally:
         client.lsp.exit(None)
         await client.lsp.stop()
+
+
+async def _first_findings(opened: Path, document: Path, cache: Path, wanted: str) -> list[str]:
+    """The codes published for ``document`` once ``wanted`` is among them, then the lines
+    the server logged, from a server rooted at ``opened``."""
+    client = await _opened(opened, document, cache, lambda _, found: wanted in _codes(found))
+    found = client.published[from_fs_path(str(document)) or ""]
+    return [*_codes(found), *(what for kind, what in client.arrived if kind == "log")]
 
 
 TWICE_LAUNCH = ROBOT_LAUNCH.replace("base-driver", "base_driver").replace(
@@ -267,44 +280,24 @@ def _generated_node(lines: int) -> str:
     return "import rospy\nfrom std_msgs.msg import String\n\nrospy.init_node('generated')\n" + body
 
 
+def _read(client: Client) -> bool:
+    """Whether the server has said it read the workspace."""
+    return any(kind == "log" and "read the workspace" in what for kind, what in client.arrived)
+
+
 async def _order_of_events(root: Path, document: Path, cache: Path) -> list[str]:
     """What the server sends after ``document`` is opened, in order: 'RN101' for the first
     publication holding it, 'read' for the log line saying the workspace was read."""
-    uri = from_fs_path(str(document))
-    assert uri is not None
-    client = Client()
-    await client.lsp.start_io(*SERVER, env={"XDG_CACHE_HOME": str(cache), "PATH": ""})
-    try:
-        await client.lsp.initialize_async(
-            types.InitializeParams(
-                capabilities=types.ClientCapabilities(), root_uri=from_fs_path(str(root))
-            )
-        )
-        client.lsp.initialized(types.InitializedParams())
-        text = document.read_text(encoding="utf-8")
-        client.lsp.text_document_did_open(
-            types.DidOpenTextDocumentParams(
-                types.TextDocumentItem(uri=uri, language_id="xml", version=1, text=text)
-            )
-        )
-
-        def read() -> bool:
-            return any(
-                kind == "log" and "read the workspace" in what for kind, what in client.arrived
-            )
-
-        await client.until(uri, lambda d: "RN101" in _codes(d) and read(), 120)
-        await client.lsp.shutdown_async(None)
-        events: list[str] = []
-        for kind, what in client.arrived:
-            if kind == "publish" and "RN101" in what and "RN101" not in events:
-                events.append("RN101")
-            elif kind == "log" and "read the workspace" in what:
-                events.append("read")
-        return events
-    finally:
-        client.lsp.exit(None)
-        await client.lsp.stop()
+    client = await _opened(
+        root, document, cache, lambda c, found: "RN101" in _codes(found) and _read(c), 120
+    )
+    events: list[str] = []
+    for kind, what in client.arrived:
+        if kind == "publish" and "RN101" in what and "RN101" not in events:
+            events.append("RN101")
+        elif kind == "log" and "read the workspace" in what:
+            events.append("read")
+    return events
 
 
 def test_a_documents_own_findings_come_before_the_workspace_is_read(tmp_path: Path) -> None:
