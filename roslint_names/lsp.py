@@ -269,6 +269,10 @@ class RoslintServer(LanguageServer):
             return types.PositionEncodingKind.Utf16.value
         return str(getattr(negotiated, "value", negotiated or "utf-16"))
 
+    def workspace_root(self) -> Path | None:
+        """The root of the workspace the server reads, once it has found it."""
+        return None if self._prepared is None else self._prepared.root
+
     async def ready_session(self) -> Session | None:
         return await self._start_loading()
 
@@ -436,7 +440,9 @@ def code_action(ls: RoslintServer, params: types.CodeActionParams) -> list[types
     uri = params.text_document.uri
     published = ls.published.get(uri)
     path = to_fs_path(uri)
-    if published is None or path is None or ls.session is None:
+    # Known before the workspace is read: the findings published meanwhile have actions too.
+    root = ls.workspace_root()
+    if published is None or path is None or root is None:
         return []
     positions = published.positions
     wanted = params.range  # in the client's units, as the ranges it is compared with
@@ -447,7 +453,7 @@ def code_action(ls: RoslintServer, params: types.CodeActionParams) -> list[types
             continue
         lsp_diagnostic = _diagnostic(diagnostic, positions)
         if diagnostic.edit is not None:
-            actions.append(_fix_action(ls.session, uri, diagnostic, positions, lsp_diagnostic))
+            actions.append(_fix_action(root, uri, diagnostic, positions, lsp_diagnostic))
         suppress = _suppress_action(Path(path), uri, published.text, diagnostic, lsp_diagnostic)
         if suppress is not None:
             actions.append(suppress)
@@ -657,7 +663,7 @@ def _before_or_at(one: types.Position, other: types.Position) -> bool:
 
 
 def _fix_action(
-    session: Session,
+    root: Path,
     uri: str,
     diagnostic: Diagnostic,
     positions: _Positions,
@@ -667,10 +673,8 @@ def _fix_action(
     assert edit is not None
     changes: dict[str, list[types.TextEdit]] = {uri: [_text_edit(edit, positions)]}
     for other in diagnostic.also:
-        other_uri = from_fs_path(str(session.root / (other.path or diagnostic.path))) or uri
-        other_positions = (
-            positions if other_uri == uri else positions.of(session.root / (other.path or ""))
-        )
+        other_uri = from_fs_path(str(root / (other.path or diagnostic.path))) or uri
+        other_positions = positions if other_uri == uri else positions.of(root / (other.path or ""))
         changes.setdefault(other_uri, []).append(_text_edit(other, other_positions))
     safety = "" if edit.safe else " (unsafe: may change what the system does)"
     return types.CodeAction(
