@@ -397,29 +397,30 @@ def workspace_root(path: Path) -> Path | None:
     The nearest directory above it whose ``src/`` holds packages (a catkin or colcon
     workspace), else the root of its git repository; None when it is in neither.
     """
-    for directory in path.parents:
-        source = directory / "src"
-        if source.is_dir() and _holds_packages(source):
-            return directory
-        if (directory / ".git").exists():
-            return directory
-    return None
+    return _enclosing_workspace(path.parent)
 
 
 def editor_workspace(directory: Path) -> Path | None:
-    """The workspace an editor that opened ``directory`` works in: the nearest directory at
-    or above it whose ``src/`` holds packages (an editor rooted at a package still sees the
-    packages beside it), else the git root at or above it, else ``directory`` itself where
-    it is a package or holds some; None for any other directory (a home directory, a
-    download folder), which is never read whole."""
+    """The workspace an editor that opened ``directory`` works in: the workspace at or
+    above it as ``workspace_root`` finds one (an editor rooted at a package still sees the
+    packages beside it), else ``directory`` itself where it is a package or holds some;
+    None for any other directory (a home directory, a download folder), which is never
+    read whole."""
+    found = _enclosing_workspace(directory)
+    if found is None and ((directory / "package.xml").is_file() or _holds_packages(directory)):
+        return directory
+    return found
+
+
+def _enclosing_workspace(directory: Path) -> Path | None:
+    """The nearest of ``directory`` and the directories above it whose ``src/`` holds
+    packages, or that is a git repository's root."""
     for candidate in (directory, *directory.parents):
         source = candidate / "src"
         if source.is_dir() and _holds_packages(source):
             return candidate
         if (candidate / ".git").exists():
             return candidate
-    if (directory / "package.xml").is_file() or _holds_packages(directory):
-        return directory
     return None
 
 

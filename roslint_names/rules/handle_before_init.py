@@ -51,17 +51,16 @@ def _misses_remaps_only(event: RuntimeEvent, facts: FileFacts) -> bool:
     example runs it as written: ros_comm's test_service_order.py does so on purpose."""
     if event.api not in _LENIENT:
         return False
-    after = (event.span.end_line, event.span.end_column)
+    # The first name of that API after the call's name: its first argument (spans order
+    # by where they start).
+    end = event.span.end_line, event.span.end_column
+    after = Span(*end, *end)
     name = min(
-        (use for use in facts.names if use.api == event.api and _start(use.span) >= after),
-        key=lambda use: _start(use.span),
+        (use for use in facts.names if use.api == event.api and use.span >= after),
+        key=lambda use: use.span,
         default=None,
     )
     return name is not None and not name.value.startswith("~")
-
-
-def _start(span: Span) -> tuple[int, int]:
-    return (span.line, span.column)
 
 
 RULE = Rule(

@@ -260,12 +260,11 @@ class Graph:
 
 def launched_by(graph: Graph, launch_files: frozenset[str]) -> Graph:
     """The part of ``graph`` that the launch files (display paths) start: the node
-    instances whose launch chain passes through one of them, a file included by another
-    drawn as its includers launch it, and those nodes' endpoints."""
+    instances whose launch chain (its first site is in the tree's root) passes through one
+    of them, a file included by another drawn as its includers launch it, and those
+    nodes' endpoints."""
     nodes = tuple(
-        node
-        for node in graph.nodes
-        if node.root in launch_files or any(site.path in launch_files for site in node.launched_at)
+        node for node in graph.nodes if any(site.path in launch_files for site in node.launched_at)
     )
     kept = {(node.name, node.root) for node in nodes}
     endpoints = tuple(e for e in graph.endpoints if (e.node, e.root) in kept)
