@@ -145,19 +145,35 @@ def _cpp(lines: list[str], text: str, by_line: dict[int, set[str]]) -> _Edit:
     count = _move_out_of_nolint(lines, wanted)
     for number, codes in sorted(wanted.items(), reverse=True):  # bottom up: lines shift
         count += 1
-        body, ending = _body_and_ending(lines[number - 1])
-        previous = _body_and_ending(lines[number - 2])[0] if number >= 2 else ""
-        before = CPP_IGNORE.search(previous)
+        body, _ = _body_and_ending(lines[number - 1])
+        fits = len(body.rstrip()) + len(_cpp_comment(codes)) + 2 <= CPP_LINE_LIMIT
         if CPP_IGNORE.search(body) is not None:
             _append(lines, number, codes, CPP_IGNORE, make="")
-        elif before is not None and not previous[: before.start()].strip():
-            _append(lines, number - 1, codes, CPP_IGNORE, make="")
-        elif len(body.rstrip()) + len(_cpp_comment(codes)) + 2 <= CPP_LINE_LIMIT:
+        elif fits and not _alone_before(lines, number, CPP_IGNORE):
             _append(lines, number, codes, CPP_IGNORE, make="  " + _cpp_comment(codes))
         else:
-            indent = body[: len(body) - len(body.lstrip(" \t"))]
-            lines.insert(number - 1, indent + _cpp_comment(codes) + (ending or "\n"))
+            _before(lines, number, codes, CPP_IGNORE, _cpp_comment(codes))
     return count, sorted(refused)
+
+
+def _alone_before(lines: list[str], number: int, pattern: re.Pattern[str]) -> bool:
+    """Whether the line before line ``number`` holds such a comment and nothing else."""
+    previous = _body_and_ending(lines[number - 2])[0] if number >= 2 else ""
+    match = pattern.search(previous)
+    return match is not None and not previous[: match.start()].strip()
+
+
+def _before(
+    lines: list[str], number: int, codes: set[str], pattern: re.Pattern[str], comment: str
+) -> None:
+    """The codes in a comment alone on the line before line ``number``: merged into one
+    already there, else ``comment`` written there with the line's indentation."""
+    if _alone_before(lines, number, pattern):
+        _append(lines, number - 1, codes, pattern, make="")
+        return
+    body, ending = _body_and_ending(lines[number - 1])
+    indent = body[: len(body) - len(body.lstrip(" \t"))]
+    lines.insert(number - 1, indent + comment + (ending or "\n"))
 
 
 # cpplint's default --linelength: a comment that would push a line past it is written on
@@ -262,16 +278,8 @@ def _xml(lines: list[str], text: str, by_line: dict[int, set[str]]) -> _Edit:
     for number, codes in sorted(at_end.items()):
         _append(lines, number, codes, XML_IGNORE, make=" <!-- roslint-names: ignore {} -->")
     for first, codes in sorted(before_tag.items(), reverse=True):  # bottom up: lines shift
-        previous = lines[first - 2] if first >= 2 else ""
-        match = XML_IGNORE.search(previous)
-        if match is not None and not previous[: match.start()].strip():
-            _append(lines, first - 1, codes, XML_IGNORE, make="")
-            continue
-        tag_line = lines[first - 1]
-        indent = tag_line[: len(tag_line) - len(tag_line.lstrip(" \t"))]
-        _, ending = _body_and_ending(tag_line)
-        comment = f"{indent}<!-- roslint-names: ignore {', '.join(sorted(codes))} -->"
-        lines.insert(first - 1, comment + (ending or "\n"))
+        comment = f"<!-- roslint-names: ignore {', '.join(sorted(codes))} -->"
+        _before(lines, first, codes, XML_IGNORE, comment)
     return len(at_end) + len(before_tag), []
 
 
