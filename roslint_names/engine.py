@@ -626,7 +626,10 @@ def report_graph(
                 decision=item.finding.decision,
             )
             for rule, item in items
-            if rule.code not in ignored and not (judging.spared(rule.code) and judging.is_test())
+            if rule.code not in ignored
+            and not (
+                (judging.spared(rule.code) or item.finding.deployment_only) and judging.is_test()
+            )
         ]
         suppressions = suppressions_of.get(index, [])
         fresh, used = _apply_suppressions(fresh, suppressions, registry)

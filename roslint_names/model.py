@@ -521,8 +521,10 @@ class Finding:
     answer: Answer | None = None
     # The name the finding judges, where other places may write the same (``decisions``).
     decision: Decision | None = None
-    # What it says goes wrong only under a launch file's namespaces and remaps, which a test
-    # or an example is never given: left out there even by a rule that judges test code.
+    # What it says goes wrong only where the code is deployed: under a launch file's
+    # namespaces and remaps, which a test or an example is never given (RN301), or on a
+    # node that is a test's stand-in (RN406). Left out in test and example code even by a
+    # rule that judges test code.
     deployment_only: bool = False
 
 

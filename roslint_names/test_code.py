@@ -67,7 +67,7 @@ def is_test_code(
     """Whether the file at ``relative_path`` (below the settings' root, '/'-separated) with
     these contents is test code."""
     *directories, name = relative_path.split("/")
-    if any(_TEST_DIRECTORY.fullmatch(directory) for directory in directories):
+    if any(is_test_directory(directory) for directory in directories):
         return True
     stem, *suffixes = name.split(".")
     if "test" in (suffix.lower() for suffix in suffixes):
@@ -81,6 +81,11 @@ def is_test_code(
         return False
     content = data.encode("utf-8", "surrogateescape") if isinstance(data, str) else data
     return pattern.search(content) is not None
+
+
+def is_test_directory(name: str) -> bool:
+    """Whether a folder called ``name`` holds tests or test support code."""
+    return _TEST_DIRECTORY.fullmatch(name) is not None
 
 
 def is_example_code(relative_path: str, settings: Settings) -> bool:

@@ -610,3 +610,66 @@ def test_one_stale_setting_copied_into_several_launch_files_is_one_finding(
     assert found["message"].endswith("(also written at 1 other place)")
     copies = [r for r in found["related"] if r["path"].endswith("controller_sim.launch.py")]
     assert any(r["line"] == 17 for r in copies)
+
+
+# roslaunch's resources/example.launch: a showcase of launch syntax that starts rospy's
+# test_nodes/talker.py, a test's stand-in, and sets it a made-up ``talker_param``.
+
+STAND_IN_TALKER = """\
+#!/usr/bin/env python
+import rospy
+from std_msgs.msg import String
+
+
+def talker():
+    pub = rospy.Publisher('chatter', String, queue_size=10)
+    rospy.init_node('talker', anonymous=True)
+    rate = rospy.Rate(rospy.get_param('~rate', 10))
+    while not rospy.is_shutdown():
+        pub.publish(String('hello world %s' % rospy.get_time()))
+        rate.sleep()
+
+
+if __name__ == '__main__':
+    talker()
+"""
+
+SYNTAX_SHOWCASE = """\
+<launch>
+  <group ns="wg">
+    <remap from="chatter" to="hello"/>
+    <node name="talker1" pkg="rospy" type="talker.py">
+      <env name="ENV_EXAMPLE" value="example value" />
+      <!-- params within node tags are equivalent to ~params. -->
+      <param name="talker_param" value="a value" />
+    </node>
+  </group>
+</launch>
+"""
+
+
+def stand_in_talker(root: Path, launch_path: str) -> Path:
+    rospy = root / "src" / "rospy"
+    write(rospy, "package.xml", CATKIN_PACKAGE.format(name="rospy"))
+    write(rospy, "test_nodes/talker.py", STAND_IN_TALKER)
+    (rospy / "test_nodes" / "talker.py").chmod(0o755)
+    roslaunch = root / "src" / "roslaunch"
+    write(roslaunch, "package.xml", CATKIN_PACKAGE.format(name="roslaunch"))
+    write(roslaunch, launch_path, SYNTAX_SHOWCASE)
+    return roslaunch
+
+
+def test_an_example_setting_a_test_stand_in_a_made_up_name_is_left_alone(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    stand_in_talker(tmp_path, "resources/example.launch")
+    assert findings(run_cli, tmp_path) == []
+
+
+def test_a_deployed_launch_setting_a_test_stand_in_an_unread_name_is_reported(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """The same launch file outside example code: whoever deploys the stand-in sets a
+    parameter it never reads."""
+    stand_in_talker(tmp_path, "launch/chatter.launch")
+    assert places(findings(run_cli, tmp_path)) == [("src/roslaunch/launch/chatter.launch", 7)]

@@ -176,7 +176,14 @@ def _finding(
         scope=" ".join(nodes),
     )
     found = finding(location, message, related)
-    return replace(found, finding=replace(found.finding, decision=decision))
+    # A test's stand-in node started outside a test (roslaunch's ``example.launch`` gives
+    # ``rospy/test_nodes/talker.py`` a ``talker_param``) shows launch syntax, not a
+    # node's configuration: left out where the setting is in example or test code.
+    stand_in = all(node.stand_in for _, _, node in seen)
+    return replace(
+        found,
+        finding=replace(found.finding, decision=decision, deployment_only=stand_in),
+    )
 
 
 def _how(setting: ParameterSetting) -> str:

@@ -25,6 +25,7 @@ from roslint_names.model import (
     Role,
 )
 from roslint_names.names import NameResolutionError, resolve
+from roslint_names.test_code import is_test_directory
 from roslint_names.types import parse_type
 from roslint_names.workspace.built import unbuilt_sources
 from roslint_names.workspace.graph import (
@@ -216,6 +217,7 @@ def _launched_instance(
         conditional=launched.conditional,
         named_at_launch=launched.node.name is not None,
         test=launched.node.test,
+        stand_in=not reach.isolated and _all_test_code(index, sources),
         reach=reach,
         parameter_files=files,
         composable=composable,
@@ -398,12 +400,31 @@ def _is_test(index: WorkspaceIndex, path: str) -> bool:
     package = index.package_of(path)
     if package is None:
         return False
-    inside = path[len(package.directory) :].lstrip("/") if package.directory else path
     name = posixpath.basename(package.directory)
     return (
         _is_test_package(package.name)
         or _is_test_package(name)
-        or any(part in _TEST_DIRECTORIES for part in inside.split("/")[:-1])
+        or any(part in _TEST_DIRECTORIES for part in _folders_inside(package, path))
+    )
+
+
+def _folders_inside(package: Package, path: str) -> list[str]:
+    """The folders between the package's directory and the file ``path``."""
+    inside = path[len(package.directory) :].lstrip("/") if package.directory else path
+    return inside.split("/")[:-1]
+
+
+def _all_test_code(index: WorkspaceIndex, sources: Sequence[str]) -> bool:
+    """Whether every source is test code or test support code of its package, by the
+    folders inside the package (``test_nodes/``, ``testing/``) or the package's name."""
+    return bool(sources) and all(_is_test_support(index, path) for path in sources)
+
+
+def _is_test_support(index: WorkspaceIndex, path: str) -> bool:
+    package = index.package_of(path)
+    return package is not None and (
+        _is_test(index, path)
+        or any(is_test_directory(folder) for folder in _folders_inside(package, path))
     )
 
 

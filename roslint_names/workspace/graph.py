@@ -166,6 +166,9 @@ class NodeInstance:
     # Every parameter the launch sets on it, by name then place.
     parameter_settings: tuple[ParameterSetting, ...] = ()
     test: bool = False  # a rostest ``<test>``: run alone, after the nodes are up
+    # Its code is test code (``rospy/test_nodes/talker.py``) though no test starts it: a
+    # test's stand-in that an example or a showcase of launch syntax borrows.
+    stand_in: bool = False
     reach: Reach = Reach(Generation.ROS2)
 
     def sort_key(self) -> tuple[str, str, tuple[Location, ...], tuple[str, ...]]:
