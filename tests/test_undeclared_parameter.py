@@ -12,7 +12,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from conftest import ament_package, findings_of, line_places, write
+from conftest import AMENT_PACKAGE, CATKIN_PACKAGE, ament_package, findings_of, line_places, write
 
 
 def findings(run_cli: Any, root: Path) -> list[dict[str, Any]]:
@@ -461,3 +461,73 @@ def test_sarif_points_at_the_file_and_launch_that_set_the_undeclared_name(
             "it is never read",
         ),
     ]
+
+
+# ros/geometry2 (ROS 1) and ros2/geometry2 both hold a package tf2_ros whose build makes a
+# buffer_server: in one checkout of both, the two programs were joined into one node, ROS
+# 2 by the launch's vote, and roscpp's NodeHandle::param read as rclcpp's, which throws.
+
+ROS1_BUFFER_SERVER = """\
+#include <ros/ros.h>
+#include <std_msgs/String.h>
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "tf_buffer");
+  ros::NodeHandle nh;
+  double buffer_size;
+  nh.param("buffer_size", buffer_size, 120.0);
+  bool publish_frame_service;
+  nh.param("publish_frame_service", publish_frame_service, false);
+  ros::Publisher status = nh.advertise<std_msgs::String>("buffer_status", 1);
+  ros::spin();
+  return 0;
+}
+"""
+
+ROS1_BUFFER_CMAKE = """\
+cmake_minimum_required(VERSION 3.0.2)
+project(tf2_ros)
+find_package(catkin REQUIRED COMPONENTS roscpp)
+catkin_package()
+add_executable(${PROJECT_NAME}_buffer_server src/buffer_server_main.cpp)
+set_target_properties(${PROJECT_NAME}_buffer_server PROPERTIES OUTPUT_NAME buffer_server)
+"""
+
+ROS2_BUFFER_SERVER = """\
+#include "rclcpp/rclcpp.hpp"
+#include "std_msgs/msg/string.hpp"
+
+int main(int argc, char ** argv)
+{
+  rclcpp::init(argc, argv);
+  auto node = rclcpp::Node::make_shared("tf_buffer");
+  double buffer_size = node->declare_parameter("buffer_size", 120.0);
+  (void)buffer_size;
+  auto status = node->create_publisher<std_msgs::msg::String>("buffer_status", 1);
+  rclcpp::spin(node);
+  return 0;
+}
+"""
+
+ROS2_BUFFER_CMAKE = """\
+cmake_minimum_required(VERSION 3.8)
+project(tf2_ros)
+find_package(ament_cmake REQUIRED)
+find_package(rclcpp REQUIRED)
+add_executable(buffer_server src/buffer_server_main.cpp)
+ament_target_dependencies(buffer_server rclcpp)
+ament_package()
+"""
+
+
+def test_two_packages_of_one_name_are_two_programs(run_cli: Any, tmp_path: Path) -> None:
+    ros1 = tmp_path / "src" / "geometry2" / "tf2_ros"
+    write(ros1, "package.xml", CATKIN_PACKAGE.format(name="tf2_ros"))
+    write(ros1, "CMakeLists.txt", ROS1_BUFFER_CMAKE)
+    write(ros1, "src/buffer_server_main.cpp", ROS1_BUFFER_SERVER)
+    ros2 = tmp_path / "src" / "geometry2_ros2" / "tf2_ros"
+    write(ros2, "package.xml", AMENT_PACKAGE.format(name="tf2_ros"))
+    write(ros2, "CMakeLists.txt", ROS2_BUFFER_CMAKE)
+    write(ros2, "src/buffer_server_main.cpp", ROS2_BUFFER_SERVER)
+    assert findings(run_cli, tmp_path) == []

@@ -178,7 +178,11 @@ class WorkspaceIndex:
                 if executable.kind is ExecutableKind.PLUGIN:
                     self._plugins.setdefault(executable.name, []).extend(sources)
                 elif package is not None:
-                    key = (package.name, executable.name)
+                    # Two packages of one name (ros/geometry2's and ros2/geometry2's
+                    # tf2_ros both build a buffer_server) are two programs, not one: a
+                    # copy is keyed by its directory, which no launch file names.
+                    owner = package.name if package.name in self.packages else package.directory
+                    key = (owner, executable.name)
                     self._programs.setdefault(key, []).extend(sources)
 
     def _existing(self, directory: str, relatives: Iterable[str]) -> list[str]:
