@@ -270,10 +270,22 @@ class LaunchNode:
     parameter_spans: tuple[Span, ...] = ()
 
 
-# What an include hands the included file, sorted by name: each argument's value, None
-# when the includer sets it to something the linter cannot know (the included file must
-# then not fall back to its default).
-LaunchArguments = tuple[tuple[str, "str | None"], ...]
+@dataclass(frozen=True, order=True)
+class InPackage:
+    """A value known only as a file of a package: ``$(find-pkg-share pkg)/config/a.yaml``,
+    ``$(find pkg)/config/a.yaml``, ``PathJoinSubstitution([FindPackageShare('pkg'),
+    'config', 'a.yaml'])``. Where the package is installed is the machine's; which file of
+    which package it is, the launch file says. ``path`` is relative to the package."""
+
+    package: str
+    path: str
+
+
+# What an include hands the included file, sorted by name: each argument's value, an
+# ``InPackage`` where it names a package's file, None when the includer sets it to
+# something the linter cannot know (the included file must then not fall back to its
+# default).
+LaunchArguments = tuple[tuple[str, "str | InPackage | None"], ...]
 
 
 @dataclass(frozen=True)

@@ -14,6 +14,7 @@ from roslint_names.extract.launch.substitution import ARG, Dialect, Lookup, Valu
 from roslint_names.model import (
     FileFacts,
     Generation,
+    InPackage,
     LaunchInclude,
     LaunchNode,
     Remap,
@@ -87,10 +88,11 @@ def test_pass_all_args_hands_over_every_argument_children_win() -> None:
     gazebo = fixture("fleet.launch").includes[2]
     assert where(gazebo) == ("gazebo_ros", "launch/empty_world.launch")
     # model: the child's value is dynamic ($(env)), so the inherited "burger" is not what
-    # the included file gets; robot_model and launch_dir are not static at all. Unknown
-    # values are handed over as unknown: the included file must not take its defaults.
+    # the included file gets; robot_model is not static at all. Unknown values are handed
+    # over as unknown: the included file must not take its defaults. launch_dir is a
+    # folder of a package ($(find fleet_bringup)/launch): handed over as that.
     assert gazebo.arguments == (
-        ("launch_dir", None),
+        ("launch_dir", InPackage("fleet_bringup", "launch")),
         ("model", None),
         ("robot_model", None),
         ("use_sim", "true"),

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from roslint_names.extract.python.extract import extract
-from roslint_names.model import FileFacts, Generation, LaunchInclude, ParseError, Span
+from roslint_names.model import FileFacts, Generation, InPackage, LaunchInclude, ParseError, Span
 
 FIXTURES = Path(__file__).parent / "fixtures" / "python"
 HEADER = """import os
@@ -84,13 +84,14 @@ def test_nav2_humble_bringup_includes_in_their_group() -> None:
     localization = facts.includes[0]
     assert localization.span == Span(85, 17, 85, 98)  # the source argument
     # The explicit arguments and every configuration of the includer, sorted; 'map' has
-    # no default and params_file is a package path built at run time: handed over unknown.
+    # no default; params_file is nav2_bringup's params/nav2_params.yaml (its default, built
+    # with os.path.join from the package's share directory), handed over as that file.
     assert localization.arguments == (
         ("autostart", "true"),
         ("container_name", "nav2_container"),
         ("map", None),
         ("namespace", ""),
-        ("params_file", None),
+        ("params_file", InPackage("nav2_bringup", "params/nav2_params.yaml")),
         ("slam", "False"),
         ("use_composition", "True"),
         ("use_namespace", "false"),

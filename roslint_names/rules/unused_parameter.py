@@ -166,14 +166,16 @@ def _finding(
         if site is not None:
             related.append((site, f"node '{node.name}' is started here"))
         related.extend(_code(node, suggestion))
-    # One stale setting copied into several launch files (autoware's four
-    # map_projection_loader tests all set ``use_local_projector``) is one decision:
-    # reported once, the copies related (``decisions``).
+    # One stale setting copied into several launch or parameter files is one decision
+    # about one program's parameter: reported once, the copies related (``decisions``).
+    # Autoware's four map_projection_loader tests all set ``use_local_projector``; two
+    # copies of ``ekf_localizer.param.yaml`` (the package's and autoware_core_localization's)
+    # set a name the ekf_localizer no longer declares, for differently named instances.
     decision = Decision(
         kind=Kind.PARAMETER,
         name=setting.name,
         generation=first.generation,
-        scope=" ".join(nodes),
+        scope=" ".join(sorted({source for _, _, node in seen for source in node.sources})),
     )
     found = finding(location, message, related)
     # A test's stand-in node started outside a test (roslaunch's ``example.launch`` gives

@@ -24,7 +24,7 @@ from roslint_names.extract.launch.substitution import (
     Value,
     closing_bracket,
 )
-from roslint_names.model import LaunchArguments
+from roslint_names.model import InPackage, LaunchArguments
 
 
 @dataclass(frozen=True)
@@ -105,8 +105,42 @@ def normalise(path: str) -> str | None:
     return None if normal == "." else normal
 
 
+def in_package(raw: str, dialect: Dialect, lookup: Lookup) -> InPackage | None:
+    """A value that is not static but names a file of a package (``$(find-pkg-share
+    pkg)/config/a.yaml``, through arguments of this file), as the package and the path in
+    it: what an include can hand over of it. None for anything else, a path next to this
+    file (``$(dirname)``) among them: the included file lives elsewhere."""
+    if "$(" not in raw:
+        return None
+    target = locate(raw, dialect, lookup)
+    if target.package is None or target.path is None:
+        return None
+    return InPackage(target.package, target.path)
+
+
+def handed(value: Value) -> str | InPackage | None:
+    """What an include hands over of a ROS 2 launch configuration's value: its text, the
+    package's file a dynamic value names in ``package_text``'s form, else None."""
+    if not value.dynamic:
+        return value.text
+    return in_package(value.text, Dialect.ROS2, _nothing)
+
+
+def _nothing(kind: str, name: str) -> Value | None:
+    """A lookup that knows no argument: the text is already unfolded."""
+    del kind, name
+    return None
+
+
+def package_text(value: InPackage, dialect: Dialect) -> str:
+    """The value as the included file's dialect writes it: ``$(find-pkg-share pkg)/path``
+    (ROS 2), ``$(find pkg)/path`` (ROS 1)."""
+    return f"$({_SHARE_COMMAND[dialect]} {value.package})/{value.path}"
+
+
 def handed_over(
-    inherited: Mapping[str, str | None], explicit: Mapping[str, str | None]
+    inherited: Mapping[str, str | InPackage | None],
+    explicit: Mapping[str, str | InPackage | None],
 ) -> LaunchArguments:
     """The arguments an include passes, sorted by name, None for an unknown value.
 
@@ -120,11 +154,17 @@ def handed_over(
 
 def passed_values(arguments: LaunchArguments) -> dict[str, Value]:
     """What an included ROS 2 file sees of the arguments handed to it: a launch
-    configuration per argument, dynamic when its value is unknown."""
-    return {
-        name: Value(f"$(var {name})", dynamic=True) if value is None else Value(value)
-        for name, value in arguments
-    }
+    configuration per argument, dynamic when its value is unknown or a package's file
+    (then written as a substitution the file's paths unfold: ``unfold``)."""
+    return {name: _passed_value(name, value) for name, value in arguments}
+
+
+def _passed_value(name: str, value: str | InPackage | None) -> Value:
+    if value is None:
+        return Value(f"$(var {name})", dynamic=True)
+    if isinstance(value, InPackage):
+        return Value(package_text(value, Dialect.ROS2), dynamic=True)
+    return Value(value)
 
 
 # ---------------------------------------------------------------------------------------

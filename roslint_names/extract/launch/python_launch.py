@@ -37,7 +37,7 @@ from roslint_names.extract.launch.common import (
     join_namespace,
     node_path,
 )
-from roslint_names.extract.launch.include import passed_values
+from roslint_names.extract.launch.include import handed, package_text, passed_values
 from roslint_names.extract.launch.python_paths import IncludePaths
 from roslint_names.extract.launch.python_values import (
     Action,
@@ -51,11 +51,12 @@ from roslint_names.extract.launch.python_values import (
     defined_function,
     frames_key,
 )
-from roslint_names.extract.launch.substitution import Value, skipped, truth
+from roslint_names.extract.launch.substitution import Dialect, Value, skipped, truth
 from roslint_names.extract.python.scope import Scope, argument_context
 from roslint_names.extract.python.spans import Locator, Where
 from roslint_names.extract.python.walk import Walk
 from roslint_names.model import (
+    InPackage,
     LaunchArguments,
     LaunchInclude,
     LaunchNode,
@@ -326,7 +327,7 @@ class LaunchExtractor(LaunchValues):
         """The included file sees every configuration of the including scope (ROS 2
         configurations are not per file), then the explicit arguments over them."""
         package, where = (None, None) if path is None else self.paths.locate(path, scope)
-        handed = self.configurations(scope) | explicit
+        given = self.configurations(scope) | explicit
         if self.inactive_depth:
             return
         self.includes.append(
@@ -335,9 +336,7 @@ class LaunchExtractor(LaunchValues):
                 path=where,
                 namespace="" if scope.namespace is None else scope.namespace,
                 span=span,
-                arguments=tuple(
-                    sorted((k, None if v.dynamic else v.text) for k, v in handed.items())
-                ),
+                arguments=tuple(sorted((k, handed(v)) for k, v in given.items())),
                 remaps=tuple(scope.remaps),
                 anchored=scope.anchored,
                 conditional=self.undecided_depth > 0,
@@ -357,10 +356,22 @@ class LaunchExtractor(LaunchValues):
             if _is_namespace_argument(name.text):
                 found[name.text] = self.emit(NAMESPACE, api, value, scope, scope.namespace)
                 continue
-            found[name.text] = self.value(value, scope)
+            found[name.text] = self.argument_value(value, scope)
             if is_frame_parameter(name.text):
                 self.frame(value, scope, scope.namespace, api)
         return found
+
+    def argument_value(self, located: Written, scope: LaunchScope) -> Value:
+        """A value handed to an included file: its text, or for a path in a package
+        (``PathJoinSubstitution([FindPackageShare('pkg'), 'config', 'a.yaml'])``) a
+        dynamic value whose text names the package's file as launch XML would."""
+        value = self.value(located, scope)
+        if not value.dynamic:
+            return value
+        package, where = self.paths.locate(located, scope)
+        if package is None or where is None:
+            return value
+        return Value(package_text(InPackage(package, where), Dialect.ROS2), dynamic=True)
 
     # -- nodes --------------------------------------------------------------------------
 

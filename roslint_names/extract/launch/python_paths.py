@@ -19,6 +19,7 @@ from enum import Enum
 
 import libcst as cst
 
+from roslint_names.extract.launch.include import handed
 from roslint_names.extract.launch.python_values import (
     LaunchScope,
     LaunchValues,
@@ -27,6 +28,8 @@ from roslint_names.extract.launch.python_values import (
     class_key,
     string_parts,
 )
+from roslint_names.extract.launch.substitution import Value
+from roslint_names.model import InPackage
 
 _MAX_DEPTH = 16  # variables defined through variables; deeper (or cyclic) is unknown
 
@@ -263,8 +266,10 @@ class IncludePaths:
         assert isinstance(located.expr, cst.Call)
         name_at = call_argument(located.expr, located.context, "0:variable_name")
         name = None if name_at is None else self.values.text(name_at, scope, depth + 1)
-        if name is None or name in scope.variables:
-            return None  # set to something dynamic, or a name we cannot know
+        if name is None:
+            return None  # a name we cannot know
+        if name in scope.variables:
+            return _package_file(scope.variables[name])  # set to something dynamic
         declared = self.values.declarations(name)
         if declared:
             pieces = {
@@ -277,6 +282,15 @@ class IncludePaths:
 
 
 # -- operations on pieces ----------------------------------------------------------------
+
+
+def _package_file(value: Value) -> Piece | None:
+    """A dynamic configuration that an includer set to a package's file
+    (``include.handed``), as the piece that file's path is."""
+    found = handed(value)
+    if not isinstance(found, InPackage):
+        return None
+    return Piece(Base.PACKAGE, f"/{found.path}", found.package)
 
 
 def _concatenate(left: Piece | None, right: Piece | None) -> Piece | None:

@@ -43,7 +43,14 @@ from roslint_names.extract.launch.common import (
     join_namespace,
     node_path,
 )
-from roslint_names.extract.launch.include import UNKNOWN, handed_over, locate, passed_values
+from roslint_names.extract.launch.include import (
+    UNKNOWN,
+    handed_over,
+    in_package,
+    locate,
+    package_text,
+    passed_values,
+)
 from roslint_names.extract.launch.substitution import (
     ARG,
     Assignment,
@@ -68,6 +75,7 @@ from roslint_names.extract.launch.substitution import (
 from roslint_names.model import (
     FileFacts,
     Generation,
+    InPackage,
     Language,
     LaunchArguments,
     LaunchInclude,
@@ -484,20 +492,26 @@ class LaunchWalker(ABC):
 
     def explicit_arguments(
         self, entity: Entity, scope: Scope, attributes: Sequence[str]
-    ) -> dict[str, str | None]:
-        """An include's ``<arg name value>`` children: name to static value (None: unknown).
+    ) -> dict[str, str | InPackage | None]:
+        """An include's ``<arg name value>`` children: name to static value, or the
+        package's file it names, else None (unknown).
 
         ``attributes`` are where the value may be, first found wins.
         """
-        found: dict[str, str | None] = {}
+        found: dict[str, str | InPackage | None] = {}
         for child in entity.nested("arg"):
             name = child.get("name")
             given = next((v for v in map(child.get, attributes) if v is not None), None)
             if name is None or given is None or self.skipped(child, scope):
                 continue
-            value = self.value(given, scope)
-            found[name.text] = None if value.dynamic else value.text
+            found[name.text] = self.handed(self.value(given, scope), scope.lookup)
         return found
+
+    def handed(self, value: Value, lookup: Lookup) -> str | InPackage | None:
+        """What an include hands over of a value of this file."""
+        if not value.dynamic:
+            return value.text
+        return in_package(value.text, self.dialect, lookup)
 
     def command_line_names(
         self, arguments: Sequence[CommandLineName], namespace: str | None, path: str | None
@@ -595,7 +609,7 @@ class Ros1Launch(LaunchWalker):
         self.bindings = Bindings(Dialect.ROS1)
         self.declared: dict[str, None] = {}  # the file's argument names, in order
         _declare_arguments(
-            root.children(), _Declaring(self.bindings, dict(arguments), self.declared), ()
+            root.children(), _Declaring(self.bindings, _ros1_passed(arguments), self.declared), ()
         )
 
     def run(self, root: Entity) -> None:
@@ -638,12 +652,12 @@ class Ros1Launch(LaunchWalker):
         pass_all = entity.get("pass_all_args")
         if pass_all is None or truth(self.value(pass_all, scope)) is not True:
             return handed_over({}, explicit)
-        inherited = {name: self._static_argument(name) for name in self.declared}
+        inherited = {name: self._handed_argument(name) for name in self.declared}
         return handed_over(inherited, explicit)
 
-    def _static_argument(self, name: str) -> str | None:
+    def _handed_argument(self, name: str) -> str | InPackage | None:
         value = self.bindings.lookup(ARG, name)
-        return None if value is None or value.dynamic else value.text
+        return None if value is None else self.handed(value, self.bindings.lookup)
 
     def param(self, entity: Entity, scope: Scope, namespace: str | None) -> tuple[str, Span] | None:
         """``<param name value>``: the name, and the value when the name is frame-like."""
@@ -744,6 +758,15 @@ class Ros1Launch(LaunchWalker):
             else:
                 parameters.append(found)
         return remaps, parameters
+
+
+def _ros1_passed(arguments: LaunchArguments) -> dict[str, str | None]:
+    """The raw values of the arguments handed to a roslaunch file: a package's file as
+    ``$(find pkg)/path``, which the file's paths unfold as their own defaults'."""
+    return {
+        name: package_text(value, Dialect.ROS1) if isinstance(value, InPackage) else value
+        for name, value in arguments
+    }
 
 
 @dataclass(frozen=True)
@@ -880,7 +903,7 @@ class Ros2Launch(LaunchWalker):
         """``<arg name value>`` children over every configuration in scope: an included
         file sees the configurations of the context that includes it."""
         inherited = {
-            name: None if value.dynamic else value.text for name, value in scope.variables.items()
+            name: self.handed(value, scope.lookup) for name, value in scope.variables.items()
         }
         return handed_over(inherited, self.explicit_arguments(entity, scope, ("value",)))
 
