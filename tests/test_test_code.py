@@ -330,6 +330,13 @@ class TestRospyClient(unittest.TestCase):
             failed = False
         self.failIf(failed, "init_node allowed an empty name")
 
+    def test_rate(self):
+        # rostest's hztest: a handler that fails the test says the tried call must work.
+        try:
+            rospy.Subscriber('rate in', String, self.callback)
+        except rospy.ROSException as e:
+            self.fail('cannot subscribe: %s' % e)
+
     def connect(self):
         try:
             rospy.Subscriber('odom in', Odometry, self.callback)
@@ -349,7 +356,8 @@ def test_names_a_test_expects_to_fail_are_never_reported(run_cli: Any, tmp_path:
         ("talker/test/test_publisher.cpp", 43, "RN101"),  # status-out: meant to work
         ("talker/test/test_publisher.cpp", 44, "RN101"),  # chatter out
         ("test_rospy/test/test_rospy_client.py", 19, "RN101"),  # chatter in
-        ("test_rospy/test/test_rospy_client.py", 31, "RN101"),  # odom in: not a test
+        ("test_rospy/test/test_rospy_client.py", 32, "RN101"),  # rate in: must work
+        ("test_rospy/test/test_rospy_client.py", 38, "RN101"),  # odom in: not a test
     ]
 
 

@@ -117,8 +117,8 @@ def _read_in_ros1(name: str, parameters: NodeParameters) -> bool:
     """Whether ROS 1 code may read ``name`` (relative to the node's private namespace),
     namespaces aside: a read of the name through any handle, of a dictionary holding it,
     or of a key inside the dictionary it sets; a read of ``~`` reads everything. A string
-    the code holds that no API the linter knows takes counts as a read (rostest's hztest
-    reads ``~hzerror`` inside a test's ``try``, which the extractor leaves out)."""
+    the code holds that no API the linter knows takes counts as a read: a helper of the
+    package may read it (``get_param(prefix + key)`` over a table of keys)."""
     for read in (*parameters.read, *parameters.declared, *parameters.literals):
         written = read.lstrip("~").strip("/")
         if (

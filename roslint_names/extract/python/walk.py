@@ -491,7 +491,8 @@ def _test_catches(statement: cst.Try, scope: Scope) -> bool:
     """In a test function, one statement tried for one named exception that is not raised
     again: ``try: rospy.init_node('ns/node') except ValueError: failed = False`` then
     ``self.failIf(failed)`` (ros_comm's test_rospy). Outside tests the idiom guards code
-    meant to work, and its names are judged."""
+    meant to work, and its names are judged; so does a handler that fails the test
+    (rostest's hztest: ``try: rospy.get_param('~rate') except KeyError: self.fail(...)``)."""
     function = scope.function
     if function is None or not function.name.value.startswith("test"):
         return False
@@ -501,6 +502,7 @@ def _test_catches(statement: cst.Try, scope: Scope) -> bool:
         handler.type is not None
         and dotted(handler.type) not in (None, "Exception", "BaseException")
         and not _raises(handler.body)
+        and not any(_fails(small) for small in _small_statements(handler.body))
         for handler in statement.handlers
     )
 
