@@ -486,14 +486,28 @@ def test_ros1_reads_through_any_handle_and_whole_dictionaries(run_cli: Any, tmp_
     assert findings(run_cli, tmp_path) == []
 
 
-def test_ros1_search_or_run_time_reads_leave_the_node_unjudged(
+def test_ros1_a_search_reads_the_name_it_searches(run_cli: Any, tmp_path: Path) -> None:
+    """``searchParam("child_frame", key)`` finds ``child_frame`` in the node's namespace or
+    one above it (roscpp's ``NodeHandle::searchParam``, rospy's ``search_param``): a read of
+    that name at some level. ``Rate`` is still read by nothing."""
+    searching = ROS1_NODE.replace(
+        '  pnh.param("rate", rate, 50.0);\n',
+        '  pnh.param("rate", rate, 50.0);\n'
+        "  std::string key;\n"
+        '  if (pnh.searchParam("child_frame", key)) {}\n',
+    )
+    odom_publisher(tmp_path, searching)
+    assert places(findings(run_cli, tmp_path)) == [("src/odom_publisher/launch/odom.launch", 4)]
+
+
+def test_ros1_run_time_searches_or_reads_leave_the_node_unjudged(
     run_cli: Any, tmp_path: Path
 ) -> None:
     searching = ROS1_NODE.replace(
         '  pnh.param("rate", rate, 50.0);\n',
         '  pnh.param("rate", rate, 50.0);\n'
         "  std::string key;\n"
-        '  if (nh.searchParam("robot_description", key)) {}\n',
+        "  if (nh.searchParam(std::string(argv[1]), key)) {}\n",
     )
     directory = odom_publisher(tmp_path, searching)
     assert findings(run_cli, tmp_path) == []

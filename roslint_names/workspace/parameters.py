@@ -84,7 +84,7 @@ class Incomplete(str, Enum):
     GENERATED = "generated"  # generate_parameter_library declares them
     DYNAMIC_RECONFIGURE = "dynamic-reconfigure"  # a .cfg file's parameters (ROS 1)
     BASE_CLASS = "base-class"  # derives from a class the workspace does not hold
-    SEARCH = "search"  # ROS 1 searchParam: reads a name found up the namespaces
+    SEARCH = "search"  # ROS 1 searchParam of a run-time name: found up the namespaces
 
 
 _TRAIT_CAUSES = {
@@ -512,7 +512,7 @@ class _Names:
     def add(self, facts: FileFacts, causes: set[Incomplete]) -> None:
         for use in _parameter_uses(facts):
             access = use.access
-            if use.api in _SEARCHES:
+            if use.api in _SEARCHES and use.dynamic:
                 causes.add(Incomplete.SEARCH)
             if access is ParameterAccess.READ_PREFIX:
                 if use.dynamic:
@@ -541,7 +541,9 @@ class _Names:
 
 
 # ROS 1 searches: the name found (in the node's namespace or any above it) is read next,
-# by whatever key the search returns.
+# by whatever key the search returns. A search for a static name reads that name at some
+# level, which the ROS 1 comparison (namespaces aside) counts as a read of it; a search for
+# a name built at run time may read anything.
 _SEARCHES = frozenset({"ros::NodeHandle::searchParam", "ros::param::search", "rospy.search_param"})
 
 
