@@ -419,6 +419,10 @@ class FileFacts:
     # (``("ControllerServer", ("nav2::LifecycleNode",))``): where else declarations hide.
     parameter_traits: tuple[ParameterTrait, ...] = ()
     class_bases: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    # Code: the base classes of the plugins it loads (``pluginlib::ClassLoader<
+    # nav2_amcl::MotionModel>`` gives ``nav2_amcl::MotionModel``), sorted; "" for a loader
+    # whose base the text does not show (BehaviorTree.CPP's ``registerFromPlugin``).
+    plugin_loaders: tuple[str, ...] = ()
     # Code: parameter-shaped string literals it holds more often than the names it was
     # read for (``extract.literals.unexplained_literals``): names it may declare through
     # something the linter does not know.

@@ -533,6 +533,10 @@ def test_did_you_mean() -> None:
     assert nearest("delta_yaw_threshold", ["resample.delta_yaw_threshold"]) == (
         "resample.delta_yaw_threshold"
     )
+    assert nearest("controller.simulation_step", ["controller.simulation_time_step"]) == (
+        "controller.simulation_time_step"  # navigation2's nav2_params.yaml
+    )
+    assert nearest("max_vel", ["vel"]) is None  # one word left is no slip
     assert nearest("x", ["y"]) is None  # too short for a slip
     assert nearest("mid_vel_y", ["max_vel_x", "min_vel_x"]) is None  # two as near: no guess
 

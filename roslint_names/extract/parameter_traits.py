@@ -82,6 +82,25 @@ def parameter_traits(data: bytes) -> tuple[ParameterTrait, ...]:
     return tuple(trait for trait in ParameterTrait if trait in found)
 
 
+# ``pluginlib::ClassLoader<karto::ScanSolver>``: the base class its plugins derive from.
+_LOADED_BASE = re.compile(rb"\bClassLoader\s*<\s*((?:::\s*)?[A-Za-z_][\w\s:]{0,200}?)\s*>")
+
+
+def plugin_loaders(data: bytes) -> tuple[str, ...]:
+    """The base classes whose plugins the text loads (``FileFacts.plugin_loaders``); ""
+    where it loads plugins without showing their base: an instance maker with no
+    ``ClassLoader<...>`` in the same file is a loader declared elsewhere (its header)."""
+    if b"Instance" not in data and b"ClassLoader" not in data and b"registerFromPlugin" not in data:
+        return ()
+    found = {
+        _SPACE.sub("", match.group(1).decode("utf-8", "replace")).lstrip(":")
+        for match in _LOADED_BASE.finditer(data)
+    }
+    if b"registerFromPlugin" in data:
+        found.add("")
+    return tuple(sorted(found))
+
+
 def reconfigure_servers(data: bytes, *, python: bool) -> tuple[str, ...]:
     """The dynamic_reconfigure configs the code serves, ``pkg::NameConfig`` or, where the
     text does not qualify it (``using namespace``, the package's own namespace),

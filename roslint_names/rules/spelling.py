@@ -38,10 +38,22 @@ def one_word_apart(one: str, other: str) -> bool:
     return sum(a != b for a, b in zip(words, others, strict=True)) == 1
 
 
+def one_word_more(one: str, other: str) -> bool:
+    """The same words with one more in either (``simulation_step`` and
+    ``simulation_time_step``), the shorter of two words or more."""
+    words, others = _words(one), _words(other)
+    if len(words) > len(others):
+        words, others = others, words
+    if len(others) != len(words) + 1 or len(words) < 2:
+        return False
+    return any(others[:index] + others[index + 1 :] == words for index in range(len(others)))
+
+
 def nearest(name: str, candidates: Iterable[str]) -> str | None:
     """The candidate ``name`` is a slip of: equal but for case and underscores, else one
     edit or one swap of neighbours away (names of four characters or more), else the same
-    under another prefix (``resample.delta_yaw_threshold``), else one word away; None when
+    under another prefix (``resample.delta_yaw_threshold``), else one word away, else one
+    word more or less (``simulation_time_step``); None when
     there is none, or more than one of the closest kind (a guess between two helps no
     one)."""
     pool = sorted({candidate for candidate in candidates if candidate and candidate != name})
@@ -53,6 +65,7 @@ def nearest(name: str, candidates: Iterable[str]) -> str | None:
         ),
         lambda one, other: _leaf(one) == _leaf(other),
         one_word_apart,
+        one_word_more,
     )
     for test in tests:
         found = [candidate for candidate in pool if test(candidate, name)]

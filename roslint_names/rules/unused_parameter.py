@@ -23,10 +23,12 @@ What the runtimes do with a name no code asks for:
 
 Reported only where the node's parameter set leaves no doubt (``workspace.parameters``):
 ROS 2, every name the node may declare is known (no run-time declaration, no undeclared
-parameters allowed, no declarations from overrides, no plugins, no generated parameters,
-no base class or code outside the workspace); ROS 1, every name it may read is known (no
-run-time read, no ``searchParam``, no dynamic_reconfigure server whose ``.cfg`` the
-workspace does not hold, no plugins). The name is
+parameters allowed, no declarations from overrides, no plugins but its package's own, no
+generated parameters, no base class or code outside the workspace), or the name is in a
+group the node's own code declares names in and only plugins are in doubt; ROS 1, every
+name it may read is known (no run-time read, no search for a run-time name, no
+dynamic_reconfigure server whose ``.cfg`` the workspace does not hold, no plugins). The
+name is
 known when the code declares or reads it (ROS 2: or its client library declares it:
 ``use_sim_time``, ``qos_overrides.``), when it sits under a prefix the code reads whole,
 ends as a name declared under a run-time prefix does, or is a string the code holds that
@@ -35,7 +37,8 @@ through a handle of another namespace, or of a whole dictionary, counts.
 
 An entry several nodes receive (a ``/**`` key, a launch file included twice) is reported
 once, when every node it applies to is judged so. A parameter file handed also to a node
-whose name the linter does not know is left alone: that node may be the one it is for.
+whose name the linter does not know may be that node's: an entry is left alone where
+that node's code may take the name.
 """
 
 from __future__ import annotations
@@ -47,7 +50,7 @@ from dataclasses import replace
 from ..model import Decision, Generation, Kind, Severity, Span
 from ..rule import Rule, RuleContext, WorkspaceFinding
 from ..workspace.graph import Graph, Location, NodeInstance, ParameterSetting, SettingSource
-from ..workspace.parameters import NodeParameters, WorkspaceDeclarations
+from ..workspace.parameters import Incomplete, NodeParameters, WorkspaceDeclarations
 from .graph_common import finding, launch_site
 from .spelling import nearest
 
@@ -62,16 +65,18 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
     elsewhere = graph.parameter_declarations or WorkspaceDeclarations()
     for node in graph.nodes:
         parameters = node.code_parameters
-        judged = parameters is not None and _judged(node.generation, parameters)
         for setting in node.parameter_settings:
             if node.generation is Generation.ROS1 and setting.name.startswith("/"):
                 continue  # outside the node's private namespace: any node's to read
             unknown = (
-                judged
-                and parameters is not None
-                and setting.location.path not in graph.unnamed_parameter_files
-                and _unknown(node, parameters, setting.name)
+                parameters is not None
+                and _judged(node.generation, parameters, setting.name)
+                and _unknown(node.generation, parameters, setting.name)
                 and not _mentioned(node, setting.name, elsewhere)
+                and not any(
+                    _may_take(receiver.generation, receiver.parameters, setting.name)
+                    for receiver in graph.unnamed_parameter_files.get(setting.location.path, ())
+                )
             )
             verdicts[setting.location].append((unknown, setting, node))
     for location, seen in sorted(verdicts.items()):
@@ -79,19 +84,39 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
             yield _finding(location, seen)
 
 
-def _judged(generation: Generation, parameters: NodeParameters) -> bool:
-    """Whether the node's code shows every name it may take: in ROS 2 every name it may
-    declare (an override it does not declare is dropped, read or not), in ROS 1 every
-    name it may read."""
-    if generation is Generation.ROS2:
-        return parameters.declarations_complete
-    return parameters.complete
+def _judged(generation: Generation, parameters: NodeParameters, name: str) -> bool:
+    """Whether the node's code shows every name it may take under which ``name`` could
+    be: in ROS 2 every name it may declare (an override it does not declare is dropped,
+    read or not), in ROS 1 every name it may read.
+
+    A ROS 2 node that loads plugins of other packages may be given any name they declare
+    under the names of their instances (nav2's ``FollowPath.``), but a group the node's
+    own code declares names in is its own: opennav_docking's ``controller.`` parameters
+    are its ``Controller`` class's, not a dock plugin's."""
+    if generation is not Generation.ROS2:
+        return parameters.complete
+    if parameters.declarations_complete:
+        return True
+    left = set(parameters.incomplete) - {Incomplete.RUN_TIME_READ, Incomplete.PLUGINS}
+    return not left and _in_own_group(name, parameters)
 
 
-def _unknown(node: NodeInstance, parameters: NodeParameters, name: str) -> bool:
+def _in_own_group(name: str, parameters: NodeParameters) -> bool:
+    group, dot, _ = name.partition(".")
+    return bool(dot) and any(declared.startswith(f"{group}.") for declared in parameters.declared)
+
+
+def _may_take(generation: Generation, parameters: NodeParameters, name: str) -> bool:
+    """Whether a node of unknown name that is handed the same file may take ``name``:
+    any key may be its (map_saver_server, started without a name in nav2's
+    slam_launch.py), so only its code can say it does not."""
+    return not _judged(generation, parameters, name) or not _unknown(generation, parameters, name)
+
+
+def _unknown(generation: Generation, parameters: NodeParameters, name: str) -> bool:
     if not name or parameters.may_declare(name):
         return False
-    if node.generation is Generation.ROS1:
+    if generation is Generation.ROS1:
         return not _read_in_ros1(name, parameters)
     if parameters.declares(name) or name in parameters.read:
         return False

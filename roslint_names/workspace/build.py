@@ -38,6 +38,7 @@ from roslint_names.workspace.graph import (
     ParameterFileUse,
     ParameterSetting,
     Reach,
+    UnnamedReceiver,
 )
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
 from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Prepare, Specialise
@@ -96,7 +97,9 @@ def build(
     unbuilt = unbuilt_sources(index)
     launched_sources: set[str] = set(unbuilt)
     trees = LaunchTrees(index, specialise, prepare)
-    unnamed: set[str] = set()  # parameter files handed to nodes of unknown names
+    # parameter file -> the code (and generation) of each node of unknown name it is
+    # handed to
+    unnamed: dict[str, set[tuple[Generation, tuple[str, ...]]]] = {}
     for launched in trees.launched():
         found = index.sources_of(launched.node.package, launched.node.executable)
         sources = tuple(path for path in found if path not in unbuilt)
@@ -106,11 +109,11 @@ def build(
             nodes.append(built[0])
             endpoints.extend(built[1])
         else:
-            unnamed.update(
-                path
-                for load in launched.node.parameter_files
-                if (path := _parameter_file(index, trees, launched.path, load.package, load.path))
-            )
+            receiver = (_generation(_code(index, sources), index.facts.get(launched.path)), sources)
+            for load in launched.node.parameter_files:
+                path = _parameter_file(index, trees, launched.path, load.package, load.path)
+                if path is not None:
+                    unnamed.setdefault(path, set()).add(receiver)
     for sources in _unlaunched_programs(index, launched_sources):
         built = _unlaunched_instance(index, sources)
         if built is not None:
@@ -138,7 +141,13 @@ def build(
         index.service_definitions(),
         blocks,
         tuple(sorted(set(loads))),
-        frozenset(unnamed),
+        {
+            path: tuple(
+                UnnamedReceiver(generation, parameters.of(sources))
+                for generation, sources in sorted(receivers)
+            )
+            for path, receivers in sorted(unnamed.items())
+        },
         parameter_declarations=parameters.declarations(),
     )
 
@@ -159,10 +168,14 @@ def _mentions(index: WorkspaceIndex, nodes: Iterable[NodeInstance]) -> dict[str,
 # Instances
 
 
+def _code(index: WorkspaceIndex, sources: Iterable[str]) -> list[FileFacts]:
+    return [index.facts[path] for path in sources]
+
+
 def _launched_instance(
     index: WorkspaceIndex, launched: Launched, sources: tuple[str, ...], trees: LaunchTrees
 ) -> tuple[NodeInstance, list[Endpoint]] | None:
-    code = [index.facts[path] for path in sources]
+    code = _code(index, sources)
     if launched.node.dynamic_name:
         return None  # the launch file names it, but not statically: its name is unknown
     name = launched.node.name or _code_node_name(code)

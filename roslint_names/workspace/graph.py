@@ -212,6 +212,15 @@ class Endpoint:
 
 
 @dataclass(frozen=True)
+class UnnamedReceiver:
+    """A node of unknown name a parameter file is handed to: any key may be its, but it
+    keeps only what its code may take."""
+
+    generation: Generation
+    parameters: NodeParameters
+
+
+@dataclass(frozen=True)
 class Graph:
     nodes: tuple[NodeInstance, ...]
     endpoints: tuple[Endpoint, ...]
@@ -229,8 +238,8 @@ class Graph:
     parameter_loads: tuple[ParameterFileUse, ...] = ()
     # Parameter files handed to a launched node whose name the linter does not know
     # (``$(anon x)``, an argument, a name its code does not show): which of their keys
-    # that node reads is unknown.
-    unnamed_parameter_files: frozenset[str] = frozenset()
+    # that node reads is unknown; what its code may take is known as far as its code is.
+    unnamed_parameter_files: Mapping[str, tuple[UnnamedReceiver, ...]] = field(default_factory=dict)
     # Every parameter the workspace's ROS 2 code declares (RN407: a name declared nowhere
     # cannot have been declared by a helper the linter does not follow)
     parameter_declarations: WorkspaceDeclarations | None = None

@@ -10,7 +10,8 @@ declarations, and causes of doubt, so it can only make a node's set more cautiou
 
 The set is incomplete, for one or more ``Incomplete`` causes, when names may be declared,
 read or accepted that no code of the workspace spells: names built at run time, undeclared
-parameters allowed, declarations from overrides, plugins, generated parameter code,
+parameters allowed, declarations from overrides, plugins (but for those of the node's own
+package: ``ParameterSets._own_plugins``), generated parameter code,
 dynamic_reconfigure, a base class the workspace does not hold, a ROS 1 search up the
 namespaces (``searchParam``), or code not (all) in the workspace. The causes are kept
 apart: a rule that judges reads of undeclared names asks only whether the *declarations*
@@ -57,7 +58,7 @@ from roslint_names.model import (
 )
 from roslint_names.workspace.built import TRANSLATION_UNITS
 from roslint_names.workspace.graph import Location
-from roslint_names.workspace.index import CODE_LANGUAGES, WorkspaceIndex
+from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
 
 LIBRARY_DECLARED = frozenset({"use_sim_time", "start_type_description_service"})
 LIBRARY_PREFIXES = ("qos_overrides.",)
@@ -222,6 +223,8 @@ class ParameterSets:
         self._reached_memo: dict[str, list[str]] = {}
         self._package_memo: dict[str, tuple[set[str], set[str]]] = {}
         self._classes: dict[str, list[str]] = {}  # class name -> files defining it
+        # base class name -> (file, base as written) of each class derived from it
+        self._derived: dict[str, list[tuple[str, str]]] = {}
         self._by_name: dict[str, list[str]] = {}  # C++ file name -> its paths
         self._programs: set[str] = set()  # sources of every program and component
         # ``NameConfig`` -> (package, path) of each .cfg generating it
@@ -234,8 +237,10 @@ class ParameterSets:
                 )
             if facts.language not in CODE_LANGUAGES or self._excluded(path):
                 continue
-            for name, _ in facts.class_bases:
+            for name, bases in facts.class_bases:
                 self._classes.setdefault(name, []).append(path)
+                for base in bases:
+                    self._derived.setdefault(_class_name(base), []).append((path, base))
             if facts.language is Language.CPP:
                 self._by_name.setdefault(posixpath.basename(path), []).append(path)
         for sources in index.built_sources().values():
@@ -295,6 +300,8 @@ class ParameterSets:
             causes.update(_TRAIT_CAUSES[trait] for trait in facts.parameter_traits)
             names.add(facts, causes)
             names.literals.update(facts.unexplained_literals)
+        if Incomplete.PLUGINS in causes and self._own_plugins(own, sources):
+            causes.discard(Incomplete.PLUGINS)  # their declarations are the package's
         configs: set[str] = set()
         if Incomplete.DYNAMIC_RECONFIGURE in causes:
             configs, known = self._served(own)
@@ -329,6 +336,67 @@ class ParameterSets:
             declared_constants=tuple(sorted(names.constants)),
             reconfigure=tuple(sorted(configs)),
         )
+
+    def _own_plugins(self, own: Iterable[str], sources: Sequence[str]) -> bool:
+        """Whether every plugin the code may load is a class of the node's own packages,
+        whose declarations count as the node's already (``_package_declarations``): each
+        loader names a base class of the node's packages (or of a library vendored inside
+        one), and the workspace's classes derived from it, one at least, are all there.
+        nav2_amcl's ``ClassLoader<nav2_amcl::MotionModel>`` loads nav2_amcl's motion
+        models; slam_toolbox's ``ClassLoader<karto::ScanSolver>`` (``lib/karto_sdk``) its
+        Ceres solver. A base of another package (nav2_core's ``Controller``,
+        opennav_docking_core's ``ChargingDock``) is an extension point for plugins of any
+        package, installed ones among them: the node stays unjudged."""
+        bases = {base for path in own for base in self._index.facts[path].plugin_loaders}
+        if not bases or "" in bases:
+            return False  # plugins whose base the code does not show
+        packages = [p for path in sources if (p := self._index.package_of(path))]
+        names = {package.name for package in packages}
+        for base in bases:
+            derived = self._implementations_of(base)
+            if (
+                not derived
+                or not self._defined_within(base, packages)
+                or any(
+                    (p := self._index.package_of(path)) is None or p.name not in names
+                    for path in derived
+                )
+            ):
+                return False
+        return True
+
+    def _defined_within(self, base: str, packages: Sequence[Package]) -> bool:
+        """Whether a file defining the class ``base`` is in one of ``packages`` or in a
+        package inside one's directory."""
+        directories = {package.directory for package in packages}
+        for path in self._classes.get(_class_name(base), []):
+            defining = self._index.package_of(path)
+            if defining is not None and any(
+                _within(defining.directory, directory) for directory in directories
+            ):
+                return True
+        return False
+
+    def _implementations_of(self, base: str) -> list[str]:
+        """The files of the workspace's classes derived from ``base`` as a loader names
+        it. Two spellings of one qualified name must agree; a base written without its
+        namespace in a package that defines a class of that name itself is that class
+        (nav2_mppi_controller's ``MotionModel`` is not nav2_amcl's)."""
+        name = _class_name(base)
+        found: list[str] = []
+        for path, written in self._derived.get(name, []):
+            if "::" in written and "::" in base:
+                if written.lstrip(":") == base.lstrip(":"):
+                    found.append(path)
+                continue
+            package = self._index.package_of(path)
+            defines_own = package is not None and any(
+                self._index.package_of(defining) == package
+                for defining in self._classes.get(name, [])
+            )
+            if "::" in written or "::" not in base or not defines_own:
+                found.append(path)
+        return found
 
     def _served(self, own: Iterable[str]) -> tuple[set[str], bool]:
         """The ``.cfg`` files of the configs the code serves, and whether they are all
@@ -408,7 +476,7 @@ class ParameterSets:
                     if defined is None:
                         unknown = unknown or not _harmless(base)
                         continue
-                    base_name = base.replace(".", "::").rpartition("::")[2]
+                    base_name = _class_name(base)
                     for found in defined:
                         add(found, {base_name})
         return list(files), unknown
@@ -483,7 +551,7 @@ class ParameterSets:
         workspace does not define it."""
         if base in _ROOT_BASES:
             return []
-        name = base.replace(".", "::").rpartition("::")[2]
+        name = _class_name(base)
         defined = self._classes.get(name)
         if defined:
             return defined
@@ -545,6 +613,16 @@ class _Names:
 # level, which the ROS 1 comparison (namespaces aside) counts as a read of it; a search for
 # a name built at run time may read anything.
 _SEARCHES = frozenset({"ros::NodeHandle::searchParam", "ros::param::search", "rospy.search_param"})
+
+
+def _within(directory: str, outer: str) -> bool:
+    return not outer or directory == outer or directory.startswith(f"{outer}/")
+
+
+def _class_name(written: str) -> str:
+    """A class name as written (``nav2_amcl::MotionModel``, ``rclpy.node.Node``), without
+    its namespaces."""
+    return written.replace(".", "::").rpartition("::")[2]
 
 
 def _bare(name: str) -> str:

@@ -33,7 +33,12 @@ from roslint_names.model import (
 from roslint_names.reading import bom_encoding
 
 from ..literals import name_literals, unexplained_literals
-from ..parameter_traits import cpp_class_bases, parameter_traits, reconfigure_servers
+from ..parameter_traits import (
+    cpp_class_bases,
+    parameter_traits,
+    plugin_loaders,
+    reconfigure_servers,
+)
 from .apis import CALL_WORDS, CONSTRUCTED_TYPES, FRAME_FIELDS
 from .constants import header_constants, included_paths, included_sources, is_header
 from .events import INIT_WORDS, handle_event, init_event
@@ -172,6 +177,7 @@ def extract(
             # ROS marker is no node's (but a helper's caller need name no ROS API:
             # ``declare(node, "rate")``).
             parameter_traits=parameter_traits(text),
+            plugin_loaders=plugin_loaders(text),
             reconfigure_servers=reconfigure_servers(text, python=False),
             class_bases=cpp_class_bases(text) if header else (),
             unexplained_literals=_unexplained(text, ()),
@@ -188,6 +194,7 @@ def extract(
         parse_errors=_errors(error),
         literals=name_literals(text),
         parameter_traits=parameter_traits(text),
+        plugin_loaders=plugin_loaders(text),
         reconfigure_servers=reconfigure_servers(text, python=False),
         class_bases=cpp_class_bases(text),
         unexplained_literals=_unexplained(text, names),
