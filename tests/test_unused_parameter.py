@@ -691,3 +691,36 @@ def test_a_deployed_launch_setting_a_test_stand_in_an_unread_name_is_reported(
     parameter it never reads."""
     stand_in_talker(tmp_path, "launch/chatter.launch")
     assert places(findings(run_cli, tmp_path)) == [("src/roslaunch/launch/chatter.launch", 7)]
+
+
+def test_ros1_yaml_inside_a_rosparam_sets_the_node_s_parameters(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """husky's gmapping.launch writes the node's parameters as YAML inside ``<rosparam>``
+    (roslaunch ``_rosparam_tag`` loads the text with ``yaml.safe_load``): each leaf is a
+    ``~`` parameter, below ``ns`` when given, at its key's place in the launch file."""
+    directory = odom_publisher(tmp_path)
+    inline = ROS1_LAUNCH.replace(
+        '      <param name="Rate" value="20.0"/>\n',
+        "      <rosparam>\n"
+        "        rate: 20.0\n"
+        "        frame_idd: odom\n"
+        "      </rosparam>\n"
+        '      <rosparam ns="limits">\n'
+        "        max_vel: 1.0\n"
+        "      </rosparam>\n",
+    )
+    write(directory, "launch/odom.launch", inline)
+    found = findings(run_cli, tmp_path)
+    assert places(found) == [
+        ("src/odom_publisher/config/odom.yaml", 2),
+        ("src/odom_publisher/launch/odom.launch", 6),
+        ("src/odom_publisher/launch/odom.launch", 9),
+    ]
+    by_line = {f["line"]: f for f in found}
+    assert by_line[6]["column"] == 9
+    assert (
+        "'frame_idd'" in by_line[6]["message"]
+        and "did you mean 'frame_id'" in by_line[6]["message"]
+    )
+    assert "'limits/max_vel'" in by_line[9]["message"]

@@ -29,12 +29,12 @@ its C loader when built: a run over a launch file alone never loads it.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from roslint_names.extract import yaml_text
-from roslint_names.extract.launch.substitution import Source
+from roslint_names.extract.launch.substitution import Located, Source
 from roslint_names.model import (
     FileFacts,
     Generation,
@@ -101,6 +101,21 @@ def extract(
     )
 
 
+def inline_names(content: Located) -> list[tuple[str, Span]]:
+    """The leaves of the YAML mapping a ROS 1 ``<rosparam>`` holds, keys joined with '/',
+    each with the span of its key in the launch file; none for anything else."""
+    import yaml
+
+    composed = yaml_text.compose(content.text, libyaml=True)
+    if not isinstance(composed, yaml.MappingNode):
+        return []
+    reader = _Reader(Source(content.text), locate=lambda start, end: content.slice(start, end).span)
+    try:
+        return list(reader._parameters(composed, "", "/", 0))
+    except RecursionError:
+        return []
+
+
 def _wide(data: bytes) -> bool:
     """UTF-16 or UTF-32: the key's bytes are not ASCII there; decide after decoding."""
     return bom_encoding(data) not in (None, "utf-8", "utf-8-sig")
@@ -109,10 +124,14 @@ def _wide(data: bytes) -> bool:
 @dataclass
 class _Reader:
     source: Source
+    # Where characters ``start:end`` of the text are written (a launch file's, for YAML
+    # inside a ``<rosparam>``); by default the text's own.
+    locate: Callable[[int, int], Span] | None = None
     _seen: set[int] = field(default_factory=set)  # an anchored node is read once
 
     def span(self, node: yaml.Node) -> Span:
-        return self.source.span(node.start_mark.index, node.end_mark.index)
+        start, end = node.start_mark.index, node.end_mark.index
+        return self.source.span(start, end) if self.locate is None else self.locate(start, end)
 
     def ros2(self, root: yaml.Node | None) -> list[ParameterBlock]:
         import yaml

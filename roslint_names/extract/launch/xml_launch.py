@@ -119,6 +119,10 @@ class Entity(Protocol):
         """How messages name the attribute: ``<node name>`` or ``node: name``."""
         ...
 
+    def content(self) -> Located | None:
+        """The text inside the element, as written (XML; None in YAML and when blank)."""
+        ...
+
 
 class XmlEntity:
     """An lxml element seen as an ``Entity``.
@@ -163,6 +167,9 @@ class XmlEntity:
 
     def api(self, attribute: str) -> str:
         return f"<{self.kind} {attribute}>"
+
+    def content(self) -> Located | None:
+        return self._document.text(self._element, strip=False)
 
 
 # ---------------------------------------------------------------------------------------
@@ -681,6 +688,34 @@ class Ros1Launch(LaunchWalker):
         name = param.text if ns is None or not ns.text else f"{ns.text.rstrip('/')}/{param.text}"
         return name, written.span
 
+    def inline_parameters(self, entity: Entity, scope: Scope) -> list[tuple[str, Span]]:
+        """``<rosparam>`` holding YAML inside a node and naming no ``param``: each leaf
+        of its mapping is a parameter of the node (below ``ns``), its keys joined with
+        '/' (roslaunch ``xmlloader.py``, ``_rosparam_tag``, then ``Loader.load_rosparam``
+        with the text ``yaml.safe_load`` reads). Keys that ``subst_value`` would
+        substitute are not known: such a tag gives nothing."""
+        command = self.static(entity, "command", scope) if entity.get("command") else "load"
+        if command != "load" or entity.get("file") is not None or entity.get("param"):
+            return []
+        content = entity.content()
+        if content is None or content.opaque:
+            return []
+        substituted = entity.get("subst_value")
+        if substituted is not None and "$(" in content.text:
+            return []
+        ns = entity.get("ns")
+        prefix = ""
+        if ns is not None:
+            value = self.value(ns, scope)
+            if value.dynamic:
+                return []
+            prefix = value.text.strip("/")
+        from roslint_names.extract.parameter_file import inline_names  # PyYAML on first use
+
+        return [
+            (f"{prefix}/{name}" if prefix else name, span) for name, span in inline_names(content)
+        ]
+
     def loaded_namespace(self, entity: Entity, scope: Scope) -> str | None:
         """Where ``<rosparam command="load" file>`` puts the file's names, relative to
         where the tag is: ``ns_join(ns, param)`` (roslaunch ``xmlloader.py``,
@@ -751,6 +786,8 @@ class Ros1Launch(LaunchWalker):
             elif child.kind == "rosparam":
                 found = self.rosparam(child, here, path)
                 self.node_load(child, here)
+                if not here.inactive:
+                    parameters.extend(self.inline_parameters(child, here))
             if found is None or here.inactive:
                 continue
             if isinstance(found, Remap):

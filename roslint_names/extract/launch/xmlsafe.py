@@ -282,8 +282,9 @@ class XmlDocument:
             return Located(value, span)
         return Located(value, span, self.source, None, tuple(decoded.starts), tuple(decoded.ends))
 
-    def text(self, element: etree._Element) -> Located | None:
-        """The element's own text without surrounding whitespace; None when blank.
+    def text(self, element: etree._Element, *, strip: bool = True) -> Located | None:
+        """The element's own text without surrounding whitespace (``strip``, else as
+        written: YAML's indentation is in it); None when blank.
 
         Text holding an entity reference (left unexpanded on purpose) comes back raw and
         ``opaque``: its real value is unknown.
@@ -296,7 +297,9 @@ class XmlDocument:
             return self._opaque_text(tag)
         located = self._plain_text(tag, element.text or "") or self._decoded_text(tag, element)
         stripped = located.strip()
-        return stripped if stripped.text else None
+        if not stripped.text:
+            return None
+        return stripped if strip else located
 
     def _plain_text(self, tag: StartTag, value: str) -> Located | None:
         """The text when its raw form is the value itself (no reference, CDATA or CR)."""

@@ -129,6 +129,9 @@ class YamlEntity:
     def api(self, attribute: str) -> str:
         return f"{self._kind}: {attribute}"
 
+    def content(self) -> Located | None:
+        return None  # launch YAML has no free text
+
 
 def _launch_root(document: _Document, root: yaml.Node | None) -> Entity | None:
     """The ``launch:`` list as an entity whose children are the file's actions."""
