@@ -51,7 +51,7 @@ _SUMMARY = re.compile(
 # what became of each file.
 _VERBOSE = re.compile(
     r"roslint-names: (?:cache|skipped|warning:) .*"
-    r"|roslint-names: \S.*: (?:checked|not parsed: .*|(?:test|example) code: .*)"
+    r"|roslint-names: \S.*: (?:checked|not (?:parsed|checked): .*|(?:test|example) code: .*)"
 )
 
 
