@@ -220,12 +220,14 @@ class ParameterSets:
         self._memo: dict[tuple[str, ...], NodeParameters] = {}
         self._included_memo: dict[tuple[str, str], list[str]] = {}
         self._implementations_memo: dict[str, list[str]] = {}
+        self._defined_memo: dict[tuple[str, str], list[str]] = {}
         self._reached_memo: dict[str, list[str]] = {}
         self._package_memo: dict[str, tuple[set[str], set[str]]] = {}
         self._classes: dict[str, list[str]] = {}  # class name -> files defining it
         # base class name -> (file, base as written) of each class derived from it
         self._derived: dict[str, list[tuple[str, str]]] = {}
-        self._by_name: dict[str, list[str]] = {}  # C++ file name -> its paths
+        # (package directory, C++ file name) -> its paths in that package
+        self._by_name: dict[tuple[str, str], list[str]] = {}
         self._programs: set[str] = set()  # sources of every program and component
         # ``NameConfig`` -> (package, path) of each .cfg generating it
         self._configs: dict[str, list[tuple[str | None, str]]] = {}
@@ -242,7 +244,8 @@ class ParameterSets:
                 for base in bases:
                     self._derived.setdefault(_class_name(base), []).append((path, base))
             if facts.language is Language.CPP:
-                self._by_name.setdefault(posixpath.basename(path), []).append(path)
+                key = (_directory(index, path), posixpath.basename(path))
+                self._by_name.setdefault(key, []).append(path)
         for sources in index.built_sources().values():
             self._programs.update(sources)
         self._programs.update(index.plugin_sources())
@@ -472,7 +475,7 @@ class ParameterSets:
                 if classes is not None and name not in classes:
                     continue
                 for base in bases:
-                    defined = self._defined(base)
+                    defined = self._defined(base, path)
                     if defined is None:
                         unknown = unknown or not _harmless(base)
                         continue
@@ -502,17 +505,12 @@ class ParameterSets:
         found = self._included_memo.get(key)
         if found is None:
             found = []
-            candidates = self._by_name.get(posixpath.basename(include), [])
-            package = self._index.package_of(includer) if candidates else None
+            package = self._index.package_of(includer)
             if package is not None:
+                candidates = self._by_name.get((package.directory, posixpath.basename(include)), [])
                 beside = posixpath.normpath(posixpath.join(directory, include))
                 suffix = f"/{include}"
-                found = [
-                    path
-                    for path in candidates
-                    if (path == beside or path.endswith(suffix))
-                    and self._index.package_of(path) == package
-                ]
+                found = [path for path in candidates if path == beside or path.endswith(suffix)]
             self._included_memo[key] = found
         return found
 
@@ -523,13 +521,12 @@ class ParameterSets:
             return []  # an included source is its own implementation
         found = self._implementations_memo.get(header)
         if found is None:
-            package = self._index.package_of(header)
+            directory = _directory(self._index, header)
             stem = posixpath.basename(header).rpartition(".")[0]
             found = self._implementations_memo[header] = [
                 path
                 for extension in TRANSLATION_UNITS
-                for path in self._by_name.get(stem + extension, [])
-                if self._index.package_of(path) == package
+                for path in self._by_name.get((directory, stem + extension), [])
             ]
         return found
 
@@ -546,16 +543,25 @@ class ParameterSets:
             self._package_memo[package] = found
         return found
 
-    def _defined(self, base: str) -> list[str] | None:
-        """The files defining a base class (none for a client library's), None when the
-        workspace does not define it."""
+    def _defined(self, base: str, user: str) -> list[str] | None:
+        """The files defining a base class that ``user`` derives from (none for a client
+        library's), None when the workspace does not define it. Where packages define
+        classes of one name, those of the user's package, else of the packages it
+        depends on, are the ones meant: a class name is no workspace-wide key."""
         if base in _ROOT_BASES:
             return []
         name = _class_name(base)
         defined = self._classes.get(name)
-        if defined:
+        if not defined:
+            return [] if base in _UNQUALIFIED_ROOTS else None
+        if len(defined) == 1:
             return defined
-        return [] if base in _UNQUALIFIED_ROOTS else None
+        package = self._index.package_of(user)
+        key = (name, "" if package is None else package.directory)
+        found = self._defined_memo.get(key)
+        if found is None:
+            found = self._defined_memo[key] = _nearest(self._index, defined, package)
+        return found
 
 
 class _Names:
@@ -613,6 +619,26 @@ class _Names:
 # level, which the ROS 1 comparison (namespaces aside) counts as a read of it; a search for
 # a name built at run time may read anything.
 _SEARCHES = frozenset({"ros::NodeHandle::searchParam", "ros::param::search", "rospy.search_param"})
+
+
+def _nearest(index: WorkspaceIndex, paths: list[str], package: Package | None) -> list[str]:
+    """Of ``paths``, those in ``package``, else in the packages it depends on, else all."""
+    if package is None:
+        return paths
+    owners = [(path, index.package_of(path)) for path in paths]
+    own = [path for path, owner in owners if owner == package]
+    if own:
+        return own
+    depended = [
+        path for path, owner in owners if owner is not None and owner.name in package.depends
+    ]
+    return depended or paths
+
+
+def _directory(index: WorkspaceIndex, path: str) -> str:
+    """The directory of the package holding ``path``; the file's own outside packages."""
+    package = index.package_of(path)
+    return posixpath.dirname(path) if package is None else package.directory
 
 
 def _within(directory: str, outer: str) -> bool:
