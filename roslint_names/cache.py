@@ -88,6 +88,8 @@ _PACK_BATCH = 1024 * 1024  # bytes of records buffered before an append
 _RUNS = "runs"
 DIGESTS = "digests"  # the directory of ``digests.ContentDigests``, one file per workspace
 RUNS_KEPT = 64  # whole-run results: one per recent (file set, settings) of each checkout
+_CHECKS = "checks"  # the sets of files the per-file rules found clean (``clean_files``)
+CHECKS_KEPT = 8  # one per recent (settings, rules, packages) of each checkout
 _LOG_BATCH = 512  # lines buffered before an append; and every batch of extraction ends one
 _TAG_NAME = "CACHEDIR.TAG"
 _CACHEDIR_TAG = (
@@ -257,7 +259,21 @@ class FactsCache:
 
     def load_run(self, key: str) -> object | None:
         """The value ``store_run`` kept under ``key``, or None (absent or corrupt)."""
-        entry = os.path.join(self.directory, _RUNS, key)
+        return self._load_entry(_RUNS, key)
+
+    def load_checks(self, key: str) -> object | None:
+        """The value ``store_checks`` kept under ``key``, or None (absent or corrupt)."""
+        return self._load_entry(_CHECKS, key)
+
+    def store_checks(self, key: str, value: object) -> None:
+        """Keep a set of clean files (``clean_files``); forget the least recently used
+        beyond ``CHECKS_KEPT``."""
+        entry = self.directory / _CHECKS / key
+        if self.writable() and self.write_atomically(entry, _encode(value)):
+            keep_newest(self.directory / _CHECKS, CHECKS_KEPT)
+
+    def _load_entry(self, kind: str, key: str) -> object | None:
+        entry = os.path.join(self.directory, kind, key)
         try:
             with open_regular(entry) as stream:
                 blob = stream.read()

@@ -14,6 +14,7 @@ from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from . import clean_files
 from .config import Settings, enabled_codes, ignored_for_path, ros1_python2, test_code_codes
 from .decisions import one_per_decision
 from .discover import SourceFile, classify
@@ -180,6 +181,19 @@ def lint(
             return stored
     if cache is not None:
         cache.writable()  # create the directory now, not racing in every worker
+    # The files the per-file rules found nothing in last time, under the same rules,
+    # settings, plugin names and packages (``clean_files``): checked again only if edited.
+    clean_key: str | None = None
+    clean: frozenset[bytes] = frozenset()
+    if cache is not None and inputs is not None:
+        manifests = {str(path): text for path, text in packages.manifests.items()}
+        clean_key = clean_files.memo_key(settings, registry, enabled, plugin_names, manifests)
+        clean = clean_files.loaded(cache.load_checks(clean_key))
+    known_inputs = inputs
+
+    def entry_of(index: int) -> bytes | None:
+        key = None if known_inputs is None else known_inputs.facts_key(index)
+        return None if key is None else clean_files.entry(files[index].display, key)
 
     checks = _FileChecks(
         files=len(files),
@@ -195,6 +209,8 @@ def lint(
         package_of=lambda index: package_display(files[index], packages),
         visible_of=lambda index: packages.visible_packages(files[index].path),
         read=lambda index: read_file(files[index].path, settings.max_file_size)[0] or b"",
+        clean=clean,
+        entry_of=entry_of,
     )
     graph: Graph | None = None
     extract = partial(extract_batch, cache)
@@ -272,6 +288,13 @@ def lint(
                 tuple(rostest_named),
             )
             cache.store_run(run_key, kept)
+        if clean_key is not None and not inputs.changed:
+            assert cache is not None
+            # A run over some files (pre-commit's) adds to the set of the whole workspace's
+            # run; a run over the workspace replaces it, forgetting files since edited.
+            found = checks.clean_now if not context else clean | checks.clean_now
+            if found != clean:
+                cache.store_checks(clean_key, frozenset(found))
         inputs.finish()
     return LintResult(
         tuple(diagnostics),
@@ -314,7 +337,12 @@ class _FileChecks:
     package_of: Callable[[int], str | None]  # the display directory of a file's package
     visible_of: Callable[[int], frozenset[str] | None]  # its package and dependencies (RN204)
     read: Callable[[int], bytes]  # a file's bytes, for one the gathering did not read
+    # Files found clean by the same checks before (``clean_files``), and each file's entry
+    # in that set once its facts key is known.
+    clean: frozenset[bytes] = frozenset()
+    entry_of: Callable[[int], bytes | None] = lambda index: None
     per_file: list[list[Diagnostic]] = field(init=False)
+    clean_now: set[bytes] = field(default_factory=set)
     suppressions_of: dict[int, list[Suppression]] = field(default_factory=dict)
     _all_facts: list[FileFacts | None] = field(init=False)
     _waiting: list[tuple[int, FileFacts, bytes | None]] = field(default_factory=list)
@@ -352,12 +380,22 @@ class _FileChecks:
             if types or symbols or (self.wiring and awaits_wiring(facts)):
                 self._waiting.append((index, facts, data))
             else:
-                self._check(index, facts, data, self._contexts)
+                self._check_unless_clean(index, facts, data)
         elif symbols and self.keep_facts:
             self._unresolved.append(index)
         self._done += 1
         if self.progress is not None:
             self.progress(self._done, self.files)
+
+    def _check_unless_clean(self, index: int, facts: FileFacts, data: bytes | None) -> None:
+        """Check a file whose verdict depends on nothing but itself and the run's
+        settings; one found clean before under the same is clean now."""
+        entry = self.entry_of(index)
+        if entry is None or entry not in self.clean:
+            self._check(index, facts, data, self._contexts)
+            if entry is None or self.per_file[index] or index in self.suppressions_of:
+                return
+        self.clean_now.add(entry)
 
     def _bytes(self, index: int, data: bytes | None) -> bytes:
         return self.read(index) if data is None else data

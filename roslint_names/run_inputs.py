@@ -93,6 +93,14 @@ class RunInputs:
         tag = self._tags[index]
         return None if tag.startswith((_SKIPPED, _UNREADABLE)) else tag
 
+    def facts_key(self, index: int) -> str | None:
+        """The facts key of checked file ``index`` once it is known (keyed first, or
+        read), None before that and for a file that has none."""
+        if index >= len(self._tags):
+            return None
+        tag = self._tags[index]
+        return None if tag.startswith((_SKIPPED, _UNREADABLE)) else tag
+
     def read(self, index: int, source: SourceFile) -> tuple[Read, str | None]:
         """The file's bytes (as ``read_file`` gives them) and its facts key."""
         maximum = self._settings.max_file_size

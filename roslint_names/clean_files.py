@@ -1,0 +1,62 @@
+"""Which files the per-file rules found nothing in last time, so that a run after an edit
+checks again only what can have changed (issue 30).
+
+A file's per-file verdict is a function of its facts (its bytes, path, language and
+generations: its facts key), its display path (test and example code, per-file ignores),
+the settings, the rules' code, the pluginlib names of the workspace (RN203) and the
+package layout (a file is example code up to its package's folder): nothing else, for the
+files checked as their facts arrive. The files whose verdict waits for the whole run (a
+typed service, a constant of another file, a name the launch files may wire) are always
+checked. So a run keys a set of files found clean by all of those (``memo_key``), stores
+the entries (``entry``) of the files it found with no finding and no suppression, and the
+next run under the same key skips them: their verdict is "nothing", whatever the order of
+the files or their number. An entry that no longer matches is simply never looked up: a
+stale set can only cost time, never change a result.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from collections.abc import Iterable, Mapping
+
+from .config import Settings, settings_fingerprint
+from .registry import Registry
+
+_ENTRY_BYTES = 16
+
+
+def memo_key(
+    settings: Settings,
+    registry: Registry,
+    enabled: Iterable[str],
+    plugin_names: Iterable[str],
+    manifests: Mapping[str, str],
+) -> str:
+    """The name the set of clean files is stored under (``FactsCache.store_checks``)."""
+    from .cache import code_fingerprint
+
+    modules = {rule.check.__module__ for rule in registry.rules if rule.check is not None}
+    digest = hashlib.blake2b(digest_size=20)
+    for part in (
+        code_fingerprint(modules),
+        settings_fingerprint(settings),
+        " ".join(sorted(enabled)),
+        " ".join(sorted(plugin_names)),
+    ):
+        digest.update(part.encode("utf-8", "surrogateescape") + b"\0")
+    for manifest, text in sorted(manifests.items()):
+        digest.update(f"{manifest}\0{len(text)}\0{text}\n".encode("utf-8", "surrogateescape"))
+    return digest.hexdigest()
+
+
+def entry(display: str, facts_key: str) -> bytes:
+    """One file as the set holds it: its display path and its facts key."""
+    text = f"{display}\0{facts_key}".encode("utf-8", "surrogateescape")
+    return hashlib.blake2b(text, digest_size=_ENTRY_BYTES).digest()
+
+
+def loaded(value: object) -> frozenset[bytes]:
+    """The set ``FactsCache.load_checks`` gave back; empty for anything else."""
+    if isinstance(value, frozenset) and all(isinstance(item, bytes) for item in value):
+        return value
+    return frozenset()

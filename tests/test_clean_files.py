@@ -1,0 +1,200 @@
+"""A run after an edit checks again, with the per-file rules, only the files that can have
+changed (``clean_files``, issue 30); its output is byte for byte a fresh run's, over a
+sequence of edits that add, move and remove findings, suppressions, packages and
+settings."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from roslint_names import engine
+from tests.conftest import AMENT_PACKAGE, CATKIN_PACKAGE, write
+
+DRIVER = """#include <ros/ros.h>
+#include <geometry_msgs/Twist.h>
+#include <nav_msgs/Odometry.h>
+
+void onTwist(const geometry_msgs::Twist::ConstPtr& twist) {}
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "base_driver");
+  ros::NodeHandle nh;
+  ros::Subscriber twist = nh.subscribe("cmd_vel", 10, onTwist);
+  ros::Publisher odometry = nh.advertise<nav_msgs::Odometry>("odom", 10);
+  ros::spin();
+  return 0;
+}
+"""
+
+TELEOP = """#!/usr/bin/env python
+import rospy
+from geometry_msgs.msg import Twist
+
+
+def main():
+    rospy.init_node('teleop')
+    publisher = rospy.Publisher('cmd_vel', Twist, queue_size=1)
+    rospy.spin()
+
+
+if __name__ == '__main__':
+    main()
+"""
+
+LAUNCH = """<launch>
+  <group ns="robot1">
+    <node pkg="robot_base" type="base_driver" name="base_driver"/>
+    <node pkg="robot_base" type="teleop.py" name="teleop"/>
+  </group>
+</launch>
+"""
+
+CMAKE = """cmake_minimum_required(VERSION 3.0.2)
+project(robot_base)
+find_package(catkin REQUIRED COMPONENTS roscpp)
+catkin_package()
+add_executable(base_driver src/driver.cpp)
+"""
+
+
+@pytest.fixture
+def workspace(tmp_path: Path) -> Path:
+    root = tmp_path / "ws"
+    package = root / "src" / "robot_base"
+    write(package, "package.xml", CATKIN_PACKAGE.format(name="robot_base"))
+    write(package, "CMakeLists.txt", CMAKE)
+    write(package, "src/driver.cpp", DRIVER)
+    write(package, "scripts/teleop.py", TELEOP)
+    write(package, "launch/base.launch", LAUNCH)
+    return root
+
+
+@pytest.fixture
+def checked_files(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[str]]:
+    """The display paths the per-file rules check, run by run (cleared by the caller)."""
+    seen: list[str] = []
+    original = engine.check_file
+
+    def counting(facts: Any, *arguments: Any, **keywords: Any) -> Any:
+        seen.append(facts.path)
+        return original(facts, *arguments, **keywords)
+
+    monkeypatch.setattr(engine, "check_file", counting)
+    yield seen
+
+
+def outputs(run_cli: Any, root: Path, cache: Path) -> tuple[str, str]:
+    """A cached run's JSON and a fresh run's."""
+    arguments = ["check", "--format", "json", "--jobs", "1", "--exit-zero"]
+    cached = run_cli([*arguments, "--cache-dir", str(cache), "."], root)
+    fresh = run_cli([*arguments, "--no-cache", "."], root)
+    assert cached.exit_code == fresh.exit_code == 0, cached.stderr
+    return cached.stdout, fresh.stdout
+
+
+def edit(path: Path, old: str, new: str) -> None:
+    text = path.read_text(encoding="utf-8")
+    assert old in text
+    path.write_text(text.replace(old, new), encoding="utf-8")
+    stamp = path.stat().st_mtime + 2  # another time than the digests remember
+    os.utime(path, (stamp, stamp))
+
+
+def test_a_rerun_after_an_edit_checks_only_the_edited_file(
+    run_cli: Any, workspace: Path, tmp_path: Path, checked_files: list[str]
+) -> None:
+    cache = tmp_path / "cache"
+    outputs(run_cli, workspace, cache)
+    checked_files.clear()
+    driver = workspace / "src/robot_base/src/driver.cpp"
+    edit(driver, "ros::spin();", "ros::spin();  // spin until shutdown")
+    arguments = ["check", "--format", "json", "--jobs", "1", "--exit-zero"]
+    run_cli([*arguments, "--cache-dir", str(cache), "."], workspace)
+    assert checked_files == ["src/robot_base/src/driver.cpp"]
+
+
+# Each step: (file below the package, text before, text after); the cached run after it
+# must print what a fresh run prints.
+STEPS: list[tuple[str, str, str]] = [
+    # A clean file gets a finding, then loses it.
+    ("scripts/teleop.py", "'cmd_vel'", "'cmd vel'"),
+    ("scripts/teleop.py", "'cmd vel'", "'cmd_vel'"),
+    # A finding and its suppression.
+    ("src/driver.cpp", '"odom"', '"Odom"'),
+    ("src/driver.cpp", '"Odom", 10);', '"Odom", 10);  // NOLINT(RN203)'),
+    ("src/driver.cpp", "  // NOLINT(RN203)", ""),
+    # A node renamed in the launch file, and the launch file's own finding.
+    ("launch/base.launch", 'name="teleop"', 'name="tele-op"'),
+    ("launch/base.launch", 'name="tele-op"', 'name="teleop"'),
+]
+
+
+def test_a_sequence_of_edits_gives_what_a_fresh_run_gives(
+    run_cli: Any, workspace: Path, tmp_path: Path
+) -> None:
+    cache = tmp_path / "cache"
+    package = workspace / "src/robot_base"
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    for relative, old, new in STEPS:
+        edit(package / relative, old, new)
+        cached, fresh = outputs(run_cli, workspace, cache)
+        assert cached == fresh, (relative, old, new)
+
+
+def test_what_decides_a_clean_file_s_verdict_besides_itself_keys_the_set(
+    run_cli: Any, workspace: Path, tmp_path: Path, checked_files: list[str]
+) -> None:
+    """The settings, and the package layout (a folder that becomes a package of examples
+    makes its files example code), are in the key: a change there checks every file."""
+    cache = tmp_path / "cache"
+    outputs(run_cli, workspace, cache)
+    write(workspace, "roslint-names.toml", "[rules.RN203]\nignore-names = ['Odom']\n")
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    checked_files.clear()
+    examples = workspace / "src/robot_base/examples"
+    write(examples, "package.xml", AMENT_PACKAGE.format(name="robot_examples"))
+    write(examples, "talker.py", TELEOP.replace("'cmd_vel'", "'/cmd_vel'"))
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    assert "src/robot_base/src/driver.cpp" in checked_files
+
+
+def test_a_run_over_some_files_keeps_the_rest_of_the_set(
+    run_cli: Any, workspace: Path, tmp_path: Path, checked_files: list[str]
+) -> None:
+    """pre-commit checks the files it is given: what it finds clean joins the set, and
+    the workspace's other clean files stay in it for the next whole run. (The settings'
+    root is the configuration's folder for both runs; without a configuration a run
+    over one file is rooted at its folder, which decides other verdicts: another key.)"""
+    write(workspace, "roslint-names.toml", "max-depth = 4\n")
+    cache = tmp_path / "cache"
+    outputs(run_cli, workspace, cache)
+    teleop = workspace / "src/robot_base/scripts/teleop.py"
+    edit(teleop, "queue_size=1", "queue_size=10")
+    arguments = ["check", "--format", "json", "--jobs", "1", "--exit-zero", "--cache-dir"]
+    run_cli([*arguments, str(cache), "src/robot_base/scripts/teleop.py"], workspace)
+    checked_files.clear()
+    run_cli([*arguments, str(cache), "."], workspace)
+    assert checked_files == []
+
+
+def test_a_damaged_or_foreign_set_is_ignored(
+    run_cli: Any, workspace: Path, tmp_path: Path, checked_files: list[str]
+) -> None:
+    cache = tmp_path / "cache"
+    outputs(run_cli, workspace, cache)
+    (stored,) = cache.glob("facts-v*/checks/*")
+    stored.write_bytes(stored.read_bytes()[:-3])  # torn
+    teleop = workspace / "src/robot_base/scripts/teleop.py"
+    edit(teleop, "'cmd_vel'", "'cmd vel'")
+    checked_files.clear()
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    assert "src/robot_base/src/driver.cpp" in checked_files  # checked: nothing was known
