@@ -2,6 +2,7 @@
 """Benchmark roslint-names on a workspace: the parse floor, cold and warm runs, cpplint.
 
     python bench/run.py WORKSPACE [--json OUT] [--repeat N] [--cpplint-cap SECONDS]
+    python bench/run.py WORKSPACE --copies N [--lsp-edits N] [--json OUT]   (bench/growth.py)
 
 Measures, in this order, and prints as a table (and as JSON with ``--json``):
 
@@ -154,14 +155,34 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--single-runs", type=int, default=7, help="runs per single file")
     parser.add_argument("--cpplint-cap", type=float, default=300.0, metavar="SECONDS")
     parser.add_argument("--skip-cpplint", action="store_true")
+    parser.add_argument(
+        "--copies",
+        type=int,
+        metavar="N",
+        help="growth mode (bench/growth.py): the workspace copied N times, cold, unchanged "
+        "and one-edit runs, peak memory, the serial part",
+    )
+    parser.add_argument(
+        "--lsp-edits",
+        type=int,
+        default=0,
+        metavar="N",
+        help="growth mode: also the language server's latencies, N edits per document",
+    )
     parser.add_argument("--floor-of", type=Path, help=argparse.SUPPRESS)  # internal
     options = parser.parse_args(argv)
     if options.floor_of:
         print(json.dumps(parse_floor(json.loads(options.floor_of.read_text()))))
         return 0
     workspace = options.workspace.resolve()
-    results = benchmark(workspace, options)
-    print(table(results))
+    if options.copies:
+        import growth
+
+        results = growth.growth(workspace, options.copies, options.lsp_edits)
+        print(growth.table(results))
+    else:
+        results = benchmark(workspace, options)
+        print(table(results))
     if options.json:
         options.json.write_text(json.dumps(results, indent=2) + "\n", encoding="utf-8")
     return 0

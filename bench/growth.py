@@ -1,0 +1,117 @@
+"""How the cost of a run grows with the workspace: ``bench/run.py WORKSPACE --copies N``.
+
+The workspace is copied N times under one root (hard links: no disk is spent and each
+copy's files are the originals' bytes; an edit replaces the edited file, so the other
+copies keep theirs), then measured with the real CLI, one cache for the whole sequence:
+
+- ``cold``: an empty cache; its wall and CPU time, the main process's own CPU (the serial
+  part: what it computed rather than waited for) and the peak memory of the process tree;
+- ``unchanged``: the same again (the stored result);
+- ``edit_cpp``, ``edit_launch``: one C++ source, then one launch file of the first copy
+  edited, as pre-commit and CI see a change: what the run after an edit costs;
+- ``identical_after_edits``: whether the last edited run printed what a run with an
+  empty cache prints over the same tree (a stale cache must never change a result);
+- ``lsp`` (with ``--lsp-edits``): the language server's latencies on the grown workspace
+  (``bench/lsp.py``), the graph findings' refresh after an edit among them.
+
+Package names repeat in every copy: a name two folders claim is no package the linter
+finds files in (``workspace.index``), so the copies' launch files resolve less than one
+real workspace of that size would; the per-file work and the graph's size grow as the
+files do. Numbers are this machine's: the table says which.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import tempfile
+from pathlib import Path
+from typing import Any
+
+import run as bench
+
+from roslint_names.discover import discover
+from roslint_names.engine import lintable
+
+# One edit each: appended where it changes no name (a comment), so that the run measures
+# what an edit costs, not what a new finding does.
+_EDITS = {
+    "edit_cpp": ((".cpp",), "create_publisher", b"\n// roslint-names bench edit\n"),
+    "edit_launch": ((".launch.xml", ".launch"), "<node", b"\n<!-- roslint-names bench edit -->\n"),
+}
+
+
+def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
+    from lsp import latency, pick  # pygls only where the language server is measured
+
+    results: dict[str, Any] = {
+        "machine": bench.machine(),
+        "workspace": str(workspace),
+        "copies": copies,
+    }
+    with tempfile.TemporaryDirectory(prefix="roslint-names-growth-") as scratch_name:
+        scratch = Path(scratch_name)
+        bench.snapshot_package(scratch / "snapshot")
+        root = grown(workspace, copies, scratch / "workspace")
+        sources = lintable(discover([root], (), root, root))
+        results["files"] = len(sources)
+        # The cache where the language server finds it too (``$XDG_CACHE_HOME``).
+        cache = scratch / "xdg" / "roslint-names"
+        arguments = ["--format", "json", "."]
+        runs = {"cold": bench.cli(root, arguments, cache)}
+        runs["unchanged"] = bench.cli(root, arguments, cache)
+        for name, (suffixes, marker, comment) in _EDITS.items():
+            edited = pick(root / "copy0", suffixes, marker)
+            _append(edited, comment)
+            runs[name] = bench.cli(root, arguments, cache)
+            results.setdefault("edited", {})[name] = edited.relative_to(root).as_posix()
+        fresh = bench.cli(root, arguments, scratch / "fresh-cache")
+        results["identical_after_edits"] = fresh.stdout == runs["edit_launch"].stdout
+        results["runs"] = {name: run.summary() for name, run in runs.items()}
+        if lsp_edits:
+            results["lsp"] = latency(root, lsp_edits, cache)
+    return results
+
+
+def grown(workspace: Path, copies: int, root: Path) -> Path:
+    """``root`` holding ``copy0`` ... ``copy{N-1}``, each the workspace, hard-linked."""
+    for index in range(copies):
+        shutil.copytree(workspace, root / f"copy{index}", symlinks=True, copy_function=os.link)
+    return root
+
+
+def _append(path: Path, comment: bytes) -> None:
+    """``comment`` appended, as a new file renamed over the old: the copies that share the
+    old file's bytes through a hard link keep them."""
+    data = path.read_bytes() + comment
+    replacement = path.with_name(f".{path.name}.bench")
+    replacement.write_bytes(data)
+    os.replace(replacement, path)
+
+
+def table(results: dict[str, Any]) -> str:
+    machine = results["machine"]
+    lines = [
+        f"Growth: {results['copies']} copies of {results['workspace']}, "
+        f"{results['files']} files; {machine['cpu_model']}, {machine['nproc']} cores",
+        f"{'run':<12} {'wall s':>8} {'CPU s':>8} {'serial s':>9} {'peak MB':>8}",
+    ]
+    for name, run in results["runs"].items():
+        serial = run["main_cpu_s"]
+        peak = run["tree_rss_mb"] or run["max_rss_mb"]
+        lines.append(
+            f"{name:<12} {run['wall_s']:>8.2f} {run['cpu_s']:>8.2f} "
+            f"{'-' if serial is None else f'{serial:.2f}':>9} {peak:>8.0f}"
+        )
+    lines.append(
+        f"identical to a run with an empty cache after the edits: "
+        f"{results['identical_after_edits']}"
+    )
+    lsp = results.get("lsp")
+    if lsp:
+        graph = ", ".join(f"{k} {v['median_s']:.2f} s" for k, v in lsp.get("graph", {}).items())
+        lines.append(
+            f"language server: workspace loaded in {lsp.get('load_s')} s; "
+            f"graph findings after an edit (median): {graph}"
+        )
+    return "\n".join(lines)
