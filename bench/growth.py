@@ -7,8 +7,8 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
 - ``cold``: an empty cache; its wall and CPU time, the main process's own CPU (the serial
   part: what it computed rather than waited for) and the peak memory of the process tree;
 - ``unchanged``: the same again (the stored result);
-- ``edit_cpp``, ``edit_launch``: one C++ source, then one launch file of the first copy
-  edited, as pre-commit and CI see a change: what the run after an edit costs;
+- ``edit_cpp``, ``edit_launch``: one C++ source, then one launch file of one copy edited,
+  as pre-commit and CI see a change: what the run after an edit costs;
 - ``identical_after_edits``: whether the last edited run printed what a run with an
   empty cache prints over the same tree (a stale cache must never change a result);
 - ``lsp`` (with ``--lsp-edits``): the language server's latencies on the grown workspace
@@ -61,7 +61,7 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
         runs = {"cold": bench.cli(root, arguments, cache)}
         runs["unchanged"] = bench.cli(root, arguments, cache)
         for name, (suffixes, marker, comment) in _EDITS.items():
-            edited = pick(root / "copy0", suffixes, marker)
+            edited = pick(root / "src", suffixes, marker)
             _append(edited, comment)
             runs[name] = bench.cli(root, arguments, cache)
             results.setdefault("edited", {})[name] = edited.relative_to(root).as_posix()
@@ -74,9 +74,19 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
 
 
 def grown(workspace: Path, copies: int, root: Path) -> Path:
-    """``root`` holding ``copy0`` ... ``copy{N-1}``, each the workspace, hard-linked."""
+    """A colcon workspace at ``root``: ``src/c{i}-{entry}`` for each entry of the workspace
+    (a repository, a package) and each copy ``i``, hard-linked. Laid out as a workspace so
+    that the language server, opened at ``root``, reads it whole
+    (``discover.editor_workspace``: packages one or two levels below ``src``)."""
+    entries = sorted(entry for entry in workspace.iterdir() if not entry.name.startswith("."))
     for index in range(copies):
-        shutil.copytree(workspace, root / f"copy{index}", symlinks=True, copy_function=os.link)
+        for entry in entries:
+            target = root / "src" / f"c{index}-{entry.name}"
+            if entry.is_dir():
+                shutil.copytree(entry, target, symlinks=True, copy_function=os.link)
+            else:
+                target.parent.mkdir(parents=True, exist_ok=True)
+                os.link(entry, target)
     return root
 
 
