@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -59,22 +60,32 @@ def _step(action: dict[str, Any], name: str) -> dict[str, Any]:
 
 
 def _check_step(
-    root: Path, scratch: Path, args: str, changed_since: str
+    root: Path, scratch: Path, args: str, changed_since: str, cache_dir: str = ""
 ) -> tuple[dict[str, str], str]:
     """The action's check step run as GitHub would, in ``root``: the outputs it set and
     the annotations it printed."""
+    written, stdout, _ = _check_step_run(root, scratch, args, changed_since, cache_dir)
+    return written, stdout
+
+
+def _check_step_run(
+    root: Path, scratch: Path, args: str, changed_since: str, cache_dir: str = ""
+) -> tuple[dict[str, str], str, str]:
     outputs = scratch / "github_output"
+    outputs.unlink(missing_ok=True)
     env = _environment(
         root,
         PATHS=".",
         ARGS=args,
         CHANGED_SINCE=changed_since,
+        CACHE_DIR=cache_dir,
         RUNNER_TEMP=str(scratch),
         GITHUB_OUTPUT=str(outputs),
     )
     ran = _bash(_step(_action(), "Check ROS names")["run"], root, env)
     assert ran.returncode == 0, ran.stderr
-    return dict(line.split("=", 1) for line in outputs.read_text().splitlines()), ran.stdout
+    written = dict(line.split("=", 1) for line in outputs.read_text().splitlines())
+    return written, ran.stdout, ran.stderr
 
 
 def test_the_action_annotates_writes_sarif_and_reports_the_exit_code(tmp_path: Path) -> None:
@@ -126,11 +137,14 @@ def test_the_gitlab_job_writes_code_quality_and_junit_reports(tmp_path: Path) ->
     reports = job["artifacts"]["reports"]
     assert job["artifacts"]["when"] == "always"
     root = _workspace(tmp_path / "ws")
-    env = _environment(root)
+    env = _environment(root, **job["variables"])
     results = [
         _bash(line, root, env).returncode for line in job["script"] if not line.startswith("pip ")
     ]
     assert results == [0, 0, 1]  # the reports always, then the gate fails on the finding
+    # The facts cache where GitLab's cache keeps it, inside the project; not linted.
+    assert job["cache"]["paths"] == [f"{job['variables']['ROSLINT_NAMES_CACHE']}/"]
+    assert list((root / job["variables"]["ROSLINT_NAMES_CACHE"]).glob("facts-v*"))
     issues = json.loads((root / reports["codequality"]).read_text())
     assert not list(Draft7Validator(CODE_QUALITY_SCHEMA).iter_errors(issues))
     assert [issue["check_name"] for issue in issues] == ["RN101 illegal-name"]
@@ -153,3 +167,54 @@ def test_the_action_installs_the_ref_it_was_used_at(tmp_path: Path) -> None:
     assert step["env"]["ACTION_PATH"] == "${{ github.action_path }}"
     release = _bash(step["run"], tmp_path, {**env, "VERSION": "0.2.0", "ACTION_PATH": "/a"})
     assert release.stdout.split()[-1] == "roslint-names==0.2.0"
+
+
+TELEOP_NODE = """#!/usr/bin/env python
+import rospy
+from sensor_msgs.msg import Joy
+
+
+def main():
+    rospy.init_node('teleop')
+    rospy.Subscriber('joy', Joy, lambda message: None)
+    rospy.spin()
+
+
+if __name__ == '__main__':
+    main()
+"""
+
+
+def test_the_action_keeps_the_facts_cache_between_runs(tmp_path: Path) -> None:
+    """The action's steps twice, as two workflow runs: the cache-key step, the check step
+    with the directory ``actions/cache`` saved after the first run and restored before the
+    second (copied away and back), one file changed in between. The second run extracts
+    that file alone, and prints what a run without any cache prints."""
+    action = _action()
+    restore = _step(action, "Restore the facts cache")
+    assert restore["uses"].startswith("actions/cache@")
+    assert restore["with"]["key"].endswith("${{ github.sha }}")
+    root = _workspace(tmp_path / "ws")
+    for index in range(5):
+        write(root, f"src/teleop/scripts/teleop_{index}.py", TELEOP_NODE)
+    key_outputs = tmp_path / "key_output"
+    env = _environment(
+        root, RUNNER_OS="Linux", RUNNER_TEMP=str(tmp_path), GITHUB_OUTPUT=str(key_outputs)
+    )
+    keyed = _bash(_step(action, "Facts cache key")["run"], root, env)
+    assert keyed.returncode == 0, keyed.stderr
+    key = dict(line.split("=", 1) for line in key_outputs.read_text().splitlines())
+    assert key["prefix"].startswith("roslint-names-Linux-") and key["prefix"].endswith("-")
+    directory = Path(key["dir"])
+
+    _check_step_run(root, tmp_path, "--verbose", "", str(directory))
+    saved = tmp_path / "saved"
+    shutil.move(str(directory), saved)  # the job ends: actions/cache saves the directory
+    node = root / "src/teleop/scripts/teleop_0.py"
+    node.write_text(TELEOP_NODE.replace("'joy'", "'joy stick'"), encoding="utf-8")
+    shutil.copytree(saved, directory)  # the next job: actions/cache restores it
+    _, annotations, log = _check_step_run(root, tmp_path, "--verbose", "", str(directory))
+    assert "1 extracted" in log, log
+    _, expected, _ = _check_step_run(root, tmp_path, "--no-cache", "", "")
+    assert annotations == expected
+    assert "teleop_0.py" in annotations
