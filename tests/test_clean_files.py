@@ -14,22 +14,7 @@ import pytest
 
 from roslint_names import engine
 from tests.conftest import AMENT_PACKAGE, CATKIN_PACKAGE, write
-
-DRIVER = """#include <ros/ros.h>
-#include <geometry_msgs/Twist.h>
-#include <nav_msgs/Odometry.h>
-
-void onTwist(const geometry_msgs::Twist::ConstPtr& twist) {}
-
-int main(int argc, char** argv) {
-  ros::init(argc, argv, "base_driver");
-  ros::NodeHandle nh;
-  ros::Subscriber twist = nh.subscribe("cmd_vel", 10, onTwist);
-  ros::Publisher odometry = nh.advertise<nav_msgs::Odometry>("odom", 10);
-  ros::spin();
-  return 0;
-}
-"""
+from tests.test_run_cache import CMAKE, DRIVER
 
 TELEOP = """#!/usr/bin/env python
 import rospy
@@ -52,13 +37,6 @@ LAUNCH = """<launch>
     <node pkg="robot_base" type="teleop.py" name="teleop"/>
   </group>
 </launch>
-"""
-
-CMAKE = """cmake_minimum_required(VERSION 3.0.2)
-project(robot_base)
-find_package(catkin REQUIRED COMPONENTS roscpp)
-catkin_package()
-add_executable(base_driver src/driver.cpp)
 """
 
 
@@ -125,8 +103,8 @@ STEPS: list[tuple[str, str, str]] = [
     ("scripts/teleop.py", "'cmd_vel'", "'cmd vel'"),
     ("scripts/teleop.py", "'cmd vel'", "'cmd_vel'"),
     # A finding and its suppression.
-    ("src/driver.cpp", '"odom"', '"Odom"'),
-    ("src/driver.cpp", '"Odom", 10);', '"Odom", 10);  // NOLINT(RN203)'),
+    ("src/driver.cpp", '"/odom"', '"/Odom"'),
+    ("src/driver.cpp", '"/Odom", 10);', '"/Odom", 10);  // NOLINT(RN203)'),
     ("src/driver.cpp", "  // NOLINT(RN203)", ""),
     # A node renamed in the launch file, and the launch file's own finding.
     ("launch/base.launch", 'name="teleop"', 'name="tele-op"'),
@@ -154,7 +132,7 @@ def test_what_decides_a_clean_file_s_verdict_besides_itself_keys_the_set(
     makes its files example code), are in the key: a change there checks every file."""
     cache = tmp_path / "cache"
     outputs(run_cli, workspace, cache)
-    write(workspace, "roslint-names.toml", "[rules.RN203]\nignore-names = ['Odom']\n")
+    write(workspace, "roslint-names.toml", "[rules.RN202]\nextend-allow = ['/odom']\n")
     cached, fresh = outputs(run_cli, workspace, cache)
     assert cached == fresh
     checked_files.clear()
@@ -182,7 +160,7 @@ def test_a_run_over_some_files_keeps_the_rest_of_the_set(
     run_cli([*arguments, str(cache), "src/robot_base/scripts/teleop.py"], workspace)
     checked_files.clear()
     run_cli([*arguments, str(cache), "."], workspace)
-    assert checked_files == []
+    assert set(checked_files) == {"src/robot_base/src/driver.cpp"}  # it has a finding
 
 
 def test_a_damaged_or_foreign_set_is_ignored(

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from conftest import CATKIN_PACKAGE, ament_package, findings_of, line_places, write
-from test_unused_parameter import path_controller
+from test_unused_parameter import odom_publisher, path_controller
 
 CONTROLLER_XML = """\
 <launch>
@@ -108,38 +108,6 @@ def test_a_relative_path_of_the_includer_is_not_handed_over(run_cli: Any, tmp_pa
 # ROS 1: ``<arg name="config" default="$(find pkg)/config/a.yaml"/>`` handed to an
 # included file's ``<rosparam command="load" file="$(arg config)"/>`` inside its node.
 
-ODOM_NODE = """\
-#include <ros/ros.h>
-#include <nav_msgs/Odometry.h>
-
-int main(int argc, char** argv)
-{
-  ros::init(argc, argv, "odom_publisher");
-  ros::NodeHandle nh;
-  ros::NodeHandle private_nh("~");
-  double rate = private_nh.param("rate", 50.0);
-  std::string frame;
-  private_nh.param<std::string>("odom_frame", frame, "odom");
-  ros::Publisher odom = nh.advertise<nav_msgs::Odometry>("odom", 10);
-  ros::Rate loop(rate);
-  while (ros::ok())
-  {
-    loop.sleep();
-  }
-  return 0;
-}
-"""
-
-ODOM_CMAKE = """\
-cmake_minimum_required(VERSION 3.0.2)
-project(odom_publisher)
-find_package(catkin REQUIRED COMPONENTS roscpp nav_msgs)
-catkin_package()
-include_directories(${catkin_INCLUDE_DIRS})
-add_executable(odom_publisher src/odom_publisher.cpp)
-target_link_libraries(odom_publisher ${catkin_LIBRARIES})
-"""
-
 ODOM_LAUNCH = """\
 <launch>
   <arg name="config" default="$(find odom_publisher)/config/odom.yaml"/>
@@ -162,16 +130,15 @@ ROBOT_LAUNCH = """\
 
 
 def test_ros1_a_rosparam_file_the_includer_names(run_cli: Any, tmp_path: Path) -> None:
-    odom = tmp_path / "src" / "odom_publisher"
-    write(odom, "package.xml", CATKIN_PACKAGE.format(name="odom_publisher"))
-    write(odom, "CMakeLists.txt", ODOM_CMAKE)
-    write(odom, "src/odom_publisher.cpp", ODOM_NODE)
+    """The odometry node of ``test_unused_parameter`` (it reads ``~rate`` and
+    ``~frame_id``), launched by a file that loads the configuration its includer names."""
+    odom = odom_publisher(tmp_path)
     write(odom, "launch/odom.launch", ODOM_LAUNCH)
-    write(odom, "config/odom.yaml", "rate: 50.0\nodom_frame: odom\n")
+    write(odom, "config/odom.yaml", "rate: 50.0\nframe_id: odom\n")
     robot = tmp_path / "src" / "robot_bringup"
     write(robot, "package.xml", CATKIN_PACKAGE.format(name="robot_bringup"))
     write(robot, "launch/robot.launch", ROBOT_LAUNCH)
-    write(robot, "config/odom.yaml", "rate: 100.0\nodom_fame: odom\n")
+    write(robot, "config/odom.yaml", "rate: 100.0\nframe_idd: odom\n")
     found = findings_of(run_cli, tmp_path, "RN406")
     assert line_places(found) == [("src/robot_bringup/config/odom.yaml", 2)]
     assert "for node '/robot1/odom_publisher'" in found[0]["message"]
