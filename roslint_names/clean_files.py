@@ -5,13 +5,14 @@ A file's per-file verdict is a function of its facts (its bytes, path, language 
 generations: its facts key), its display path (test and example code, per-file ignores),
 the settings, the rules' code, the pluginlib names of the workspace (RN203) and the
 package layout (a file is example code up to its package's folder): nothing else, for the
-files checked as their facts arrive. The files whose verdict waits for the whole run (a
-typed service, a constant of another file, a name the launch files may wire) are always
-checked. So a run keys a set of files found clean by all of those (``memo_key``), stores
-the entries (``entry``) of the files it found with no finding and no suppression, and the
-next run under the same key skips them: their verdict is "nothing", whatever the order of
-the files or their number. An entry that no longer matches is simply never looked up: a
-stale set can only cost time, never change a result.
+files checked as their facts arrive; and for those that wait for the names the launch
+files wire (RN202), those names too (their ``digest`` is in the file's entry, ``under``).
+The files whose verdict waits for other files' facts (a typed service, a constant of
+another file) are always checked. So a run keys a set of files found clean by all of
+those (``memo_key``), stores the entries (``entry``) of the files it found with no finding
+and no suppression, and the next run under the same key skips them: their verdict is
+"nothing", whatever the order of the files or their number. An entry that no longer
+matches is simply never looked up: a stale set can only cost time, never change a result.
 """
 
 from __future__ import annotations
@@ -53,6 +54,18 @@ def entry(display: str, facts_key: str) -> bytes:
     """One file as the set holds it: its display path and its facts key."""
     text = f"{display}\0{facts_key}".encode("utf-8", "surrogateescape")
     return hashlib.blake2b(text, digest_size=_ENTRY_BYTES).digest()
+
+
+def digest(names: Iterable[str]) -> bytes:
+    """The digest of a run-wide set of names a file's verdict may depend on (the absolute
+    names the launch files wire: ``wiring``)."""
+    text = "\n".join(sorted(names)).encode("utf-8", "surrogateescape")
+    return hashlib.blake2b(text, digest_size=_ENTRY_BYTES).digest()
+
+
+def under(entry: bytes, context: bytes) -> bytes:
+    """A file's entry for a verdict that also depends on ``context`` (a ``digest``)."""
+    return hashlib.blake2b(entry + context, digest_size=_ENTRY_BYTES).digest()
 
 
 def loaded(value: object) -> frozenset[bytes]:

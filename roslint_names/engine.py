@@ -380,19 +380,29 @@ class _FileChecks:
             if types or symbols or (self.wiring and awaits_wiring(facts)):
                 self._waiting.append((index, facts, data))
             else:
-                self._check_unless_clean(index, facts, data)
+                self._check_unless_clean(index, facts, data, self._contexts)
         elif symbols and self.keep_facts:
             self._unresolved.append(index)
         self._done += 1
         if self.progress is not None:
             self.progress(self._done, self.files)
 
-    def _check_unless_clean(self, index: int, facts: FileFacts, data: bytes | None) -> None:
-        """Check a file whose verdict depends on nothing but itself and the run's
-        settings; one found clean before under the same is clean now."""
+    def _check_unless_clean(
+        self,
+        index: int,
+        facts: FileFacts,
+        data: bytes | None,
+        contexts: Mapping[str, RuleContext],
+        wired: bytes = b"",
+    ) -> None:
+        """Check a file whose verdict depends on nothing but itself, the run's settings
+        and (``wired``: their digest) the names the launch files wire; one found clean
+        before under the same is clean now."""
         entry = self.entry_of(index)
+        if entry is not None and wired:
+            entry = clean_files.under(entry, wired)
         if entry is None or entry not in self.clean:
-            self._check(index, facts, data, self._contexts)
+            self._check(index, facts, data, contexts)
             if entry is None or self.per_file[index] or index in self.suppressions_of:
                 return
         self.clean_now.add(entry)
@@ -450,6 +460,7 @@ class _FileChecks:
         contexts = rule_contexts(
             self.registry, self.settings, wired_names=wired, plugin_names=plugins
         )
+        wired_digest = clean_files.digest(wired)
         for index, extracted, data in self._waiting:
             facts = self._constants.resolve(extracted, self.package_of(index))
             if self.keep_facts:
@@ -464,8 +475,10 @@ class _FileChecks:
                     data,
                     rule_contexts(self.registry, self.settings, known, wired, plugins),
                 )
-            else:
+            elif uses_constants(extracted):
                 self._check(index, facts, data, contexts)
+            else:  # it waited for the wiring alone: clean under the same wiring stays clean
+                self._check_unless_clean(index, facts, data, contexts, wired_digest)
         self._waiting.clear()
         self._unresolved.clear()
 

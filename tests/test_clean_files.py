@@ -66,11 +66,17 @@ def checked_files(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[str]]:
     yield seen
 
 
-def outputs(run_cli: Any, root: Path, cache: Path) -> tuple[str, str]:
-    """A cached run's JSON and a fresh run's."""
+def outputs(
+    run_cli: Any, root: Path, cache: Path, checked: list[str] | None = None
+) -> tuple[str, str]:
+    """A cached run's JSON and a fresh run's; ``checked``: the files the cached run
+    checked, kept (the fresh run checks them all)."""
     arguments = ["check", "--format", "json", "--jobs", "1", "--exit-zero"]
     cached = run_cli([*arguments, "--cache-dir", str(cache), "."], root)
+    seen = list(checked or [])
     fresh = run_cli([*arguments, "--no-cache", "."], root)
+    if checked is not None:
+        checked[:] = seen
     assert cached.exit_code == fresh.exit_code == 0, cached.stderr
     return cached.stdout, fresh.stdout
 
@@ -139,7 +145,7 @@ def test_what_decides_a_clean_file_s_verdict_besides_itself_keys_the_set(
     examples = workspace / "src/robot_base/examples"
     write(examples, "package.xml", AMENT_PACKAGE.format(name="robot_examples"))
     write(examples, "talker.py", TELEOP.replace("'cmd_vel'", "'/cmd_vel'"))
-    cached, fresh = outputs(run_cli, workspace, cache)
+    cached, fresh = outputs(run_cli, workspace, cache, checked_files)
     assert cached == fresh
     assert "src/robot_base/src/driver.cpp" in checked_files
 
@@ -173,6 +179,51 @@ def test_a_damaged_or_foreign_set_is_ignored(
     teleop = workspace / "src/robot_base/scripts/teleop.py"
     edit(teleop, "'cmd_vel'", "'cmd vel'")
     checked_files.clear()
-    cached, fresh = outputs(run_cli, workspace, cache)
+    cached, fresh = outputs(run_cli, workspace, cache, checked_files)
     assert cached == fresh
-    assert "src/robot_base/src/driver.cpp" in checked_files  # checked: nothing was known
+    assert "src/robot_base/launch/base.launch" in checked_files  # nothing was known
+
+
+MONITOR = """#!/usr/bin/env python
+import rospy
+from geometry_msgs.msg import Twist
+
+
+def main():
+    rospy.init_node('cmd_monitor')
+    rospy.Subscriber('/base/cmd_vel', Twist, lambda message: None)
+    rospy.spin()
+
+
+if __name__ == '__main__':
+    main()
+"""
+
+
+def test_a_file_waiting_for_the_wiring_is_clean_under_the_same_wiring(
+    run_cli: Any, workspace: Path, tmp_path: Path, checked_files: list[str]
+) -> None:
+    """``/base/cmd_vel`` is what the launch file wires ``cmd_vel`` to: no RN202 while it
+    does. The monitor is skipped while the wiring stays; a launch file that stops wiring
+    the name has it checked again, and reported."""
+    package = workspace / "src/robot_base"
+    write(package, "scripts/cmd_monitor.py", MONITOR)
+    launch = package / "launch/base.launch"
+    edit(
+        launch,
+        'name="teleop"/>',
+        'name="teleop">\n      <remap from="cmd_vel" to="/base/cmd_vel"/>\n    </node>',
+    )
+    cache = tmp_path / "cache"
+    outputs(run_cli, workspace, cache)
+    edit(package / "src/driver.cpp", "ros::spin();", "ros::spin();  // until shutdown")
+    checked_files.clear()
+    cached, fresh = outputs(run_cli, workspace, cache, checked_files)
+    assert cached == fresh
+    assert "src/robot_base/scripts/cmd_monitor.py" not in checked_files
+    edit(launch, 'to="/base/cmd_vel"', 'to="/base/cmd_vel_safe"')
+    checked_files.clear()
+    cached, fresh = outputs(run_cli, workspace, cache, checked_files)
+    assert cached == fresh
+    assert "src/robot_base/scripts/cmd_monitor.py" in checked_files
+    assert '"path": "src/robot_base/scripts/cmd_monitor.py"' in cached
