@@ -461,26 +461,45 @@ class _FileChecks:
             self.registry, self.settings, wired_names=wired, plugin_names=plugins
         )
         wired_digest = clean_files.digest(wired)
+        # The service types a file compares with, by its generation and the packages it
+        # sees, and their digest with the wiring's: few distinct ones in a run.
+        typed: dict[tuple[Generation, frozenset[str] | None], tuple[frozenset[str], bytes]] = {}
         for index, extracted, data in self._waiting:
             facts = self._constants.resolve(extracted, self.package_of(index))
             if self.keep_facts:
                 self._all_facts[index] = facts
-            if typed_services(facts):
-                known = visible_service_types(
-                    service_types_of(self.service_types, facts.generation), self.visible_of(index)
-                )
-                self._check(
-                    index,
-                    facts,
-                    data,
-                    rule_contexts(self.registry, self.settings, known, wired, plugins),
-                )
-            elif uses_constants(extracted):
-                self._check(index, facts, data, contexts)
-            else:  # it waited for the wiring alone: clean under the same wiring stays clean
-                self._check_unless_clean(index, facts, data, contexts, wired_digest)
+            if uses_constants(extracted):
+                context, digest = contexts, b""  # other files' constants: always checked
+                if typed_services(facts):
+                    known, _ = self._known_types(typed, facts.generation, index, wired_digest)
+                    context = rule_contexts(self.registry, self.settings, known, wired, plugins)
+            elif typed_services(facts):
+                known, digest = self._known_types(typed, facts.generation, index, wired_digest)
+                context = rule_contexts(self.registry, self.settings, known, wired, plugins)
+            else:  # it waited for the wiring alone
+                context, digest = contexts, wired_digest
+            if digest:  # clean under the same service types and wiring stays clean
+                self._check_unless_clean(index, facts, data, context, digest)
+            else:
+                self._check(index, facts, data, context)
         self._waiting.clear()
         self._unresolved.clear()
+
+    def _known_types(
+        self,
+        memo: dict[tuple[Generation, frozenset[str] | None], tuple[frozenset[str], bytes]],
+        generation: Generation,
+        index: int,
+        wired: bytes,
+    ) -> tuple[frozenset[str], bytes]:
+        """The service types file ``index`` compares with (RN204), and their digest with
+        the wiring's."""
+        key = (generation, self.visible_of(index))
+        found = memo.get(key)
+        if found is None:
+            known = visible_service_types(service_types_of(self.service_types, generation), key[1])
+            found = memo[key] = (known, clean_files.under(clean_files.digest(known), wired))
+        return found
 
     def facts(self) -> list[FileFacts]:
         """Every file's facts, in discovery order (when they were kept)."""

@@ -227,3 +227,42 @@ def test_a_file_waiting_for_the_wiring_is_clean_under_the_same_wiring(
     assert cached == fresh
     assert "src/robot_base/scripts/cmd_monitor.py" in checked_files
     assert '"path": "src/robot_base/scripts/cmd_monitor.py"' in cached
+
+
+CHARGER = """#!/usr/bin/env python
+import rospy
+from std_srvs.srv import Trigger, TriggerResponse
+
+
+def main():
+    rospy.init_node('charger')
+    rospy.Service('start_charging', Trigger, lambda request: TriggerResponse(success=True))
+    rospy.spin()
+
+
+if __name__ == '__main__':
+    main()
+"""
+
+
+def test_a_file_waiting_for_the_service_types_is_clean_under_the_same_types(
+    run_cli: Any, workspace: Path, tmp_path: Path, checked_files: list[str]
+) -> None:
+    """RN204 compares ``start_charging`` (served with ``Trigger``) with the service types
+    the package can use: skipped while they stay; a ``StartCharging.srv`` added to the
+    package makes the name another type's, and the file is checked again."""
+    package = workspace / "src/robot_base"
+    write(package, "scripts/charger.py", CHARGER)
+    cache = tmp_path / "cache"
+    outputs(run_cli, workspace, cache)
+    edit(package / "src/driver.cpp", "ros::spin();", "ros::spin();  // until shutdown")
+    checked_files.clear()
+    cached, fresh = outputs(run_cli, workspace, cache, checked_files)
+    assert cached == fresh
+    assert "src/robot_base/scripts/charger.py" not in checked_files
+    write(package, "srv/StartCharging.srv", "---\nbool success\nstring message\n")
+    checked_files.clear()
+    cached, fresh = outputs(run_cli, workspace, cache, checked_files)
+    assert cached == fresh
+    assert "src/robot_base/scripts/charger.py" in checked_files
+    assert '"code": "RN204"' in cached
