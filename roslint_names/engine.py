@@ -24,6 +24,7 @@ from .gather import (
     EXTRACTOR_MODULES,
     Gatherer,
     Specialiser,
+    Verdict,
     extract_batch,
     extract_file,
     gave_up,
@@ -213,7 +214,17 @@ def lint(
         entry_of=entry_of,
     )
     graph: Graph | None = None
-    extract = partial(extract_batch, cache)
+    # A file the per-file rules can judge alone is judged where it is extracted, in the
+    # workers: the main process only gathers the verdicts (issue 30's serial part).
+    judge = FileChecks(
+        settings,
+        registry,
+        enabled,
+        test_code_codes(settings, registry),
+        rule_contexts(registry, settings, plugin_names=plugin_names),
+        wiring,
+    )
+    extract = partial(extract_batch, cache, checker=judge)
     # A file whose worker is killed past its time budget is one RN001 (``gave_up``).
     give_up = partial(gave_up, cache)
     with Dispatcher(extract, run.jobs, expected_items=len(files), give_up=give_up) as dispatcher:
@@ -229,8 +240,8 @@ def lint(
             ros1_python2=python2,
             max_file_size=settings.max_file_size,
         )
-        for index, facts, data in gathered.facts():
-            checks.take(index, facts, data)
+        for index, facts, data, verdict in gathered.facts():
+            checks.take(index, facts, data, verdict)
         workers = dispatcher.workers  # that extracted the files (specialisations may start some)
         if inputs is not None and not fresh and run_key is None:
             run_key = inputs.key_last()
@@ -361,7 +372,11 @@ class _FileChecks:
         # service type (those that do wait for ``finish`` and get their own).
         self._contexts = rule_contexts(self.registry, self.settings, plugin_names=self.plugin_names)
 
-    def take(self, index: int, facts: FileFacts, data: bytes | None) -> None:
+    def take(
+        self, index: int, facts: FileFacts, data: bytes | None, verdict: Verdict | None = None
+    ) -> None:
+        """One file's facts as they arrive; ``verdict``: the per-file rules' findings where
+        the worker that extracted it judged it already (``FileChecks``)."""
         if self.keep_facts:
             self._all_facts[index] = facts
         types = typed_services(facts)
@@ -377,8 +392,10 @@ class _FileChecks:
             self._built.add(facts, self.package_of(index))
         symbols = uses_constants(facts)
         if index < self.reported:
-            if types or symbols or (self.wiring and awaits_wiring(facts)):
+            if waits_for_the_run(facts, self.wiring):
                 self._waiting.append((index, facts, data))
+            elif verdict is not None:
+                self._judged(index, *verdict)
             else:
                 self._check_unless_clean(index, facts, data, self._contexts)
         elif symbols and self.keep_facts:
@@ -406,6 +423,15 @@ class _FileChecks:
             if entry is None or self.per_file[index] or index in self.suppressions_of:
                 return
         self.clean_now.add(entry)
+
+    def _judged(
+        self, index: int, diagnostics: list[Diagnostic], suppressions: list[Suppression]
+    ) -> None:
+        """A verdict made elsewhere (``FileChecks``), kept as ``_check`` keeps its own."""
+        self._keep(index, diagnostics, suppressions)
+        entry = self.entry_of(index)
+        if entry is not None and not diagnostics and not suppressions:
+            self.clean_now.add(entry)
 
     def _bytes(self, index: int, data: bytes | None) -> bytes:
         return self.read(index) if data is None else data
@@ -520,13 +546,18 @@ class _FileChecks:
             diagnostics, found = self._check_text(
                 facts, decode_for_display(self.read(index)), contexts
             )
+        self._keep(index, diagnostics, found)
+
+    def _keep(
+        self, index: int, diagnostics: list[Diagnostic], suppressions: list[Suppression]
+    ) -> None:
         if diagnostics:
             # Asked only of files with findings: proposals group answers by package.
             package = self.package_of(index)
             diagnostics = [replace(diagnostic, package=package) for diagnostic in diagnostics]
         self.per_file[index] = diagnostics
-        if found:
-            self.suppressions_of[index] = found
+        if suppressions:
+            self.suppressions_of[index] = suppressions
 
     def _check_text(
         self, facts: FileFacts, text: str, contexts: Mapping[str, RuleContext]
@@ -539,6 +570,42 @@ class _FileChecks:
             self.enabled,
             test_rules=self._test_rules,
             contexts=contexts,
+        )
+
+
+def waits_for_the_run(facts: FileFacts, wiring: bool) -> bool:
+    """Whether a file's per-file verdict needs what only the whole run knows: the service
+    types it compares with (RN204), another file's constants, or (``wiring``: a rule
+    reads it) the names the launch files wire (RN202)."""
+    return bool(typed_services(facts)) or uses_constants(facts) or (wiring and awaits_wiring(facts))
+
+
+@dataclass(frozen=True)
+class FileChecks:
+    """The per-file rules of a run as a worker process runs them on a file it has just
+    extracted (``gather.extract_batch``): a file whose verdict needs nothing but itself and
+    the run's settings is judged there, so the main process only gathers verdicts; None
+    for the others (``waits_for_the_run``), which the main process judges at the end.
+    Everything here is plain data and module-level functions: it travels to the workers."""
+
+    settings: Settings
+    registry: Registry
+    enabled: frozenset[str]
+    test_rules: frozenset[str]
+    contexts: Mapping[str, RuleContext]
+    wiring: bool
+
+    def __call__(self, facts: FileFacts, data: bytes) -> Verdict | None:
+        if waits_for_the_run(facts, self.wiring):
+            return None
+        return check_file(
+            facts,
+            decode_for_display(data),
+            self.settings,
+            self.registry,
+            self.enabled,
+            test_rules=self.test_rules,
+            contexts=self.contexts,
         )
 
 

@@ -25,10 +25,10 @@ from . import workers
 from .collection import no_collections
 from .discover import SourceFile
 from .generation import PackageGenerations, reads_python2
-from .model import FileFacts, Generation, Language, LaunchArguments, ParseError, Span
+from .model import Diagnostic, FileFacts, Generation, Language, LaunchArguments, ParseError, Span
 from .reading import BINARY, content_digest, read_file
 from .run_inputs import RunInputs
-from .suppress import may_hold_suppression
+from .suppress import Suppression, may_hold_suppression
 from .workers import Dispatcher
 
 if TYPE_CHECKING:
@@ -103,7 +103,7 @@ class Specialiser:
         cache: FactsCache | None,
         max_file_size: int,
         *,
-        dispatcher: Dispatcher[_Item, tuple[int, FileFacts]],
+        dispatcher: Dispatcher[_Item, Extracted],
         ros1_python2: bool,
     ) -> None:
         self._sources = {source.display: source for source in sources}
@@ -142,10 +142,8 @@ class Specialiser:
                 self._memo[key] = found
         self._take(asked, self._dispatcher.finish())
 
-    def _take(
-        self, asked: list[tuple[str, LaunchArguments]], results: Iterable[tuple[int, FileFacts]]
-    ) -> None:
-        for index, facts in results:
+    def _take(self, asked: list[tuple[str, LaunchArguments]], results: Iterable[Extracted]) -> None:
+        for index, facts, _ in results:
             self._memo[asked[index]] = facts
 
     def _job(
@@ -193,27 +191,39 @@ class _Job:
     fallback_generation: Generation
     arguments: LaunchArguments = ()  # a launch file specialised under its includer's
     python2: bool = False  # a Python file that may be Python 2 (``reads_python2``)
+    checked: bool = False  # a reported file: the per-file rules judge it where it is extracted
 
 
 # A job, the file's bytes, and the key its facts are cached under.
 _Item = tuple[_Job, bytes, str | None]
+# What the per-file rules found in a file (``engine.FileChecks``): diagnostics and the
+# file's suppressions; None where its verdict waits for the whole run.
+Verdict = tuple[list[Diagnostic], list[Suppression]]
+Checker = Callable[[FileFacts, bytes], "Verdict | None"]
+# A file's index, its facts, and the per-file rules' verdict when it was judged with them.
+Extracted = tuple[int, FileFacts, "Verdict | None"]
 
 
-def extract_batch(cache: FactsCache | None, batch: Iterable[_Item]) -> list[tuple[int, FileFacts]]:
-    """Extract and store facts: the work of a worker process, or of the main one.
+def extract_batch(
+    cache: FactsCache | None, batch: Iterable[_Item], checker: Checker | None = None
+) -> list[Extracted]:
+    """Extract and store facts, and judge a reported file with the per-file rules right
+    there (``checker``): the work of a worker process, or of the main one, which then only
+    gathers the verdicts.
 
     Module-level so that worker processes can run it; extractor modules are imported on
     first use, in whichever process extracts. Each file has ``workers.BUDGET_SECONDS``:
     a file past it is one RN001, stored like any facts (``gave_up``).
     """
-    results: list[tuple[int, FileFacts]] = []
+    results: list[Extracted] = []
     for job, data, key in batch:
         facts = _extract_within_budget(job, data)
         if may_hold_suppression(data):
             facts = replace(facts, suppression_marker=True)
         if cache is not None and key is not None:
             cache.store(key, facts)
-        results.append((job.index, facts))
+        verdict = checker(facts, data) if checker is not None and job.checked else None
+        results.append((job.index, facts, verdict))
     if cache is not None:
         cache.flush()  # a worker process has no "end of run": every batch ends its writes
     return results
@@ -256,7 +266,7 @@ def extract_file(
     return _extract_within_budget(job, data)
 
 
-def gave_up(cache: FactsCache | None, item: _Item, why: workers.Stopped) -> tuple[int, FileFacts]:
+def gave_up(cache: FactsCache | None, item: _Item, why: workers.Stopped) -> Extracted:
     """The result of a file whose worker was stopped (``Dispatcher``'s ``give_up``):
     one RN001, stored like any facts. A give-up is a property of the content under this
     version of the tool (the cache key has both), so the next run does not wait again;
@@ -265,7 +275,7 @@ def gave_up(cache: FactsCache | None, item: _Item, why: workers.Stopped) -> tupl
     facts = gave_up_facts(job.display, job.language, data, why)
     if cache is not None and key is not None:
         cache.store(key, facts)
-    return job.index, facts
+    return job.index, facts, None
 
 
 def gave_up_facts(display: str, language: Language, data: bytes, why: workers.Stopped) -> FileFacts:
@@ -335,7 +345,7 @@ class Gatherer:
     reported: int
     cache: FactsCache | None
     inputs: RunInputs | None
-    dispatcher: Dispatcher[_Item, tuple[int, FileFacts]]
+    dispatcher: Dispatcher[_Item, Extracted]
     packages: PackageGenerations
     fallback: Generation
     ros1_python2: bool  # ``config.ros1_python2``
@@ -345,12 +355,12 @@ class Gatherer:
     skipped: list[tuple[str, str]] = field(default_factory=list)
     _extracting: dict[int, bytes] = field(default_factory=dict)  # sent to extraction
 
-    def facts(self) -> Iterator[tuple[int, FileFacts, bytes | None]]:
+    def facts(self) -> Iterator[tuple[int, FileFacts, bytes | None, Verdict | None]]:
         for index, source in enumerate(self.files):
             known = self._known(index, source)
             if known is not None and (index >= self.reported or not known[1].suppression_marker):
                 self.cached += 1
-                yield index, known[1], None
+                yield index, known[1], None, None
                 continue
             key: str | None = None
             if self.inputs is not None:
@@ -358,12 +368,12 @@ class Gatherer:
             else:
                 data, read_error, skip = read_file(source.path, self.max_file_size)
             if skip == BINARY:  # a source that is not text is a finding, never a pass
-                yield index, not_text(source), b""
+                yield index, not_text(source), b"", None
             elif skip is not None:
                 self.skipped.append((source.display, skip))
-                yield index, FileFacts(source.display, source.language, self.fallback), b""
+                yield index, FileFacts(source.display, source.language, self.fallback), b"", None
             elif data is None:
-                yield index, unreadable(source, read_error), b""
+                yield index, unreadable(source, read_error), b"", None
             else:
                 package = self.packages.for_file(source.path)
                 if known is not None and key == known[0]:  # loaded above: the same bytes
@@ -372,11 +382,18 @@ class Gatherer:
                 else:
                     stored = self._stored(key, source)
                 if stored is not None:
-                    yield index, stored, data
+                    yield index, stored, data, None
                     continue
                 python2 = reads_python2(source.language, package, self.fallback, self.ros1_python2)
                 job = _Job(
-                    index, source.display, source.language, package, self.fallback, (), python2
+                    index,
+                    source.display,
+                    source.language,
+                    package,
+                    self.fallback,
+                    (),
+                    python2,
+                    checked=index < self.reported,
                 )
                 self.extracted += 1
                 self._extracting[index] = data
@@ -404,7 +421,7 @@ class Gatherer:
         return facts
 
     def _arrived(
-        self, results: Iterable[tuple[int, FileFacts]]
-    ) -> Iterator[tuple[int, FileFacts, bytes | None]]:
-        for index, facts in results:
-            yield index, facts, self._extracting.pop(index)
+        self, results: Iterable[Extracted]
+    ) -> Iterator[tuple[int, FileFacts, bytes | None, Verdict | None]]:
+        for index, facts, verdict in results:
+            yield index, facts, self._extracting.pop(index), verdict
