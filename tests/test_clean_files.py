@@ -6,7 +6,7 @@ settings."""
 from __future__ import annotations
 
 import os
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -184,6 +184,32 @@ def test_a_damaged_or_foreign_set_is_ignored(
     assert "src/robot_base/launch/base.launch" in checked_files  # nothing was known
 
 
+def skipped_until(
+    run_cli: Any,
+    workspace: Path,
+    cache: Path,
+    checked: list[str],
+    *,
+    watched: str,
+    change: Callable[[], object],
+) -> str:
+    """``watched`` is not checked again after an edit elsewhere, and is after ``change``;
+    both runs print what a fresh run prints. The last cached run's JSON."""
+    outputs(run_cli, workspace, cache)
+    driver = workspace / "src/robot_base/src/driver.cpp"
+    edit(driver, "ros::spin();", "ros::spin();  // until shutdown")
+    checked.clear()
+    cached, fresh = outputs(run_cli, workspace, cache, checked)
+    assert cached == fresh
+    assert watched not in checked
+    change()
+    checked.clear()
+    cached, fresh = outputs(run_cli, workspace, cache, checked)
+    assert cached == fresh
+    assert watched in checked
+    return cached
+
+
 MONITOR = """#!/usr/bin/env python
 import rospy
 from geometry_msgs.msg import Twist
@@ -214,20 +240,18 @@ def test_a_file_waiting_for_the_wiring_is_clean_under_the_same_wiring(
         'name="teleop"/>',
         'name="teleop">\n      <remap from="cmd_vel" to="/base/cmd_vel"/>\n    </node>',
     )
-    cache = tmp_path / "cache"
-    outputs(run_cli, workspace, cache)
-    edit(package / "src/driver.cpp", "ros::spin();", "ros::spin();  // until shutdown")
-    checked_files.clear()
-    cached, fresh = outputs(run_cli, workspace, cache, checked_files)
-    assert cached == fresh
-    assert "src/robot_base/scripts/cmd_monitor.py" not in checked_files
-    edit(launch, 'to="/base/cmd_vel"', 'to="/base/cmd_vel_safe"')
-    checked_files.clear()
-    cached, fresh = outputs(run_cli, workspace, cache, checked_files)
-    assert cached == fresh
-    assert "src/robot_base/scripts/cmd_monitor.py" in checked_files
+    cached = skipped_until(
+        run_cli,
+        workspace,
+        tmp_path / "cache",
+        checked_files,
+        watched="src/robot_base/scripts/cmd_monitor.py",
+        change=lambda: edit(launch, 'to="/base/cmd_vel"', 'to="/base/cmd_vel_safe"'),
+    )
     assert '"path": "src/robot_base/scripts/cmd_monitor.py"' in cached
 
+
+SERVICE = "---\nbool success\nstring message\n"
 
 CHARGER = """#!/usr/bin/env python
 import rospy
@@ -253,16 +277,14 @@ def test_a_file_waiting_for_the_service_types_is_clean_under_the_same_types(
     package makes the name another type's, and the file is checked again."""
     package = workspace / "src/robot_base"
     write(package, "scripts/charger.py", CHARGER)
-    cache = tmp_path / "cache"
-    outputs(run_cli, workspace, cache)
-    edit(package / "src/driver.cpp", "ros::spin();", "ros::spin();  // until shutdown")
-    checked_files.clear()
-    cached, fresh = outputs(run_cli, workspace, cache, checked_files)
-    assert cached == fresh
-    assert "src/robot_base/scripts/charger.py" not in checked_files
-    write(package, "srv/StartCharging.srv", "---\nbool success\nstring message\n")
-    checked_files.clear()
-    cached, fresh = outputs(run_cli, workspace, cache, checked_files)
-    assert cached == fresh
-    assert "src/robot_base/scripts/charger.py" in checked_files
+    cached = skipped_until(
+        run_cli,
+        workspace,
+        tmp_path / "cache",
+        checked_files,
+        watched="src/robot_base/scripts/charger.py",
+        change=lambda: write(
+            package, "srv/StartCharging.srv", "---\nbool success\nstring message\n"
+        ),
+    )
     assert '"code": "RN204"' in cached
