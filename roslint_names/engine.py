@@ -93,6 +93,7 @@ class LintResult:
 
 
 Progress = Callable[[int, int], None]  # (files done, files in total)
+_Contexts = Mapping[str, RuleContext]  # a context per per-file rule, by code
 
 
 @dataclass(frozen=True)
@@ -196,24 +197,6 @@ def lint(
         key = None if known_inputs is None else known_inputs.facts_key(index)
         return None if key is None else clean_files.entry(files[index].display, key)
 
-    checks = _FileChecks(
-        files=len(files),
-        reported=reported,
-        settings=settings,
-        registry=registry,
-        enabled=enabled,
-        service_types=set(service_types(workspace, packages)),
-        plugin_names=plugin_names,
-        keep_facts=keep_facts,
-        wiring=wiring,
-        progress=run.progress,
-        package_of=lambda index: package_display(files[index], packages),
-        visible_of=lambda index: packages.visible_packages(files[index].path),
-        read=lambda index: read_file(files[index].path, settings.max_file_size)[0] or b"",
-        clean=clean,
-        entry_of=entry_of,
-    )
-    graph: Graph | None = None
     # A file the per-file rules can judge alone is judged where it is extracted, in the
     # workers: the main process only gathers the verdicts (issue 30's serial part).
     judge = FileChecks(
@@ -224,6 +207,21 @@ def lint(
         rule_contexts(registry, settings, plugin_names=plugin_names),
         wiring,
     )
+    checks = _FileChecks(
+        files=len(files),
+        reported=reported,
+        judge=judge,
+        service_types=set(service_types(workspace, packages)),
+        plugin_names=plugin_names,
+        keep_facts=keep_facts,
+        progress=run.progress,
+        package_of=lambda index: package_display(files[index], packages),
+        visible_of=lambda index: packages.visible_packages(files[index].path),
+        read=lambda index: read_file(files[index].path, settings.max_file_size)[0] or b"",
+        clean=clean,
+        entry_of=entry_of,
+    )
+    graph: Graph | None = None
     extract = partial(extract_batch, cache, checker=judge)
     # A file whose worker is killed past its time budget is one RN001 (``gave_up``).
     give_up = partial(gave_up, cache)
@@ -337,13 +335,10 @@ class _FileChecks:
 
     files: int
     reported: int
-    settings: Settings
-    registry: Registry
-    enabled: frozenset[str]
+    judge: FileChecks  # the per-file rules, their settings and contexts, as workers run them
     service_types: set[tuple[Generation | None, str]]
     plugin_names: frozenset[str]  # ``plugins``: the workspace's pluginlib plugin names
     keep_facts: bool
-    wiring: bool  # a rule reads the names the launch files wire
     progress: Progress | None
     package_of: Callable[[int], str | None]  # the display directory of a file's package
     visible_of: Callable[[int], frozenset[str] | None]  # its package and dependencies (RN204)
@@ -367,10 +362,6 @@ class _FileChecks:
     def __post_init__(self) -> None:
         self.per_file = [[] for _ in range(self.reported)]
         self._all_facts = [None] * self.files
-        self._test_rules = test_code_codes(self.settings, self.registry)
-        # Built once for the run, not once per rule per file: most files compare with no
-        # service type (those that do wait for ``finish`` and get their own).
-        self._contexts = rule_contexts(self.registry, self.settings, plugin_names=self.plugin_names)
 
     def take(
         self, index: int, facts: FileFacts, data: bytes | None, verdict: Verdict | None = None
@@ -382,9 +373,9 @@ class _FileChecks:
         types = typed_services(facts)
         self.service_types.update((facts.generation, spelling) for spelling in types)
         self._constants.add(facts)
-        if self.wiring:
+        if self.judge.wiring:
             self._wired.update(
-                launch_wiring(facts, partial(self._bytes, index, data), self.settings)
+                launch_wiring(facts, partial(self._bytes, index, data), self.judge.settings)
             )
         if facts.rejected_fixtures and (package := self.package_of(index)) is not None:
             self._rejected.setdefault(package, set()).update(facts.rejected_fixtures)
@@ -392,12 +383,12 @@ class _FileChecks:
             self._built.add(facts, self.package_of(index))
         symbols = uses_constants(facts)
         if index < self.reported:
-            if waits_for_the_run(facts, self.wiring):
+            if waits_for_the_run(facts, self.judge.wiring):
                 self._waiting.append((index, facts, data))
             elif verdict is not None:
                 self._judged(index, *verdict)
             else:
-                self._check_unless_clean(index, facts, data, self._contexts)
+                self._check_unless_clean(index, facts, data, self.judge.contexts)
         elif symbols and self.keep_facts:
             self._unresolved.append(index)
         self._done += 1
@@ -409,7 +400,7 @@ class _FileChecks:
         index: int,
         facts: FileFacts,
         data: bytes | None,
-        contexts: Mapping[str, RuleContext],
+        contexts: _Contexts,
         wired: bytes = b"",
     ) -> None:
         """Check a file whose verdict depends on nothing but itself, the run's settings
@@ -482,49 +473,48 @@ class _FileChecks:
             if facts is not None:
                 self._all_facts[index] = self._constants.resolve(facts, self.package_of(index))
         wired = frozenset(self._wired)
-        plugins = self.plugin_names
-        contexts = rule_contexts(
-            self.registry, self.settings, wired_names=wired, plugin_names=plugins
-        )
+        contexts = self._contexts_with(wired)
         wired_digest = clean_files.digest(wired)
-        # The service types a file compares with, by its generation and the packages it
-        # sees, and their digest with the wiring's: few distinct ones in a run.
-        typed: dict[tuple[Generation, frozenset[str] | None], tuple[frozenset[str], bytes]] = {}
+        # The contexts of the files that compare with service types, by their generation
+        # and the packages they see, with their digest: few distinct ones in a run.
+        typed: dict[tuple[Generation, frozenset[str] | None], tuple[_Contexts, bytes]] = {}
         for index, extracted, data in self._waiting:
             facts = self._constants.resolve(extracted, self.package_of(index))
             if self.keep_facts:
                 self._all_facts[index] = facts
-            if uses_constants(extracted):
-                context, digest = contexts, b""  # other files' constants: always checked
-                if typed_services(facts):
-                    known, _ = self._known_types(typed, facts.generation, index, wired_digest)
-                    context = rule_contexts(self.registry, self.settings, known, wired, plugins)
-            elif typed_services(facts):
-                known, digest = self._known_types(typed, facts.generation, index, wired_digest)
-                context = rule_contexts(self.registry, self.settings, known, wired, plugins)
-            else:  # it waited for the wiring alone
+            if typed_services(facts):
+                context, digest = self._typed(typed, facts.generation, index, wired, wired_digest)
+            else:  # it waited for the wiring or constants
                 context, digest = contexts, wired_digest
-            if digest:  # clean under the same service types and wiring stays clean
+            if uses_constants(extracted):
+                self._check(index, facts, data, context)  # other files' constants: always
+            else:  # clean under the same service types and wiring stays clean
                 self._check_unless_clean(index, facts, data, context, digest)
-            else:
-                self._check(index, facts, data, context)
         self._waiting.clear()
         self._unresolved.clear()
 
-    def _known_types(
+    def _contexts_with(
+        self, wired: frozenset[str], known: frozenset[str] = frozenset()
+    ) -> _Contexts:
+        judge = self.judge
+        return rule_contexts(judge.registry, judge.settings, known, wired, self.plugin_names)
+
+    def _typed(
         self,
-        memo: dict[tuple[Generation, frozenset[str] | None], tuple[frozenset[str], bytes]],
+        memo: dict[tuple[Generation, frozenset[str] | None], tuple[_Contexts, bytes]],
         generation: Generation,
         index: int,
-        wired: bytes,
-    ) -> tuple[frozenset[str], bytes]:
-        """The service types file ``index`` compares with (RN204), and their digest with
-        the wiring's."""
+        wired: frozenset[str],
+        wired_digest: bytes,
+    ) -> tuple[_Contexts, bytes]:
+        """The contexts of file ``index``, which compares with the service types it can
+        see (RN204), and the digest of those types with the wiring's."""
         key = (generation, self.visible_of(index))
         found = memo.get(key)
         if found is None:
             known = visible_service_types(service_types_of(self.service_types, generation), key[1])
-            found = memo[key] = (known, clean_files.under(clean_files.digest(known), wired))
+            digest = clean_files.under(clean_files.digest(known), wired_digest)
+            found = memo[key] = (self._contexts_with(wired, known), digest)
         return found
 
     def facts(self) -> list[FileFacts]:
@@ -536,7 +526,7 @@ class _FileChecks:
         index: int,
         facts: FileFacts,
         data: bytes | None,
-        contexts: Mapping[str, RuleContext],
+        contexts: _Contexts,
     ) -> None:
         """``data`` None: the file was not read, as it holds no suppression; its text is
         needed only for findings (their lines, fixes, whether it is test code)."""
@@ -559,18 +549,8 @@ class _FileChecks:
         if suppressions:
             self.suppressions_of[index] = suppressions
 
-    def _check_text(
-        self, facts: FileFacts, text: str, contexts: Mapping[str, RuleContext]
-    ) -> tuple[list[Diagnostic], list[Suppression]]:
-        return check_file(
-            facts,
-            text,
-            self.settings,
-            self.registry,
-            self.enabled,
-            test_rules=self._test_rules,
-            contexts=contexts,
-        )
+    def _check_text(self, facts: FileFacts, text: str, contexts: _Contexts) -> Verdict:
+        return self.judge.check_text(facts, text, contexts)
 
 
 def waits_for_the_run(facts: FileFacts, wiring: bool) -> bool:
@@ -592,20 +572,25 @@ class FileChecks:
     registry: Registry
     enabled: frozenset[str]
     test_rules: frozenset[str]
-    contexts: Mapping[str, RuleContext]
+    contexts: _Contexts
     wiring: bool
 
     def __call__(self, facts: FileFacts, data: bytes) -> Verdict | None:
         if waits_for_the_run(facts, self.wiring):
             return None
+        return self.check_text(facts, decode_for_display(data), self.contexts)
+
+    def check_text(self, facts: FileFacts, text: str, contexts: _Contexts) -> Verdict:
+        """One file's verdict under ``contexts`` (the run's, or those of a file that waited
+        for the service types or the wiring)."""
         return check_file(
             facts,
-            decode_for_display(data),
+            text,
             self.settings,
             self.registry,
             self.enabled,
             test_rules=self.test_rules,
-            contexts=self.contexts,
+            contexts=contexts,
         )
 
 
