@@ -38,9 +38,9 @@ _DYNAMIC_RECONFIGURE = re.compile(
 # The config a server serves: ``dynamic_reconfigure::Server<amcl::AMCLConfig>`` (a
 # declaration, a ``new``, a ``make_shared``'s argument, a typedef), and rospy's
 # ``from amcl.cfg import AMCLConfig`` in a file that imports the server.
-_CPP_SERVER = re.compile(
-    rb"\bdynamic_reconfigure\s*::\s*Server\s*<\s*((?:::\s*)?[A-Za-z_][\w\s:]{0,200}?)\s*>"
-)
+# A template's one argument, a (qualified) class name: ``< ::amcl::AMCLConfig >``.
+_CLASS_ARGUMENT = rb"<\s*((?:::\s*)?[A-Za-z_][\w\s:]{0,200}?)\s*>"
+_CPP_SERVER = re.compile(rb"\bdynamic_reconfigure\s*::\s*Server\s*" + _CLASS_ARGUMENT)
 _PYTHON_CONFIG_IMPORT = re.compile(
     rb"(?m)^[ \t]*from[ \t]+([A-Za-z_]\w*)\.cfg[ \t]+import[ \t]*(?:\(([^()]*)\)|([\w \t,]+))"
 )
@@ -83,22 +83,25 @@ def parameter_traits(data: bytes) -> tuple[ParameterTrait, ...]:
 
 
 # ``pluginlib::ClassLoader<karto::ScanSolver>``: the base class its plugins derive from.
-_LOADED_BASE = re.compile(rb"\bClassLoader\s*<\s*((?:::\s*)?[A-Za-z_][\w\s:]{0,200}?)\s*>")
+_LOADED_BASE = re.compile(rb"\bClassLoader\s*" + _CLASS_ARGUMENT)
 
 
 def plugin_loaders(data: bytes) -> tuple[str, ...]:
     """The base classes whose plugins the text loads (``FileFacts.plugin_loaders``); ""
-    where it loads plugins without showing their base: an instance maker with no
-    ``ClassLoader<...>`` in the same file is a loader declared elsewhere (its header)."""
-    if b"Instance" not in data and b"ClassLoader" not in data and b"registerFromPlugin" not in data:
+    where it loads plugins without showing their base (BehaviorTree.CPP's
+    ``registerFromPlugin``). An instance maker uses a loader declared elsewhere (its
+    header), whose file says the base."""
+    if b"ClassLoader" not in data and b"registerFromPlugin" not in data:
         return ()
-    found = {
-        _SPACE.sub("", match.group(1).decode("utf-8", "replace")).lstrip(":")
-        for match in _LOADED_BASE.finditer(data)
-    }
+    found = {_class_written(match) for match in _LOADED_BASE.finditer(data)}
     if b"registerFromPlugin" in data:
         found.add("")
     return tuple(sorted(found))
+
+
+def _class_written(match: re.Match[bytes]) -> str:
+    """The class name ``_CLASS_ARGUMENT`` matched, without spaces or a leading ``::``."""
+    return _SPACE.sub("", match.group(1).decode("utf-8", "replace")).lstrip(":")
 
 
 def reconfigure_servers(data: bytes, *, python: bool) -> tuple[str, ...]:
@@ -120,9 +123,7 @@ def reconfigure_servers(data: bytes, *, python: bool) -> tuple[str, ...]:
                 if alias and alias.group(1).endswith("Config"):
                     found.add(f"{package}::{alias.group(1)}")
     else:
-        for match in _CPP_SERVER.finditer(data):
-            written = _SPACE.sub("", match.group(1).decode("utf-8", "replace")).lstrip(":")
-            found.add(written)
+        found.update(_class_written(match) for match in _CPP_SERVER.finditer(data))
     return tuple(sorted(found))
 
 
