@@ -11,8 +11,9 @@ from __future__ import annotations
 
 import posixpath
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
+from typing import Any, TypeVar
 
 from roslint_names.model import (
     ENDPOINT_ROLES,
@@ -27,7 +28,7 @@ from roslint_names.model import (
 from roslint_names.names import NameResolutionError, resolve
 from roslint_names.test_code import is_test_directory
 from roslint_names.types import parse_type
-from roslint_names.workspace.built import unbuilt_sources
+from roslint_names.workspace.built import BUILD_FIELDS, unbuilt_sources
 from roslint_names.workspace.graph import (
     EdgeKind,
     Endpoint,
@@ -42,6 +43,7 @@ from roslint_names.workspace.graph import (
 )
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
 from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Prepare, Specialise
+from roslint_names.workspace.memory import GraphMemory, Reads
 from roslint_names.workspace.parameter_files import ros1_names, ros2_names
 from roslint_names.workspace.parameter_settings import (
     file_settings,
@@ -49,7 +51,7 @@ from roslint_names.workspace.parameter_settings import (
     launch_settings,
     ordered,
 )
-from roslint_names.workspace.parameters import ParameterSets
+from roslint_names.workspace.parameters import NodeParameters, ParameterSets, ParameterTables
 
 _EDGES = {
     Role.PUBLISH: EdgeKind.PUBLISH,
@@ -88,54 +90,77 @@ def build(
     packages: Sequence[Package],
     specialise: Specialise,
     prepare: Prepare | None = None,
+    memory: GraphMemory | None = None,
 ) -> Graph:
-    """The workspace graph; ``prepare`` is told each depth's specialisations first."""
-    index = WorkspaceIndex(facts, packages)
+    """The workspace graph; ``prepare`` is told each depth's specialisations first.
+    ``memory``: what the last build of this workspace left (``memory.GraphMemory``): the
+    pieces nothing changed under are taken from it, and this build's are left in it."""
+    memory = GraphMemory() if memory is None else memory
+    index = memory.begin({f.path: f for f in facts}, packages)
+    tests = _TestFiles(index, memory.piece("test files", (), dict))
     nodes: list[NodeInstance] = []
     endpoints: list[Endpoint] = []
     # Code no build file compiles never runs: it joins no node (``built``).
-    unbuilt = unbuilt_sources(index)
+    unbuilt = memory.piece("unbuilt", BUILD_FIELDS, lambda: unbuilt_sources(index))
     launched_sources: set[str] = set(unbuilt)
-    trees = LaunchTrees(index, specialise, prepare)
+    trees = LaunchTrees(index, specialise, prepare, memory.reads("launch trees"))
     # parameter file -> the code (and generation) of each node of unknown name it is
     # handed to
     unnamed: dict[str, set[tuple[Generation, tuple[str, ...]]]] = {}
+    # Keyed by the tree and the node's place in it, not by the launched node: hashing
+    # one hashes all it holds. A tree walked again starts nodes that are new objects.
+    started = memory.reads("launched")
+    place: tuple[str, int] = ("", 0)
     for launched in trees.launched():
+        place = (launched.root, place[1] + 1 if place[0] == launched.root else 0)
         found = index.sources_of(launched.node.package, launched.node.executable)
         sources = tuple(path for path in found if path not in unbuilt)
         launched_sources.update(sources)
-        built = _launched_instance(index, launched, sources, trees)
-        if built is not None:
-            nodes.append(built[0])
-            endpoints.extend(built[1])
-        else:
-            receiver = (_generation(_code(index, sources), index.facts.get(launched.path)), sources)
-            for load in launched.node.parameter_files:
-                path = _parameter_file(index, trees, launched.path, load.package, load.path)
-                if path is not None:
-                    unnamed.setdefault(path, set()).add(receiver)
-    for sources in _unlaunched_programs(index, launched_sources):
-        built = _unlaunched_instance(index, sources)
-        if built is not None:
-            nodes.append(built[0])
-            endpoints.extend(built[1])
+        kept = started.get(place)
+        if kept is None or kept[0][0] is not launched or kept[0][1] != sources:
+            instance, read = _launched_instance(index, tests, launched, sources, trees)
+            kept = started[place] = ((launched, sources, instance), read)
+        instance = kept[0][2]
+        if instance.node is not None:
+            nodes.append(instance.node)
+            endpoints.extend(instance.endpoints)
+        for path, receiver in instance.unnamed:
+            unnamed.setdefault(path, set()).add(receiver)
+    unlaunched = memory.reads("unlaunched")
+    paths = memory.piece("paths", (), lambda: sorted(index.facts))
+    for sources in _unlaunched_programs(index, tests, paths, launched_sources):
+        if sources not in unlaunched:
+            unlaunched[sources] = (_unlaunched_instance(index, sources), Reads(frozenset(sources)))
+        node, found_endpoints = unlaunched[sources][0]
+        nodes.append(node)
+        endpoints.extend(found_endpoints)
     rooted_loads = _group_loads(index, trees)
     loads = [use for _, use in rooted_loads]
     linked = {use.path for node in nodes for use in node.parameter_files}
     linked.update(use.path for use in loads)
     blocks = {path: index.facts[path].parameter_blocks for path in sorted(linked)}
-    parameters = ParameterSets(index, lambda path: path in unbuilt or _is_test(index, path))
+    parameters = ParameterSets(
+        index,
+        memory.piece(
+            "parameter tables",
+            ParameterTables.FIELDS,
+            lambda: ParameterTables(index, lambda path: path in unbuilt or tests(path)),
+        ),
+        memory,
+    )
+    finished = _Finished(memory.piece("finished nodes", (), dict))
     nodes = [
-        replace(
+        finished(
             node,
-            code_parameters=parameters.of(node.sources),
-            parameter_settings=_with_group_loads(node, rooted_loads, blocks),
+            parameters.of(node.sources),
+            _with_group_loads(node, rooted_loads, blocks),
         )
         for node in nodes
     ]
+    finished.forget_the_rest()
     return Graph(
-        tuple(sorted(set(nodes), key=NodeInstance.sort_key)),
-        tuple(sorted(set(endpoints), key=Endpoint.sort_key)),
+        _unique(nodes, NodeInstance.sort_key),
+        _unique(endpoints, Endpoint.sort_key),
         index.companions(),
         _mentions(index, nodes),
         index.service_definitions(),
@@ -150,6 +175,90 @@ def build(
         },
         parameter_declarations=parameters.declarations(),
     )
+
+
+def _unique(items: Iterable[_T], key: Callable[[_T], Any]) -> tuple[_T, ...]:
+    """``items`` sorted by ``key``, each once. Equal items have equal keys: only the
+    items of one key are compared, and none is hashed (hashing a node hashes all it
+    holds, 17,000 nodes a build). Items of one key but not equal keep their order."""
+    found: list[_T] = []
+    run: list[_T] = []  # the items found of the current key
+    last: object = _NO_KEY
+    for item in sorted(items, key=key):
+        current = key(item)
+        if current != last:
+            run = []
+            last = current
+        if item not in run:
+            run.append(item)
+            found.append(item)
+    return tuple(found)
+
+
+_T = TypeVar("_T")
+_NO_KEY = object()
+
+
+@dataclass(frozen=True)
+class _Started:
+    """What one launched node makes: its instance and endpoints, or (a node of unknown
+    name) for each parameter file it is handed, its generation and code."""
+
+    node: NodeInstance | None = None
+    endpoints: tuple[Endpoint, ...] = ()
+    unnamed: tuple[tuple[str, tuple[Generation, tuple[str, ...]]], ...] = ()
+
+
+class _Finished:
+    """A node with its code's parameters and every parameter its launch sets. The last
+    build's node where it is made from the same objects: a memory keeps nodes, their
+    parameters and settings while nothing they are made from changes, and a node made
+    again is 17,000 copies a build."""
+
+    def __init__(self, known: dict[int, tuple[NodeInstance, NodeInstance]]) -> None:
+        # id of a node as built -> (that node, finished): holding the node keeps its id
+        # its own while the entry lives.
+        self._known = known
+        self._used: set[int] = set()
+
+    def __call__(
+        self,
+        node: NodeInstance,
+        parameters: NodeParameters,
+        settings: tuple[ParameterSetting, ...],
+    ) -> NodeInstance:
+        self._used.add(id(node))
+        kept = self._known.get(id(node))
+        if (
+            kept is not None
+            and kept[0] is node
+            and kept[1].code_parameters is parameters
+            and kept[1].parameter_settings == settings
+        ):
+            return kept[1]
+        finished = replace(node, code_parameters=parameters, parameter_settings=settings)
+        self._known[id(node)] = (node, finished)
+        return finished
+
+    def forget_the_rest(self) -> None:
+        """Forget the nodes this build did not finish: gone, or built again."""
+        for key in [key for key in self._known if key not in self._used]:
+            del self._known[key]
+
+
+class _TestFiles:
+    """Whether a file is test code (``_is_test``), each file asked once; the answers
+    depend on where files are only, and a memory keeps them while nothing moves."""
+
+    def __init__(self, index: WorkspaceIndex, known: dict[str, bool]) -> None:
+        self._index = index
+        self._known = known
+
+    def __call__(self, path: str) -> bool:
+        found = self._known.get(path)
+        if found is None:
+            found = self._known[path] = _is_test(self._index, path)
+        return found
 
 
 def _mentions(index: WorkspaceIndex, nodes: Iterable[NodeInstance]) -> dict[str, frozenset[str]]:
@@ -173,16 +282,26 @@ def _code(index: WorkspaceIndex, sources: Iterable[str]) -> list[FileFacts]:
 
 
 def _launched_instance(
-    index: WorkspaceIndex, launched: Launched, sources: tuple[str, ...], trees: LaunchTrees
-) -> tuple[NodeInstance, list[Endpoint]] | None:
+    index: WorkspaceIndex,
+    tests: _TestFiles,
+    launched: Launched,
+    sources: tuple[str, ...],
+    trees: LaunchTrees,
+) -> tuple[_Started, Reads]:
+    """The node a launch tree starts, and the files it is made from."""
+    read = {*sources, launched.path}
     code = _code(index, sources)
-    if launched.node.dynamic_name:
-        return None  # the launch file names it, but not statically: its name is unknown
-    name = launched.node.name or _code_node_name(code)
-    if name is None:
-        return None
     launch_facts = index.facts.get(launched.path)
     generation = _generation(code, launch_facts)
+    name = None if launched.node.dynamic_name else launched.node.name or _code_node_name(code)
+    if name is None:  # the launch file names it, but not statically, or its code does not
+        receiver = (generation, sources)
+        unnamed = []
+        for load in launched.node.parameter_files:
+            path = _parameter_file(index, trees, launched.path, load.package, load.path, read=read)
+            if path is not None:
+                unnamed.append((path, receiver))
+        return _Started(unnamed=tuple(unnamed)), Reads(frozenset(read))
     instance = _Instance(name, launched.namespace, generation)
     full_name = _full_name(instance)
     packages = {launched.node.package} | {
@@ -190,7 +309,7 @@ def _launched_instance(
     }
     reach = Reach(
         generation,
-        _is_test_launch(index, launched.root),
+        _is_test_launch(tests, launched.root),
         tuple(sorted(p for p in packages if p)),
     )
     remaps = [
@@ -208,7 +327,7 @@ def _launched_instance(
     names = _resolve_code(code, instance, remaps, launched.root, reach)
     composable = "::" in (launched.node.executable or "")  # a component's plugin class
     files, file_set = _parameter_files(
-        index, trees, launched, full_name, generation=generation, composable=composable
+        index, trees, launched, full_name, read, generation=generation, composable=composable
     )
     settings = launch_settings(
         launched.node, launched.path, full_name, generation, launched.conditional
@@ -230,20 +349,29 @@ def _launched_instance(
         conditional=launched.conditional,
         named_at_launch=launched.node.name is not None,
         test=launched.node.test,
-        stand_in=not reach.isolated and _all_test_code(index, sources),
+        stand_in=not reach.isolated and _all_test_code(index, tests, sources),
         reach=reach,
         parameter_files=files,
         composable=composable,
         parameter_settings=ordered([*settings, *file_set]),
     )
-    return node, names.endpoints
+    return _Started(node, tuple(names.endpoints)), Reads(frozenset(read))
 
 
 def _parameter_file(
-    index: WorkspaceIndex, trees: LaunchTrees, path: str, package: str | None, relative: str | None
+    index: WorkspaceIndex,
+    trees: LaunchTrees,
+    path: str,
+    package: str | None,
+    relative: str | None,
+    *,
+    read: set[str] | None = None,
 ) -> str | None:
-    """The parameter file of the workspace a launch file names, if it holds one."""
+    """The parameter file of the workspace a launch file names, if it holds one; the
+    file found joins ``read``."""
     found = trees.located(path, package, relative)
+    if found is not None and read is not None:
+        read.add(found)
     facts = None if found is None else index.facts.get(found)
     return found if facts is not None and facts.language is Language.PARAMETERS else None
 
@@ -253,6 +381,7 @@ def _parameter_files(
     trees: LaunchTrees,
     launched: Launched,
     full_name: str,
+    read: set[str],
     *,
     generation: Generation,
     composable: bool,
@@ -266,7 +395,7 @@ def _parameter_files(
     found: list[ParameterFileUse] = []
     settings: list[ParameterSetting] = []
     for load in launched.node.parameter_files:
-        path = _parameter_file(index, trees, launched.path, load.package, load.path)
+        path = _parameter_file(index, trees, launched.path, load.package, load.path, read=read)
         if path is None:
             continue
         blocks = index.facts[path].parameter_blocks
@@ -327,22 +456,25 @@ def _with_group_loads(
     return ordered([*node.parameter_settings, *found])
 
 
-def _unlaunched_programs(index: WorkspaceIndex, launched: set[str]) -> list[tuple[str, ...]]:
+def _unlaunched_programs(
+    index: WorkspaceIndex, tests: _TestFiles, paths: Sequence[str], launched: set[str]
+) -> list[tuple[str, ...]]:
     """Code no launch file starts, one program per executable (else per file); tests are
-    left out: they build throwaway graphs on purpose."""
+    left out: they build throwaway graphs on purpose. ``paths``: the index's, sorted."""
     grouped: list[tuple[str, ...]] = []
     seen: set[str] = set(launched)
     for _, sources in sorted(index.built_sources().items()):
-        fresh = tuple(path for path in sources if path not in seen and not _is_test(index, path))
+        fresh = tuple(path for path in sources if path not in seen and not tests(path))
         seen.update(sources)
         if fresh and any(_has_endpoints(index.facts[path]) for path in fresh):
             grouped.append(fresh)
-    for path, facts in sorted(index.facts.items()):
+    for path in paths:
+        facts = index.facts[path]
         if (
-            path not in seen
-            and facts.language in CODE_LANGUAGES
-            and not _is_test(index, path)
+            facts.language in CODE_LANGUAGES
+            and path not in seen
             and _has_endpoints(facts)
+            and not tests(path)
         ):
             grouped.append((path,))
     return grouped
@@ -350,7 +482,7 @@ def _unlaunched_programs(index: WorkspaceIndex, launched: set[str]) -> list[tupl
 
 def _unlaunched_instance(
     index: WorkspaceIndex, sources: tuple[str, ...]
-) -> tuple[NodeInstance, list[Endpoint]] | None:
+) -> tuple[NodeInstance, tuple[Endpoint, ...]]:
     code = [index.facts[path] for path in sources]
     name = _code_node_name(code) or _stem(sources[0])
     instance = _Instance(name, "/", _generation(code, None))
@@ -372,7 +504,7 @@ def _unlaunched_instance(
         parameters=names.parameters,
         reach=reach,
     )
-    return node, names.endpoints
+    return node, tuple(names.endpoints)
 
 
 def _package_name(index: WorkspaceIndex, path: str) -> str | None:
@@ -427,17 +559,16 @@ def _folders_inside(package: Package, path: str) -> list[str]:
     return inside.split("/")[:-1]
 
 
-def _all_test_code(index: WorkspaceIndex, sources: Sequence[str]) -> bool:
+def _all_test_code(index: WorkspaceIndex, tests: _TestFiles, sources: Sequence[str]) -> bool:
     """Whether every source is test code or test support code of its package, by the
     folders inside the package (``test_nodes/``, ``testing/``) or the package's name."""
-    return bool(sources) and all(_is_test_support(index, path) for path in sources)
+    return bool(sources) and all(_is_test_support(index, tests, path) for path in sources)
 
 
-def _is_test_support(index: WorkspaceIndex, path: str) -> bool:
+def _is_test_support(index: WorkspaceIndex, tests: _TestFiles, path: str) -> bool:
     package = index.package_of(path)
     return package is not None and (
-        _is_test(index, path)
-        or any(is_test_directory(folder) for folder in _folders_inside(package, path))
+        tests(path) or any(is_test_directory(folder) for folder in _folders_inside(package, path))
     )
 
 
@@ -445,11 +576,11 @@ def _is_test_package(name: str) -> bool:
     return name.startswith("test_") or name.endswith(("_test", "_tests"))
 
 
-def _is_test_launch(index: WorkspaceIndex, path: str) -> bool:
+def _is_test_launch(tests: _TestFiles, path: str) -> bool:
     """rostest's ``.test`` files, launch tests named for pytest (``test_*.py``), and any
     launch file of a test package or under a test directory of its package."""
     name = posixpath.basename(path)
-    return name.endswith(".test") or name.startswith("test_") or _is_test(index, path)
+    return name.endswith(".test") or name.startswith("test_") or tests(path)
 
 
 def _has_endpoints(facts: FileFacts) -> bool:

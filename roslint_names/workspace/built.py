@@ -50,6 +50,8 @@ from roslint_names.model import CompiledSources, FileFacts, Language
 from roslint_names.workspace.index import WorkspaceIndex, join, parent
 
 TRANSLATION_UNITS = (".cpp", ".cc", ".cxx", ".c++")
+# What ``unbuilt_sources`` reads of each file's facts (besides where the file is).
+BUILD_FIELDS = ("language", "compiled", "included_sources")
 _CMAKE_LISTS = "CMakeLists.txt"
 
 

@@ -6,6 +6,7 @@ so the index needs nothing but the facts and the list of package manifests.
 
 from __future__ import annotations
 
+import copy
 import posixpath
 from collections import Counter
 from collections.abc import Iterable, Sequence
@@ -62,6 +63,13 @@ class WorkspaceIndex:
         self._programs: dict[tuple[str, str], list[str]] = {}
         self._plugins: dict[str, list[str]] = {}
         self._index_executables()
+
+    def with_facts(self, facts: dict[str, FileFacts]) -> WorkspaceIndex:
+        """This index over new facts of the same files, whose executables and languages
+        are unchanged (``memory.GraphMemory``): where things are stays as it was."""
+        updated = copy.copy(self)
+        updated.facts = facts
+        return updated
 
     # -- packages -----------------------------------------------------------------------
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 from roslint_names.model import (
     FileFacts,
@@ -26,6 +27,7 @@ from roslint_names.model import (
 from roslint_names.names import join_namespace
 from roslint_names.workspace.graph import Location
 from roslint_names.workspace.index import WorkspaceIndex, join, parent
+from roslint_names.workspace.memory import Reads
 
 LAUNCH_LANGUAGES = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.LAUNCH_PYTHON})
 MAX_INCLUDE_DEPTH = 16  # deeper than any real bringup; stops include cycles and blow-ups
@@ -77,13 +79,28 @@ class _Frame:
     conditional: bool = False
 
 
+@dataclass(frozen=True)
+class _Tree:
+    """What one root's tree starts and loads."""
+
+    launched: tuple[Launched, ...]
+    loaded: tuple[Loaded, ...]
+
+
 class LaunchTrees:
     def __init__(
-        self, index: WorkspaceIndex, specialise: Specialise, prepare: Prepare | None = None
+        self,
+        index: WorkspaceIndex,
+        specialise: Specialise,
+        prepare: Prepare | None = None,
+        kept: dict[Any, tuple[Any, Reads]] | None = None,
     ) -> None:
+        """``kept``: each root's tree with the files its walk read, from the last build
+        (``memory.GraphMemory``): a tree whose files did not change is not walked again."""
         self.index = index
         self.specialise = specialise
         self.prepare = prepare
+        self._trees: dict[Any, tuple[Any, Reads]] = {} if kept is None else kept
         self.launch_files = sorted(
             path
             for path, facts in index.facts.items()
@@ -115,20 +132,32 @@ class LaunchTrees:
         return [path for path in self.launch_files if path not in included]
 
     def launched(self) -> Iterator[Launched]:
-        frames = [_Frame(root, (), "/", (), (), (), frozenset({root})) for root in self.roots()]
+        roots = self.roots()
         if self.prepare is not None:
-            self._prepare_depths(self.prepare, frames)
-        for frame in frames:
-            yield from self._walk(frame.path, frame)
+            walked = [_start(root) for root in roots if root not in self._trees]
+            self._prepare_depths(self.prepare, walked)
+        for root in roots:
+            yield from self._tree(root).launched
 
     def loaded(self) -> Iterator[Loaded]:
-        """Every group-level ``<rosparam load>`` the trees run (after ``launched``, whose
-        walk has extracted every file they hold)."""
+        """Every group-level ``<rosparam load>`` the trees run."""
         for root in self.roots():
-            yield from self._loads(root, _Frame(root, (), "/", (), (), (), frozenset({root})))
+            yield from self._tree(root).loaded
 
-    def _loads(self, root: str, frame: _Frame) -> Iterator[Loaded]:
-        facts = self._facts(frame.path, frame.arguments)
+    def _tree(self, root: str) -> _Tree:
+        kept = self._trees.get(root)
+        if kept is None:
+            read: set[str] = set()
+            tree = _Tree(
+                tuple(self._walk(root, _start(root), read)),
+                tuple(self._loads(root, _start(root), read)),
+            )
+            kept = self._trees[root] = (tree, Reads(frozenset(read)))
+        found: _Tree = kept[0]
+        return found
+
+    def _loads(self, root: str, frame: _Frame, read: set[str]) -> Iterator[Loaded]:
+        facts = self._facts(frame.path, frame.arguments, read)
         if facts is None:
             return
         for load in facts.parameter_loads:
@@ -137,7 +166,7 @@ class LaunchTrees:
                 conditional = frame.conditional or load.conditional
                 yield Loaded(root, load, frame.path, namespace, conditional)
         for inner in self._included(frame, facts):
-            yield from self._loads(root, inner)
+            yield from self._loads(root, inner, read)
 
     def _prepare_depths(self, prepare: Prepare, frames: list[_Frame]) -> None:
         """Walk the trees depth by depth, handing each depth's specialisations to
@@ -156,8 +185,8 @@ class LaunchTrees:
                 for inner in self._included(frame, facts)
             ]
 
-    def _walk(self, root: str, frame: _Frame) -> Iterator[Launched]:
-        facts = self._facts(frame.path, frame.arguments)
+    def _walk(self, root: str, frame: _Frame, read: set[str]) -> Iterator[Launched]:
+        facts = self._facts(frame.path, frame.arguments, read)
         if facts is None:
             return
         for node in facts.launch_nodes:
@@ -165,7 +194,7 @@ class LaunchTrees:
             if launched is not None:
                 yield launched
         for inner in self._included(frame, facts):
-            yield from self._walk(root, inner)
+            yield from self._walk(root, inner, read)
 
     def _included(self, frame: _Frame, facts: FileFacts) -> Iterator[_Frame]:
         """The frames of the files ``frame``'s file includes that the walk follows."""
@@ -191,7 +220,11 @@ class LaunchTrees:
             )
             yield inner
 
-    def _facts(self, path: str, arguments: LaunchArguments) -> FileFacts | None:
+    def _facts(
+        self, path: str, arguments: LaunchArguments, read: set[str] | None = None
+    ) -> FileFacts | None:
+        if read is not None:
+            read.add(path)
         facts = self.index.facts.get(path)
         if facts is None or not runs(self.index, facts):
             return None  # included, it stops ros2 launch there: it starts nothing
@@ -218,6 +251,10 @@ class LaunchTrees:
             site_namespaces=(*frame.site_namespaces, namespace),
             conditional=frame.conditional or node.conditional,
         )
+
+
+def _start(root: str) -> _Frame:
+    return _Frame(root, (), "/", (), (), (), frozenset({root}))
 
 
 def runs(index: WorkspaceIndex, facts: FileFacts) -> bool:

@@ -56,9 +56,10 @@ from roslint_names.model import (
     ReconfigureConfig,
     Role,
 )
-from roslint_names.workspace.built import TRANSLATION_UNITS
+from roslint_names.workspace.built import BUILD_FIELDS, TRANSLATION_UNITS
 from roslint_names.workspace.graph import Location
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
+from roslint_names.workspace.memory import GraphMemory, Reads
 
 LIBRARY_DECLARED = frozenset({"use_sim_time", "start_type_description_service"})
 LIBRARY_PREFIXES = ("qos_overrides.",)
@@ -205,92 +206,105 @@ class WorkspaceDeclarations:
         return self.declares(name) or name in self.mentioned
 
 
+class ParameterTables:
+    """Where the parameter sets look classes, headers, programs and configs up: made from
+    ``FIELDS`` of every file's facts, where files are and which are ``excluded`` (tests,
+    sources no build compiles), and kept by a memory while none of that changes."""
+
+    FIELDS = ("language", "reconfigure", "class_bases", "executables", *BUILD_FIELDS)
+
+    def __init__(self, index: WorkspaceIndex, excluded: Callable[[str], bool]) -> None:
+        # Asked about the same files for every node: each answer once.
+        self.excluded = cache(excluded)
+        self.classes: dict[str, list[str]] = {}  # class name -> files defining it
+        # base class name -> (file, base as written) of each class derived from it
+        self.derived: dict[str, list[tuple[str, str]]] = {}
+        # (package directory, C++ file name) -> its paths in that package
+        self.by_name: dict[tuple[str, str], list[str]] = {}
+        self.programs: set[str] = set()  # sources of every program and component
+        # ``NameConfig`` -> (package, path) of each .cfg generating it
+        self.configs: dict[str, list[tuple[str | None, str]]] = {}
+        # What is looked up in these alone, each once.
+        self.included: dict[tuple[str, str], list[str]] = {}
+        self.implementations: dict[str, list[str]] = {}
+        self.defined: dict[tuple[str, str], list[str]] = {}
+        for path, facts in sorted(index.facts.items()):
+            if facts.reconfigure is not None and facts.reconfigure.name is not None:
+                package = facts.reconfigure.package or _package_name(index, path)
+                self.configs.setdefault(f"{facts.reconfigure.name}Config", []).append(
+                    (package, path)
+                )
+            if facts.language not in CODE_LANGUAGES or self.excluded(path):
+                continue
+            for name, bases in facts.class_bases:
+                self.classes.setdefault(name, []).append(path)
+                for base in bases:
+                    self.derived.setdefault(_class_name(base), []).append((path, base))
+            if facts.language is Language.CPP:
+                key = (_directory(index, path), posixpath.basename(path))
+                self.by_name.setdefault(key, []).append(path)
+        for sources in index.built_sources().values():
+            self.programs.update(sources)
+        self.programs.update(index.plugin_sources())
+
+
 class ParameterSets:
-    """Computes each node's ``NodeParameters`` over one run's index, memoised by sources."""
+    """Computes each node's ``NodeParameters`` over one run's index, memoised by sources
+    (across builds, in ``memory``, each with the files it was made from)."""
 
     def __init__(
         self,
         index: WorkspaceIndex,
-        excluded: Callable[[str], bool],
+        tables: ParameterTables,
+        memory: GraphMemory | None = None,
     ) -> None:
-        """``excluded``: code that joins no node's (tests, sources no build compiles)."""
         self._index = index
-        # Asked about the same files for every node: each answer once.
-        self._excluded = cache(excluded)
-        self._memo: dict[tuple[str, ...], NodeParameters] = {}
-        self._included_memo: dict[tuple[str, str], list[str]] = {}
-        self._implementations_memo: dict[str, list[str]] = {}
-        self._defined_memo: dict[tuple[str, str], list[str]] = {}
-        self._reached_memo: dict[str, list[str]] = {}
-        self._package_memo: dict[str, tuple[set[str], set[str]]] = {}
-        self._classes: dict[str, list[str]] = {}  # class name -> files defining it
-        # base class name -> (file, base as written) of each class derived from it
-        self._derived: dict[str, list[tuple[str, str]]] = {}
-        # (package directory, C++ file name) -> its paths in that package
-        self._by_name: dict[tuple[str, str], list[str]] = {}
-        self._programs: set[str] = set()  # sources of every program and component
-        # ``NameConfig`` -> (package, path) of each .cfg generating it
-        self._configs: dict[str, list[tuple[str | None, str]]] = {}
-        for path, facts in sorted(index.facts.items()):
-            if facts.reconfigure is not None and facts.reconfigure.name is not None:
-                package = facts.reconfigure.package or _package_name(index, path)
-                self._configs.setdefault(f"{facts.reconfigure.name}Config", []).append(
-                    (package, path)
-                )
-            if facts.language not in CODE_LANGUAGES or self._excluded(path):
-                continue
-            for name, bases in facts.class_bases:
-                self._classes.setdefault(name, []).append(path)
-                for base in bases:
-                    self._derived.setdefault(_class_name(base), []).append((path, base))
-            if facts.language is Language.CPP:
-                key = (_directory(index, path), posixpath.basename(path))
-                self._by_name.setdefault(key, []).append(path)
-        for sources in index.built_sources().values():
-            self._programs.update(sources)
-        self._programs.update(index.plugin_sources())
+        self._tables = tables
+        self._excluded = tables.excluded
+        memory = GraphMemory() if memory is None else memory
+        # Made from the tables too: forgotten with them.
+        fields = ParameterTables.FIELDS
+        self._memo = memory.reads("parameters", fields)  # sources -> their parameters
+        self._reached_memo = memory.reads("reached", fields)  # path -> what it includes
+        self._package_memo = memory.reads("package declarations", fields)
+        self._declared_memo = memory.reads("declarations")  # path -> what it declares
+        self._classes = tables.classes
+        self._derived = tables.derived
+        self._by_name = tables.by_name
+        self._programs = tables.programs
+        self._configs = tables.configs
+        self._included_memo = tables.included
+        self._implementations_memo = tables.implementations
+        self._defined_memo = tables.defined
 
     def declarations(self) -> WorkspaceDeclarations:
         names: set[str] = set()
         suffixes: set[str] = set()
         mentioned: set[str] = set()
-        for facts in self._index.facts.values():
+        for path, facts in self._index.facts.items():
             if facts.language not in CODE_LANGUAGES:
                 continue
-            mentioned.update(facts.unexplained_literals)
-            if facts.generation is not Generation.ROS2:
-                mentioned.update(
-                    _bare(name)
-                    for name in (
-                        *facts.unexplained_literals,
-                        *(
-                            use.value
-                            for use in _parameter_uses(facts)
-                            if use.access in READS and not use.dynamic
-                        ),
-                    )
-                )
-                continue
-            for use in _parameter_uses(facts):
-                if use.access is not ParameterAccess.DECLARE:
-                    continue
-                if not use.dynamic:
-                    names.add(use.value)
-                elif use.suffix:
-                    suffixes.add(use.suffix)
+            kept = self._declared_memo.get(path)
+            if kept is None:
+                kept = self._declared_memo[path] = (_declarations(facts), Reads(frozenset({path})))
+            declared, declared_suffixes, named = kept[0]
+            names.update(declared)
+            suffixes.update(declared_suffixes)
+            mentioned.update(named)
         return WorkspaceDeclarations(frozenset(names), frozenset(suffixes), frozenset(mentioned))
 
     def of(self, sources: Sequence[str]) -> NodeParameters:
         key = tuple(sources)
         found = self._memo.get(key)
         if found is None:
-            found = self._compute(key)
-            self._memo[key] = found
-        return found
+            found = self._memo[key] = self._compute(key)
+        parameters: NodeParameters = found[0]
+        return parameters
 
-    def _compute(self, sources: tuple[str, ...]) -> NodeParameters:
+    def _compute(self, sources: tuple[str, ...]) -> tuple[NodeParameters, Reads]:
+        """The node's parameters, and the files and packages they are made from."""
         if not sources:
-            return NodeParameters(incomplete=(Incomplete.NO_CODE,))
+            return NodeParameters(incomplete=(Incomplete.NO_CODE,)), Reads()
         causes: set[Incomplete] = set()
         if not any(self._is_program(path) for path in sources):
             causes.add(Incomplete.LIBRARY)
@@ -315,7 +329,8 @@ class ParameterSets:
         # The rest of the packages' code (a library the program links, a helper): its
         # declarations may be the node's too. Only declarations: what it reads, or leaves
         # open, is another node's business.
-        for package in sorted({p.name for path in sources if (p := self._index.package_of(path))}):
+        packages = sorted({p.name for path in sources if (p := self._index.package_of(path))})
+        for package in packages:
             declared, suffixes = self._package_declarations(package)
             names.declared |= declared
             names.declared_suffixes |= suffixes
@@ -327,6 +342,7 @@ class ParameterSets:
                 if not use.dynamic and use.access is not None
             )
         )
+        read = Reads(frozenset({*sources, *own, *configs}), frozenset(packages))
         return NodeParameters(
             declared=tuple(sorted(names.declared)),
             read=tuple(sorted(names.read)),
@@ -338,7 +354,7 @@ class ParameterSets:
             literals=tuple(sorted(names.literals)),
             declared_constants=tuple(sorted(names.constants)),
             reconfigure=tuple(sorted(configs)),
-        )
+        ), read
 
     def _own_plugins(self, own: Iterable[str], sources: Sequence[str]) -> bool:
         """Whether every plugin the code may load is a class of the node's own packages,
@@ -487,15 +503,17 @@ class ParameterSets:
     def _reached(self, path: str) -> list[str]:
         """The headers ``path`` includes of its package, each followed by the files that
         implement it; once per file, however many nodes' code holds it."""
-        found = self._reached_memo.get(path)
-        if found is None:
-            found = self._reached_memo[path] = [
+        kept = self._reached_memo.get(path)
+        if kept is None:
+            found = [
                 reached
                 for include in self._index.facts[path].cpp_includes
                 for header in self._included(include, path)
                 for reached in (header, *self._implementations(header))
             ]
-        return found
+            kept = self._reached_memo[path] = (found, Reads(frozenset({path})))
+        reached_files: list[str] = kept[0]
+        return reached_files
 
     def _included(self, include: str, includer: str) -> list[str]:
         """The files of the includer's package an ``#include`` may mean: ``include``
@@ -532,16 +550,17 @@ class ParameterSets:
 
     def _package_declarations(self, package: str) -> tuple[set[str], set[str]]:
         """The names (and ends of names) the package's code declares, tests aside."""
-        found = self._package_memo.get(package)
-        if found is None:
+        kept = self._package_memo.get(package)
+        if kept is None:
             names = _Names()
             for path in self._index.files_of(package):
                 facts = self._index.facts[path]
                 if facts.language in CODE_LANGUAGES and not self._excluded(path):
                     names.add_declarations(facts)
             found = (names.declared, names.declared_suffixes)
-            self._package_memo[package] = found
-        return found
+            kept = self._package_memo[package] = (found, Reads(packages=frozenset({package})))
+        declarations: tuple[set[str], set[str]] = kept[0]
+        return declarations
 
     def _defined(self, base: str, user: str) -> list[str] | None:
         """The files defining a base class that ``user`` derives from (none for a client
@@ -619,6 +638,34 @@ class _Names:
 # level, which the ROS 1 comparison (namespaces aside) counts as a read of it; a search for
 # a name built at run time may read anything.
 _SEARCHES = frozenset({"ros::NodeHandle::searchParam", "ros::param::search", "rospy.search_param"})
+
+
+def _declarations(facts: FileFacts) -> tuple[set[str], set[str], set[str]]:
+    """What one code file adds to ``WorkspaceDeclarations``: names, suffixes, mentions."""
+    names: set[str] = set()
+    suffixes: set[str] = set()
+    mentioned: set[str] = set(facts.unexplained_literals)
+    if facts.generation is not Generation.ROS2:
+        mentioned.update(
+            _bare(name)
+            for name in (
+                *facts.unexplained_literals,
+                *(
+                    use.value
+                    for use in _parameter_uses(facts)
+                    if use.access in READS and not use.dynamic
+                ),
+            )
+        )
+        return names, suffixes, mentioned
+    for use in _parameter_uses(facts):
+        if use.access is not ParameterAccess.DECLARE:
+            continue
+        if not use.dynamic:
+            names.add(use.value)
+        elif use.suffix:
+            suffixes.add(use.suffix)
+    return names, suffixes, mentioned
 
 
 def _nearest(index: WorkspaceIndex, paths: list[str], package: Package | None) -> list[str]:

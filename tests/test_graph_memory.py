@@ -1,0 +1,246 @@
+"""A graph built with the last build's memory is the graph built without it.
+
+The language server builds the graph again after every edit with one ``GraphMemory``
+(``workspace.memory``); each step here edits the example workspace as a developer
+would (code, launch files, parameter files, build files; files added, renamed and
+deleted), then builds with the memory of every step before and without any memory, and
+the two graphs must be equal.
+"""
+
+from __future__ import annotations
+
+import shutil
+from collections.abc import Callable
+from functools import partial
+from pathlib import Path
+
+import pytest
+
+from roslint_names.config import load_settings
+from roslint_names.discover import discover
+from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
+from roslint_names.gather import DEFAULT_GENERATION, Specialiser, extract_batch
+from roslint_names.generation import PackageGenerations
+from roslint_names.model import FileFacts
+from roslint_names.registry import load_registry
+from roslint_names.workers import Dispatcher
+from roslint_names.workspace.build import build
+from roslint_names.workspace.graph import Graph
+from roslint_names.workspace.memory import GraphMemory
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+TURTLE = "src/turtle_bringup"
+FLEET = "src/fleet_bringup"
+
+
+class _Workspace:
+    """The example workspace in a temporary directory, its facts kept from step to step
+    as the language server keeps them: a file whose facts did not change keeps its
+    object."""
+
+    def __init__(self, root: Path) -> None:
+        shutil.copytree(EXAMPLES, root)
+        self.root = root
+        self.memory = GraphMemory()
+        self._facts: dict[str, FileFacts] = {}
+        self._registry = load_registry()
+        self._settings = load_settings(None, root, self._registry)
+
+    def edit(self, relative: str, old: str, new: str) -> None:
+        path = self.root / relative
+        text = path.read_text(encoding="utf-8")
+        assert old in text, f"{old!r} is not in {relative}"
+        path.write_text(text.replace(old, new, 1), encoding="utf-8")
+
+    def graphs(self) -> tuple[Graph, Graph]:
+        """The graph built with the memory, and the graph a run without one builds."""
+        root = self.root
+        sources = lintable(discover([root], (), root, root))
+        result = lint(sources, self._settings, self._registry, RunOptions(), want_graph=True)
+        assert result.graph is not None
+        facts = [
+            kept if (kept := self._facts.get(found.path)) == found else found
+            for found in result.facts
+        ]
+        self._facts = {found.path: found for found in facts}
+        packages = PackageGenerations()
+        specialiser = Specialiser(
+            sources,
+            packages,
+            DEFAULT_GENERATION,
+            None,
+            self._settings.max_file_size,
+            dispatcher=Dispatcher(partial(extract_batch, None), 1),
+            ros1_python2=False,
+        )
+        remembered = build(
+            facts,
+            workspace_packages(sources, packages),
+            specialiser,
+            specialiser.prepare,
+            self.memory,
+        )
+        return remembered, result.graph
+
+
+_NEW_NODE = """#include <ros/ros.h>
+#include <std_msgs/Float32.h>
+
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "charge_reporter");
+  ros::NodeHandle nh;
+  ros::Publisher pub = nh.advertise<std_msgs::Float32>("charge", 1);
+  ros::spin();
+  return 0;
+}
+"""
+
+_SOLO = """<launch>
+  <include file="$(find turtle_bringup)/launch/base.launch" ns="solo"/>
+  <node name="charge_reporter" pkg="turtle_bringup" type="charge_reporter">
+    <remap from="charge" to="battery/charge"/>
+  </node>
+</launch>
+"""
+
+
+def _steps(ws: _Workspace) -> list[tuple[str, Callable[[], None]]]:
+    def add(relative: str, text: str) -> Callable[[], None]:
+        return lambda: (ws.root / relative).write_text(text, encoding="utf-8")
+
+    def rename(relative: str, to: str) -> Callable[[], None]:
+        return lambda: (ws.root / relative).rename(ws.root / to)
+
+    def delete(relative: str) -> Callable[[], None]:
+        return lambda: (ws.root / relative).unlink()
+
+    return [
+        (
+            "a topic renamed in C++ code",
+            lambda: ws.edit(f"{TURTLE}/src/odom_relay.cpp", '("odom"', '("odometry"'),
+        ),
+        (
+            "a topic renamed in the code of a node four launch trees start",
+            lambda: ws.edit(f"{TURTLE}/src/velocity_smoother.cpp", '"cmd_vel"', '"cmd_vel_in"'),
+        ),
+        (
+            "a parameter read added in Python code a launch file starts",
+            lambda: ws.edit(
+                f"{FLEET}/fleet_bringup/waypoint_follower.py",
+                'self.declare_parameter("map_frame", "map")',
+                'self.declare_parameter("map_frame", "map")\n'
+                '        self.declare_parameter("loop_rate", 10.0)',
+            ),
+        ),
+        (
+            "a line inserted above every name of a file",
+            lambda: ws.edit(f"{TURTLE}/src/odom_relay.cpp", "#include", "// relays\n#include"),
+        ),
+        (
+            "a remap added to a launched node",
+            lambda: ws.edit(
+                f"{TURTLE}/launch/base.launch",
+                '<remap from="cmd_vel_raw"',
+                '<remap from="cmd_vel" to="smooth/cmd_vel"/>\n    <remap from="cmd_vel_raw"',
+            ),
+        ),
+        ("a node's code added", add(f"{TURTLE}/src/charge_reporter.cpp", _NEW_NODE)),
+        (
+            "its executable added to the build",
+            lambda: ws.edit(
+                f"{TURTLE}/CMakeLists.txt",
+                "add_executable(odom_relay",
+                "add_executable(charge_reporter src/charge_reporter.cpp)\n"
+                "add_executable(odom_relay",
+            ),
+        ),
+        ("a launch file added that includes another", add(f"{TURTLE}/launch/single.launch", _SOLO)),
+        (
+            "the launch file renamed",
+            rename(f"{TURTLE}/launch/single.launch", f"{TURTLE}/launch/solo.launch"),
+        ),
+        (
+            "an include deleted",
+            lambda: ws.edit(
+                f"{TURTLE}/launch/robots.launch",
+                '<include file="$(find turtle_bringup)/launch/base.launch" ns="robot2"/>\n',
+                "",
+            ),
+        ),
+        (
+            "a node taken out of a launch file",
+            lambda: ws.edit(
+                f"{TURTLE}/launch/base.launch",
+                '<node name="battery_monitor" pkg="turtle_bringup" type="battery_monitor"/>',
+                "",
+            ),
+        ),
+        (
+            "an executable taken out of the build",
+            lambda: ws.edit(
+                f"{TURTLE}/CMakeLists.txt",
+                "add_executable(battery_monitor",
+                "# add_executable(battery_monitor",
+            ),
+        ),
+        (
+            "a parameter file's node key changed",
+            lambda: ws.edit(
+                f"{FLEET}/config/waypoint_follower.yaml",
+                "waypoint_follower:",
+                "/**:",
+            ),
+        ),
+        (
+            "a parameter declared in ROS 2 code",
+            lambda: ws.edit(
+                f"{FLEET}/src/dock_manager.cpp",
+                'declare_parameter("dock_frame", "charging_dock");',
+                'declare_parameter("dock_frame", "charging_dock");\n'
+                '    declare_parameter("dockframe", "charging_dock");',
+            ),
+        ),
+        (
+            "a remap changed in a Python launch file",
+            lambda: ws.edit(f"{FLEET}/launch/fleet.launch.py", '("/tf", "tf")', '("/tf", "tf2")'),
+        ),
+        ("a node's code deleted", delete(f"{TURTLE}/src/odom_relay.cpp")),
+        ("the included launch file deleted", delete(f"{TURTLE}/launch/base.launch")),
+    ]
+
+
+def test_every_edit_gives_the_graph_a_build_without_memory_gives(tmp_path: Path) -> None:
+    ws = _Workspace(tmp_path / "ws")
+    remembered, fresh = ws.graphs()
+    assert remembered == fresh
+    assert fresh.nodes and fresh.endpoints  # the example workspace has a graph to keep
+    for what, step in _steps(ws):
+        step()
+        remembered, fresh = ws.graphs()
+        assert remembered == fresh, what
+
+
+def test_an_edit_of_one_file_changes_that_file_only(tmp_path: Path) -> None:
+    """The memory tells one changed file from the rest, whose pieces it keeps."""
+    ws = _Workspace(tmp_path / "ws")
+    ws.graphs()
+    trees = dict(ws.memory.reads("launch trees"))
+    assert trees
+    ws.edit(f"{TURTLE}/src/odom_relay.cpp", '("odom"', '("odometry"')
+    remembered, fresh = ws.graphs()
+    assert remembered == fresh
+    assert not ws.memory.moved
+    assert ws.memory.changed == {f"{TURTLE}/src/odom_relay.cpp"}
+    # No launch file changed: every tree is the last build's, not walked again.
+    assert all(ws.memory.reads("launch trees")[root] is kept for root, kept in trees.items())
+
+
+@pytest.mark.parametrize("relative", [f"{TURTLE}/package.xml"])
+def test_a_changed_manifest_keeps_nothing(tmp_path: Path, relative: str) -> None:
+    ws = _Workspace(tmp_path / "ws")
+    ws.graphs()
+    ws.edit(relative, "<name>turtle_bringup</name>", "<name>turtle_base</name>")
+    remembered, fresh = ws.graphs()
+    assert ws.memory.moved
+    assert remembered == fresh
