@@ -18,13 +18,14 @@ from ..rule import Rule, RuleContext, WorkspaceFinding
 from ..workspace.graph import Graph, Location, Placed
 from .graph_common import finding, instances, launch_site, where
 
-# (what, resolved name) -> places that use it, each with the node (or endpoint) using it
-_Uses = dict[tuple[str, str], set[tuple[Location, Placed]]]
+# (what, resolved name) -> places that use it, each with the node (or endpoint) using it.
+# Lists: a place twice only compares twice, and hashing a node hashes all it holds.
+_Uses = dict[tuple[str, str], list[tuple[Location, Placed]]]
 
 
 def _uses(graph: Graph) -> _Uses:
     nodes = instances(graph)
-    spellings: _Uses = defaultdict(set)
+    spellings: _Uses = defaultdict(list)
     by_code: dict[Location, set[str]] = defaultdict(set)
     for endpoint in graph.endpoints:
         by_code[endpoint.location].add(endpoint.resource)
@@ -37,11 +38,11 @@ def _uses(graph: Graph) -> _Uses:
         site = None if node is None else launch_site(node)
         if site is not None and _spelled_twice(by_code[location], endpoint.resource):
             location = site
-        spellings[(endpoint.resource_kind.value, endpoint.resource)].add((location, endpoint))
+        spellings[(endpoint.resource_kind.value, endpoint.resource)].append((location, endpoint))
     for node in graph.nodes:
         site = launch_site(node)
         if site is not None:
-            spellings[("node", node.name)].add((site, node))
+            spellings[("node", node.name)].append((site, node))
     return spellings
 
 

@@ -79,9 +79,10 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
                 )
             )
             verdicts[setting.location].append((unknown, setting, node))
-    for location, seen in sorted(verdicts.items()):
-        if all(unknown for unknown, _, _ in seen):
-            yield _finding(location, seen)
+    # Sorted once found: sorting every written name of the workspace cost more.
+    found = [location for location, seen in verdicts.items() if all(u for u, _, _ in seen)]
+    for location in sorted(found):
+        yield _finding(location, verdicts[location])
 
 
 def _judged(generation: Generation, parameters: NodeParameters, name: str) -> bool:
