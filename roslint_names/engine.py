@@ -7,8 +7,10 @@ the workspace graph and the graph rules. Diagnostics never depend on how facts c
 
 from __future__ import annotations
 
+import gc
 import os
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from functools import partial
 from pathlib import Path
@@ -225,7 +227,10 @@ def lint(
     extract = partial(extract_batch, cache, checker=judge)
     # A file whose worker is killed past its time budget is one RN001 (``gave_up``).
     give_up = partial(gave_up, cache)
-    with Dispatcher(extract, run.jobs, expected_items=len(files), give_up=give_up) as dispatcher:
+    with (
+        _collector_paused(),
+        Dispatcher(extract, run.jobs, expected_items=len(files), give_up=give_up) as dispatcher,
+    ):
         # (2) and (3)
         gathered = Gatherer(
             files=files,
@@ -317,6 +322,21 @@ def lint(
         unbuilt=tuple(unbuilt),
         rostest_named=tuple(rostest_named),
     )
+
+
+@contextmanager
+def _collector_paused() -> Iterator[None]:
+    """No cyclic garbage collection while the run gathers facts and builds the graph:
+    what it makes lives until the run ends and holds no cycle, and the collector's passes
+    over it, each object scanned twice as it ages, were 2 of the 14 s of a re-run of the
+    benchmark's 8-copy workspace (the peak memory of a cold run stays the same)."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
 
 
 @dataclass
