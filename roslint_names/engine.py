@@ -7,16 +7,15 @@ the workspace graph and the graph rules. Diagnostics never depend on how facts c
 
 from __future__ import annotations
 
-import gc
 import os
-from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from . import clean_files
+from .collection import kept_for_the_run
 from .config import Settings, enabled_codes, ignored_for_path, ros1_python2, test_code_codes
 from .decisions import one_per_decision
 from .discover import SourceFile, classify
@@ -228,7 +227,7 @@ def lint(
     # A file whose worker is killed past its time budget is one RN001 (``gave_up``).
     give_up = partial(gave_up, cache)
     with (
-        _collector_paused(),
+        kept_for_the_run(),  # what the run keeps holds no cycle (``collection``)
         Dispatcher(extract, run.jobs, expected_items=len(files), give_up=give_up) as dispatcher,
     ):
         # (2) and (3)
@@ -322,21 +321,6 @@ def lint(
         unbuilt=tuple(unbuilt),
         rostest_named=tuple(rostest_named),
     )
-
-
-@contextmanager
-def _collector_paused() -> Iterator[None]:
-    """No cyclic garbage collection while the run gathers facts and builds the graph:
-    what it makes lives until the run ends and holds no cycle, and the collector's passes
-    over it, each object scanned twice as it ages, were 2 of the 14 s of a re-run of the
-    benchmark's 8-copy workspace (the peak memory of a cold run stays the same)."""
-    enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if enabled:
-            gc.enable()
 
 
 @dataclass

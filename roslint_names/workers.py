@@ -378,6 +378,7 @@ def _initialize(
         _SLOT = next(i for i in range(0, len(slots), 3) if slots[i] == 0)
         slots[_SLOT] = os.getpid()
     gc.set_threshold(*THRESHOLDS)  # inherited when forked, not when spawned
+    gc.enable()  # forked while the main process has its collector off (``collection``)
     # Ctrl-C reaches the whole process group; the main process alone decides what to do
     # (cancel and shut down), so workers do not each print a KeyboardInterrupt traceback.
     signal.signal(signal.SIGINT, signal.SIG_IGN)

@@ -10,7 +10,7 @@ from typing import Any
 import pytest
 
 from roslint_names import engine, gather
-from roslint_names.collection import THRESHOLDS, no_collections
+from roslint_names.collection import THRESHOLDS, kept_for_the_run, no_collections
 from roslint_names.workers import Dispatcher
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -76,3 +76,53 @@ def test_files_are_extracted_without_collections_and_the_collector_comes_back(
         assert not gc.isenabled()
     finally:
         gc.enable()
+
+
+def _collector_on(items: list[int]) -> list[bool]:
+    return [gc.isenabled() for _ in items]
+
+
+def test_the_graph_is_built_without_collections_and_what_the_run_made_is_old_after(
+    run_cli: Any, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """No collection while the run gathers facts and builds the graph; after it, what
+    the run made is in the oldest generation (a young collection would walk it all),
+    the collector is on again, and nothing stays frozen."""
+    shutil.copytree(EXAMPLES / "src" / "turtle_bringup", tmp_path / "ws")
+    during: list[bool] = []
+    real = engine.build
+
+    def observing(*arguments: Any, **keywords: Any) -> Any:
+        during.append(gc.isenabled())
+        return real(*arguments, **keywords)
+
+    monkeypatch.setattr(engine, "build", observing)
+    gc.collect()
+    run_cli(["check", "--no-cache", "--jobs", "1", "."], tmp_path / "ws")
+    assert during == [False]
+    assert gc.isenabled()
+    assert gc.get_freeze_count() == 0
+    # The young generations hold what the output made, not what the run did (about
+    # 26,000 objects were left there for the next collection to walk).
+    young = len(gc.get_objects(generation=0)) + len(gc.get_objects(generation=1))
+    assert young < 5_000
+
+
+def test_a_callers_frozen_objects_stay_frozen() -> None:
+    kept = [object() for _ in range(10)]
+    gc.freeze()
+    try:
+        frozen = gc.get_freeze_count()
+        with kept_for_the_run():
+            made = [[item] for item in kept]
+        assert gc.get_freeze_count() == frozen
+        assert made
+    finally:
+        gc.unfreeze()
+
+
+def test_workers_forked_while_the_collector_is_off_turn_it_on() -> None:
+    with no_collections(), Dispatcher(_collector_on, jobs=2, min_items=1) as dispatcher:
+        results = [result for item in range(4) for result in dispatcher.put(item, 1)]
+        results += dispatcher.finish()
+    assert results == [True] * 4

@@ -95,7 +95,7 @@ def build(
     """The workspace graph; ``prepare`` is told each depth's specialisations first.
     ``memory``: what the last build of this workspace left (``memory.GraphMemory``): the
     pieces nothing changed under are taken from it, and this build's are left in it."""
-    memory = GraphMemory() if memory is None else memory
+    memory = GraphMemory(keeps=False) if memory is None else memory
     index = memory.begin({f.path: f for f in facts}, packages)
     tests = _TestFiles(index, memory.piece("test files", (), dict))
     nodes: list[NodeInstance] = []

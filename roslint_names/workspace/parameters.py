@@ -59,7 +59,7 @@ from roslint_names.model import (
 from roslint_names.workspace.built import BUILD_FIELDS, TRANSLATION_UNITS
 from roslint_names.workspace.graph import Location
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
-from roslint_names.workspace.memory import GraphMemory, Reads
+from roslint_names.workspace.memory import NOTHING, GraphMemory, Reads
 
 LIBRARY_DECLARED = frozenset({"use_sim_time", "start_type_description_service"})
 LIBRARY_PREFIXES = ("qos_overrides.",)
@@ -261,7 +261,8 @@ class ParameterSets:
         self._index = index
         self._tables = tables
         self._excluded = tables.excluded
-        memory = GraphMemory() if memory is None else memory
+        memory = GraphMemory(keeps=False) if memory is None else memory
+        self._keeps = memory.keeps
         # Made from the tables too: forgotten with them.
         fields = ParameterTables.FIELDS
         self._memo = memory.reads("parameters", fields)  # sources -> their parameters
@@ -286,7 +287,9 @@ class ParameterSets:
                 continue
             kept = self._declared_memo.get(path)
             if kept is None:
-                kept = self._declared_memo[path] = (_declarations(facts), Reads(frozenset({path})))
+                kept = (_declarations(facts), Reads(frozenset({path})) if self._keeps else NOTHING)
+                if self._keeps:
+                    self._declared_memo[path] = kept
             declared, declared_suffixes, named = kept[0]
             names.update(declared)
             suffixes.update(declared_suffixes)
@@ -342,7 +345,11 @@ class ParameterSets:
                 if not use.dynamic and use.access is not None
             )
         )
-        read = Reads(frozenset({*sources, *own, *configs}), frozenset(packages))
+        read = (
+            Reads(frozenset({*sources, *own, *configs}), frozenset(packages))
+            if self._keeps
+            else NOTHING
+        )
         return NodeParameters(
             declared=tuple(sorted(names.declared)),
             read=tuple(sorted(names.read)),
@@ -511,7 +518,10 @@ class ParameterSets:
                 for header in self._included(include, path)
                 for reached in (header, *self._implementations(header))
             ]
-            kept = self._reached_memo[path] = (found, Reads(frozenset({path})))
+            kept = self._reached_memo[path] = (
+                found,
+                Reads(frozenset({path})) if self._keeps else NOTHING,
+            )
         reached_files: list[str] = kept[0]
         return reached_files
 
@@ -558,7 +568,10 @@ class ParameterSets:
                 if facts.language in CODE_LANGUAGES and not self._excluded(path):
                     names.add_declarations(facts)
             found = (names.declared, names.declared_suffixes)
-            kept = self._package_memo[package] = (found, Reads(packages=frozenset({package})))
+            kept = self._package_memo[package] = (
+                found,
+                Reads(packages=frozenset({package})) if self._keeps else NOTHING,
+            )
         declarations: tuple[set[str], set[str]] = kept[0]
         return declarations
 
