@@ -130,7 +130,7 @@ def build(
     paths = memory.piece("paths", (), lambda: sorted(index.facts))
     for sources in _unlaunched_programs(index, tests, paths, launched_sources):
         if sources not in unlaunched:
-            unlaunched[sources] = (_unlaunched_instance(index, sources), Reads(frozenset(sources)))
+            unlaunched[sources] = (_unlaunched_instance(index, sources), Reads(sources))
         node, found_endpoints = unlaunched[sources][0]
         nodes.append(node)
         endpoints.extend(found_endpoints)
@@ -301,7 +301,7 @@ def _launched_instance(
             path = _parameter_file(index, trees, launched.path, load.package, load.path, read=read)
             if path is not None:
                 unnamed.append((path, receiver))
-        return _Started(unnamed=tuple(unnamed)), Reads(frozenset(read))
+        return _Started(unnamed=tuple(unnamed)), Reads(tuple(read))
     instance = _Instance(name, launched.namespace, generation)
     full_name = _full_name(instance)
     packages = {launched.node.package} | {
@@ -355,7 +355,7 @@ def _launched_instance(
         composable=composable,
         parameter_settings=ordered([*settings, *file_set]),
     )
-    return _Started(node, tuple(names.endpoints)), Reads(frozenset(read))
+    return _Started(node, tuple(names.endpoints)), Reads(tuple(read))
 
 
 def _parameter_file(

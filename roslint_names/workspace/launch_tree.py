@@ -152,7 +152,7 @@ class LaunchTrees:
                 tuple(self._walk(root, _start(root), read)),
                 tuple(self._loads(root, _start(root), read)),
             )
-            kept = self._trees[root] = (tree, Reads(frozenset(read)))
+            kept = self._trees[root] = (tree, Reads(tuple(read)))
         found: _Tree = kept[0]
         return found
 

@@ -40,14 +40,15 @@ T = TypeVar("T")
 
 @dataclass(frozen=True)
 class Reads:
-    """The files a piece was made from, and the packages whose every file it read."""
+    """The files a piece was made from, and the packages whose every file it read.
+    Tuples: a memory holds tens of thousands, and only ever asks whether one changed."""
 
-    paths: frozenset[str] = frozenset()
-    packages: frozenset[str] = frozenset()
+    paths: tuple[str, ...] = ()
+    packages: tuple[str, ...] = ()
 
     def untouched(self, memory: GraphMemory) -> bool:
-        return self.paths.isdisjoint(memory.changed) and self.packages.isdisjoint(
-            memory.changed_packages
+        return memory.changed.isdisjoint(self.paths) and memory.changed_packages.isdisjoint(
+            self.packages
         )
 
 

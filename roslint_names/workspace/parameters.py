@@ -287,7 +287,7 @@ class ParameterSets:
                 continue
             kept = self._declared_memo.get(path)
             if kept is None:
-                kept = (_declarations(facts), Reads(frozenset({path})) if self._keeps else NOTHING)
+                kept = (_declarations(facts), Reads((path,)) if self._keeps else NOTHING)
                 if self._keeps:
                     self._declared_memo[path] = kept
             declared, declared_suffixes, named = kept[0]
@@ -345,11 +345,7 @@ class ParameterSets:
                 if not use.dynamic and use.access is not None
             )
         )
-        read = (
-            Reads(frozenset({*sources, *own, *configs}), frozenset(packages))
-            if self._keeps
-            else NOTHING
-        )
+        read = Reads(tuple({*sources, *own, *configs}), tuple(packages)) if self._keeps else NOTHING
         return NodeParameters(
             declared=tuple(sorted(names.declared)),
             read=tuple(sorted(names.read)),
@@ -520,7 +516,7 @@ class ParameterSets:
             ]
             kept = self._reached_memo[path] = (
                 found,
-                Reads(frozenset({path})) if self._keeps else NOTHING,
+                Reads((path,)) if self._keeps else NOTHING,
             )
         reached_files: list[str] = kept[0]
         return reached_files
@@ -570,7 +566,7 @@ class ParameterSets:
             found = (names.declared, names.declared_suffixes)
             kept = self._package_memo[package] = (
                 found,
-                Reads(packages=frozenset({package})) if self._keeps else NOTHING,
+                Reads(packages=(package,)) if self._keeps else NOTHING,
             )
         declarations: tuple[set[str], set[str]] = kept[0]
         return declarations
@@ -653,8 +649,9 @@ class _Names:
 _SEARCHES = frozenset({"ros::NodeHandle::searchParam", "ros::param::search", "rospy.search_param"})
 
 
-def _declarations(facts: FileFacts) -> tuple[set[str], set[str], set[str]]:
-    """What one code file adds to ``WorkspaceDeclarations``: names, suffixes, mentions."""
+def _declarations(facts: FileFacts) -> tuple[frozenset[str], ...]:
+    """What one code file adds to ``WorkspaceDeclarations``: names, suffixes, mentions.
+    Frozen: a memory keeps one for every code file, and most are the one empty set."""
     names: set[str] = set()
     suffixes: set[str] = set()
     mentioned: set[str] = set(facts.unexplained_literals)
@@ -670,7 +667,7 @@ def _declarations(facts: FileFacts) -> tuple[set[str], set[str], set[str]]:
                 ),
             )
         )
-        return names, suffixes, mentioned
+        return frozenset(names), frozenset(suffixes), frozenset(mentioned)
     for use in _parameter_uses(facts):
         if use.access is not ParameterAccess.DECLARE:
             continue
@@ -678,7 +675,7 @@ def _declarations(facts: FileFacts) -> tuple[set[str], set[str], set[str]]:
             names.add(use.value)
         elif use.suffix:
             suffixes.add(use.suffix)
-    return names, suffixes, mentioned
+    return frozenset(names), frozenset(suffixes), frozenset(mentioned)
 
 
 def _nearest(index: WorkspaceIndex, paths: list[str], package: Package | None) -> list[str]:
