@@ -113,7 +113,7 @@ def _steps(ws: _Workspace) -> list[tuple[str, Callable[[], None]]]:
         return lambda: (ws.root / relative).rename(ws.root / to)
 
     def delete(relative: str) -> Callable[[], None]:
-        return lambda: (ws.root / relative).unlink()
+        return (ws.root / relative).unlink
 
     return [
         (
