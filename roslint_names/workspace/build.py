@@ -127,8 +127,8 @@ def build(
         for path, receiver in instance.unnamed:
             unnamed.setdefault(path, set()).add(receiver)
     unlaunched = memory.reads("unlaunched")
-    paths = memory.piece("paths", (), lambda: sorted(index.facts))
-    for sources in _unlaunched_programs(index, tests, paths, launched_sources):
+    code = memory.piece("code files", ("language",), lambda: _code_files(index))
+    for sources in _unlaunched_programs(index, tests, code, launched_sources):
         if sources not in unlaunched:
             unlaunched[sources] = (_unlaunched_instance(index, sources), Reads(sources))
         node, found_endpoints = unlaunched[sources][0]
@@ -456,11 +456,17 @@ def _with_group_loads(
     return ordered([*node.parameter_settings, *found])
 
 
+def _code_files(index: WorkspaceIndex) -> list[str]:
+    """The display paths of the index's code files, sorted."""
+    return sorted(path for path, facts in index.facts.items() if facts.language in CODE_LANGUAGES)
+
+
 def _unlaunched_programs(
-    index: WorkspaceIndex, tests: _TestFiles, paths: Sequence[str], launched: set[str]
+    index: WorkspaceIndex, tests: _TestFiles, code: Sequence[str], launched: set[str]
 ) -> list[tuple[str, ...]]:
     """Code no launch file starts, one program per executable (else per file); tests are
-    left out: they build throwaway graphs on purpose. ``paths``: the index's, sorted."""
+    left out: they build throwaway graphs on purpose. ``code``: the index's code files,
+    sorted (``_code_files``)."""
     grouped: list[tuple[str, ...]] = []
     seen: set[str] = set(launched)
     for _, sources in sorted(index.built_sources().items()):
@@ -468,14 +474,8 @@ def _unlaunched_programs(
         seen.update(sources)
         if fresh and any(_has_endpoints(index.facts[path]) for path in fresh):
             grouped.append(fresh)
-    for path in paths:
-        facts = index.facts[path]
-        if (
-            facts.language in CODE_LANGUAGES
-            and path not in seen
-            and _has_endpoints(facts)
-            and not tests(path)
-        ):
+    for path in code:
+        if path not in seen and _has_endpoints(index.facts[path]) and not tests(path):
             grouped.append((path,))
     return grouped
 
