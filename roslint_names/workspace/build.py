@@ -184,8 +184,11 @@ def _unique(items: Iterable[_T], key: Callable[[_T], Any]) -> tuple[_T, ...]:
     found: list[_T] = []
     run: list[_T] = []  # the items found of the current key
     last: object = _NO_KEY
-    for item in sorted(items, key=key):
-        current = key(item)
+    listed = list(items)
+    # Each key made once; a tie goes to the order of arrival, never to the items.
+    keyed = sorted((key(item), position) for position, item in enumerate(listed))
+    for current, position in keyed:
+        item = listed[position]
         if current != last:
             run = []
             last = current

@@ -45,6 +45,7 @@ from __future__ import annotations
 import posixpath
 from dataclasses import dataclass, field
 from fnmatch import fnmatchcase
+from functools import lru_cache
 
 from roslint_names.model import CompiledSources, FileFacts, Language
 from roslint_names.workspace.index import WorkspaceIndex, join, parent
@@ -207,7 +208,14 @@ def _may_name(compiled: CompiledSources, base: str, path: str, inside: str) -> b
                 return True
         elif fnmatchcase(path, join(base, pattern)):
             return True
-    return any(_names(join(base, word), path) for word in compiled.words)
+    return any(_names(word, path) for word in _joined(base, compiled.words))
+
+
+@lru_cache(maxsize=4096)
+def _joined(base: str, relatives: tuple[str, ...]) -> tuple[str, ...]:
+    """``relatives`` joined with ``base``: a build file's words are matched against every
+    C++ source of its package, and joining them each time was most of the work."""
+    return tuple(join(base, relative) for relative in relatives)
 
 
 def _names(word: str, path: str) -> bool:

@@ -524,17 +524,19 @@ class ParameterSets:
     def _included(self, include: str, includer: str) -> list[str]:
         """The files of the includer's package an ``#include`` may mean: ``include``
         beside the includer, or below any directory of the package."""
+        package = self._index.package_of(includer)
+        if package is None:
+            return []
+        candidates = self._by_name.get((package.directory, posixpath.basename(include)))
+        if not candidates:
+            return []  # most includes: another package's header, or the library's
         directory = posixpath.dirname(includer)
         key = (include, directory)
         found = self._included_memo.get(key)
         if found is None:
-            found = []
-            package = self._index.package_of(includer)
-            if package is not None:
-                candidates = self._by_name.get((package.directory, posixpath.basename(include)), [])
-                beside = posixpath.normpath(posixpath.join(directory, include))
-                suffix = f"/{include}"
-                found = [path for path in candidates if path == beside or path.endswith(suffix)]
+            beside = posixpath.normpath(posixpath.join(directory, include))
+            suffix = f"/{include}"
+            found = [path for path in candidates if path == beside or path.endswith(suffix)]
             self._included_memo[key] = found
         return found
 
