@@ -96,7 +96,8 @@ class PackageGenerations:
         self._by_directory: dict[str, _Package] = {}
         # And by file: a run asks about each file several times (keying it, extracting
         # it, its package for the graph), and even ``os.path.dirname`` costs more than this.
-        self._by_file: dict[Path, _Package] = {}
+        # By the path's string too: hashing a ``Path`` builds a tuple of its parts each time.
+        self._by_file: dict[str, _Package] = {}
         # Every package.xml read, and every plugin description one exports, with its text:
         # what a cached run's result depends on.
         self.manifests: dict[Path, str] = {}
@@ -137,9 +138,10 @@ class PackageGenerations:
             self.plugin_names |= plugin_names(text)
 
     def _for_file(self, path: Path) -> _Package:
-        found = self._by_file.get(path)
+        text = os.fspath(path)
+        found = self._by_file.get(text)
         if found is None:
-            found = self._by_file[path] = self._for_directory(os.path.dirname(path))
+            found = self._by_file[text] = self._for_directory(os.path.dirname(text))
         return found
 
     def _for_directory(self, directory: str) -> _Package:
