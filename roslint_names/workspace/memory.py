@@ -23,7 +23,8 @@ made from:
   none of them changed (``Reads.untouched``).
 
 A fresh memory remembers nothing: every build goes through the same code, and a build
-without one is the first build of a fresh memory.
+without one (the CLI's) is the first build of a fresh memory that keeps nothing for a
+next one (``keeps=False``: its pieces record no reads).
 """
 
 from __future__ import annotations
