@@ -96,6 +96,23 @@ int main(int argc, char** argv)
 }
 """
 
+# A node only its includer's argument turns on: the file's own facts (under its default
+# arguments) do not hold it, and stay equal when it is edited.
+_OPTIONAL = """<launch>
+  <arg name="use_spare" default="false"/>
+  <group if="$(arg use_spare)">
+    <node name="spare" pkg="turtle_bringup" type="velocity_smoother"/>
+  </group>
+</launch>
+"""
+
+_WITH_SPARE = """<launch>
+  <include file="$(find turtle_bringup)/launch/optional.launch">
+    <arg name="use_spare" value="true"/>
+  </include>
+</launch>
+"""
+
 _SOLO = """<launch>
   <include file="$(find turtle_bringup)/launch/base.launch" ns="solo"/>
   <node name="charge_reporter" pkg="turtle_bringup" type="charge_reporter">
@@ -204,6 +221,19 @@ def _steps(ws: _Workspace) -> list[tuple[str, Callable[[], None]]]:
         (
             "a remap changed in a Python launch file",
             lambda: ws.edit(f"{FLEET}/launch/fleet.launch.py", '("/tf", "tf")', '("/tf", "tf2")'),
+        ),
+        (
+            "a launch file added that an argument turns on",
+            add(f"{TURTLE}/launch/optional.launch", _OPTIONAL),
+        ),
+        ("its includer added", add(f"{TURTLE}/launch/with_spare.launch", _WITH_SPARE)),
+        (
+            "a node edited where only the includer's argument starts it",
+            lambda: ws.edit(
+                f"{TURTLE}/launch/optional.launch",
+                'type="velocity_smoother"',
+                'type="battery_monitor"',
+            ),
         ),
         ("a node's code deleted", delete(f"{TURTLE}/src/odom_relay.cpp")),
         ("the included launch file deleted", delete(f"{TURTLE}/launch/base.launch")),

@@ -81,10 +81,22 @@ class _Frame:
 
 @dataclass(frozen=True)
 class _Tree:
-    """What one root's tree starts and loads."""
+    """What one root's tree starts and loads, and the facts its walk had from
+    ``Specialise`` (a file under its includer's arguments), by path and arguments."""
 
     launched: tuple[Launched, ...]
     loaded: tuple[Loaded, ...]
+    specialised: tuple[tuple[str, LaunchArguments, FileFacts | None], ...] = ()
+
+
+@dataclass
+class _Read:
+    """What a walk reads: the files, and what ``Specialise`` gave for each file it asked
+    under arguments (a file's own facts may be equal after an edit that changes what it
+    starts under them: a node in a group its default arguments turn off)."""
+
+    paths: set[str]
+    specialised: dict[tuple[str, LaunchArguments], FileFacts | None]
 
 
 class LaunchTrees:
@@ -133,6 +145,10 @@ class LaunchTrees:
 
     def launched(self) -> Iterator[Launched]:
         roots = self.roots()
+        for root in roots:  # a kept tree whose specialised files now read otherwise
+            kept = self._trees.get(root)
+            if kept is not None and not self._same_specialised(kept[0]):
+                del self._trees[root]
         if self.prepare is not None:
             walked = [_start(root) for root in roots if root not in self._trees]
             self._prepare_depths(self.prepare, walked)
@@ -147,16 +163,26 @@ class LaunchTrees:
     def _tree(self, root: str) -> _Tree:
         kept = self._trees.get(root)
         if kept is None:
-            read: set[str] = set()
-            tree = _Tree(
-                tuple(self._walk(root, _start(root), read)),
-                tuple(self._loads(root, _start(root), read)),
+            read = _Read(set(), {})
+            launched = tuple(self._walk(root, _start(root), read))
+            loaded = tuple(self._loads(root, _start(root), read))
+            specialised = tuple(
+                (path, arguments, facts) for (path, arguments), facts in read.specialised.items()
             )
-            kept = self._trees[root] = (tree, Reads(tuple(read)))
+            tree = _Tree(launched, loaded, specialised)
+            kept = self._trees[root] = (tree, Reads(tuple(read.paths)))
         found: _Tree = kept[0]
         return found
 
-    def _loads(self, root: str, frame: _Frame, read: set[str]) -> Iterator[Loaded]:
+    def _same_specialised(self, tree: _Tree) -> bool:
+        """Whether ``Specialise`` gives what it gave ``tree``'s walk (the same object while
+        the file is unchanged: a memo hit)."""
+        return all(
+            (now := self.specialise(path, arguments)) is facts or now == facts
+            for path, arguments, facts in tree.specialised
+        )
+
+    def _loads(self, root: str, frame: _Frame, read: _Read) -> Iterator[Loaded]:
         facts = self._facts(frame.path, frame.arguments, read)
         if facts is None:
             return
@@ -185,7 +211,7 @@ class LaunchTrees:
                 for inner in self._included(frame, facts)
             ]
 
-    def _walk(self, root: str, frame: _Frame, read: set[str]) -> Iterator[Launched]:
+    def _walk(self, root: str, frame: _Frame, read: _Read) -> Iterator[Launched]:
         facts = self._facts(frame.path, frame.arguments, read)
         if facts is None:
             return
@@ -221,16 +247,19 @@ class LaunchTrees:
             yield inner
 
     def _facts(
-        self, path: str, arguments: LaunchArguments, read: set[str] | None = None
+        self, path: str, arguments: LaunchArguments, read: _Read | None = None
     ) -> FileFacts | None:
         if read is not None:
-            read.add(path)
+            read.paths.add(path)
         facts = self.index.facts.get(path)
         if facts is None or not runs(self.index, facts):
             return None  # included, it stops ros2 launch there: it starts nothing
         if not arguments:
             return facts
-        return self.specialise(path, arguments)
+        specialised = self.specialise(path, arguments)
+        if read is not None:
+            read.specialised[(path, arguments)] = specialised
+        return specialised
 
     def _node(self, root: str, frame: _Frame, node: LaunchNode) -> Launched | None:
         namespace = _nest(frame.namespace, node.namespace, node.anchored)
