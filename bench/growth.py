@@ -121,7 +121,7 @@ def table(results: dict[str, Any]) -> str:
     if lsp:
         graph = ", ".join(f"{k} {v['median_s']:.2f} s" for k, v in lsp.get("graph", {}).items())
         lines.append(
-            f"language server: workspace loaded in {lsp.get('load_s')} s; "
-            f"graph findings after an edit (median): {graph}"
+            f"language server: workspace loaded in {lsp.get('load_s')} s, first graph at "
+            f"{lsp.get('first_graph_s')} s; graph findings after an edit (median): {graph}"
         )
     return "\n".join(lines)
