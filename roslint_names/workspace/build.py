@@ -486,7 +486,7 @@ def _unlaunched_programs(
 def _unlaunched_instance(
     index: WorkspaceIndex, sources: tuple[str, ...]
 ) -> tuple[NodeInstance, tuple[Endpoint, ...]]:
-    code = [index.facts[path] for path in sources]
+    code = _code(index, sources)
     name = _code_node_name(code) or _stem(sources[0])
     instance = _Instance(name, "/", _generation(code, None))
     full_name = _full_name(instance)

@@ -140,6 +140,11 @@ class GraphMemory:
         self._pieces[name] = (fields, made)
         return made
 
+    def read(self, paths: tuple[str, ...] = (), packages: tuple[str, ...] = ()) -> Reads:
+        """What a piece was made from, as this memory keeps it: nothing, where it keeps
+        nothing for a next build."""
+        return Reads(paths, packages) if self.keeps else NOTHING
+
     def reads(self, kind: str, fields: tuple[str, ...] = ()) -> dict[Any, tuple[Any, Reads]]:
         """The pieces of one kind made from some files each (and from ``fields`` of every
         file's facts), those still valid (``begin`` forgot the others): the map a build

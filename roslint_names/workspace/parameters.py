@@ -59,7 +59,7 @@ from roslint_names.model import (
 from roslint_names.workspace.built import BUILD_FIELDS, TRANSLATION_UNITS
 from roslint_names.workspace.graph import Location
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
-from roslint_names.workspace.memory import NOTHING, GraphMemory, Reads
+from roslint_names.workspace.memory import GraphMemory, Reads
 
 LIBRARY_DECLARED = frozenset({"use_sim_time", "start_type_description_service"})
 LIBRARY_PREFIXES = ("qos_overrides.",)
@@ -261,8 +261,7 @@ class ParameterSets:
         self._index = index
         self._tables = tables
         self._excluded = tables.excluded
-        memory = GraphMemory(keeps=False) if memory is None else memory
-        self._keeps = memory.keeps
+        self._memory = memory = GraphMemory(keeps=False) if memory is None else memory
         # Made from the tables too: forgotten with them.
         fields = ParameterTables.FIELDS
         self._memo = memory.reads("parameters", fields)  # sources -> their parameters
@@ -287,8 +286,8 @@ class ParameterSets:
                 continue
             kept = self._declared_memo.get(path)
             if kept is None:
-                kept = (_declarations(facts), Reads((path,)) if self._keeps else NOTHING)
-                if self._keeps:
+                kept = (_declarations(facts), self._memory.read((path,)))
+                if self._memory.keeps:  # else asked once a build: no memo
                     self._declared_memo[path] = kept
             declared, declared_suffixes, named = kept[0]
             names.update(declared)
@@ -307,7 +306,7 @@ class ParameterSets:
     def _compute(self, sources: tuple[str, ...]) -> tuple[NodeParameters, Reads]:
         """The node's parameters, and the files and packages they are made from."""
         if not sources:
-            return NodeParameters(incomplete=(Incomplete.NO_CODE,)), Reads()
+            return NodeParameters(incomplete=(Incomplete.NO_CODE,)), self._memory.read()
         causes: set[Incomplete] = set()
         if not any(self._is_program(path) for path in sources):
             causes.add(Incomplete.LIBRARY)
@@ -345,7 +344,7 @@ class ParameterSets:
                 if not use.dynamic and use.access is not None
             )
         )
-        read = Reads(tuple({*sources, *own, *configs}), tuple(packages)) if self._keeps else NOTHING
+        read = self._memory.read(tuple({*sources, *own, *configs}), tuple(packages))
         return NodeParameters(
             declared=tuple(sorted(names.declared)),
             read=tuple(sorted(names.read)),
@@ -514,10 +513,7 @@ class ParameterSets:
                 for header in self._included(include, path)
                 for reached in (header, *self._implementations(header))
             ]
-            kept = self._reached_memo[path] = (
-                found,
-                Reads((path,)) if self._keeps else NOTHING,
-            )
+            kept = self._reached_memo[path] = (found, self._memory.read((path,)))
         reached_files: list[str] = kept[0]
         return reached_files
 
@@ -566,10 +562,7 @@ class ParameterSets:
                 if facts.language in CODE_LANGUAGES and not self._excluded(path):
                     names.add_declarations(facts)
             found = (names.declared, names.declared_suffixes)
-            kept = self._package_memo[package] = (
-                found,
-                Reads(packages=(package,)) if self._keeps else NOTHING,
-            )
+            kept = self._package_memo[package] = (found, self._memory.read(packages=(package,)))
         declarations: tuple[set[str], set[str]] = kept[0]
         return declarations
 
