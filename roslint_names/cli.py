@@ -259,9 +259,9 @@ def _run_check(options: argparse.Namespace) -> int:
         max_depth=options.max_depth,
         extend_exclude=tuple(options.extend_exclude),
     )
-    registry, settings, sources, workspace = _prepare(options, overrides)
-    cwd = Path.cwd()
     cache = _facts_cache(options)
+    registry, settings, sources, workspace = _prepare(options, overrides, cache)
+    cwd = Path.cwd()
     # Renames are offered when unsafe fixes are asked for: they need every file's facts
     # and a search of the workspace's text (``renames``), which a warm run must not pay
     # for; kept from the start when no cache can give them again.
@@ -489,17 +489,22 @@ def _generation(option: str | None) -> Generation | None:
 
 
 def _prepare(
-    options: argparse.Namespace, overrides: Overrides, *, for_graph: bool = False
+    options: argparse.Namespace,
+    overrides: Overrides,
+    cache: FactsCache | None,
+    *,
+    for_graph: bool = False,
 ) -> tuple[Registry, Settings, list[SourceFile], list[SourceFile]]:
-    """The rules, the settings, the files named and the rest of their workspace."""
+    """The rules, the settings, the files named and the rest of their workspace (their
+    walks' listings kept in ``cache``)."""
     registry = load_registry()
     cwd = Path.cwd()
     start = config_search_start(options.paths, cwd)
     settings = apply_overrides(load_settings(options.config, start, registry), overrides, registry)
     warnings: list[str] = []  # what the walks passed over: said, never skipped in silence
-    sources = discover(options.paths, settings.exclude, settings.root, cwd, warnings)
+    sources = discover(options.paths, settings.exclude, settings.root, cwd, warnings, cache=cache)
     workspace = _workspace_context(
-        options.paths, settings, registry, cwd, warnings, for_graph=for_graph
+        options.paths, settings, registry, cwd, warnings, cache=cache, for_graph=for_graph
     )
     for warning in dict.fromkeys(warnings):  # a directory both walks pass over: said once
         print(f"roslint-names: warning: {warning}", file=sys.stderr)
@@ -513,6 +518,7 @@ def _workspace_context(
     cwd: Path,
     warnings: list[str],
     *,
+    cache: FactsCache | None,
     for_graph: bool = False,
 ) -> list[SourceFile]:
     """For a run over files (what pre-commit does): the rest of their workspaces, which
@@ -529,7 +535,9 @@ def _workspace_context(
         return []
     files = [(cwd / path).absolute() for path in paths if (cwd / path).is_file()]
     roots = sorted({root for path in files if (root := workspace_root(path)) is not None})
-    return discover(roots, settings.exclude, settings.root, cwd, warnings) if roots else []
+    if not roots:
+        return []
+    return discover(roots, settings.exclude, settings.root, cwd, warnings, cache=cache)
 
 
 def _run_server(options: argparse.Namespace) -> int:
@@ -547,8 +555,9 @@ def _run_graph(options: argparse.Namespace) -> int:
     from .render import RENDERERS  # only this command draws graphs
 
     overrides = Overrides(ros=_generation(options.ros))
-    registry, settings, sources, workspace = _prepare(options, overrides, for_graph=True)
-    run = RunOptions(jobs=options.jobs, cache=_facts_cache(options))
+    cache = _facts_cache(options)
+    registry, settings, sources, workspace = _prepare(options, overrides, cache, for_graph=True)
+    run = RunOptions(jobs=options.jobs, cache=cache)
     result = lint(sources, settings, registry, run, context=workspace, want_graph=True)
     assert result.graph is not None
     graph = result.graph

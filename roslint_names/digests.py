@@ -58,7 +58,7 @@ class ContentDigests:
         self._remembered()
         return self._present
 
-    def summary(self, path: Path, max_size: int) -> tuple[str | None, str, str | None]:
+    def summary(self, path: str | Path, max_size: int) -> tuple[str | None, str, str | None]:
         """The file's content digest, else why it cannot be read; and why it is skipped
         (as ``read_file`` says it for the same file)."""
         name, signature = os.fspath(path), _signature(path)
@@ -78,7 +78,7 @@ class ContentDigests:
         return self._read(os.fspath(path), _signature(path), path, max_size)
 
     def _read(
-        self, name: str, signature: _Status | None, path: Path, max_size: int
+        self, name: str, signature: _Status | None, path: str | Path, max_size: int
     ) -> tuple[Read, str | None]:
         # The status is taken before the bytes are read: a change in between shows as
         # a status the next run does not find here.
@@ -113,7 +113,7 @@ class ContentDigests:
         return loaded if isinstance(loaded, dict) else {}
 
 
-def _signature(path: Path) -> _Status | None:
+def _signature(path: str | Path) -> _Status | None:
     try:
         status = os.stat(path)
     except OSError:

@@ -155,8 +155,8 @@ def lint(
         # whole cost of a one-file run, for nothing.
         context = [source for source in context if source.language in WIRING_SOURCES]
     if keep_facts or wiring:
-        given = {source.path for source in files}
-        files += [source for source in lintable(context) if source.path not in given]
+        given = {source.location for source in files}
+        files += [source for source in lintable(context) if source.location not in given]
     else:
         context = ()
     workspace = [*sources, *context]

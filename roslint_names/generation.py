@@ -104,7 +104,7 @@ class PackageGenerations:
         # The names pluginlib gives the plugins those descriptions declare (``plugins``).
         self.plugin_names: set[str] = set()
 
-    def for_file(self, path: Path) -> Generation | None:
+    def for_file(self, path: str | Path) -> Generation | None:
         return self._for_file(path).generation
 
     def package_name(self, path: Path) -> str | None:
@@ -137,7 +137,7 @@ class PackageGenerations:
             self.manifests[Path(description)] = text
             self.plugin_names |= plugin_names(text)
 
-    def _for_file(self, path: Path) -> _Package:
+    def _for_file(self, path: str | Path) -> _Package:
         text = os.fspath(path)
         found = self._by_file.get(text)
         if found is None:
@@ -177,7 +177,7 @@ def workspace_plugin_names(
 ) -> frozenset[str]:
     """The names pluginlib gives the plugins the packages of ``sources`` export."""
     for source in sources:
-        packages.for_file(source.path)
+        packages.for_file(source.location)
     return frozenset(packages.plugin_names)
 
 

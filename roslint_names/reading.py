@@ -78,7 +78,7 @@ def open_regular(path: str | os.PathLike[str]) -> BinaryIO:
         raise
 
 
-def read_file(path: Path, max_size: int) -> Read:
+def read_file(path: str | Path, max_size: int) -> Read:
     """The file's bytes, else why it cannot be read; and why it is skipped, if it is.
 
     Files above ``max_size`` bytes are generated or vendored: skipped before they are read.

@@ -77,7 +77,7 @@ class RunInputs:
         if not self._digests.remembered():
             return None
         maximum = self._settings.max_file_size
-        summaries = [self._digests.summary(source.path, maximum) for source in self._checked]
+        summaries = [self._digests.summary(source.location, maximum) for source in self._checked]
         self._tags = [
             self._tag(source, *summary)
             for source, summary in zip(self._checked, summaries, strict=True)
@@ -135,7 +135,7 @@ class RunInputs:
             return _SKIPPED + skip
         if content is None:
             return _UNREADABLE + read_error
-        package = self._packages.for_file(source.path)
+        package = self._packages.for_file(source.location)
         python2 = reads_python2(source.language, package, self._fallback, self._ros1_python2)
         return self._cache.key_of_digest(
             content, source.display, source.language, package, self._fallback, python2=python2
@@ -155,13 +155,13 @@ class RunInputs:
         digest.update(_text_bytes(f"{fingerprints}\0{self._reported}\0"))
         for source, tag in zip(self._checked, self._tags, strict=True):
             digest.update(_text_bytes(f"{_where(source)}\0{tag}\n"))
-        linted = {source.path for source in self._checked}
+        linted = {source.location for source in self._checked}
         for source in self._everything:
-            self._packages.for_file(source.path)  # so every manifest a run reads is read now
-            if source.path not in linted:
+            self._packages.for_file(source.location)  # so every manifest a run reads is read now
+            if source.location not in linted:
                 digest.update(_text_bytes(f"{_where(source)}\n"))
             if source.language is Language.SERVICE_DEFINITION:  # RN403 reads its text too
-                content = self._digests.summary(source.path, self._settings.max_file_size)[0]
+                content = self._digests.summary(source.location, self._settings.max_file_size)[0]
                 digest.update(_text_bytes(f"{content}\n"))
         for manifest, text in sorted(self._packages.manifests.items()):
             digest.update(_text_bytes(f"{manifest}\0{len(text)}\0{text}"))
@@ -169,7 +169,7 @@ class RunInputs:
 
 
 def _where(source: SourceFile) -> str:
-    return f"{source.path}\0{source.display}\0{source.language.value}"
+    return f"{source.location}\0{source.display}\0{source.language.value}"
 
 
 def _text_bytes(text: str) -> bytes:
@@ -182,6 +182,6 @@ def _common_directory(sources: Sequence[SourceFile]) -> Path:
     # common string prefix of the paths, cut after its last separator, is the same
     # directory ("a/b-c/x" and "a/b/y" share "a/", not "a/b"): a file name holds no
     # separator, so what ends in one and starts every path starts every directory.
-    paths = [os.fspath(source.path) for source in sources]
+    paths = [source.location for source in sources]
     prefix = os.path.commonprefix(paths)  # noqa: RUF071 - by character, on purpose
     return Path(prefix[: prefix.rfind(os.sep) + 1] or os.sep)

@@ -20,6 +20,7 @@ thread-safe: one thread at a time calls it (the language server's session worker
 from __future__ import annotations
 
 import gc
+import os
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
@@ -127,7 +128,9 @@ class Session:
 
     def load(self) -> None:
         """Read the workspace: every file's facts, from the cache where it has them."""
-        sources = discover([self.root], self._settings.exclude, self._settings.root, self.root)
+        sources = discover(
+            [self.root], self._settings.exclude, self._settings.root, self.root, cache=self._cache
+        )
         self._sources = {source.display: source for source in sources}
         result = lint(
             lintable(sources),
@@ -170,7 +173,7 @@ class Session:
         if language is None or language not in EXTRACTOR_MODULES:
             return None
         display = self.display(path)
-        source = self._sources.get(display) or SourceFile(path, display, language)
+        source = self._sources.get(display) or SourceFile(os.fspath(path), display, language)
         self._sources[display] = source
         # A lone surrogate (JSON can carry one) becomes one replacement character: one code
         # point for one, so that the columns of the findings stay the document's.

@@ -315,8 +315,8 @@ def counting_reads(monkeypatch: pytest.MonkeyPatch, module: Any) -> list[str]:
     seen: list[str] = []
     real = module.read_file
 
-    def counting(path: Path, max_size: int) -> Any:
-        seen.append(path.name)
+    def counting(path: str | Path, max_size: int) -> Any:
+        seen.append(os.path.basename(path))
         return real(path, max_size)
 
     monkeypatch.setattr(module, "read_file", counting)

@@ -1,0 +1,161 @@
+"""What the walk found in each directory, kept with the directory's status, so that a
+re-run lists again only the directories that changed (git's "untracked cache").
+
+Adding, removing or renaming an entry changes its directory's modification time; editing a
+file does not, and need not: the walk only asks which files there are and what their names
+say. What else a directory's verdict depends on is checked each time: its ``.gitignore``
+(whose edit leaves the directory's time alone) by its own status, the ones above the
+named directory likewise, the ``exclude`` patterns by the file the listings are kept in
+(one per named directory and patterns), and every symbolic link by following it again
+(its target may change without its directory). A file whose content says its language
+(``discover._Sniff``) is kept with its own status and asked again when that changed.
+
+A status whose modification time is within ``RACY_NANOSECONDS`` of the walk is not
+trusted (git's "racily clean" entries): a change in the same clock tick would not show.
+Such a directory is listed again the next time; such a ``.gitignore`` makes its subtree
+walked whole. (The change time is part of the status: a tree unpacked with old times
+still differs.)
+
+The file is pickled builtins and ``Listed`` only, read with an unpickler that resolves no
+other class, and written atomically through the facts cache; one that cannot be read is
+an empty one (everything listed again), never an error.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import pickle
+import time
+from collections.abc import Sequence
+from pathlib import Path
+from typing import NamedTuple
+
+from .cache import FactsCache, keep_newest
+from .reading import open_regular
+
+LISTINGS = "listings"  # their directory in the facts cache, one file per named directory
+KEPT = 64
+RACY_NANOSECONDS = 2_000_000_000  # coarser than any file system's time stamps
+_FORMAT = 1
+
+DirectoryStatus = tuple[int, int, int]  # mtime_ns, ctime_ns, inode
+FileStatus = tuple[int, int, int, int]  # size, mtime_ns, ctime_ns, inode
+
+
+class Listed(NamedTuple):
+    """One directory as the walk left it."""
+
+    status: DirectoryStatus | None  # None: taken too soon after a change to be trusted
+    gitignore: FileStatus | None  # its ``.gitignore``'s, None when it has none
+    stop: bool  # it holds an ignore marker: nothing below it is walked
+    directories: tuple[str, ...]  # the subdirectories walked, by name
+    files: tuple[tuple[str, str], ...]  # the files selected: name, what the name says
+    links: tuple[tuple[str, str], ...]  # the links selected: followed again each time
+
+
+class Listings:
+    """The kept listings of one named directory's walk, and the new ones it makes."""
+
+    def __init__(self, path: Path, cache: FactsCache) -> None:
+        self._path = path
+        self._cache = cache
+        self.started = time.time_ns()  # before any status is taken
+        self._known: dict[str, Listed] = {}
+        self._known_ancestors: tuple[tuple[str, FileStatus | None], ...] | None = None
+        self._known_sniffed: dict[str, tuple[FileStatus, str]] = {}
+        self._listed: dict[str, Listed] = {}
+        self._ancestors: tuple[tuple[str, FileStatus | None], ...] = ()
+        self._sniffed: dict[str, tuple[FileStatus, str]] = {}
+        self._load()
+
+    @classmethod
+    def of(
+        cls, cache: FactsCache, top: str, exclude: Sequence[str], exclude_root: Path
+    ) -> Listings:
+        """The listings kept in ``cache`` for ``top`` walked under ``exclude``."""
+        identity = "\0".join([top, os.fspath(exclude_root), *exclude])
+        name = hashlib.blake2b(os.fsencode(identity), digest_size=8).hexdigest()
+        return cls(cache.directory / LISTINGS / name, cache)
+
+    def trusts_ancestors(self, gitignores: Sequence[str]) -> bool:
+        """Record the status of the ``.gitignore`` files above the named directory; whether
+        they are as they were (else no listing below is trusted)."""
+        self._ancestors = tuple((path, self.file_status(path)) for path in gitignores)
+        return self._known_ancestors == self._ancestors and all(
+            status is not None or not os.path.lexists(path) for path, status in self._ancestors
+        )
+
+    def unchanged(self, directory: str, status: DirectoryStatus | None) -> Listed | None:
+        """The kept listing of ``directory`` if its status is the one it was kept with."""
+        kept = self._known.get(directory)
+        return kept if kept is not None and status is not None and kept.status == status else None
+
+    def previous(self, directory: str) -> Listed | None:
+        return self._known.get(directory)
+
+    def keep(self, directory: str, listed: Listed) -> None:
+        self._listed[directory] = listed
+
+    def directory_status(self, directory: str) -> DirectoryStatus | None:
+        """The status of ``directory``, None when it cannot be taken or is too recent."""
+        try:
+            found = os.stat(directory)
+        except OSError:
+            return None
+        if found.st_mtime_ns + RACY_NANOSECONDS >= self.started:
+            return None
+        return found.st_mtime_ns, found.st_ctime_ns, found.st_ino
+
+    def file_status(self, path: str) -> FileStatus | None:
+        """The status of the file at ``path``, None when it cannot be taken or is too
+        recent."""
+        try:
+            found = os.stat(path)
+        except OSError:
+            return None
+        if found.st_mtime_ns + RACY_NANOSECONDS >= self.started:
+            return None
+        return found.st_size, found.st_mtime_ns, found.st_ctime_ns, found.st_ino
+
+    def sniffed(self, path: str) -> tuple[FileStatus | None, str | None]:
+        """The file's status, and what its content said when it had that status."""
+        status = self.file_status(path)
+        kept = self._known_sniffed.get(path)
+        if status is not None and kept is not None and kept[0] == status:
+            self._sniffed[path] = kept
+            return status, kept[1]
+        return status, None
+
+    def keep_sniffed(self, path: str, status: FileStatus | None, said: str) -> None:
+        if status is not None:
+            self._sniffed[path] = (status, said)
+
+    def save(self) -> None:
+        """Keep what this walk listed (only that: a deleted directory goes), if it differs."""
+        new = (self._ancestors, self._listed, self._sniffed)
+        if new == (self._known_ancestors, self._known, self._known_sniffed):
+            return
+        if self._cache.writable():
+            blob = pickle.dumps((_FORMAT, *new), pickle.HIGHEST_PROTOCOL)
+            if self._cache.write_atomically(self._path, blob):
+                keep_newest(self._path.parent, KEPT)
+
+    def _load(self) -> None:
+        try:
+            with open_regular(self._path) as stream:
+                loaded = _ListingsUnpickler(stream).load()
+            version, ancestors, listed, sniffed = loaded
+        except Exception:  # absent, unreadable, damaged or of another shape: list again
+            return
+        if version == _FORMAT and isinstance(listed, dict) and isinstance(sniffed, dict):
+            self._known_ancestors, self._known, self._known_sniffed = ancestors, listed, sniffed
+
+
+class _ListingsUnpickler(pickle.Unpickler):
+    """Builtins and ``Listed`` only."""
+
+    def find_class(self, module: str, name: str) -> type:
+        if (module, name) == (__name__, "Listed"):
+            return Listed
+        raise pickle.UnpicklingError(f"{module}.{name} is not part of a listings file")

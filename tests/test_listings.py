@@ -1,0 +1,228 @@
+"""The walk's kept listings (``listings``): a re-run lists again only the directories that
+changed, and finds what a walk without them finds after every kind of change, including
+those that leave a directory's status alone (a ``.gitignore`` or a sniffed file edited in
+place, a link's target removed)."""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+from conftest import CATKIN_PACKAGE, write
+
+from roslint_names import discover as discover_module
+from roslint_names.cache import FactsCache
+from roslint_names.discover import discover
+from roslint_names.listings import LISTINGS
+from roslint_names.model import Language
+
+TALKER = """#include <ros/ros.h>
+#include <std_msgs/String.h>
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "talker");
+  ros::NodeHandle nh;
+  ros::Publisher chatter = nh.advertise<std_msgs::String>("chatter", 10);
+  ros::spin();
+}
+"""
+BRINGUP = """<launch>
+  <arg name="robot" default="robot1"/>
+  <group ns="$(arg robot)">
+    <node pkg="chatter" type="talker" name="talker">
+      <remap from="chatter" to="speech"/>
+    </node>
+  </group>
+</launch>
+"""
+RELAY = "#!/usr/bin/env python3\nimport rospy\nrospy.init_node('relay')\n"
+
+
+@pytest.fixture
+def workspace(tmp_path: Path) -> Path:
+    """A catkin workspace as ``catkin_init_workspace`` leaves it (``src/CMakeLists.txt`` a
+    link to catkin's top-level file), one repository with its ``.gitignore``, two
+    packages, a script without a suffix and an XML file whose root decides."""
+    root = tmp_path / "ws"
+    write(root, "catkin/toplevel.cmake", "cmake_minimum_required(VERSION 3.0.2)\n")
+    (root / "src").mkdir(parents=True)
+    os.symlink(root / "catkin/toplevel.cmake", root / "src/CMakeLists.txt")
+    repository = root / "src/chatter_ros"
+    (repository / ".git").mkdir(parents=True)
+    write(repository, ".gitignore", "*.orig\n")
+    write(repository, "chatter/package.xml", CATKIN_PACKAGE.format(name="chatter"))
+    write(repository, "chatter/CMakeLists.txt", "add_executable(talker src/talker.cpp)\n")
+    write(repository, "chatter/src/talker.cpp", TALKER)
+    write(repository, "chatter/scripts/relay", RELAY)
+    write(repository, "chatter/launch/nodes.xml", BRINGUP)
+    write(repository, "bringup/package.xml", CATKIN_PACKAGE.format(name="bringup"))
+    write(repository, "bringup/launch/robot.launch", BRINGUP)
+    _age(root)
+    return root
+
+
+def _age(root: Path) -> None:
+    """Every file and directory under ``root`` last modified a minute ago: past the racy
+    window, as a tree is between two commits."""
+    past = time.time() - 60
+    for directory, _, files in os.walk(root):
+        for name in files:
+            path = os.path.join(directory, name)
+            if not os.path.islink(path):
+                os.utime(path, (past, past))
+        os.utime(directory, (past, past))
+
+
+def _aged(path: Path) -> None:
+    """``path`` edited in place, its time set back (its change time is still new)."""
+    past = time.time() - 30
+    os.utime(path, (past, past))
+
+
+def _found(root: Path, cache: FactsCache | None) -> list[tuple[str, Language]]:
+    warnings: list[str] = []
+    sources = discover([root], [], root, root, warnings, cache=cache)
+    return [(source.display, source.language) for source in sources]
+
+
+@pytest.fixture
+def listed(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """The directories the walk lists (``os.scandir``), in order."""
+    calls: list[str] = []
+    real = discover_module._listing
+
+    def counted(directory: str) -> list[os.DirEntry[str]]:
+        calls.append(directory)
+        return real(directory)
+
+    monkeypatch.setattr(discover_module, "_listing", counted)
+    return calls
+
+
+def test_an_unchanged_tree_is_not_listed_again(
+    workspace: Path, tmp_path: Path, listed: list[str]
+) -> None:
+    cache = FactsCache(tmp_path / "cache")
+    first = _found(workspace, cache)
+    assert len(listed) == 10
+    assert ("src/CMakeLists.txt", Language.CMAKE) in first
+    assert ("src/chatter_ros/chatter/scripts/relay", Language.PYTHON) in first
+    assert ("src/chatter_ros/chatter/launch/nodes.xml", Language.LAUNCH_XML) in first
+    listed.clear()
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == first
+    assert listed == []
+    assert len(list((cache.directory / LISTINGS).iterdir())) == 1
+
+
+def test_a_tree_changed_just_now_is_listed_again(tmp_path: Path, listed: list[str]) -> None:
+    """Within the racy window a status may hide a change made in the same clock tick."""
+    root = tmp_path / "ws"
+    write(root, "src/chatter/package.xml", CATKIN_PACKAGE.format(name="chatter"))
+    write(root, "src/chatter/src/talker.cpp", TALKER)
+    cache = FactsCache(tmp_path / "cache")
+    first = _found(root, cache)
+    count = len(listed)
+    assert _found(root, FactsCache(tmp_path / "cache")) == first
+    assert len(listed) == 2 * count
+
+
+def _remove_link_target(root: Path) -> None:
+    (root / "catkin/toplevel.cmake").unlink()
+
+
+def _ignore_by_gitignore(root: Path) -> None:
+    gitignore = root / "src/chatter_ros/.gitignore"
+    gitignore.write_text("*.orig\nbringup/\n", encoding="utf-8")
+    _aged(gitignore)
+
+
+def _ignore_above(root: Path) -> None:
+    gitignore = root / "src/chatter_ros/.gitignore"
+    gitignore.write_text("*.orig\nlaunch/\n", encoding="utf-8")
+    _aged(gitignore)
+
+
+def _script_no_longer_python(root: Path) -> None:
+    relay = root / "src/chatter_ros/chatter/scripts/relay"
+    relay.write_text("#!/bin/bash\nrosrun chatter talker\n", encoding="utf-8")
+    _aged(relay)
+
+
+def _xml_no_longer_launch(root: Path) -> None:
+    nodes = root / "src/chatter_ros/chatter/launch/nodes.xml"
+    nodes.write_text(BRINGUP.replace("launch>", "robot>"), encoding="utf-8")
+    _aged(nodes)
+
+
+def _marker(root: Path) -> None:
+    write(root, "src/chatter_ros/bringup/CATKIN_IGNORE", "")
+
+
+def _added(root: Path) -> None:
+    write(root, "src/chatter_ros/bringup/launch/sim.launch", BRINGUP)
+
+
+def _removed(root: Path) -> None:
+    (root / "src/chatter_ros/chatter/src/talker.cpp").unlink()
+
+
+def _renamed(root: Path) -> None:
+    os.rename(root / "src/chatter_ros/bringup", root / "src/chatter_ros/robot_bringup")
+
+
+def _replaced_by_directory(root: Path) -> None:
+    relay = root / "src/chatter_ros/chatter/scripts/relay"
+    relay.unlink()
+    write(relay.parent, "relay/talker.py", RELAY)
+
+
+@pytest.mark.parametrize(
+    "change",
+    [
+        _remove_link_target,
+        _ignore_by_gitignore,
+        _ignore_above,
+        _script_no_longer_python,
+        _xml_no_longer_launch,
+        _marker,
+        _added,
+        _removed,
+        _renamed,
+        _replaced_by_directory,
+    ],
+)
+def test_a_re_run_finds_what_a_fresh_walk_finds(
+    workspace: Path, tmp_path: Path, change: Callable[[Path], None]
+) -> None:
+    before = _found(workspace, FactsCache(tmp_path / "cache"))
+    change(workspace)
+    # Twice: right after the change (within the racy window of what it touched) and once
+    # all of it is old, as the listings kept the first time say it.
+    for _ in range(2):
+        after = _found(workspace, FactsCache(tmp_path / "cache"))
+        assert after == _found(workspace, None)
+        assert after != before
+        _age(workspace)
+
+
+def test_a_gitignore_above_the_named_directory_is_checked(workspace: Path, tmp_path: Path) -> None:
+    package = workspace / "src/chatter_ros/chatter"
+    first = _found(package, FactsCache(tmp_path / "cache"))
+    assert ("launch/nodes.xml", Language.LAUNCH_XML) in first
+    _ignore_above(workspace)
+    after = _found(package, FactsCache(tmp_path / "cache"))
+    assert after == _found(package, None)
+    assert ("launch/nodes.xml", Language.LAUNCH_XML) not in after
+
+
+def test_a_damaged_listings_file_is_listed_again(workspace: Path, tmp_path: Path) -> None:
+    cache = FactsCache(tmp_path / "cache")
+    first = _found(workspace, cache)
+    (kept,) = (cache.directory / LISTINGS).iterdir()
+    kept.write_bytes(b"\x80\x05not a pickle")
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == first
+    kept.write_bytes(b"\x80\x05cos\nsystem\n.")  # a global no listing holds
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == first
