@@ -152,6 +152,7 @@ class FactsCache:
     _records: dict[str, tuple[int, int]] | None = field(default=None, init=False)
     _pending_records: list[bytes] = field(default_factory=list, init=False)
     _pending_bytes: int = field(default=0, init=False)
+    _written_bytes: int = field(default=0, init=False)  # appended to the pack by this run
     _stored: dict[str, FileFacts] = field(default_factory=dict, init=False)  # not yet written
     _used: set[str] = field(default_factory=set, init=False)  # keys looked up or stored
 
@@ -322,8 +323,10 @@ class FactsCache:
         if self._pending_records:
             records, self._pending_records, self._pending_bytes = self._pending_records, [], 0
             self._stored.clear()  # a worker process would otherwise hold all it extracted
-            if self._append(_PACK, b"".join(records)):
+            written = self._append(_PACK, b"".join(records))
+            if written:
                 self.stats.written += len(records)
+                self._written_bytes += written
 
     def _append(self, name: str, data: bytes) -> int:
         """Append ``data`` to ``name`` in one write; how many bytes were written."""
@@ -341,27 +344,43 @@ class FactsCache:
 
     def finish(self) -> None:
         """End of the run: write what is buffered; and when the pack or the log has
-        outgrown ``PACK_LIMIT``, rewrite it with only what this run looked up or stored
-        (the rest is older versions of files, or other checkouts')."""
+        outgrown ``PACK_LIMIT`` and more than half the limit of it is what this run did
+        not look up or store (older versions of files, or other checkouts'), rewrite it
+        with only what it used. A workspace whose facts alone outgrow the limit would
+        otherwise have its whole pack rewritten by every run."""
         self.flush()
         pack = self.directory / _PACK
-        if _size(pack) > PACK_LIMIT:
+        size = _size(pack)
+        if size > PACK_LIMIT and size - self._used_bytes() > PACK_LIMIT // 2:
             data = _read_bytes(os.fspath(pack))
             kept = [
                 data[start - _RECORD_HEADER : end]
                 for key, (start, end) in sorted(_index(data).items())
                 if key in self._used
             ]
-            self.write_atomically(pack, b"".join(kept))
+            if len(data) - sum(map(len, kept)) > PACK_LIMIT // 2:
+                self.write_atomically(pack, b"".join(kept))
         log = self.directory / _EMPTY_LOG
-        if _size(log) > PACK_LIMIT:
+        size = _size(log)
+        if size > PACK_LIMIT:
             lines = _read_log(os.fspath(log))
             kept_lines = [
                 _log_line(key, language, generation)
                 for key, (language, generation) in sorted(lines.items())
                 if key in self._used
             ]
-            self.write_atomically(log, "".join(kept_lines).encode("ascii"))
+            if size - sum(map(len, kept_lines)) > PACK_LIMIT // 2:
+                self.write_atomically(log, "".join(kept_lines).encode("ascii"))
+
+    def _used_bytes(self) -> int:
+        """At least how many bytes of the pack this run used: the records it read that it
+        looked up, and those it wrote (without reading the pack again)."""
+        read = sum(
+            end - start + _RECORD_HEADER
+            for key, (start, end) in (self._records or {}).items()
+            if key in self._used
+        )
+        return read + self._written_bytes
 
     def writable(self) -> bool:
         """Create this run's directory once; False (and a problem noted) when impossible."""

@@ -230,6 +230,33 @@ def test_past_the_limit_only_what_the_run_used_is_kept(  # noqa: PLR0917 - fixtu
     assert kept in kept_in(private_cache)
 
 
+def test_a_pack_past_the_limit_that_the_run_used_whole_is_not_rewritten(
+    check: Callable[..., Any],
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    private_cache: Path,
+) -> None:
+    """A workspace whose facts alone outgrow the limit (eight copies of the benchmark's
+    workspace: a 104 MB pack) had its whole pack rewritten by every run."""
+    workspace = tmp_path / "ws"
+    for robot in ("robot1", "robot2", "robot3"):
+        write(workspace, f"{robot}.launch", LAUNCH.replace("base-driver", f"{robot}-driver"))
+    check()
+    before = pack(private_cache).stat()
+    monkeypatch.setattr(cache_module, "PACK_LIMIT", before.st_size // 2)
+    forget_runs(private_cache)
+    check()
+    after = pack(private_cache).stat()
+    assert (after.st_ino, after.st_size) == (before.st_ino, before.st_size)
+    # Once most of it is stale, it is rewritten with what the run used.
+    monkeypatch.setattr(cache_module, "PACK_LIMIT", before.st_size // 3)
+    (workspace / "robot1.launch").unlink()
+    (workspace / "robot2.launch").unlink()
+    forget_runs(private_cache)
+    check()
+    assert len(records(private_cache)) == 1
+
+
 def _store_repeatedly(root: str, key: str, rounds: int) -> None:
     cache = FactsCache(Path(root))
     for round_ in range(rounds):
