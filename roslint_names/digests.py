@@ -11,14 +11,22 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .cache import DIGESTS, FactsCache, keep_newest
-from .reading import BINARY, Read, content_digest, open_regular, read_file, too_large
+from .reading import (
+    BINARY,
+    Read,
+    Status,
+    content_digest,
+    open_regular,
+    read_file,
+    status_of,
+    too_large,
+)
 
 KEPT = 64  # digest files: one per recently linted workspace
 
 
 # What a file's status says about its bytes: equal status, equal bytes, unless the file
 # was written within the clock's granularity of when the status was taken (see below).
-_Status = tuple[int, int, int, int]  # size, mtime_ns, ctime_ns, inode
 _RACY_NANOSECONDS = 2_000_000_000  # coarser than any file system's time stamps
 
 
@@ -41,8 +49,10 @@ class ContentDigests:
 
     path: Path
     cache: FactsCache
-    _known: dict[str, tuple[_Status, str, bool]] = field(default_factory=dict)
-    _seen: dict[str, tuple[_Status, str, bool]] = field(default_factory=dict)
+    _known: dict[str, tuple[Status, str, bool]] = field(default_factory=dict)
+    _seen: dict[str, tuple[Status, str, bool]] = field(default_factory=dict)
+    # The status of each file this run keyed, as taken before its bytes were read.
+    statuses: dict[str, Status | None] = field(default_factory=dict)
     _loaded: bool = False
     _present: bool = False  # the file exists (damaged or not)
 
@@ -61,7 +71,8 @@ class ContentDigests:
     def summary(self, path: str | Path, max_size: int) -> tuple[str | None, str, str | None]:
         """The file's content digest, else why it cannot be read; and why it is skipped
         (as ``read_file`` says it for the same file)."""
-        name, signature = os.fspath(path), _signature(path)
+        name, signature = os.fspath(path), status_of(path)
+        self.statuses[name] = signature
         if signature is not None:
             if signature[0] > max_size:
                 return None, "", too_large(signature[0], max_size)
@@ -75,10 +86,12 @@ class ContentDigests:
     def read(self, path: Path, max_size: int) -> tuple[Read, str | None]:
         """``read_file``, and the content digest of what it read, remembered for the next
         run."""
-        return self._read(os.fspath(path), _signature(path), path, max_size)
+        name, signature = os.fspath(path), status_of(path)
+        self.statuses[name] = signature
+        return self._read(name, signature, path, max_size)
 
     def _read(
-        self, name: str, signature: _Status | None, path: str | Path, max_size: int
+        self, name: str, signature: Status | None, path: str | Path, max_size: int
     ) -> tuple[Read, str | None]:
         # The status is taken before the bytes are read: a change in between shows as
         # a status the next run does not find here.
@@ -89,7 +102,7 @@ class ContentDigests:
             self._seen[name] = (signature, content or "", content is None)
         return (data, error, skip), content
 
-    def _remembered(self) -> dict[str, tuple[_Status, str, bool]]:
+    def _remembered(self) -> dict[str, tuple[Status, str, bool]]:
         if not self._loaded:
             self._known, self._loaded = self._load(), True
         return self._known
@@ -103,7 +116,7 @@ class ContentDigests:
             if self.cache.write_atomically(self.path, blob):
                 keep_newest(self.path.parent, KEPT)
 
-    def _load(self) -> dict[str, tuple[_Status, str, bool]]:
+    def _load(self) -> dict[str, tuple[Status, str, bool]]:
         try:
             with open_regular(self.path) as stream:
                 self._present = True
@@ -111,14 +124,6 @@ class ContentDigests:
         except Exception:  # absent, unreadable or damaged: every file is read again
             return {}
         return loaded if isinstance(loaded, dict) else {}
-
-
-def _signature(path: str | Path) -> _Status | None:
-    try:
-        status = os.stat(path)
-    except OSError:
-        return None
-    return status.st_size, status.st_mtime_ns, status.st_ctime_ns, status.st_ino
 
 
 class _DigestUnpickler(pickle.Unpickler):

@@ -147,9 +147,7 @@ def lint(
     keep_facts = bool(graph_rules) or want_graph or want_facts
     files = lintable(sources)
     reported = len(files)
-    # Read from the manifests of the whole workspace (``plugins``) before the run is keyed,
-    # which then covers every description they export.
-    plugin_names = workspace_plugin_names([*sources, *context], packages)
+    named = [*sources, *context]  # whose packages' plugins the rules know (``plugins``)
     if not keep_facts and wiring:
         # Only what may wire names: parsing every C++ file of the workspace would be the
         # whole cost of a one-file run, for nothing.
@@ -177,10 +175,22 @@ def lint(
             fallback=fallback,
             ros1_python2=python2,
         )
+        # Nothing changed since a run that kept its key: its result, no file keyed.
+        remembered = None if fresh else inputs.unchanged_key()
+        if remembered is not None:
+            stored = _stored_result(cache.load_run(remembered), len(files))
+            if stored is not None:
+                return stored
+    # Read from the manifests of the whole workspace (``plugins``) before the run is keyed,
+    # which then covers every description they export (and after the inputs were made:
+    # what the packages are seen to be is taken after they started, ``unchanged``).
+    plugin_names = workspace_plugin_names(named, packages)
+    if inputs is not None:
+        assert cache is not None
         run_key = None if fresh else inputs.key_first()
         stored = None if run_key is None else _stored_result(cache.load_run(run_key), len(files))
         if stored is not None:
-            inputs.finish()
+            inputs.finish(kept_key=run_key)
             return stored
     if cache is not None:
         cache.writable()  # create the directory now, not racing in every worker
@@ -290,9 +300,11 @@ def lint(
     checked_count = sum(1 for source in files[:reported] if source.display not in skipped_paths)
     if cache is not None:
         cache.finish()  # the graph's specialised facts are still buffered
+    kept_key = None
     if inputs is not None:
         if run_key is not None and not inputs.changed:
             assert cache is not None
+            kept_key = run_key
             kept = (
                 tuple(diagnostics),
                 checked_count,
@@ -308,7 +320,7 @@ def lint(
             found = checks.clean_now if not context else clean | checks.clean_now
             if found != clean:
                 cache.store_checks(clean_key, frozenset(found))
-        inputs.finish()
+        inputs.finish(kept_key)
     return LintResult(
         tuple(diagnostics),
         checked_count,

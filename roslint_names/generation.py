@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 
 from .model import Generation, Language
 from .plugins import exported_descriptions, plugin_names
+from .reading import Status, status_of
 
 if TYPE_CHECKING:
     from .discover import SourceFile
@@ -103,6 +104,10 @@ class PackageGenerations:
         self.manifests: dict[Path, str] = {}
         # The names pluginlib gives the plugins those descriptions declare (``plugins``).
         self.plugin_names: set[str] = set()
+        # The status of every directory looked in for a package.xml, taken before looking,
+        # and of every manifest and description, taken before reading it: what says that
+        # a re-run would find the same packages (``unchanged``).
+        self.statuses: dict[str, Status | None] = {}
 
     def for_file(self, path: str | Path) -> Generation | None:
         return self._for_file(path).generation
@@ -129,6 +134,7 @@ class PackageGenerations:
     def _read_plugin_descriptions(self, directory: str, manifest: str) -> None:
         for relative in exported_descriptions(manifest):
             description = os.path.normpath(os.path.join(directory, relative))
+            self.statuses[description] = status_of(description)
             try:
                 with open(description, encoding="utf-8", errors="replace") as stream:
                     text = stream.read(_MAX_DESCRIPTION)
@@ -150,7 +156,9 @@ class PackageGenerations:
             return found
         manifest = os.path.join(directory, "package.xml")
         package: _Package
+        self.statuses[directory] = status_of(directory)
         if os.path.isfile(manifest):
+            self.statuses[manifest] = status_of(manifest)
             try:
                 with open(manifest, encoding="utf-8", errors="replace") as stream:
                     text = stream.read()

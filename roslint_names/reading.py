@@ -100,6 +100,19 @@ def read_file(path: str | Path, max_size: int) -> Read:
     return data, "", None
 
 
+Status = tuple[int, int, int, int]  # size, mtime_ns, ctime_ns, inode
+
+
+def status_of(path: str | Path) -> Status | None:
+    """What says a file or directory changed without reading it (git's index keeps the
+    same): None when it cannot be taken."""
+    try:
+        found = os.stat(path)
+    except OSError:
+        return None
+    return found.st_size, found.st_mtime_ns, found.st_ctime_ns, found.st_ino
+
+
 def content_digest(data: bytes) -> str:
     """What a file's bytes are keyed by."""
     return hashlib.blake2b(data, digest_size=20).hexdigest()

@@ -35,6 +35,7 @@ from .generation import PackageGenerations, reads_python2
 from .model import Generation, Language
 from .reading import Read, content_digest, read_file
 from .registry import Registry
+from .unchanged import KeptKey
 
 if TYPE_CHECKING:
     from .cache import FactsCache
@@ -65,11 +66,18 @@ class RunInputs:
         self._packages = packages
         self._fallback = fallback
         self._ros1_python2 = ros1_python2  # the environment's part (``config.ros1_python2``)
-        self._digests = ContentDigests.of(cache, _common_directory(checked))
+        root = _common_directory(checked)
+        self._kept = KeptKey(cache, root)  # first: every status of the run is taken after
+        self._digests = ContentDigests.of(cache, root)
         self._tags: list[str] = []  # per checked file: its facts key, or why it has none
         self._contents: list[str | None] = []  # per checked file: its digest, as keyed first
         self._keyed_first = False
         self.changed = False  # a file read differs from what the run was keyed by
+
+    def unchanged_key(self) -> str | None:
+        """The key an earlier run kept, when nothing it was made from changed since
+        (``unchanged``): no file is keyed."""
+        return self._kept.key(self._identity(), self._status_files())
 
     def key_first(self) -> str | None:
         """The run's key before anything is extracted, when an earlier run of this
@@ -125,8 +133,48 @@ class RunInputs:
         """The run's key once every file was read: for a run not keyed first."""
         return None if self._keyed_first else self._key()
 
-    def finish(self) -> None:
+    def finish(self, kept_key: str | None = None) -> None:
+        """Save the digests; and keep ``kept_key`` (the key of the result the run kept) with
+        what it was made from, for ``unchanged_key``."""
         self._digests.save()
+        if kept_key is None or self.changed:
+            return
+        statuses = self._digests.statuses
+        files = self._status_files()
+        if all(path in statuses for path in files):
+            file_statuses = [statuses[path] for path in files]
+            self._kept.keep(self._identity(), kept_key, file_statuses, self._packages.statuses)
+
+    def _status_files(self) -> list[str]:
+        """The files whose bytes the key holds: those checked, and the ``.srv`` files."""
+        service_files = [
+            source.location
+            for source in self._everything
+            if source.language is Language.SERVICE_DEFINITION
+        ]
+        return [source.location for source in self._checked] + service_files
+
+    def _identity(self) -> str:
+        """All the key holds besides the bytes of files and what the packages say."""
+        digest = hashlib.blake2b(digest_size=20)
+        python2 = self._ros1_python2
+        head = f"{self._fingerprints()}\0{self._reported}\0{self._fallback.value}\0{python2}\0"
+        digest.update(_text_bytes(head))
+        for sources in (self._checked, self._everything):
+            digest.update(_text_bytes("\n".join(map(_where, sources))))
+            digest.update(b"\1")
+        return digest.hexdigest()
+
+    def _fingerprints(self) -> str:
+        from .cache import code_fingerprint
+
+        modules = {
+            function.__module__
+            for rule in self._registry.rules
+            for function in (rule.check, rule.check_workspace)
+            if function is not None
+        }
+        return f"{code_fingerprint(modules)}\0{settings_fingerprint(self._settings)}"
 
     def _tag(
         self, source: SourceFile, content: str | None, read_error: str, skip: str | None
@@ -142,17 +190,8 @@ class RunInputs:
         )
 
     def _key(self) -> str:
-        from .cache import code_fingerprint
-
-        modules = {
-            function.__module__
-            for rule in self._registry.rules
-            for function in (rule.check, rule.check_workspace)
-            if function is not None
-        }
         digest = hashlib.blake2b(digest_size=20)
-        fingerprints = f"{code_fingerprint(modules)}\0{settings_fingerprint(self._settings)}"
-        digest.update(_text_bytes(f"{fingerprints}\0{self._reported}\0"))
+        digest.update(_text_bytes(f"{self._fingerprints()}\0{self._reported}\0"))
         for source, tag in zip(self._checked, self._tags, strict=True):
             digest.update(_text_bytes(f"{_where(source)}\0{tag}\n"))
         linted = {source.location for source in self._checked}

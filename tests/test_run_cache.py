@@ -20,7 +20,7 @@ from roslint_names import digests as digests_module
 from roslint_names import engine, run_inputs
 from roslint_names.config import Settings, settings_fingerprint
 from roslint_names.model import Severity
-from tests.conftest import CATKIN_PACKAGE, write
+from tests.conftest import AMENT_PACKAGE, CATKIN_PACKAGE, write
 
 DRIVER = """#include <ros/ros.h>
 #include <geometry_msgs/Twist.h>
@@ -461,3 +461,128 @@ def test_a_rerun_from_the_facts_reads_only_the_files_with_findings_or_suppressio
     # driver.cpp and base.launch have findings (their lines are shown), noted.launch and
     # util.cpp a suppression; quiet.launch, CMakeLists.txt and package.xml are only facts.
     assert sorted(set(read)) == ["base.launch", "driver.cpp", "noted.launch", "util.cpp"]
+
+
+# A run whose every input has the status it had is keyed by the key the last run kept
+# (``unchanged``). Times are set back to one fixed instant, before and after each change,
+# so that only what the change cannot hide (size, change time, inode) can show it.
+_INSTANT = 1_700_000_000
+
+
+def age_all(root: Path, changed_since: int = 0) -> None:
+    """Every file and directory under ``root`` (changed since ``changed_since``, in
+    nanoseconds: setting a time changes the change time, which would show elsewhere) last
+    modified at one fixed instant."""
+    for directory, _, files in os.walk(root):
+        for path in [directory, *(os.path.join(directory, name) for name in files)]:
+            if os.stat(path).st_ctime_ns >= changed_since:
+                os.utime(path, (_INSTANT, _INSTANT))
+
+
+@pytest.fixture
+def keyed(monkeypatch: pytest.MonkeyPatch) -> list[int]:
+    """One entry per run keyed file by file (``RunInputs.key_first``)."""
+    calls: list[int] = []
+    real = run_inputs.RunInputs.key_first
+
+    def counted(self: run_inputs.RunInputs) -> str | None:
+        calls.append(1)
+        return real(self)
+
+    monkeypatch.setattr(run_inputs.RunInputs, "key_first", counted)
+    return calls
+
+
+def _edit_code_same_size(workspace: Path) -> None:
+    driver = workspace / "src/robot_base/src/driver.cpp"
+    driver.write_text(driver.read_text().replace('"cmd_vel"', '"Cmd_Vel"'))
+
+
+def _service_edited(workspace: Path) -> None:
+    write(workspace, "src/robot_base/srv/CmdVel.srv", "---\nbool ok\nstring why\n")
+
+
+@pytest.mark.parametrize(
+    "change",
+    [
+        _edit_code_same_size,
+        _add_file,
+        _delete_file,
+        _package_depends,
+        _package_generation,
+        _build_file,
+        _config,
+        _service_edited,
+    ],
+)
+def test_a_run_keyed_by_statuses_sees_every_change(
+    check: Callable[..., Any],
+    workspace: Path,
+    keyed: list[int],
+    change: Callable[[Path], None],
+) -> None:
+    write(workspace, "src/robot_base/srv/CmdVel.srv", "---\nbool ok\n")
+    age_all(workspace)
+    cold = check()
+    keyed.clear()
+    warm = check()
+    assert reused(warm) and keyed == [] and warm.stdout == cold.stdout
+    before = time.time_ns()
+    time.sleep(0.05)  # change times tick with the kernel's coarse clock
+    change(workspace)
+    age_all(workspace, before)
+    after = check()
+    assert keyed == [1]
+    fresh = check("--no-cache")
+    assert (after.stdout, after.exit_code) == (fresh.stdout, fresh.exit_code)
+    keyed.clear()
+    assert reused(check()) and keyed == []
+
+
+def test_a_package_xml_above_the_linted_directory_is_seen(
+    run_cli: Any, tmp_path: Path, keyed: list[int]
+) -> None:
+    """A manifest that appears between a file and its package, above the directory the
+    run was given: no file of the run shows it, the directory's status does."""
+    package = tmp_path / "ws/src/robot_base"
+    write(package, "package.xml", CATKIN_PACKAGE.format(name="robot_base"))
+    write(package, "nodes/src/driver.cpp", DRIVER)
+    linted = package / "nodes/src"
+    arguments = ["check", "--verbose", "--format", "json", "--jobs", "1", "."]
+    age_all(tmp_path / "ws")
+    run_cli(arguments, linted)
+    keyed.clear()
+    assert reused(run_cli(arguments, linted)) and keyed == []
+    before = time.time_ns()
+    time.sleep(0.05)  # change times tick with the kernel's coarse clock
+    write(package, "nodes/package.xml", AMENT_PACKAGE.format(name="robot_nodes"))
+    age_all(tmp_path / "ws", before)
+    after = run_cli(arguments, linted)
+    assert keyed == [1]
+    assert after.stdout == run_cli([*arguments, "--no-cache"], linted).stdout
+
+
+def test_a_status_taken_just_after_a_change_keeps_no_key(
+    check: Callable[..., Any], workspace: Path, keyed: list[int]
+) -> None:
+    """An edit in the same clock tick as the status was taken would not show in it."""
+    age_all(workspace)
+    _edit_code(workspace)  # modified now: within the racy window
+    check()
+    keyed.clear()
+    assert reused(check()) and keyed == [1]  # keyed file by file: no key was kept
+
+
+def test_the_same_files_shown_from_elsewhere_are_not_the_kept_key(
+    run_cli: Any, workspace: Path, keyed: list[int]
+) -> None:
+    """Run from the workspace, then from its parent: the same files with the same
+    statuses, shown under other paths (``ws/src/...``)."""
+    arguments = ["check", "--verbose", "--format", "json", "--jobs", "1"]
+    age_all(workspace)
+    run_cli([*arguments, "."], workspace)
+    keyed.clear()
+    above = run_cli([*arguments, "ws"], workspace.parent)
+    assert keyed == [1]
+    assert above.stdout == run_cli([*arguments, "--no-cache", "ws"], workspace.parent).stdout
+    assert '"ws/src/robot_base/launch/base.launch"' in above.stdout

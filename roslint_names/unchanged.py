@@ -1,0 +1,110 @@
+"""The last run's key, kept with the status of everything it was made from: a re-run that
+finds every one of them as it was has that key without keying a file.
+
+``run_inputs`` keys a run by each file's content digest (read from ``digests`` where the
+file's status is unchanged) and by what the packages say of it, which costs some
+microseconds a file: 0.7 s at 77,000 files, with the plugin names read from every
+manifest first. Yet when nothing changed, each of those steps gives what it gave last
+time. So the key is kept here with:
+
+- the identity of what is not a file's content: the code and settings fingerprints, the
+  files checked and all the others, where they are and how they are shown, how many are
+  reported, the fallback generation and the environment's Python 2 choice;
+- the status of each checked file and each ``.srv`` file, taken before its bytes were
+  read (``ContentDigests.statuses``);
+- the status of each directory looked in for a ``package.xml``, taken before looking, and
+  of each manifest and plugin description, taken before reading
+  (``PackageGenerations.statuses``): a manifest added, removed or edited shows there.
+
+A re-run whose identity and statuses are all equal is keyed by the kept key. A status
+whose modification time is within ``RACY_NANOSECONDS`` of the run's start is never kept
+(an edit in the same clock tick would not show: git's "racily clean" files); such a run
+keeps nothing, and the next is keyed file by file. The file is builtins only, read with
+an unpickler that resolves no class; one that cannot be read is no key.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import pickle
+import time
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+from .cache import FactsCache, keep_newest
+from .reading import Status, open_regular, status_of
+
+KEYS = "keys"  # their directory in the facts cache: one file per workspace
+KEPT = 64
+RACY_NANOSECONDS = 2_000_000_000  # coarser than any file system's time stamps
+_FORMAT = 1
+
+
+class KeptKey:
+    """The key kept for one workspace, and what it was made from."""
+
+    def __init__(self, cache: FactsCache, root: Path) -> None:
+        name = hashlib.blake2b(os.fsencode(root), digest_size=8).hexdigest()
+        self._path = cache.directory / KEYS / name
+        self._cache = cache
+        self.started = time.time_ns()  # before any status of this run is taken
+
+    def key(self, identity: str, files: Sequence[str]) -> str | None:
+        """The kept key, if it was kept for ``identity`` and every status it was kept with
+        is the status now (``files`` in the order they were kept)."""
+        kept = self._load()
+        if kept is None:
+            return None
+        kept_identity, key, file_statuses, package_paths, package_statuses = kept
+        if kept_identity != identity or len(file_statuses) != len(files):
+            return None
+        if [status_of(path) for path in files] != file_statuses:
+            return None
+        if [status_of(path) for path in package_paths] != package_statuses:
+            return None
+        return key
+
+    def keep(
+        self,
+        identity: str,
+        key: str,
+        file_statuses: Sequence[Status | None],
+        package_statuses: Mapping[str, Status | None],
+    ) -> None:
+        """Keep ``key`` with what it was made from, unless a status is too recent to say
+        that nothing changed after it was taken."""
+        statuses = [*file_statuses, *package_statuses.values()]
+        if any(s is not None and s[1] + RACY_NANOSECONDS >= self.started for s in statuses):
+            return
+        paths = tuple(package_statuses)
+        kept = (_FORMAT, identity, key, list(file_statuses), paths, list(package_statuses.values()))
+        if self._cache.writable():
+            blob = pickle.dumps(kept, pickle.HIGHEST_PROTOCOL)
+            if self._cache.write_atomically(self._path, blob):
+                keep_newest(self._path.parent, KEPT)
+
+    def _load(self) -> _Kept | None:
+        try:
+            with open_regular(self._path) as stream:
+                loaded = _KeyUnpickler(stream).load()
+        except Exception:  # absent, unreadable or damaged: the run is keyed file by file
+            return None
+        if not (isinstance(loaded, tuple) and len(loaded) == 6 and loaded[0] == _FORMAT):
+            return None
+        _, identity, key, file_statuses, paths, package_statuses = loaded
+        shapes = (str, str, list, tuple, list)
+        if not all(map(isinstance, loaded[1:], shapes)):
+            return None
+        return identity, key, file_statuses, paths, package_statuses
+
+
+# identity, key, file statuses, package paths, their statuses
+_Kept = tuple[str, str, list[Status | None], tuple[str, ...], list[Status | None]]
+
+
+class _KeyUnpickler(pickle.Unpickler):
+    """Builtins only: tuples, lists, strings, numbers."""
+
+    def find_class(self, module: str, name: str) -> type:
+        raise pickle.UnpicklingError(f"{module}.{name} is not part of a kept key")
