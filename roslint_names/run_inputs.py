@@ -161,7 +161,10 @@ class RunInputs:
         head = f"{self._fingerprints()}\0{self._reported}\0{self._fallback.value}\0{python2}\0"
         digest.update(_text_bytes(head))
         for sources in (self._checked, self._everything):
-            digest.update(_text_bytes("\n".join(map(_where, sources))))
+            # Column by column: one join each, not one formatted line per file.
+            digest.update(_text_bytes("\0".join([source.location for source in sources])))
+            digest.update(_text_bytes("\0".join([source.display for source in sources])))
+            digest.update("\0".join([source.language for source in sources]).encode())
             digest.update(b"\1")
         return digest.hexdigest()
 
