@@ -26,7 +26,7 @@ from .collection import no_collections
 from .discover import SourceFile
 from .generation import PackageGenerations, reads_python2
 from .model import Diagnostic, FileFacts, Generation, Language, LaunchArguments, ParseError, Span
-from .reading import BINARY, content_digest, read_file
+from .reading import BINARY, content_digest, open_regular, read_file
 from .run_inputs import RunInputs
 from .suppress import Suppression, may_hold_suppression
 from .workers import Dispatcher
@@ -130,25 +130,28 @@ class Specialiser:
     def prepare(self, wanted: Sequence[tuple[str, LaunchArguments]]) -> None:
         """Extract every specialisation of ``wanted`` not known yet: from the cache, else
         through the dispatcher (in workers when it has them), all handed over together."""
-        asked: list[tuple[str, LaunchArguments]] = []
+        asked: list[tuple[tuple[str, LaunchArguments], _Item]] = []
         for key in dict.fromkeys(wanted):
             if key in self._memo:
                 continue
             found = self._job(len(asked), *key)
             if isinstance(found, tuple):
-                asked.append(key)
-                self._take(asked, self._dispatcher.put(found, len(found[1])))
+                asked.append((key, found))
+                self._take(asked, self._dispatcher.put(found, len(found[1].data)))
             else:
                 self._memo[key] = found
         self._take(asked, self._dispatcher.finish())
 
-    def _take(self, asked: list[tuple[str, LaunchArguments]], results: Iterable[Extracted]) -> None:
-        for index, facts, _ in results:
-            self._memo[asked[index]] = facts
+    def _take(
+        self, asked: list[tuple[tuple[str, LaunchArguments], _Item]], results: Iterable[Extracted]
+    ) -> None:
+        for result in results:
+            key, item = asked[result[0]]
+            self._memo[key] = _as_read(result, item, self._dispatcher)[1]
 
     def _job(
         self, index: int, display: str, arguments: LaunchArguments
-    ) -> FileFacts | _Item | None:
+    ) -> FileFacts | tuple[_Job, OnDisk, str | None] | None:
         """The cached facts (None: nothing to specialise), or the work to extract them."""
         source = self._sources.get(display)
         if source is None or source.language not in SPECIALISABLE:
@@ -169,7 +172,7 @@ class Specialiser:
             if found is not None:
                 return found
         job = _Job(index, display, source.language, package, self._fallback, arguments, python2)
-        return job, data, cache_key
+        return job, OnDisk(source.location, data), cache_key
 
     def _read(self, source: SourceFile) -> tuple[bytes | None, str]:
         """A launch file's bytes and content digest, read once however many argument
@@ -194,14 +197,50 @@ class _Job:
     checked: bool = False  # a reported file: the per-file rules judge it where it is extracted
 
 
-# A job, the file's bytes, and the key its facts are cached under.
-_Item = tuple[_Job, bytes, str | None]
+class OnDisk:
+    """A file's bytes as the main process read them, sent to a worker process as where
+    they are: the worker reads them again, from the page cache. Piped, every byte of the
+    workspace went through the main process, a fifth of its part of a cold run (pickled,
+    then written to the pipe in 64 KB pieces). The worker gets None where the file no
+    longer holds those bytes (edited since): the main process extracts its own then."""
+
+    __slots__ = ("data", "path")
+
+    def __init__(self, path: str, data: bytes) -> None:
+        self.path = path
+        self.data = data
+
+    def __reduce__(self) -> tuple[Callable[[str, int, str], bytes | None], tuple[str, int, str]]:
+        return _read_again, (self.path, len(self.data), content_digest(self.data))
+
+
+def _as_read(result: Extracted, item: _Item, dispatcher: Dispatcher[_Item, Extracted]) -> Extracted:
+    """``result``; where the worker found the file edited since the main process read it,
+    the extraction of the bytes as read, here."""
+    return result if result[1] is not None else dispatcher.here([item])[0]
+
+
+def _read_again(path: str, size: int, digest: str) -> bytes | None:
+    """In the worker: the bytes at ``path`` if they are still the ``size`` bytes of
+    ``digest`` the main process read, else None."""
+    try:
+        with open_regular(path) as stream:
+            data = stream.read(size + 1)
+    except OSError:
+        return None
+    return data if len(data) == size and content_digest(data) == digest else None
+
+
+# A job, the file's bytes (or where they are), and the key its facts are cached under.
+_Item = tuple[_Job, "bytes | OnDisk | None", str | None]
 # What the per-file rules found in a file (``engine.FileChecks``): diagnostics and the
 # file's suppressions; None where its verdict waits for the whole run.
 Verdict = tuple[list[Diagnostic], list[Suppression]]
 Checker = Callable[[FileFacts, bytes], "Verdict | None"]
 # A file's index, its facts, and the per-file rules' verdict when it was judged with them.
-Extracted = tuple[int, FileFacts, "Verdict | None"]
+# Facts None: the worker found the file edited since the main process read it
+# (``OnDisk``); the main process extracts the bytes it read (``Dispatcher.here``).
+Extracted = tuple[int, "FileFacts | None", "Verdict | None"]
 
 
 def extract_batch(
@@ -216,7 +255,11 @@ def extract_batch(
     a file past it is one RN001, stored like any facts (``gave_up``).
     """
     results: list[Extracted] = []
-    for job, data, key in batch:
+    for job, payload, key in batch:
+        data = payload.data if isinstance(payload, OnDisk) else payload
+        if data is None:  # edited since the main process read it
+            results.append((job.index, None, None))
+            continue
         facts = _extract_within_budget(job, data)
         if may_hold_suppression(data):
             facts = replace(facts, suppression_marker=True)
@@ -271,7 +314,8 @@ def gave_up(cache: FactsCache | None, item: _Item, why: workers.Stopped) -> Extr
     one RN001, stored like any facts. A give-up is a property of the content under this
     version of the tool (the cache key has both), so the next run does not wait again;
     ``--no-cache`` tries anew."""
-    job, data, key = item
+    job, payload, key = item
+    data = payload.data if isinstance(payload, OnDisk) else payload or b""
     facts = gave_up_facts(job.display, job.language, data, why)
     if cache is not None and key is not None:
         cache.store(key, facts)
@@ -353,7 +397,7 @@ class Gatherer:
     extracted: int = 0
     cached: int = 0
     skipped: list[tuple[str, str]] = field(default_factory=list)
-    _extracting: dict[int, bytes] = field(default_factory=dict)  # sent to extraction
+    _extracting: dict[int, _Item] = field(default_factory=dict)  # sent to extraction
 
     def facts(self) -> Iterator[tuple[int, FileFacts, bytes | None, Verdict | None]]:
         for index, source in enumerate(self.files):
@@ -396,8 +440,8 @@ class Gatherer:
                     checked=index < self.reported,
                 )
                 self.extracted += 1
-                self._extracting[index] = data
-                yield from self._arrived(self.dispatcher.put((job, data, key), len(data)))
+                item = self._extracting[index] = (job, OnDisk(source.location, data), key)
+                yield from self._arrived(self.dispatcher.put(item, len(data)))
         yield from self._arrived(self.dispatcher.finish())
 
     def _known(self, index: int, source: SourceFile) -> tuple[str, FileFacts] | None:
@@ -423,5 +467,8 @@ class Gatherer:
     def _arrived(
         self, results: Iterable[Extracted]
     ) -> Iterator[tuple[int, FileFacts, bytes | None, Verdict | None]]:
-        for index, facts, verdict in results:
-            yield index, facts, self._extracting.pop(index), verdict
+        for result in results:
+            item = self._extracting.pop(result[0])
+            index, facts, verdict = _as_read(result, item, self.dispatcher)
+            assert facts is not None and isinstance(item[1], OnDisk)
+            yield index, facts, item[1].data, verdict

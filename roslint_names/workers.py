@@ -187,6 +187,10 @@ class Dispatcher(Generic[Item, Result]):
             self._submit()
         return self._collect(block=len(self._inflight) >= self._workers * CHUNKS_PER_WORKER)
 
+    def here(self, items: Iterable[Item]) -> list[Result]:
+        """The results of ``items``, worked on in this process."""
+        return self._work(items)
+
     def finish(self) -> Iterator[Result]:
         """The results of every item taken and not yet returned."""
         if self._executor is None:

@@ -7,6 +7,7 @@ measures time: the benchmark in bench/ does that.
 from __future__ import annotations
 
 import io
+import pickle
 import re
 import shutil
 from collections.abc import Callable, Iterable
@@ -15,7 +16,8 @@ from typing import Any
 
 import pytest
 
-from roslint_names import workers
+from roslint_names import gather, workers
+from roslint_names.gather import OnDisk
 from roslint_names.progress import DELAY_SECONDS, ProgressBar, wanted
 from roslint_names.workers import Dispatcher, worker_count
 
@@ -86,6 +88,39 @@ def test_output_bytes_do_not_depend_on_jobs_or_cache(
         assert result.stdout == reference.stdout
         assert result.exit_code == reference.exit_code
         assert result.stderr.splitlines()[1:] == reference.stderr.splitlines()[1:]
+
+
+def test_a_file_goes_to_a_worker_as_where_it_is(tmp_path: Path) -> None:
+    """The worker reads the bytes the main process read; edited since, it gets None."""
+    launch = tmp_path / "bringup.launch"
+    launch.write_text(TWO_ROBOTS_LAUNCH)
+    data = launch.read_bytes()
+    sent = pickle.dumps(OnDisk(str(launch), data))
+    assert b"fleet.launch.py" not in sent
+    assert pickle.loads(sent) == data
+    launch.write_text(TWO_ROBOTS_LAUNCH.replace("robot3", "robot4"))  # the same size
+    assert pickle.loads(sent) is None
+    launch.unlink()
+    assert pickle.loads(sent) is None
+
+
+def _edited_since(path: str, size: int, digest: str) -> bytes | None:
+    return None  # module-level: the main process pickles it by name
+
+
+@pytest.mark.usefixtures("small_chunks")
+def test_files_edited_before_a_worker_reads_them_are_extracted_as_read(
+    run_cli: Any, workspace: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Every file edited between the main process's read and its worker's (the workers,
+    forked, see the patch): each is extracted in the main process from the bytes it read,
+    the bytes the run is keyed by and its findings point into."""
+    arguments = ["check", "--format", "json", "--no-cache", "."]
+    reference = run_cli([*arguments, "--jobs", "1"], workspace)
+    monkeypatch.setattr(gather, "_read_again", _edited_since)
+    edited = run_cli([*arguments, "--jobs", "2", "--verbose"], workspace)
+    assert "extracted by 2 worker processes" in edited.stderr
+    assert (edited.stdout, edited.exit_code) == (reference.stdout, reference.exit_code)
 
 
 def test_few_files_start_no_worker(run_cli: Any, tmp_path: Path) -> None:
