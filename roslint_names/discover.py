@@ -361,7 +361,9 @@ def discover(
             added_file = _add(found, os.fspath(absolute), _by_name(absolute.name), prefix)
             if unfollowable is not None and not added_file:
                 notes.add(f"{given}: not linted: {unfollowable}")
-    return sorted(found.values(), key=lambda source: source.display)
+    # By display, then by path: two files may show alike (a name of Latin-1 bytes, shown
+    # escaped, beside one spelling that escape), and the walk's order must not decide.
+    return sorted(found.values(), key=lambda source: (source.display, source.location))
 
 
 def _named_status(given: Path, absolute: Path) -> tuple[int | None, str | None]:

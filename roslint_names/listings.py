@@ -31,7 +31,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import NamedTuple
 
-from .cache import FactsCache, keep_newest
+from .cache import FactsCache, code_fingerprint, keep_newest
 from .reading import open_regular
 
 LISTINGS = "listings"  # their directory in the facts cache, one file per named directory
@@ -73,8 +73,10 @@ class Listings:
     def of(
         cls, cache: FactsCache, top: str, exclude: Sequence[str], exclude_root: Path
     ) -> Listings:
-        """The listings kept in ``cache`` for ``top`` walked under ``exclude``."""
-        identity = "\0".join([top, os.fspath(exclude_root), *exclude])
+        """The listings kept in ``cache`` for ``top`` walked under ``exclude`` by this
+        code (the facts cache's directory is named by the extractors' code only: a walk
+        that selects other files must not replay what an older one kept)."""
+        identity = "\0".join([code_fingerprint(), top, os.fspath(exclude_root), *exclude])
         name = hashlib.blake2b(os.fsencode(identity), digest_size=8).hexdigest()
         return cls(cache.directory / LISTINGS / name, cache)
 

@@ -14,6 +14,7 @@ import pytest
 from conftest import CATKIN_PACKAGE, write
 
 from roslint_names import discover as discover_module
+from roslint_names import listings as listings_module
 from roslint_names.cache import FactsCache
 from roslint_names.discover import discover
 from roslint_names.listings import LISTINGS
@@ -226,3 +227,36 @@ def test_a_damaged_listings_file_is_listed_again(workspace: Path, tmp_path: Path
     assert _found(workspace, FactsCache(tmp_path / "cache")) == first
     kept.write_bytes(b"\x80\x05cos\nsystem\n.")  # a global no listing holds
     assert _found(workspace, FactsCache(tmp_path / "cache")) == first
+
+
+def test_another_walk_code_lists_again(
+    workspace: Path, tmp_path: Path, listed: list[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The facts cache's directory is named by the extractors' code only: a checkout whose
+    walk selects other files must not replay what an older walk kept."""
+    _found(workspace, FactsCache(tmp_path / "cache"))
+    listed.clear()
+    monkeypatch.setattr(listings_module, "code_fingerprint", lambda: "another checkout")
+    _found(workspace, FactsCache(tmp_path / "cache"))
+    assert len(listed) == 10
+
+
+def test_files_shown_alike_come_out_in_one_order(tmp_path: Path) -> None:
+    """A Latin-1 file name (shown with its byte escaped) beside a link whose name spells
+    that escape: the same display path, whose order the walk must not decide (a replayed
+    directory yields its files before its links)."""
+    root = tmp_path / "ws"
+    launch = root / "bringup" / "launch"
+    write(root, "robots/real.launch", BRINGUP)
+    write(launch, os.fsdecode(b"caf\xe9.launch"), BRINGUP)
+    os.symlink("../../robots/real.launch", launch / "caf\\xe9.launch")
+    _age(root)
+
+    def locations(cache: FactsCache | None) -> list[str]:
+        sources = discover([root / "bringup"], [], root, root, [], cache=cache)
+        return [source.location for source in sources]
+
+    fresh = locations(None)
+    assert len(fresh) == 2 and len({os.path.basename(path) for path in fresh}) == 2
+    assert locations(FactsCache(tmp_path / "cache")) == fresh
+    assert locations(FactsCache(tmp_path / "cache")) == fresh  # replayed
