@@ -174,6 +174,7 @@ def lint(
             packages=packages,
             fallback=fallback,
             ros1_python2=python2,
+            named=named,
         )
         # Nothing changed since a run that kept its key: its result, no file keyed.
         remembered = None if fresh else inputs.unchanged_key()

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import os
 import re
+import stat
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,7 +20,7 @@ from typing import TYPE_CHECKING
 
 from .model import Generation, Language
 from .plugins import exported_descriptions, plugin_names
-from .reading import Status, status_of
+from .reading import Status, status_from, status_of
 
 if TYPE_CHECKING:
     from .discover import SourceFile
@@ -150,6 +151,23 @@ class PackageGenerations:
             found = self._by_file[text] = self._for_directory(os.path.dirname(text))
         return found
 
+    def _is_manifest(self, manifest: str) -> bool:
+        """Whether ``manifest`` is a file to read (``os.path.isfile``), its status kept
+        wherever its directory's would not show it change: a link to nothing, or into a
+        directory that cannot be searched, may become a manifest with its directory's
+        times unchanged."""
+        try:
+            found = os.stat(manifest)
+        except FileNotFoundError:
+            if os.path.islink(manifest):
+                self.statuses[manifest] = None
+            return False
+        except OSError:
+            self.statuses[manifest] = None
+            return False
+        self.statuses[manifest] = status_from(found)
+        return stat.S_ISREG(found.st_mode)
+
     def _for_directory(self, directory: str) -> _Package:
         found = self._by_directory.get(directory)
         if found is not None:
@@ -157,8 +175,7 @@ class PackageGenerations:
         manifest = os.path.join(directory, "package.xml")
         package: _Package
         self.statuses[directory] = status_of(directory)
-        if os.path.isfile(manifest):
-            self.statuses[manifest] = status_of(manifest)
+        if self._is_manifest(manifest):
             try:
                 with open(manifest, encoding="utf-8", errors="replace") as stream:
                     text = stream.read()

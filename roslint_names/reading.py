@@ -100,6 +100,10 @@ def read_file(path: str | Path, max_size: int) -> Read:
     return data, "", None
 
 
+# Far above any real .srv: a larger file is no definition worth reading whole. Not the
+# ``max-file-size`` of the files linted: the definitions are read, not linted.
+MAX_DEFINITION_BYTES = 1 << 20
+
 Status = tuple[int, int, int, int]  # size, mtime_ns, ctime_ns, inode
 
 
@@ -110,6 +114,10 @@ def status_of(path: str | Path) -> Status | None:
         found = os.stat(path)
     except OSError:
         return None
+    return status_from(found)
+
+
+def status_from(found: os.stat_result) -> Status:
     return found.st_size, found.st_mtime_ns, found.st_ctime_ns, found.st_ino
 
 

@@ -33,7 +33,7 @@ from .digests import ContentDigests
 from .discover import SourceFile
 from .generation import PackageGenerations, reads_python2
 from .model import Generation, Language
-from .reading import Read, content_digest, read_file
+from .reading import MAX_DEFINITION_BYTES, Read, content_digest, read_file
 from .registry import Registry
 from .unchanged import KeptKey
 
@@ -56,10 +56,15 @@ class RunInputs:
         packages: PackageGenerations,
         fallback: Generation,
         ros1_python2: bool,
+        named: Sequence[SourceFile],
     ) -> None:
         self._cache = cache
         self._checked = checked
         self._everything = everything
+        # Whose packages the plugin names are read from (a per-file run's whole workspace,
+        # where ``everything`` keeps only what wires names): a package added there is a
+        # plugin added, which only its files show.
+        self._named = named
         self._reported = reported
         self._settings = settings
         self._registry = registry
@@ -160,7 +165,7 @@ class RunInputs:
         python2 = self._ros1_python2
         head = f"{self._fingerprints()}\0{self._reported}\0{self._fallback.value}\0{python2}\0"
         digest.update(_text_bytes(head))
-        for sources in (self._checked, self._everything):
+        for sources in (self._checked, self._everything, self._named):
             # Column by column: one join each, not one formatted line per file.
             digest.update(_text_bytes("\0".join([source.location for source in sources])))
             digest.update(_text_bytes("\0".join([source.display for source in sources])))
@@ -203,7 +208,7 @@ class RunInputs:
             if source.location not in linted:
                 digest.update(_text_bytes(f"{_where(source)}\n"))
             if source.language is Language.SERVICE_DEFINITION:  # RN403 reads its text too
-                content = self._digests.summary(source.location, self._settings.max_file_size)[0]
+                content = self._digests.summary(source.location, MAX_DEFINITION_BYTES)[0]
                 digest.update(_text_bytes(f"{content}\n"))
         for manifest, text in sorted(self._packages.manifests.items()):
             digest.update(_text_bytes(f"{manifest}\0{len(text)}\0{text}"))

@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from roslint_names.model import Generation, Language
-from roslint_names.reading import read_file
+from roslint_names.reading import MAX_DEFINITION_BYTES, read_file
 
 if TYPE_CHECKING:
     from roslint_names.discover import SourceFile
@@ -54,8 +54,6 @@ _PRIMITIVE_TYPES = frozenset(
 _BUILTIN_TYPES = _PRIMITIVE_TYPES | {"time", "duration"}
 _SEPARATOR = "---"  # genmsg's IODELIM, matched at the start of a line as it does
 _NESTED = "*"  # a nested type in ``ServiceDefinition.shape``
-# Far above any real .srv: a larger file is no definition worth reading whole.
-_MAX_DEFINITION_BYTES = 1 << 20
 
 
 @dataclass(frozen=True)
@@ -205,7 +203,7 @@ def service_definitions(
 
 
 def _read(path: Path, package: str) -> ServiceDefinition | None:
-    data, _, skipped = read_file(path, _MAX_DEFINITION_BYTES)
+    data, _, skipped = read_file(path, MAX_DEFINITION_BYTES)
     if data is None or skipped is not None:
         return None
     return parse_service(data.decode("utf-8", errors="replace"), package)
