@@ -34,7 +34,7 @@ import run as bench
 
 from roslint_names.discover import discover
 from roslint_names.engine import lintable
-from roslint_names.unchanged import RACY_NANOSECONDS
+from roslint_names.reading import RACY_NANOSECONDS
 
 # One edit each: appended where it changes no name (a comment), so that the run measures
 # what an edit costs, not what a new finding does.

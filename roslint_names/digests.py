@@ -16,6 +16,7 @@ from .reading import (
     Read,
     Status,
     content_digest,
+    is_racy,
     open_regular,
     read_file,
     status_of,
@@ -23,11 +24,6 @@ from .reading import (
 )
 
 KEPT = 64  # digest files: one per recently linted workspace
-
-
-# What a file's status says about its bytes: equal status, equal bytes, unless the file
-# was written within the clock's granularity of when the status was taken (see below).
-_RACY_NANOSECONDS = 2_000_000_000  # coarser than any file system's time stamps
 
 
 @dataclass
@@ -97,7 +93,7 @@ class ContentDigests:
         # a status the next run does not find here.
         data, error, skip = read_file(path, max_size)
         content = None if data is None else content_digest(data)
-        racy = signature is None or signature[1] + _RACY_NANOSECONDS >= time.time_ns()
+        racy = signature is None or is_racy(signature[1], signature[2], time.time_ns())
         if signature is not None and not racy and (content is not None or skip == BINARY):
             self._seen[name] = (signature, content or "", content is None)
         return (data, error, skip), content

@@ -10,11 +10,10 @@ named directory likewise, the ``exclude`` patterns by the file the listings are 
 (its target may change without its directory). A file whose content says its language
 (``discover._Sniff``) is kept with its own status and asked again when that changed.
 
-A status whose modification time is within ``RACY_NANOSECONDS`` of the walk is not
-trusted (git's "racily clean" entries): a change in the same clock tick would not show.
-Such a directory is listed again the next time; such a ``.gitignore`` makes its subtree
-walked whole. (The change time is part of the status: a tree unpacked with old times
-still differs.)
+A status taken within ``reading.RACY_NANOSECONDS`` of a change is not trusted (git's
+"racily clean" entries): a change in the same clock tick would not show. Such a
+directory is listed again the next time; such a ``.gitignore`` makes its subtree walked
+whole.
 
 The file is pickled builtins and ``Listed`` only, read with an unpickler that resolves no
 other class, and written atomically through the facts cache; one that cannot be read is
@@ -32,11 +31,10 @@ from pathlib import Path
 from typing import NamedTuple
 
 from .cache import FactsCache, code_fingerprint, keep_newest
-from .reading import open_regular
+from .reading import is_racy, open_regular
 
 LISTINGS = "listings"  # their directory in the facts cache, one file per named directory
 KEPT = 64
-RACY_NANOSECONDS = 2_000_000_000  # coarser than any file system's time stamps
 _FORMAT = 1
 
 DirectoryStatus = tuple[int, int, int]  # mtime_ns, ctime_ns, inode
@@ -105,7 +103,7 @@ class Listings:
             found = os.stat(directory)
         except OSError:
             return None
-        if found.st_mtime_ns + RACY_NANOSECONDS >= self.started:
+        if is_racy(found.st_mtime_ns, found.st_ctime_ns, self.started):
             return None
         return found.st_mtime_ns, found.st_ctime_ns, found.st_ino
 
@@ -116,7 +114,7 @@ class Listings:
             found = os.stat(path)
         except OSError:
             return None
-        if found.st_mtime_ns + RACY_NANOSECONDS >= self.started:
+        if is_racy(found.st_mtime_ns, found.st_ctime_ns, self.started):
             return None
         return found.st_size, found.st_mtime_ns, found.st_ctime_ns, found.st_ino
 

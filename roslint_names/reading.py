@@ -106,6 +106,18 @@ MAX_DEFINITION_BYTES = 1 << 20
 
 Status = tuple[int, int, int, int]  # size, mtime_ns, ctime_ns, inode
 
+# A status taken within this of a change may hide another change made in the same clock
+# tick (git's "racily clean" entries): such a status proves nothing yet. Measured on the
+# change time as well as the modification time: tools set the latter back (``cp -p``,
+# ``rsync -t``, ``tar``), never the former, and a file system that keeps whole seconds
+# keeps them for both.
+RACY_NANOSECONDS = 2_000_000_000  # coarser than any file system's time stamps
+
+
+def is_racy(mtime_ns: int, ctime_ns: int, now_ns: int) -> bool:
+    """Whether a status with these times, taken at ``now_ns`` or later, may hide a change."""
+    return max(mtime_ns, ctime_ns) + RACY_NANOSECONDS >= now_ns
+
 
 def status_of(path: str | Path) -> Status | None:
     """What says a file or directory changed without reading it (git's index keeps the

@@ -17,7 +17,7 @@ time. So the key is kept here with:
   (``PackageGenerations.statuses``): a manifest added, removed or edited shows there.
 
 A re-run whose identity and statuses are all equal is keyed by the kept key. A status
-whose modification time is within ``RACY_NANOSECONDS`` of the run's start is never kept
+taken within ``reading.RACY_NANOSECONDS`` of a change is never kept
 (an edit in the same clock tick would not show: git's "racily clean" files); such a run
 keeps nothing, and the next is keyed file by file. The file is builtins only, read with
 an unpickler that resolves no class; one that cannot be read is no key.
@@ -33,11 +33,10 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from .cache import FactsCache, keep_newest
-from .reading import Status, open_regular, status_of
+from .reading import Status, is_racy, open_regular, status_of
 
 KEYS = "keys"  # their directory in the facts cache: one file per workspace
 KEPT = 64
-RACY_NANOSECONDS = 2_000_000_000  # coarser than any file system's time stamps
 _FORMAT = 1
 
 
@@ -75,7 +74,7 @@ class KeptKey:
         """Keep ``key`` with what it was made from, unless a status is too recent to say
         that nothing changed after it was taken."""
         statuses = [*file_statuses, *package_statuses.values()]
-        if any(s is not None and s[1] + RACY_NANOSECONDS >= self.started for s in statuses):
+        if any(s is not None and is_racy(s[1], s[2], self.started) for s in statuses):
             return
         paths = tuple(package_statuses)
         kept = (_FORMAT, identity, key, list(file_statuses), paths, list(package_statuses.values()))

@@ -12,7 +12,7 @@ from typing import Any
 
 import pytest
 
-from roslint_names import gather
+from roslint_names import gather, reading
 from roslint_names.cli import main
 from roslint_names.model import Generation, Language
 
@@ -62,6 +62,14 @@ def chdir(path: Path) -> Iterator[None]:
         yield
     finally:
         os.chdir(previous)
+
+
+@pytest.fixture
+def old_tree(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Statuses trusted as soon as they are taken, as for a tree left past the racy window
+    (``reading.RACY_NANOSECONDS``, which its own tests keep): a test can set a file's
+    modification time back, never its change time."""
+    monkeypatch.setattr(reading, "RACY_NANOSECONDS", 0)
 
 
 @pytest.fixture(autouse=True)

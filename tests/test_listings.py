@@ -43,7 +43,7 @@ RELAY = "#!/usr/bin/env python3\nimport rospy\nrospy.init_node('relay')\n"
 
 
 @pytest.fixture
-def workspace(tmp_path: Path) -> Path:
+def workspace(tmp_path: Path, old_tree: None) -> Path:
     """A catkin workspace as ``catkin_init_workspace`` leaves it (``src/CMakeLists.txt`` a
     link to catkin's top-level file), one repository with its ``.gitignore``, two
     packages, a script without a suffix and an XML file whose root decides."""
@@ -241,7 +241,7 @@ def test_another_walk_code_lists_again(
     assert len(listed) == 10
 
 
-def test_files_shown_alike_come_out_in_one_order(tmp_path: Path) -> None:
+def test_files_shown_alike_come_out_in_one_order(tmp_path: Path, old_tree: None) -> None:
     """A Latin-1 file name (shown with its byte escaped) beside a link whose name spells
     that escape: the same display path, whose order the walk must not decide (a replayed
     directory yields its files before its links)."""
@@ -260,3 +260,17 @@ def test_files_shown_alike_come_out_in_one_order(tmp_path: Path) -> None:
     assert len(fresh) == 2 and len({os.path.basename(path) for path in fresh}) == 2
     assert locations(FactsCache(tmp_path / "cache")) == fresh
     assert locations(FactsCache(tmp_path / "cache")) == fresh  # replayed
+
+
+def test_times_set_back_just_now_are_not_trusted(tmp_path: Path, listed: list[str]) -> None:
+    """``cp -p``, ``rsync -t`` and ``tar`` set modification times back; the change time
+    still says the directory was written just now, and a file system that keeps whole
+    seconds would hide a second change within the same one."""
+    root = tmp_path / "ws"
+    write(root, "src/chatter/package.xml", CATKIN_PACKAGE.format(name="chatter"))
+    write(root, "src/chatter/src/talker.cpp", TALKER)
+    _age(root)
+    first = _found(root, FactsCache(tmp_path / "cache"))
+    count = len(listed)
+    assert _found(root, FactsCache(tmp_path / "cache")) == first
+    assert len(listed) == 2 * count

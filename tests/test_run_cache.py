@@ -17,7 +17,7 @@ import pytest
 
 from roslint_names import cache as cache_module
 from roslint_names import digests as digests_module
-from roslint_names import engine, run_inputs
+from roslint_names import engine, reading, run_inputs
 from roslint_names.config import Settings, settings_fingerprint
 from roslint_names.generation import PackageGenerations
 from roslint_names.model import Severity
@@ -338,6 +338,7 @@ def age(workspace: Path, seconds: float = 60) -> None:
             os.utime(path, (past, past))
 
 
+@pytest.mark.usefixtures("old_tree")
 def test_a_rerun_reads_no_file_whose_status_is_unchanged(
     check: Callable[..., Any], workspace: Path, reads: list[str]
 ) -> None:
@@ -348,6 +349,7 @@ def test_a_rerun_reads_no_file_whose_status_is_unchanged(
     assert reused(check()) and reads == []
 
 
+@pytest.mark.usefixtures("old_tree")
 def test_an_edit_that_keeps_size_and_time_is_still_seen(
     check: Callable[..., Any], workspace: Path, reads: list[str]
 ) -> None:
@@ -365,11 +367,16 @@ def test_an_edit_that_keeps_size_and_time_is_still_seen(
 
 
 def test_a_file_modified_just_now_is_read_again_next_time(
-    check: Callable[..., Any], workspace: Path, reads: list[str]
+    check: Callable[..., Any],
+    workspace: Path,
+    reads: list[str],
+    monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     # Written in the same clock tick as its status could be taken: its status proves
-    # nothing about its bytes yet (git's "racily clean" files).
-    age(workspace)
+    # nothing about its bytes yet (git's "racily clean" files). The window shortened, and
+    # the tree left past it before the one file is touched.
+    monkeypatch.setattr(reading, "RACY_NANOSECONDS", 300_000_000)
+    time.sleep(0.4)
     (workspace / "src/robot_base/src/driver.cpp").touch()
     check()
     reads.clear()
@@ -516,6 +523,7 @@ def _service_edited(workspace: Path) -> None:
         _service_edited,
     ],
 )
+@pytest.mark.usefixtures("old_tree")
 def test_a_run_keyed_by_statuses_sees_every_change(
     check: Callable[..., Any],
     workspace: Path,
@@ -540,6 +548,7 @@ def test_a_run_keyed_by_statuses_sees_every_change(
     assert reused(check()) and keyed == []
 
 
+@pytest.mark.usefixtures("old_tree")
 def test_a_package_xml_above_the_linted_directory_is_seen(
     run_cli: Any, tmp_path: Path, keyed: list[int]
 ) -> None:
@@ -574,6 +583,7 @@ def test_a_status_taken_just_after_a_change_keeps_no_key(
     assert reused(check()) and keyed == [1]  # keyed file by file: no key was kept
 
 
+@pytest.mark.usefixtures("old_tree")
 def test_the_same_files_shown_from_elsewhere_are_not_the_kept_key(
     run_cli: Any, workspace: Path, keyed: list[int]
 ) -> None:
@@ -589,6 +599,7 @@ def test_the_same_files_shown_from_elsewhere_are_not_the_kept_key(
     assert '"ws/src/robot_base/launch/base.launch"' in above.stdout
 
 
+@pytest.mark.usefixtures("old_tree")
 def test_a_manifest_link_to_nothing_that_becomes_a_file_is_seen(
     run_cli: Any, workspace: Path, keyed: list[int]
 ) -> None:
@@ -639,6 +650,7 @@ def test_a_manifest_that_cannot_be_reached_keeps_its_status(
     assert manifest in packages.statuses and packages.statuses[manifest] is None
 
 
+@pytest.mark.usefixtures("old_tree")
 def test_a_package_added_to_the_workspace_of_a_run_over_one_file_is_seen(
     run_cli: Any, workspace: Path, keyed: list[int]
 ) -> None:
@@ -729,3 +741,14 @@ def test_a_service_definition_past_the_file_size_limit_is_keyed_by_its_bytes(
         check("--no-cache").stdout,
         check("--no-cache").exit_code,
     )
+
+
+def test_times_set_back_just_now_keep_no_key(
+    check: Callable[..., Any], workspace: Path, keyed: list[int]
+) -> None:
+    """Modification times set back (``cp -p``, ``rsync -t``): the change time says the
+    files were written just now, and is what the racy window is measured on."""
+    age_all(workspace)
+    check()
+    keyed.clear()
+    assert reused(check()) and keyed == [1]
