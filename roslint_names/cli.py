@@ -632,13 +632,22 @@ def config_search_start(paths: Sequence[Path], cwd: Path) -> Path:
     over files of one package finds that package's config, as ruff and flake8 users expect.
     """
     directories = [
-        absolute if absolute.is_dir() else absolute.parent
+        absolute if _is_directory(absolute) else absolute.parent
         for absolute in ((cwd / path).absolute() for path in paths)
     ]
     try:
         return Path(os.path.commonpath(directories))
     except ValueError:
         return cwd
+
+
+def _is_directory(path: Path) -> bool:
+    """``Path.is_dir``, False where the path cannot be looked at (a directory above it that
+    cannot be searched): discovery then says what is wrong with it, as for any path."""
+    try:
+        return path.is_dir()
+    except OSError:
+        return False
 
 
 def _write(report: str, output: Path | None) -> None:

@@ -375,9 +375,14 @@ def _named_status(given: Path, absolute: Path) -> tuple[int | None, str | None]:
     try:
         mode = os.stat(absolute).st_mode
     except OSError as error:
+        reason = error.strerror or str(error)
         if not os.path.lexists(absolute):
-            raise DiscoveryError(f"{given}: no such file or directory") from None
-        return None, error.strerror or str(error)
+            # Missing, or behind a directory that cannot be searched (not even lstat).
+            missing = isinstance(error, FileNotFoundError)
+            raise DiscoveryError(
+                f"{given}: {'no such file or directory' if missing else reason}"
+            ) from None
+        return None, reason
     if not (stat.S_ISDIR(mode) or stat.S_ISREG(mode)):
         raise DiscoveryError(f"{given}: {NotRegularFileError(absolute, mode).strerror}")
     return mode, None

@@ -12,6 +12,9 @@ import codecs
 import errno
 import http.server
 import os
+import shutil
+import subprocess
+import sys
 import threading
 from collections.abc import Iterator
 from pathlib import Path
@@ -588,3 +591,43 @@ def test_a_wide_python_source_is_one_parse_error(run_cli: Any, tmp_path: Path, c
     [finding] = result.findings()
     assert (finding["code"], finding["line"]) == ("RN001", 1)
     assert finding["message"].startswith(f"Python source is {codec[:6].upper()} (byte order mark)")
+
+
+def _without_file_permission_override() -> list[str] | None:
+    """A command prefix that runs as a user whom file modes bind: none needed when not
+    root; ``setpriv`` dropping root's override capabilities; None where neither can."""
+    if os.geteuid() != 0:
+        return []
+    setpriv = shutil.which("setpriv")
+    if setpriv is None:
+        return None
+    capabilities = "-dac_override,-dac_read_search"
+    return [setpriv, f"--bounding-set={capabilities}", f"--inh-caps={capabilities}"]
+
+
+def test_a_named_file_behind_a_directory_that_cannot_be_searched_is_a_usage_error(
+    tmp_path: Path,
+) -> None:
+    """Not an internal error: the file's directory can be listed but not entered."""
+    prefix = _without_file_permission_override()
+    if prefix is None:
+        pytest.skip("running as root without setpriv: file modes do not bind")
+    write(tmp_path, "src/robot_base/package.xml", "<package><name>robot_base</name></package>")
+    write(tmp_path, "src/robot_base/src/driver.cpp", "int main() {}\n")
+    hidden = tmp_path / "src/robot_base/src"
+    hidden.chmod(0o644)
+    try:
+        command = [*prefix, sys.executable, "-m", "roslint_names.cli", "check", "--no-cache"]
+        result = subprocess.run(
+            [*command, "src/robot_base/src/driver.cpp"],
+            cwd=tmp_path,
+            capture_output=True,
+            text=True,
+            check=False,
+        )
+    finally:
+        hidden.chmod(0o755)
+    assert result.returncode == 2
+    assert result.stderr == (
+        f"roslint-names: error: src/robot_base/src/driver.cpp: {os.strerror(errno.EACCES)}\n"
+    )
