@@ -58,6 +58,7 @@ keying a re-run does not mean reading every file (``digests.ContentDigests``).
 from __future__ import annotations
 
 import contextlib
+import enum
 import hashlib
 import io
 import os
@@ -68,6 +69,7 @@ import time
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 from . import __version__, model
 from .model import FileFacts, Generation, Language
@@ -549,11 +551,28 @@ _MODEL_CLASSES = frozenset(
 class _FactsUnpickler(pickle.Unpickler):
     """Builds fact values and nothing else (see the module docstring)."""
 
-    def find_class(self, module: str, name: str) -> type:
+    def find_class(self, module: str, name: str) -> Any:
         if module == model.__name__ and name in _MODEL_CLASSES:
-            found: type = getattr(model, name)
-            return found
+            return getattr(model, name)
+        if (module, name) == ("builtins", "getattr"):
+            # How Python 3.11.0 to 3.11.4 (Debian 12's 3.11.2) pickle an enum member:
+            # ``getattr(Language, "CPP")``. Only that: a member of a model enum.
+            return _model_enum_member
         raise pickle.UnpicklingError(f"{module}.{name} is not a fact class")
+
+
+def _model_enum_member(owner: object, name: str) -> enum.Enum:
+    """``getattr(owner, name)`` where ``owner`` is an enum of the model and ``name`` one of
+    its members; an unpickling error for anything else."""
+    if (
+        isinstance(owner, type)
+        and issubclass(owner, enum.Enum)
+        and owner.__module__ == model.__name__
+        and isinstance(name, str)
+        and name in owner.__members__
+    ):
+        return owner.__members__[name]
+    raise pickle.UnpicklingError(f"getattr({owner!r}, {name!r}) is no member of a fact enum")
 
 
 _FINGERPRINT: str | None = None

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import enum
 import hashlib
+import io
 import multiprocessing
 import os
 import pickle
@@ -454,3 +456,41 @@ def test_a_cache_sent_to_a_worker_carries_where_it_is_not_what_was_read(tmp_path
     assert copy.root == tmp_path and copy.directory == reader.directory
     assert len(pickle.dumps(reader)) < 200  # neither the pack nor the keys it looked up
     assert copy.load(key, FACTS.path) == FACTS
+
+
+class _Python3112Pickler(pickle.Pickler):
+    """Enum members as Python 3.11.0 to 3.11.4 pickle them (Debian 12's 3.11.2):
+    ``getattr(Language, "CPP")``."""
+
+    def reducer_override(self, obj: Any) -> Any:
+        if isinstance(obj, enum.Enum):
+            return getattr, (type(obj), obj.name)
+        return NotImplemented
+
+
+def _pickled_as_by_python_3_11_2(value: Any) -> bytes:
+    stream = io.BytesIO()
+    _Python3112Pickler(stream, protocol=pickle.HIGHEST_PROTOCOL).dump(value)
+    return stream.getvalue()
+
+
+def test_facts_pickled_by_python_3_11_2_are_read() -> None:
+    blob = _pickled_as_by_python_3_11_2(FACTS)
+    assert b"getattr" in blob
+    assert cache_module._unpickle_facts(blob) == FACTS
+
+
+@pytest.mark.parametrize(
+    "reduced",
+    [
+        (getattr, (FileFacts, "__init__")),  # a model class, but no enum
+        (getattr, (Language, "__class__")),  # a model enum, but no member
+        (getattr, (enum.Enum, "__new__")),  # an enum outside the model
+    ],
+)
+def test_getattr_in_a_record_reaches_nothing_but_an_enum_member(reduced: Any) -> None:
+    class Hostile:
+        def __reduce__(self) -> Any:
+            return reduced
+
+    assert cache_module._unpickle(pickle.dumps(Hostile())) is None
