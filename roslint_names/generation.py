@@ -105,9 +105,9 @@ class PackageGenerations:
         self.manifests: dict[Path, str] = {}
         # The names pluginlib gives the plugins those descriptions declare (``plugins``).
         self.plugin_names: set[str] = set()
-        # The status of every directory looked in for a package.xml, taken before looking,
-        # and of every manifest and description, taken before reading it: what says that
-        # a re-run would find the same packages (``unchanged``).
+        # The status of every package.xml looked for (None where there is none), and of
+        # every plugin description, taken before reading it: what says that a re-run
+        # would find the same packages (``unchanged``).
         self.statuses: dict[str, Status | None] = {}
 
     def for_file(self, path: str | Path) -> Generation | None:
@@ -153,15 +153,13 @@ class PackageGenerations:
 
     def _is_manifest(self, manifest: str) -> bool:
         """Whether ``manifest`` is a file to read (``os.path.isfile``), its status kept
-        wherever its directory's would not show it change: a link to nothing, or into a
-        directory that cannot be searched, may become a manifest with its directory's
-        times unchanged."""
+        (None where there is none to take): what says that the lookup would find the same
+        next time. Not the directory's: a home directory or ``/tmp`` changes all the
+        time, a ``package.xml`` appearing there does not; and a link to nothing, or into
+        a directory that cannot be searched, may become a manifest with its directory
+        unchanged."""
         try:
             found = os.stat(manifest)
-        except FileNotFoundError:
-            if os.path.islink(manifest):
-                self.statuses[manifest] = None
-            return False
         except OSError:
             self.statuses[manifest] = None
             return False
@@ -174,7 +172,6 @@ class PackageGenerations:
             return found
         manifest = os.path.join(directory, "package.xml")
         package: _Package
-        self.statuses[directory] = status_of(directory)
         if self._is_manifest(manifest):
             try:
                 with open(manifest, encoding="utf-8", errors="replace") as stream:

@@ -12,9 +12,10 @@ time. So the key is kept here with:
   reported, the fallback generation and the environment's Python 2 choice;
 - the status of each checked file and each ``.srv`` file, taken before its bytes were
   read (``ContentDigests.statuses``);
-- the status of each directory looked in for a ``package.xml``, taken before looking, and
-  of each manifest and plugin description, taken before reading
-  (``PackageGenerations.statuses``): a manifest added, removed or edited shows there.
+- the status of each ``package.xml`` looked for (none where there was none) and of each
+  plugin description, taken before reading (``PackageGenerations.statuses``): a manifest
+  added, removed or edited shows there, while the directories it is looked for in
+  (a home directory, ``/tmp``) may change for other reasons all they like.
 
 A re-run whose identity and statuses are all equal is keyed by the kept key. A status
 taken within ``reading.RACY_NANOSECONDS`` of a change is never kept

@@ -752,3 +752,22 @@ def test_times_set_back_just_now_keep_no_key(
     check()
     keyed.clear()
     assert reused(check()) and keyed == [1]
+
+
+@pytest.mark.usefixtures("old_tree")
+def test_a_directory_above_that_changes_for_other_reasons_keeps_the_key(
+    check: Callable[..., Any], workspace: Path, keyed: list[int]
+) -> None:
+    """A file outside any package is looked up to the root, through the home directory
+    or ``/tmp``, which change all the time: only a package.xml appearing there matters."""
+    write(workspace, "tools/record_bag.py", "import rospy\nrospy.init_node('Recorder')\n")
+    age_all(workspace)
+    cold = check()
+    keyed.clear()
+    write(workspace.parent, "notes.txt", "written beside the workspace\n")
+    warm = check()
+    assert reused(warm) and keyed == [] and warm.stdout == cold.stdout
+    write(workspace.parent, "package.xml", CATKIN_PACKAGE.format(name="everything"))
+    after = check()
+    assert keyed == [1]
+    assert after.stdout == check("--no-cache").stdout
