@@ -31,7 +31,7 @@ from pathlib import Path
 from typing import NamedTuple
 
 from .cache import FactsCache, code_fingerprint, keep_newest
-from .reading import is_racy, open_regular
+from .reading import is_racy, open_regular, status_from
 
 LISTINGS = "listings"  # their directory in the facts cache, one file per named directory
 KEPT = 64
@@ -99,24 +99,21 @@ class Listings:
 
     def directory_status(self, directory: str) -> DirectoryStatus | None:
         """The status of ``directory``, None when it cannot be taken or is too recent."""
-        try:
-            found = os.stat(directory)
-        except OSError:
-            return None
-        if is_racy(found.st_mtime_ns, found.st_ctime_ns, self.started):
-            return None
-        return found.st_mtime_ns, found.st_ctime_ns, found.st_ino
+        found = self._trusted(directory)
+        return None if found is None else (found.st_mtime_ns, found.st_ctime_ns, found.st_ino)
 
     def file_status(self, path: str) -> FileStatus | None:
         """The status of the file at ``path``, None when it cannot be taken or is too
         recent."""
+        found = self._trusted(path)
+        return None if found is None else status_from(found)
+
+    def _trusted(self, path: str) -> os.stat_result | None:
         try:
             found = os.stat(path)
         except OSError:
             return None
-        if is_racy(found.st_mtime_ns, found.st_ctime_ns, self.started):
-            return None
-        return found.st_size, found.st_mtime_ns, found.st_ctime_ns, found.st_ino
+        return None if is_racy(found.st_mtime_ns, found.st_ctime_ns, self.started) else found
 
     def sniffed(self, path: str) -> tuple[FileStatus | None, str | None]:
         """The file's status, and what its content said when it had that status."""
