@@ -26,6 +26,13 @@ from .reading import (
 KEPT = 64  # digest files: one per recently linted workspace
 
 
+class Untaken:
+    """A status not taken yet (None is one: the file's that cannot be looked at)."""
+
+
+UNTAKEN = Untaken()
+
+
 @dataclass
 class ContentDigests:
     """The content digest of every file of a workspace, remembered with its status.
@@ -64,10 +71,14 @@ class ContentDigests:
         self._remembered()
         return self._present
 
-    def summary(self, path: str | Path, max_size: int) -> tuple[str | None, str, str | None]:
+    def summary(
+        self, path: str | Path, max_size: int, status: Status | Untaken | None = UNTAKEN
+    ) -> tuple[str | None, str, str | None]:
         """The file's content digest, else why it cannot be read; and why it is skipped
-        (as ``read_file`` says it for the same file)."""
-        name, signature = os.fspath(path), status_of(path)
+        (as ``read_file`` says it for the same file). ``status``: the file's, where the
+        caller took it already (``UNTAKEN``: take it here)."""
+        name = os.fspath(path)
+        signature = status_of(path) if isinstance(status, Untaken) else status
         self.statuses[name] = signature
         if signature is not None:
             if signature[0] > max_size:

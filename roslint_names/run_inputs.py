@@ -29,11 +29,11 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .config import Settings, settings_fingerprint
-from .digests import ContentDigests
+from .digests import UNTAKEN, ContentDigests, Untaken
 from .discover import SourceFile
 from .generation import PackageGenerations, reads_python2
 from .model import Generation, Language
-from .reading import MAX_DEFINITION_BYTES, Read, content_digest, read_file
+from .reading import MAX_DEFINITION_BYTES, Read, Status, content_digest, read_file, status_of
 from .registry import Registry
 from .unchanged import KeptKey
 
@@ -77,12 +77,15 @@ class RunInputs:
         self._tags: list[str] = []  # per checked file: its facts key, or why it has none
         self._contents: list[str | None] = []  # per checked file: its digest, as keyed first
         self._keyed_first = False
+        self._statuses: list[Status | None] = []  # of ``_status_files``, as first taken
         self.changed = False  # a file read differs from what the run was keyed by
 
     def unchanged_key(self) -> str | None:
         """The key an earlier run kept, when nothing it was made from changed since
-        (``unchanged``): no file is keyed."""
-        return self._kept.key(self._identity(), self._status_files())
+        (``unchanged``): no file is keyed. The statuses taken are those ``key_first``
+        goes on with, when it must."""
+        self._statuses = [status_of(path) for path in self._status_files()]
+        return self._kept.key(self._identity(), self._statuses)
 
     def key_first(self) -> str | None:
         """The run's key before anything is extracted, when an earlier run of this
@@ -90,7 +93,11 @@ class RunInputs:
         if not self._digests.remembered():
             return None
         maximum = self._settings.max_file_size
-        summaries = [self._digests.summary(source.location, maximum) for source in self._checked]
+        taken: Sequence[Status | Untaken | None] = self._statuses or [UNTAKEN] * len(self._checked)
+        summaries = [
+            self._digests.summary(source.location, maximum, status)
+            for source, status in zip(self._checked, taken, strict=False)
+        ]
         self._tags = [
             self._tag(source, *summary)
             for source, summary in zip(self._checked, summaries, strict=True)

@@ -50,16 +50,14 @@ class KeptKey:
         self._cache = cache
         self.started = time.time_ns()  # before any status of this run is taken
 
-    def key(self, identity: str, files: Sequence[str]) -> str | None:
+    def key(self, identity: str, statuses: Sequence[Status | None]) -> str | None:
         """The kept key, if it was kept for ``identity`` and every status it was kept with
-        is the status now (``files`` in the order they were kept)."""
+        is the status now (``statuses``: the files', in the order they were kept)."""
         kept = self._load()
         if kept is None:
             return None
         kept_identity, key, file_statuses, package_paths, package_statuses = kept
-        if kept_identity != identity or len(file_statuses) != len(files):
-            return None
-        if [status_of(path) for path in files] != file_statuses:
+        if kept_identity != identity or list(statuses) != file_statuses:
             return None
         if [status_of(path) for path in package_paths] != package_statuses:
             return None
