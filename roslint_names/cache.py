@@ -272,8 +272,7 @@ class FactsCache:
         """Keep a set of clean files (``clean_files``); forget the least recently used
         beyond ``CHECKS_KEPT``."""
         entry = self.directory / _CHECKS / key
-        if self.writable() and self.write_atomically(entry, _encode(value)):
-            keep_newest(self.directory / _CHECKS, CHECKS_KEPT)
+        self.write_newest(entry, _encode(value), CHECKS_KEPT)
 
     def _load_entry(self, kind: str, key: str) -> object | None:
         entry = os.path.join(self.directory, kind, key)
@@ -291,8 +290,13 @@ class FactsCache:
     def store_run(self, key: str, value: object) -> None:
         """Keep a run's result (fact classes, enums and builtins only); forget the least
         recently used beyond ``RUNS_KEPT``."""
-        if self.writable() and self.write_atomically(self.directory / _RUNS / key, _encode(value)):
-            keep_newest(self.directory / _RUNS, RUNS_KEPT)
+        self.write_newest(self.directory / _RUNS / key, _encode(value), RUNS_KEPT)
+
+    def write_newest(self, entry: Path, blob: bytes, kept: int) -> None:
+        """Write ``blob`` as ``entry`` atomically, then forget all but the ``kept`` most
+        recently written or used entries of its directory."""
+        if self.writable() and self.write_atomically(entry, blob):
+            keep_newest(entry.parent, kept)
 
     def write_atomically(self, entry: Path, blob: bytes) -> bool:
         """Write ``blob`` as ``entry`` atomically; False (and a problem noted) on failure."""
@@ -546,6 +550,15 @@ _MODEL_CLASSES = frozenset(
     for name, value in vars(model).items()
     if isinstance(value, type) and value.__module__ == model.__name__
 )
+
+
+class BuiltinsUnpickler(pickle.Unpickler):
+    """Builtins only (dicts, lists, tuples, strings, numbers): what the cache's own
+    bookkeeping files hold (digests, kept keys, listings); any global is refused, so
+    loading one builds nothing else."""
+
+    def find_class(self, module: str, name: str) -> Any:
+        raise pickle.UnpicklingError(f"{module}.{name} is not a builtin value")
 
 
 class _FactsUnpickler(pickle.Unpickler):

@@ -10,7 +10,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .cache import DIGESTS, FactsCache, keep_newest
+from .cache import DIGESTS, BuiltinsUnpickler, FactsCache
 from .reading import (
     BINARY,
     Read,
@@ -118,23 +118,16 @@ class ContentDigests:
         """Keep the digests of the files this run saw (only those: deleted files go)."""
         self._remembered()
         changed = not self._present or self._seen != self._known
-        if changed and self.cache.writable():
-            blob = pickle.dumps(self._seen, pickle.HIGHEST_PROTOCOL)
-            if self.cache.write_atomically(self.path, blob):
-                keep_newest(self.path.parent, KEPT)
+        if changed:
+            self.cache.write_newest(
+                self.path, pickle.dumps(self._seen, pickle.HIGHEST_PROTOCOL), KEPT
+            )
 
     def _load(self) -> dict[str, tuple[Status, str, bool]]:
         try:
             with open_regular(self.path) as stream:
                 self._present = True
-                loaded = _DigestUnpickler(stream).load()
+                loaded = BuiltinsUnpickler(stream).load()
         except Exception:  # absent, unreadable or damaged: every file is read again
             return {}
         return loaded if isinstance(loaded, dict) else {}
-
-
-class _DigestUnpickler(pickle.Unpickler):
-    """Builtins only: dicts, tuples, strings, numbers."""
-
-    def find_class(self, module: str, name: str) -> type:
-        raise pickle.UnpicklingError(f"{module}.{name} is not part of a digest file")

@@ -28,9 +28,9 @@ import pickle
 import time
 from collections.abc import Sequence
 from pathlib import Path
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
-from .cache import FactsCache, code_fingerprint, keep_newest
+from .cache import BuiltinsUnpickler, FactsCache, code_fingerprint
 from .reading import is_racy, open_regular, status_from
 
 LISTINGS = "listings"  # their directory in the facts cache, one file per named directory
@@ -133,10 +133,8 @@ class Listings:
         new = (self._ancestors, self._listed, self._sniffed)
         if new == (self._known_ancestors, self._known, self._known_sniffed):
             return
-        if self._cache.writable():
-            blob = pickle.dumps((_FORMAT, *new), pickle.HIGHEST_PROTOCOL)
-            if self._cache.write_atomically(self._path, blob):
-                keep_newest(self._path.parent, KEPT)
+        blob = pickle.dumps((_FORMAT, *new), pickle.HIGHEST_PROTOCOL)
+        self._cache.write_newest(self._path, blob, KEPT)
 
     def _load(self) -> None:
         try:
@@ -149,10 +147,10 @@ class Listings:
             self._known_ancestors, self._known, self._known_sniffed = ancestors, listed, sniffed
 
 
-class _ListingsUnpickler(pickle.Unpickler):
+class _ListingsUnpickler(BuiltinsUnpickler):
     """Builtins and ``Listed`` only."""
 
-    def find_class(self, module: str, name: str) -> type:
+    def find_class(self, module: str, name: str) -> Any:
         if (module, name) == (__name__, "Listed"):
             return Listed
-        raise pickle.UnpicklingError(f"{module}.{name} is not part of a listings file")
+        return super().find_class(module, name)

@@ -33,7 +33,7 @@ import time
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-from .cache import FactsCache, keep_newest
+from .cache import BuiltinsUnpickler, FactsCache
 from .reading import Status, is_racy, open_regular, status_of
 
 KEYS = "keys"  # their directory in the facts cache: one file per workspace
@@ -77,15 +77,12 @@ class KeptKey:
             return
         paths = tuple(package_statuses)
         kept = (_FORMAT, identity, key, list(file_statuses), paths, list(package_statuses.values()))
-        if self._cache.writable():
-            blob = pickle.dumps(kept, pickle.HIGHEST_PROTOCOL)
-            if self._cache.write_atomically(self._path, blob):
-                keep_newest(self._path.parent, KEPT)
+        self._cache.write_newest(self._path, pickle.dumps(kept, pickle.HIGHEST_PROTOCOL), KEPT)
 
     def _load(self) -> _Kept | None:
         try:
             with open_regular(self._path) as stream:
-                loaded = _KeyUnpickler(stream).load()
+                loaded = BuiltinsUnpickler(stream).load()
         except Exception:  # absent, unreadable or damaged: the run is keyed file by file
             return None
         if not (isinstance(loaded, tuple) and len(loaded) == 6 and loaded[0] == _FORMAT):
@@ -99,10 +96,3 @@ class KeptKey:
 
 # identity, key, file statuses, package paths, their statuses
 _Kept = tuple[str, str, list[Status | None], tuple[str, ...], list[Status | None]]
-
-
-class _KeyUnpickler(pickle.Unpickler):
-    """Builtins only: tuples, lists, strings, numbers."""
-
-    def find_class(self, module: str, name: str) -> type:
-        raise pickle.UnpicklingError(f"{module}.{name} is not part of a kept key")
