@@ -25,6 +25,7 @@ from __future__ import annotations
 import hashlib
 import os
 from collections.abc import Sequence
+from functools import cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -84,8 +85,8 @@ class RunInputs:
         """The key an earlier run kept, when nothing it was made from changed since
         (``unchanged``): no file is keyed. The statuses taken are those ``key_first``
         goes on with, when it must."""
-        self._statuses = [status_of(path) for path in self._status_files()]
-        return self._kept.key(self._identity(), self._statuses)
+        self._statuses = [status_of(path) for path in self._status_files]
+        return self._kept.key(self._identity, self._statuses)
 
     def key_first(self) -> str | None:
         """The run's key before anything is extracted, when an earlier run of this
@@ -152,11 +153,13 @@ class RunInputs:
         if kept_key is None or self.changed:
             return
         statuses = self._digests.statuses
-        files = self._status_files()
+        files = self._status_files
         if all(path in statuses for path in files):
             file_statuses = [statuses[path] for path in files]
-            self._kept.keep(self._identity(), kept_key, file_statuses, self._packages.statuses)
+            self._kept.keep(self._identity, kept_key, file_statuses, self._packages.statuses)
 
+    # Both below are asked at the start of the run and again at its end: made once.
+    @cached_property
     def _status_files(self) -> list[str]:
         """The files whose bytes the key holds: those checked, and the ``.srv`` files."""
         service_files = [
@@ -166,6 +169,7 @@ class RunInputs:
         ]
         return [source.location for source in self._checked] + service_files
 
+    @cached_property
     def _identity(self) -> str:
         """All the key holds besides the bytes of files and what the packages say."""
         digest = hashlib.blake2b(digest_size=20)
