@@ -35,7 +35,7 @@ from .reading import is_racy, open_regular, status_from
 
 LISTINGS = "listings"  # their directory in the facts cache, one file per named directory
 KEPT = 64
-_FORMAT = 1
+_FORMAT = 2
 
 DirectoryStatus = tuple[int, int, int]  # mtime_ns, ctime_ns, inode
 FileStatus = tuple[int, int, int, int]  # size, mtime_ns, ctime_ns, inode
@@ -46,6 +46,7 @@ class Listed(NamedTuple):
 
     status: DirectoryStatus | None  # None: taken too soon after a change to be trusted
     gitignore: FileStatus | None  # its ``.gitignore``'s, None when it has none
+    gitignore_valid: bool  # that file was read and said nothing (``discover._IgnoreRules``)
     stop: bool  # it holds an ignore marker: nothing below it is walked
     directories: tuple[str, ...]  # the subdirectories walked, by name
     files: tuple[tuple[str, str], ...]  # the files selected: name, what the name says
