@@ -24,10 +24,11 @@ from __future__ import annotations
 
 import hashlib
 import os
+from array import array
 from collections.abc import Sequence
 from functools import cached_property
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from .config import Settings, settings_fingerprint
 from .digests import UNTAKEN, ContentDigests, Untaken
@@ -176,12 +177,21 @@ class RunInputs:
         python2 = self._ros1_python2
         head = f"{self._fingerprints()}\0{self._reported}\0{self._fallback.value}\0{python2}\0"
         digest.update(_text_bytes(head))
-        for sources in (self._checked, self._everything, self._named):
-            # Column by column: one join each, not one formatted line per file.
-            digest.update(_text_bytes("\0".join([source.location for source in sources])))
-            digest.update(_text_bytes("\0".join([source.display for source in sources])))
-            digest.update("\0".join([source.language for source in sources]).encode())
-            digest.update(b"\1")
+        _hash_columns(digest, self._everything)
+        # The files checked and those named are most often the workspace's own objects
+        # (the CLI's are all of it): hashed as where they are in it, not joined again
+        # (0.07 s at 77,000 files). Equal objects that are not the same are hashed as
+        # columns: another identity for the same files, a kept key missed, never one
+        # wrongly found.
+        place = {id(source): position for position, source in enumerate(self._everything)}
+        for sources in (self._checked, self._named):
+            positions = [place.get(id(source), -1) for source in sources]
+            if -1 in positions:
+                digest.update(b"columns\0")
+                _hash_columns(digest, sources)
+            else:
+                digest.update(f"positions {len(positions)}\0".encode())
+                digest.update(array("q", positions).tobytes())
         return digest.hexdigest()
 
     def _fingerprints(self) -> str:
@@ -224,6 +234,15 @@ class RunInputs:
         for manifest, text in sorted(self._packages.manifests.items()):
             digest.update(_text_bytes(f"{manifest}\0{len(text)}\0{text}"))
         return digest.hexdigest()
+
+
+def _hash_columns(digest: Any, sources: Sequence[SourceFile]) -> None:
+    """Where each of ``sources`` is, how it is shown and its language, into ``digest``:
+    column by column, one join each, not one formatted line per file."""
+    digest.update(_text_bytes("\0".join([source.location for source in sources])))
+    digest.update(_text_bytes("\0".join([source.display for source in sources])))
+    digest.update("\0".join([source.language for source in sources]).encode())
+    digest.update(b"\1")
 
 
 def _where(source: SourceFile) -> str:

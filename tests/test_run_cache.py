@@ -765,3 +765,48 @@ def test_a_directory_above_that_changes_for_other_reasons_keeps_the_key(
     after = check()
     assert keyed == [1]
     assert after.stdout == check("--no-cache").stdout
+
+
+def test_the_identity_tells_apart_which_files_are_checked_and_named(tmp_path: Path) -> None:
+    """The files checked and named are hashed as where they are among the workspace's when
+    they are its own objects, as their columns otherwise: any other choice of files is
+    another identity, and the same choice the same."""
+    from roslint_names.discover import SourceFile
+    from roslint_names.model import Generation, Language
+    from roslint_names.registry import load_registry
+
+    names = ["a/package.xml", "a/launch/a.launch", "a/src/a.cpp", "b/src/b.cpp"]
+    files = [SourceFile(str(tmp_path / name), name, Language.CPP) for name in names]
+
+    def identity(checked: list[int], named: list[int], copies: bool = False) -> str:
+        pick = [
+            SourceFile(files[i].location, files[i].display, files[i].language)
+            if copies
+            else files[i]
+            for i in checked
+        ]
+        inputs = run_inputs.RunInputs(
+            cache_module.FactsCache(tmp_path / "cache"),
+            pick,
+            files,
+            reported=len(pick),
+            settings=Settings(root=tmp_path),
+            registry=load_registry(),
+            packages=PackageGenerations(),
+            fallback=Generation.ROS1,
+            ros1_python2=False,
+            named=[files[i] for i in named],
+        )
+        return inputs._identity
+
+    whole = identity([1, 2, 3], [0, 1, 2, 3])
+    assert identity([1, 2, 3], [0, 1, 2, 3]) == whole
+    others = {
+        identity([1, 2], [0, 1, 2, 3]),
+        identity([2, 1, 3], [0, 1, 2, 3]),
+        identity([1, 2, 3], [0, 1, 2]),
+        identity([0, 1, 2, 3], [0, 1, 2, 3]),
+        identity([1, 2, 3], [0, 1, 2, 3], copies=True),  # columns, not positions
+    }
+    assert len(others) == 5 and whole not in others
+    assert identity([1, 2], [0, 1, 2], copies=True) == identity([1, 2], [0, 1, 2], copies=True)
