@@ -17,7 +17,10 @@ ends, and holds no cycle; at 8 copies of realws the collector's passes over the 
 unpickled from the cache were 2.0 s of a 14 s re-run after one edit. Only turned back
 on, the collector would walk all of that at its next young collection: it goes to the
 oldest generation first (``kept_for_the_run``). Worker processes, forked meanwhile,
-turn the collector back on for their lives.
+turn the collector back on for their lives. The same holds from the start: the walk's
+files (``discover``) and the statuses a re-run is keyed by (``run_inputs``) live as long
+as the run; at 8 copies of realws the young collections over them were 0.09 s of a 1.1 s
+re-run with nothing changed.
 """
 
 from __future__ import annotations

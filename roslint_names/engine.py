@@ -137,6 +137,30 @@ def lint(
     ``want_facts`` every file's facts (``renames`` searches them), without the graph when
     no graph rule needs it.
     """
+    # What a run keeps (the files found, their statuses, their facts, the graph) holds no
+    # cycle: the collector does not walk it again and again (``collection``).
+    with kept_for_the_run():
+        return _lint(
+            sources,
+            settings,
+            registry,
+            run,
+            context=context,
+            want_graph=want_graph,
+            want_facts=want_facts,
+        )
+
+
+def _lint(
+    sources: Sequence[SourceFile],
+    settings: Settings,
+    registry: Registry,
+    run: RunOptions,
+    *,
+    context: Sequence[SourceFile],
+    want_graph: bool,
+    want_facts: bool,
+) -> LintResult:
     enabled = enabled_codes(settings, registry)
     graph_rules = [r for r in registry.rules if r.check_workspace and r.code in enabled]
     packages = PackageGenerations()
@@ -237,10 +261,7 @@ def lint(
     extract = partial(extract_batch, cache, checker=judge)
     # A file whose worker is killed past its time budget is one RN001 (``gave_up``).
     give_up = partial(gave_up, cache)
-    with (
-        kept_for_the_run(),  # what the run keeps holds no cycle (``collection``)
-        Dispatcher(extract, run.jobs, expected_items=len(files), give_up=give_up) as dispatcher,
-    ):
+    with Dispatcher(extract, run.jobs, expected_items=len(files), give_up=give_up) as dispatcher:
         # (2) and (3)
         gathered = Gatherer(
             files=files,

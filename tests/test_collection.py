@@ -109,6 +109,33 @@ def test_the_graph_is_built_without_collections_and_what_the_run_made_is_old_aft
     assert young < 5_000
 
 
+def test_the_walk_and_the_keying_run_without_collections(
+    run_cli: Any, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """What the walk finds and the statuses the run is keyed by live as long as the run:
+    at 8 copies of the benchmark's workspace the collector's passes over them were 0.09 s
+    of a 1.1 s re-run with nothing changed."""
+    from roslint_names import discover, run_inputs
+
+    shutil.copytree(EXAMPLES / "src" / "turtle_bringup", tmp_path / "ws")
+    during: list[tuple[str, bool]] = []
+
+    def observed(owner: Any, name: str) -> None:
+        real = getattr(owner, name)
+
+        def observing(*arguments: Any, **keywords: Any) -> Any:
+            during.append((name, gc.isenabled()))
+            return real(*arguments, **keywords)
+
+        monkeypatch.setattr(owner, name, observing)
+
+    observed(discover, "_walk_named")
+    observed(run_inputs.RunInputs, "unchanged_key")
+    run_cli(["check", "--jobs", "1", "."], tmp_path / "ws")
+    assert during == [("_walk_named", False), ("unchanged_key", False)]
+    assert gc.isenabled()
+
+
 def test_a_callers_frozen_objects_stay_frozen() -> None:
     kept = [object() for _ in range(10)]
     gc.freeze()
