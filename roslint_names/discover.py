@@ -193,6 +193,11 @@ def display_path(path: Path, cwd: Path) -> str:
     return _displayed(os.fspath(path), os.path.join(os.fspath(cwd), ""))
 
 
+def display_path_text(path: str) -> str:
+    """A relative path string as reports show it (``display_path``)."""
+    return _displayed(path, "")
+
+
 def _displayed(path: str, prefix: str) -> str:
     """``display_path`` of a path string, ``prefix`` the current directory ending in a
     separator. String operations, not ``relative_to``: this runs for every file of the

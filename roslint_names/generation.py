@@ -80,6 +80,7 @@ class _Package:
     generation: Generation | None
     directory: Path | None = None  # where its package.xml is
     depends: frozenset[str] = frozenset()
+    root: str | None = None  # ``directory`` as a string: asked for every file of a run
 
 
 _NO_PACKAGE = _Package(None, None)
@@ -113,14 +114,18 @@ class PackageGenerations:
     def for_file(self, path: str | Path) -> Generation | None:
         return self._for_file(path).generation
 
-    def package_name(self, path: Path) -> str | None:
+    def package_name(self, path: str | Path) -> str | None:
         return self._for_file(path).name
 
     def package_directory(self, path: Path) -> Path | None:
         """The directory of the package.xml nearest above ``path``."""
         return self._for_file(path).directory
 
-    def package_depends(self, path: Path) -> frozenset[str]:
+    def package_root(self, path: str) -> str | None:
+        """``package_directory`` of a path string, as a string: no ``Path`` made."""
+        return self._for_file(path).root
+
+    def package_depends(self, path: str | Path) -> frozenset[str]:
         return self._for_file(path).depends
 
     def visible_packages(self, path: Path) -> frozenset[str] | None:
@@ -185,6 +190,7 @@ class PackageGenerations:
                 package_xml_generation(text),
                 Path(directory),
                 package_xml_depends(text),
+                directory,
             )
         elif os.path.dirname(directory) == directory:
             package = _NO_PACKAGE

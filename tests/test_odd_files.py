@@ -631,3 +631,23 @@ def test_a_named_file_behind_a_directory_that_cannot_be_searched_is_a_usage_erro
     assert result.stderr == (
         f"roslint-names: error: src/robot_base/src/driver.cpp: {os.strerror(errno.EACCES)}\n"
     )
+
+
+def test_a_package_is_shown_by_its_directory_when_its_files_are_named_in_latin_1(
+    tmp_path: Path,
+) -> None:
+    """A file name that is not UTF-8 is shown with its byte as four characters (``\\xe9``):
+    the package's display directory is its file's display less the part below the
+    package as shown, not as named (it was cut three characters short)."""
+    from roslint_names.discover import discover
+    from roslint_names.engine import workspace_packages
+    from roslint_names.generation import PackageGenerations
+
+    write_package(tmp_path / "src" / "robot", 1, "robot")
+    launch = tmp_path / "src" / "robot" / "launch"
+    launch.mkdir()
+    (launch / os.fsdecode(b"caf\xe9.launch")).write_text("<launch/>\n", encoding="utf-8")
+    sources = discover([Path("src")], (), tmp_path, tmp_path, [])
+    assert sources[0].display == "src/robot/launch/caf\\xe9.launch"
+    (package,) = workspace_packages(sources[:1], PackageGenerations())
+    assert (package.name, package.directory) == ("robot", "src/robot")
