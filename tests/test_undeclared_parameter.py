@@ -399,6 +399,65 @@ def test_a_base_class_the_workspace_holds_is_followed(run_cli: Any, tmp_path: Pa
     assert findings(run_cli, tmp_path) == []
 
 
+BASE_NODE = (
+    "from rclpy.node import Node\n\n\n"
+    "class RobotNode(Node):\n\n"
+    "    def __init__(self, name):\n"
+    "        super().__init__(name{options})\n"
+)
+ALLOWING = ", allow_undeclared_parameters=True"
+
+
+def _robot_common(directory: Path, template: str, options: str) -> None:
+    write(directory, "package.xml", template.format(name="robot_common"))
+    write(directory, "robot_common/base_node.py", BASE_NODE.format(options=options))
+
+
+def _reporter_on_robot_common(directory: Path) -> str:
+    """battery_reporter, deriving from robot_common's ``RobotNode``: its source's path."""
+    manifest = AMENT_PACKAGE.format(name="battery_reporter").replace(
+        "</license>", "</license>\n  <exec_depend>robot_common</exec_depend>"
+    )
+    write(directory, "package.xml", manifest)
+    node = (
+        RCLPY_NODE.format(options="")
+        .replace("from rclpy.node import Node", "from robot_common.base_node import RobotNode")
+        .replace("(Node)", "(RobotNode)")
+    )
+    write(directory, "battery_reporter/battery_reporter.py", node)
+    shown = directory.relative_to(directory.parents[2]).as_posix()
+    return f"{shown}/battery_reporter/battery_reporter.py"
+
+
+def test_of_two_copies_of_a_base_package_the_one_beside_the_node_is_followed(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """A fork of robot_common beside the node, its upstream elsewhere (colcon refuses the
+    workspace, yet it is linted): the node derives from the fork's class, which does not
+    allow undeclared parameters, not from both copies at once."""
+    fork, upstream = tmp_path / "src" / "fork", tmp_path / "src" / "upstream"
+    _robot_common(fork / "robot_common", AMENT_PACKAGE, "")
+    _robot_common(upstream / "robot_common", AMENT_PACKAGE, ALLOWING)
+    path = _reporter_on_robot_common(fork / "battery_reporter")
+    assert path == "src/fork/battery_reporter/battery_reporter/battery_reporter.py"
+    assert places(findings(run_cli, tmp_path)) == [(path, 12)]
+    _robot_common(fork / "robot_common", AMENT_PACKAGE, ALLOWING)
+    _robot_common(upstream / "robot_common", AMENT_PACKAGE, "")
+    assert findings(run_cli, tmp_path) == []
+
+
+def test_of_two_copies_of_a_base_package_the_one_of_the_nodes_generation_is_followed(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """A ROS 1 checkout of robot_common beside the ROS 2 node and a ROS 2 one elsewhere:
+    a ROS 2 package builds against the ROS 2 one, however far."""
+    near, far = tmp_path / "src" / "robot", tmp_path / "src" / "robot_ros2"
+    _robot_common(near / "robot_common", CATKIN_PACKAGE, ALLOWING)
+    _robot_common(far / "robot_common", AMENT_PACKAGE, "")
+    path = _reporter_on_robot_common(near / "battery_reporter")
+    assert places(findings(run_cli, tmp_path)) == [(path, 12)]
+
+
 DRIVER_LAUNCH_PY = """\
 from launch import LaunchDescription
 from launch.substitutions import PathJoinSubstitution

@@ -674,7 +674,12 @@ def _declarations(facts: FileFacts) -> tuple[frozenset[str], ...]:
 
 
 def _nearest(index: WorkspaceIndex, paths: list[str], package: Package | None) -> list[str]:
-    """Of ``paths``, those in ``package``, else in the packages it depends on, else all."""
+    """Of ``paths``, those in ``package``, else in the packages it depends on, else all.
+
+    Where packages of one name are several (a ROS 1 and a ROS 2 checkout of geometry2, a
+    fork beside its upstream: colcon and catkin refuse to build such a workspace, yet its
+    files are linted), the copies of the package's own generation nearest to it in the
+    tree are the ones meant; copies alike in both are all kept."""
     if package is None:
         return paths
     owners = [(path, index.package_of(path)) for path in paths]
@@ -682,9 +687,29 @@ def _nearest(index: WorkspaceIndex, paths: list[str], package: Package | None) -
     if own:
         return own
     depended = [
-        path for path, owner in owners if owner is not None and owner.name in package.depends
+        (path, owner)
+        for path, owner in owners
+        if owner is not None and owner.name in package.depends
     ]
-    return depended or paths
+    if not depended:
+        return paths
+    closeness = {owner.directory: _closeness(owner, package) for _, owner in depended}
+    best: dict[str, tuple[bool, int]] = {}
+    for _, owner in depended:
+        best[owner.name] = max(best.get(owner.name, (False, -1)), closeness[owner.directory])
+    return [path for path, owner in depended if closeness[owner.directory] == best[owner.name]]
+
+
+def _closeness(owner: Package, user: Package) -> tuple[bool, int]:
+    """How near a package is to the package using it: whether it can be of the user's
+    generation, then how many directories their paths share."""
+    generations = {owner.generation, user.generation}
+    shared = 0
+    for one, other in zip(owner.directory.split("/"), user.directory.split("/"), strict=False):
+        if one != other:
+            break
+        shared += 1
+    return None in generations or len(generations) == 1, shared
 
 
 def _directory(index: WorkspaceIndex, path: str) -> str:
