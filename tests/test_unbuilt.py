@@ -543,3 +543,85 @@ def test_the_language_server_judges_an_open_file_as_the_cli_does(tmp_path: Path)
     assert [(d.code, d.span.line, [r.span.line for r in d.related]) for d in found] == [
         ("RN202", 10, [11])
     ]
+
+
+def test_what_a_build_file_leaves_open_is_looked_up_as_it_was_compared() -> None:
+    """``_Opening`` answers from sets what comparing each word, pattern, subdirectory and
+    include with each source answered (``_may_name`` and the rest, the way every source
+    of a package was judged before): the same for every word form, from a package at the
+    run's root, below it, and outside the current directory."""
+    import itertools
+    import posixpath
+
+    from roslint_names.model import CompiledSources
+    from roslint_names.workspace import built
+    from roslint_names.workspace.index import join
+
+    def reference(
+        compiled: CompiledSources, base: str, path: str, inside: str, held: set[str]
+    ) -> bool:
+        if built._may_name(compiled, base, path, inside):
+            return True
+        for directory in compiled.subdirectories:
+            below = join(base, directory)
+            if join(below, "CMakeLists.txt") not in held and path.startswith(below + "/"):
+                return True
+        return any(join(base, included) not in held for included in compiled.includes)
+
+    words = [
+        "src/talker.cpp",
+        "src",
+        "talker",
+        "talker.cpp",
+        "nodes",
+        ".",
+        "..",
+        "../common",
+        "src/talk",
+        "tal",
+        "",
+    ]
+    for package in ("", "robot", "/tmp/ws/robot"):
+        base = package
+        held = {join(package, "CMakeLists.txt"), join(package, "nodes/CMakeLists.txt")}
+        paths = [
+            join(package, relative)
+            for relative in (
+                "src/talker.cpp",
+                "src/talker/main.cpp",
+                "nodes/listener.cc",
+                "tools/x.cpp",
+                "src/.cpp",
+                "talker",
+                "common/a.cpp",
+            )
+        ]
+        for size in (0, 1, 2):
+            for chosen in itertools.combinations(words, size):
+                for subdirectories, includes, patterns in (
+                    ((), (), ()),
+                    (("nodes",), (), ()),
+                    (("tools",), (), ()),
+                    ((), ("cmake/extra.cmake",), ()),
+                    ((), (), ("src/*.cpp",)),
+                    ((), (), ("*main.cpp",)),
+                ):
+                    compiled = CompiledSources(
+                        words=chosen,
+                        subdirectories=subdirectories,
+                        includes=includes,
+                        patterns=patterns,
+                    )
+                    opening = built._Opening.of(compiled, base, held)
+                    for path in paths:
+                        inside = path[len(package) :].lstrip("/") if package else path
+                        expected = reference(compiled, base, path, inside, held)
+                        assert opening.may_be(path, inside) == expected, (
+                            chosen,
+                            subdirectories,
+                            includes,
+                            patterns,
+                            package,
+                            path,
+                            posixpath.basename(path),
+                        )

@@ -88,6 +88,9 @@ class BuiltSources:
     # CMake reads; what their targets name.
     _reached: dict[str, tuple[_BuildFile, ...]] = field(default_factory=dict)
     _named: _Named | None = None
+    # Per package: what its build files, each read from its directories, leave open.
+    _openings: dict[str, tuple[_Opening, ...]] = field(default_factory=dict)
+    _cmake_built: dict[str, bool] = field(default_factory=dict)  # its root CMakeLists.txt held
 
     def add(self, facts: FileFacts, package: str | None) -> None:
         """One file's facts; ``package`` the display directory of its package."""
@@ -96,6 +99,8 @@ class BuiltSources:
         if compiled is None:
             return
         self._reached.clear()
+        self._openings.clear()
+        self._cmake_built.clear()
         self._named = None
         self._build_files.add(facts.path)
         build_file = _BuildFile(facts.path, compiled, facts.path.endswith(".cmake"))
@@ -120,7 +125,10 @@ class BuiltSources:
     def _whole_story(self, path: str, package: str) -> bool:
         """Whether the run holds what builds the file, a translation unit (a build names
         no header, it includes them): its package's CMake build, from its root."""
-        if join(package, _CMAKE_LISTS) not in self._build_files:
+        built = self._cmake_built.get(package)
+        if built is None:  # asked for each source of the package: joined once
+            built = self._cmake_built[package] = join(package, _CMAKE_LISTS) in self._build_files
+        if not built:
             return False  # no CMake build, or the run holds only part of it
         return path.lower().endswith(TRANSLATION_UNITS)
 
@@ -128,14 +136,22 @@ class BuiltSources:
         """Whether anything but a rostest test executable may compile the file."""
         if path in self._names().targets or posixpath.basename(path) in self._included:
             return True
-        build_files = self._reached_files(package)
-        lists = [parent(f.path) for f in build_files if f.lists]
         inside = path[len(package) :].lstrip("/") if package else path
-        for build_file in build_files:
-            bases = [parent(build_file.path)] + (lists if build_file.module else [])
-            if any(self._may_compile(build_file.compiled, base, path, inside) for base in bases):
-                return True
-        return False
+        return any(opening.may_be(path, inside) for opening in self._openings_of(package))
+
+    def _openings_of(self, package: str) -> tuple[_Opening, ...]:
+        """What each build file of the package that CMake reads leaves open, read from
+        its own directory (and, for a ``.cmake`` file, from every directory of a
+        ``CMakeLists.txt`` read): made once per package, asked for each of its sources."""
+        if package not in self._openings:
+            build_files = self._reached_files(package)
+            lists = [parent(f.path) for f in build_files if f.lists]
+            self._openings[package] = tuple(
+                _Opening.of(build_file.compiled, base, self._build_files)
+                for build_file in build_files
+                for base in [parent(build_file.path)] + (lists if build_file.module else [])
+            )
+        return self._openings[package]
 
     def _names(self) -> _Named:
         if self._named is None:
@@ -174,16 +190,56 @@ class BuiltSources:
             self._reached[package] = (*reached.values(), *others)
         return self._reached[package]
 
-    def _may_compile(self, compiled: CompiledSources, base: str, path: str, inside: str) -> bool:
-        """Whether what one build file leaves open, read from ``base``, may be ``path``
-        (``inside``: the same, relative to its package's directory)."""
-        if _may_name(compiled, base, path, inside):
+
+@dataclass(frozen=True)
+class _Opening:
+    """What one build file, read from one directory, leaves open: the sources it may
+    compile besides those its targets name (``_may_name``), as sets a source is looked up
+    in rather than a list of words each source is compared with."""
+
+    anything: bool  # an ``include`` of a build file the run does not hold: it may compile any
+    # ``add_subdirectory`` directories whose CMakeLists.txt the run does not hold, each + "/"
+    unknown_directories: tuple[str, ...]
+    patterns: tuple[str, ...]  # as written
+    base: str
+    words: frozenset[str]  # joined with ``base``
+    word_names: frozenset[str]  # their last parts
+
+    @classmethod
+    def of(cls, compiled: CompiledSources, base: str, build_files: set[str]) -> _Opening:
+        words = _joined(base, compiled.words)
+        unknown = tuple(
+            below + "/"
+            for directory in compiled.subdirectories
+            if join(below := join(base, directory), _CMAKE_LISTS) not in build_files
+        )
+        return cls(
+            any(join(base, included) not in build_files for included in compiled.includes),
+            unknown,
+            compiled.patterns,
+            base,
+            frozenset(words),
+            frozenset(posixpath.basename(word) for word in words),
+        )
+
+    def may_be(self, path: str, inside: str) -> bool:
+        """Whether it may compile ``path`` (``inside``: the same, relative to its
+        package's directory): ``_may_name``, then the directories and files it runs
+        that the run does not hold."""
+        if self.anything or path.startswith(self.unknown_directories):
             return True
-        for directory in compiled.subdirectories:
-            below = join(base, directory)
-            if join(below, _CMAKE_LISTS) not in self._build_files and path.startswith(below + "/"):
-                return True  # a subdirectory whose CMakeLists.txt the run does not hold
-        return any(join(base, included) not in self._build_files for included in compiled.includes)
+        if self.words:
+            name = posixpath.basename(path)
+            if name in self.word_names or name.rpartition(".")[0] in self.word_names:
+                return True  # the word's name is the file's, or its stem
+            directory = path
+            while "/" in directory:  # the word is the path, or a directory above it
+                if directory in self.words:
+                    return True
+                directory = directory.rpartition("/")[0]
+            if directory in self.words:
+                return True
+        return _matches_pattern(self.patterns, self.base, path, inside)
 
 
 def _may_run(compiled: CompiledSources, base: str, lists: str, package: str) -> bool:
@@ -202,13 +258,19 @@ def _may_run(compiled: CompiledSources, base: str, lists: str, package: str) -> 
 def _may_name(compiled: CompiledSources, base: str, path: str, inside: str) -> bool:
     """Whether a pattern or word of one build file, read from ``base``, may name ``path``
     (``inside``: the same, relative to its package's directory)."""
-    for pattern in compiled.patterns:
+    if _matches_pattern(compiled.patterns, base, path, inside):
+        return True
+    return any(_names(word, path) for word in _joined(base, compiled.words))
+
+
+def _matches_pattern(patterns: tuple[str, ...], base: str, path: str, inside: str) -> bool:
+    for pattern in patterns:
         if pattern.startswith("*"):  # an unknown start: any directory of the package
             if fnmatchcase(inside, pattern) or fnmatchcase(path, pattern):
                 return True
         elif fnmatchcase(path, join(base, pattern)):
             return True
-    return any(_names(word, path) for word in _joined(base, compiled.words))
+    return False
 
 
 @lru_cache(maxsize=4096)
