@@ -221,16 +221,23 @@ class RunInputs:
     def _key(self) -> str:
         digest = hashlib.blake2b(digest_size=20)
         digest.update(_text_bytes(f"{self._fingerprints()}\0{self._reported}\0"))
-        for source, tag in zip(self._checked, self._tags, strict=True):
-            digest.update(_text_bytes(f"{_where(source)}\0{tag}\n"))
+        # The bytes of one line per file, hashed in one update: the same digest as an
+        # update per line, without 77,000 calls.
+        lines = [
+            f"{_where(source)}\0{tag}\n"
+            for source, tag in zip(self._checked, self._tags, strict=True)
+        ]
+        digest.update(_text_bytes("".join(lines)))
         linted = {source.location for source in self._checked}
+        lines.clear()
         for source in self._everything:
             self._packages.for_file(source.location)  # so every manifest a run reads is read now
             if source.location not in linted:
-                digest.update(_text_bytes(f"{_where(source)}\n"))
+                lines.append(f"{_where(source)}\n")
             if source.language is Language.SERVICE_DEFINITION:  # RN403 reads its text too
                 content = self._digests.summary(source.location, MAX_DEFINITION_BYTES)[0]
-                digest.update(_text_bytes(f"{content}\n"))
+                lines.append(f"{content}\n")
+        digest.update(_text_bytes("".join(lines)))
         for manifest, text in sorted(self._packages.manifests.items()):
             digest.update(_text_bytes(f"{manifest}\0{len(text)}\0{text}"))
         return digest.hexdigest()
