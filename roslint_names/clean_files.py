@@ -13,6 +13,12 @@ those (``memo_key``), stores the entries (``entry``) of the files it found with 
 and no suppression, and the next run under the same key skips them: their verdict is
 "nothing", whatever the order of the files or their number. An entry that no longer
 matches is simply never looked up: a stale set can only cost time, never change a result.
+
+The files that had findings or suppressions are kept the same way, with their verdict
+(the findings and suppressions the per-file rules made, before the run adds anything
+about the workspace): the same inputs make the same verdict, so a file with findings is
+no longer checked (and read) again on every run after an edit; at 8 copies of the
+benchmark's workspace that was 1,576 files and 0.4 s of each such run.
 """
 
 from __future__ import annotations
@@ -21,7 +27,12 @@ import hashlib
 from collections.abc import Iterable, Mapping
 
 from .config import Settings, settings_fingerprint
+from .model import Diagnostic, Span
 from .registry import Registry
+from .suppress import Suppression
+
+# A file's verdict as kept: its findings and suppressions, as the per-file rules made them.
+Verdict = tuple[tuple[Diagnostic, ...], tuple[Suppression, ...]]
 
 _ENTRY_BYTES = 16
 
@@ -68,8 +79,62 @@ def under(entry: bytes, context: bytes) -> bytes:
     return hashlib.blake2b(entry + context, digest_size=_ENTRY_BYTES).digest()
 
 
-def loaded(value: object) -> frozenset[bytes]:
-    """The set ``FactsCache.load_checks`` gave back; empty for anything else."""
-    if isinstance(value, frozenset) and all(isinstance(item, bytes) for item in value):
-        return value
-    return frozenset()
+def stored(clean: Iterable[bytes], verdicts: Mapping[bytes, Verdict]) -> object:
+    """What ``FactsCache.store_checks`` keeps: the clean files' entries, and the other
+    files' verdicts by entry (a suppression as plain values: the cache builds model
+    values only)."""
+    return (
+        frozenset(clean),
+        {
+            entry: (
+                diagnostics,
+                tuple((s.keys, tuple(sorted(s.lines)), s.span) for s in suppressions),
+            )
+            for entry, (diagnostics, suppressions) in verdicts.items()
+        },
+    )
+
+
+def loaded(value: object) -> tuple[frozenset[bytes], dict[bytes, Verdict]]:
+    """What ``stored`` made, as ``FactsCache.load_checks`` gave it back; nothing for
+    anything else (an older cache's set alone, a damaged entry)."""
+    nothing: tuple[frozenset[bytes], dict[bytes, Verdict]] = (frozenset(), {})
+    if not (isinstance(value, tuple) and len(value) == 2):
+        return nothing
+    clean, kept = value
+    if not (isinstance(clean, frozenset) and all(isinstance(item, bytes) for item in clean)):
+        return nothing
+    if not isinstance(kept, dict):
+        return nothing
+    verdicts: dict[bytes, Verdict] = {}
+    for entry, verdict in kept.items():
+        found = _verdict(verdict)
+        if not isinstance(entry, bytes) or found is None:
+            return nothing
+        verdicts[entry] = found
+    return clean, verdicts
+
+
+def _verdict(value: object) -> Verdict | None:
+    if not (isinstance(value, tuple) and len(value) == 2):
+        return None
+    diagnostics, suppressions = value
+    if not (isinstance(diagnostics, tuple) and isinstance(suppressions, tuple)):
+        return None
+    if not all(isinstance(diagnostic, Diagnostic) for diagnostic in diagnostics):
+        return None
+    made: list[Suppression] = []
+    for suppression in suppressions:
+        if not (isinstance(suppression, tuple) and len(suppression) == 3):
+            return None
+        keys, lines, span = suppression
+        if not (
+            isinstance(keys, tuple)
+            and all(isinstance(key, str) for key in keys)
+            and isinstance(lines, tuple)
+            and all(isinstance(line, int) for line in lines)
+            and isinstance(span, Span)
+        ):
+            return None
+        made.append(Suppression(keys, frozenset(lines), span))
+    return diagnostics, tuple(made)

@@ -223,10 +223,11 @@ def _lint(
     # settings, plugin names and packages (``clean_files``): checked again only if edited.
     clean_key: str | None = None
     clean: frozenset[bytes] = frozenset()
+    verdicts: dict[bytes, clean_files.Verdict] = {}
     if cache is not None and inputs is not None:
         manifests = {str(path): text for path, text in packages.manifests.items()}
         clean_key = clean_files.memo_key(settings, registry, enabled, plugin_names, manifests)
-        clean = clean_files.loaded(cache.load_checks(clean_key))
+        clean, verdicts = clean_files.loaded(cache.load_checks(clean_key))
     known_inputs = inputs
 
     def entry_of(index: int) -> bytes | None:
@@ -255,6 +256,7 @@ def _lint(
         visible_of=lambda index: packages.visible_packages(files[index].path),
         read=lambda index: read_file(files[index].path, settings.max_file_size)[0] or b"",
         clean=clean,
+        verdicts=verdicts,
         entry_of=entry_of,
     )
     graph: Graph | None = None
@@ -340,8 +342,9 @@ def _lint(
             # A run over some files (pre-commit's) adds to the set of the whole workspace's
             # run; a run over the workspace replaces it, forgetting files since edited.
             found = checks.clean_now if not context else clean | checks.clean_now
-            if found != clean:
-                cache.store_checks(clean_key, frozenset(found))
+            judged = checks.verdicts_now if not context else verdicts | checks.verdicts_now
+            if found != clean or judged != verdicts:
+                cache.store_checks(clean_key, clean_files.stored(found, judged))
         inputs.finish(kept_key)
     return LintResult(
         tuple(diagnostics),
@@ -381,12 +384,14 @@ class _FileChecks:
     package_of: Callable[[int], str | None]  # the display directory of a file's package
     visible_of: Callable[[int], frozenset[str] | None]  # its package and dependencies (RN204)
     read: Callable[[int], bytes]  # a file's bytes, for one the gathering did not read
-    # Files found clean by the same checks before (``clean_files``), and each file's entry
-    # in that set once its facts key is known.
+    # Files found clean by the same checks before (``clean_files``), the verdicts of the
+    # others, and each file's entry in those once its facts key is known.
     clean: frozenset[bytes] = frozenset()
+    verdicts: Mapping[bytes, clean_files.Verdict] = field(default_factory=dict)
     entry_of: Callable[[int], bytes | None] = lambda index: None
     per_file: list[list[Diagnostic]] = field(init=False)
     clean_now: set[bytes] = field(default_factory=set)
+    verdicts_now: dict[bytes, clean_files.Verdict] = field(default_factory=dict)
     suppressions_of: dict[int, list[Suppression]] = field(default_factory=dict)
     _all_facts: list[FileFacts | None] = field(init=False)
     _waiting: list[tuple[int, FileFacts, bytes | None]] = field(default_factory=list)
@@ -442,16 +447,20 @@ class _FileChecks:
         wired: bytes = b"",
     ) -> None:
         """Check a file whose verdict depends on nothing but itself, the run's settings
-        and (``wired``: their digest) the names the launch files wire; one found clean
-        before under the same is clean now."""
+        and (``wired``: their digest) the names the launch files wire; one judged before
+        under the same has that verdict now."""
         entry = self.entry_of(index)
         if entry is not None and wired:
             entry = clean_files.under(entry, wired)
-        if entry is None or entry not in self.clean:
+        if entry is None:
             self._check(index, facts, data, contexts)
-            if entry is None or self.per_file[index] or index in self.suppressions_of:
-                return
-        self.clean_now.add(entry)
+        elif entry in self.clean:
+            self.clean_now.add(entry)
+        elif (known := self.verdicts.get(entry)) is not None:
+            self._keep(index, list(known[0]), list(known[1]))
+            self.verdicts_now[entry] = known
+        else:
+            self._remember(entry, *self._check(index, facts, data, contexts))
 
     def _judged(
         self, index: int, diagnostics: list[Diagnostic], suppressions: list[Suppression]
@@ -459,7 +468,16 @@ class _FileChecks:
         """A verdict made elsewhere (``FileChecks``), kept as ``_check`` keeps its own."""
         self._keep(index, diagnostics, suppressions)
         entry = self.entry_of(index)
-        if entry is not None and not diagnostics and not suppressions:
+        if entry is not None:
+            self._remember(entry, diagnostics, suppressions)
+
+    def _remember(
+        self, entry: bytes, diagnostics: list[Diagnostic], suppressions: list[Suppression]
+    ) -> None:
+        """A file's verdict for the next run (``clean_files``), as the rules made it."""
+        if diagnostics or suppressions:
+            self.verdicts_now[entry] = (tuple(diagnostics), tuple(suppressions))
+        else:
             self.clean_now.add(entry)
 
     def _bytes(self, index: int, data: bytes | None) -> bytes:
@@ -565,9 +583,10 @@ class _FileChecks:
         facts: FileFacts,
         data: bytes | None,
         contexts: _Contexts,
-    ) -> None:
+    ) -> Verdict:
         """``data`` None: the file was not read, as it holds no suppression; its text is
-        needed only for findings (their lines, fixes, whether it is test code)."""
+        needed only for findings (their lines, fixes, whether it is test code). The
+        verdict, as the rules made it."""
         text = "" if data is None else decode_for_display(data)
         diagnostics, found = self._check_text(facts, text, contexts)
         if data is None and diagnostics:
@@ -575,6 +594,7 @@ class _FileChecks:
                 facts, decode_for_display(self.read(index)), contexts
             )
         self._keep(index, diagnostics, found)
+        return diagnostics, found
 
     def _keep(
         self, index: int, diagnostics: list[Diagnostic], suppressions: list[Suppression]

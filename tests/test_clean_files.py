@@ -5,6 +5,7 @@ settings."""
 
 from __future__ import annotations
 
+import json
 import os
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -153,10 +154,10 @@ def test_what_decides_a_clean_file_s_verdict_besides_itself_keys_the_set(
 def test_a_run_over_some_files_keeps_the_rest_of_the_set(
     run_cli: Any, workspace: Path, tmp_path: Path, checked_files: list[str]
 ) -> None:
-    """pre-commit checks the files it is given: what it finds clean joins the set, and
-    the workspace's other clean files stay in it for the next whole run. (The settings'
-    root is the configuration's folder for both runs; without a configuration a run
-    over one file is rooted at its folder, which decides other verdicts: another key.)"""
+    """pre-commit checks the files it is given: what it judges joins the set, and the
+    workspace's other verdicts stay in it for the next whole run. (The settings' root is
+    the configuration's folder for both runs; without a configuration a run over one
+    file is rooted at its folder, which decides other verdicts: another key.)"""
     write(workspace, "roslint-names.toml", "max-depth = 4\n")
     cache = tmp_path / "cache"
     outputs(run_cli, workspace, cache)
@@ -165,8 +166,9 @@ def test_a_run_over_some_files_keeps_the_rest_of_the_set(
     arguments = ["check", "--format", "json", "--jobs", "1", "--exit-zero", "--cache-dir"]
     run_cli([*arguments, str(cache), "src/robot_base/scripts/teleop.py"], workspace)
     checked_files.clear()
-    run_cli([*arguments, str(cache), "."], workspace)
-    assert set(checked_files) == {"src/robot_base/src/driver.cpp"}  # it has a finding
+    cached = run_cli([*arguments, str(cache), "."], workspace)
+    assert checked_files == []  # driver.cpp's finding is remembered with its verdict
+    assert cached.stdout == run_cli([*arguments[:-1], "--no-cache", "."], workspace).stdout
 
 
 def test_a_damaged_or_foreign_set_is_ignored(
@@ -288,3 +290,51 @@ def test_a_file_waiting_for_the_service_types_is_clean_under_the_same_types(
         ),
     )
     assert '"code": "RN204"' in cached
+
+
+def test_a_file_with_findings_or_a_suppression_keeps_its_verdict_until_edited(
+    run_cli: Any, workspace: Path, tmp_path: Path, checked_files: list[str]
+) -> None:
+    """1,576 files with findings were checked again by every run after an edit at 8
+    copies of the benchmark's workspace: their verdicts are remembered as clean files
+    are, suppressions and RN002 included, and given back as a fresh check makes them."""
+    package = workspace / "src/robot_base"
+    edit(package / "src/driver.cpp", '"/odom"', '"/Odom"')  # RN203: a finding
+    edit(package / "scripts/teleop.py", "queue_size=1)", "queue_size=1)  # noqa: RN202")
+    arguments = ["check", "--format", "json", "--jobs", "1", "--extend-select", "RN002"]
+    cache = tmp_path / "cache"
+    first = run_cli([*arguments, "--cache-dir", str(cache), "."], workspace)
+    assert {"RN203", "RN002"} <= {item["code"] for item in json.loads(first.stdout)["findings"]}
+    edit(package / "launch/base.launch", 'name="teleop"', 'name="teleop_node"')
+    checked_files.clear()
+    cached = run_cli([*arguments, "--cache-dir", str(cache), "."], workspace)
+    assert checked_files == ["src/robot_base/launch/base.launch"]
+    assert cached.stdout == run_cli([*arguments, "--no-cache", "."], workspace).stdout
+    edit(package / "src/driver.cpp", '"/Odom"', '"/odom"')
+    checked_files.clear()
+    cached = run_cli([*arguments, "--cache-dir", str(cache), "."], workspace)
+    assert checked_files == ["src/robot_base/src/driver.cpp"]
+    assert cached.stdout == run_cli([*arguments, "--no-cache", "."], workspace).stdout
+
+
+def test_kept_verdicts_of_another_shape_are_nothing() -> None:
+    """An older cache's set alone, or a verdict holding anything but findings and
+    suppressions as ``stored`` writes them, is no verdict: every file is checked."""
+    from roslint_names import clean_files
+    from roslint_names.model import Diagnostic, Severity, Span
+    from roslint_names.suppress import Suppression
+
+    finding = Diagnostic(
+        "a.cpp", Span(1, 1, 1, 2), "RN203", "not-snake-case", Severity.WARNING, "m"
+    )
+    suppression = Suppression(("RN202",), frozenset({3, 4}), Span(3, 10, 3, 30))
+    kept = clean_files.stored([b"clean"], {b"judged": ((finding,), (suppression,))})
+    assert clean_files.loaded(kept) == (
+        frozenset({b"clean"}),
+        {b"judged": ((finding,), (suppression,))},
+    )
+    nothing: tuple[frozenset[bytes], dict[bytes, Any]] = (frozenset(), {})
+    assert clean_files.loaded(frozenset({b"clean"})) == nothing
+    assert clean_files.loaded((frozenset({b"clean"}), {b"judged": (("text",), ())})) == nothing
+    assert clean_files.loaded((frozenset(), {b"judged": ((finding,), (("RN202",),))})) == nothing
+    assert clean_files.loaded((frozenset(), {"judged": ((finding,), ())})) == nothing

@@ -235,7 +235,8 @@ def test_a_damaged_result_is_ignored_and_rewritten(
         entry.write_bytes(damage)
         again = check()
         assert not reused(again) and again.stdout == good.stdout
-        assert entry.read_bytes() == blob
+        # The same result again (its objects may share other references: other bytes).
+        assert cache_module._decode(entry.read_bytes()) == cache_module._decode(blob)
 
 
 def test_a_stored_value_that_is_not_a_result_is_a_miss(
@@ -465,9 +466,10 @@ def test_a_rerun_from_the_facts_reads_only_the_files_with_findings_or_suppressio
     monkeypatch.setattr(engine, "read_file", recording(engine.read_file))
     again = check("--extend-select", "RN002")
     assert not reused(again) and again.stdout == cold.stdout
-    # driver.cpp and base.launch have findings (their lines are shown), noted.launch and
-    # util.cpp a suppression; quiet.launch, CMakeLists.txt and package.xml are only facts.
-    assert sorted(set(read)) == ["base.launch", "driver.cpp", "noted.launch", "util.cpp"]
+    # driver.cpp has findings, remembered with their lines (``clean_files``): not read;
+    # base.launch is read for the names it wires (RN202), noted.launch and util.cpp for
+    # their suppressions; quiet.launch, CMakeLists.txt and package.xml are only facts.
+    assert sorted(set(read)) == ["base.launch", "noted.launch", "util.cpp"]
 
 
 # A run whose every input has the status it had is keyed by the key the last run kept
