@@ -278,3 +278,14 @@ def test_invalid_gitignore_patterns_are_said_and_the_others_kept(tmp_path: Path)
         "src/teleop/.gitignore:3: invalid pattern '[z-a].launch' not applied: "
         "bad character range z-a",
     ]
+
+
+def test_a_path_s_parent_is_the_one_dirname_gives() -> None:
+    """The package lookup's own parent of a path (``rpartition``, not ``dirname``: a
+    quarter of the lookup at 81,000 files) agrees with ``os.path.dirname`` everywhere."""
+    from roslint_names.generation import _parent
+
+    paths = ["/ws/src/robot/src/driver.cpp", "/ws", "/", "", "robot", "src/robot"]
+    paths += ["src//robot", "//ws", "/ws/src/", "src/robot//", "///", "launch/"]
+    for path in paths:
+        assert _parent(path) == os.path.dirname(path), path
