@@ -5,8 +5,10 @@ cache, so a second start is quick). Then, for each open document:
 
 - on open and save at once, on change once typing has paused for ``TYPING_PAUSE_S``, the
   document's text (saved or not) is checked and its diagnostics published;
-- once changes have paused for ``GRAPH_PAUSE_S``, the workspace graph is built again in
-  a worker thread and the graph rules' findings published for every open document.
+- once changes have paused for ``GRAPH_PAUSE_S`` (counted from the last change, open or
+  save, not from the check that followed it: a change made meanwhile puts it off), and
+  the checks of those changes are done, the workspace graph is built again in a worker
+  thread and the graph rules' findings published for every open document.
 
 Code actions offer each finding's fix (the same edit ``--fix`` makes, marked unsafe where
 it is) and a suppression of the finding on its line in the file's own comment form;
@@ -247,6 +249,7 @@ class RoslintServer(LanguageServer):
         self._prepared: _Prepared | None = None
         self._worker = _Worker()
         self._skipped: set[str] = set()  # documents above max-file-size, logged once
+        self._last_change = 0.0  # ``time.monotonic()`` of the last change, open or save
 
     def log_line(self, message: str, kind: types.MessageType = types.MessageType.Info) -> None:
         """A line in the client's log (and the server's): never a pop-up."""
@@ -324,6 +327,7 @@ class RoslintServer(LanguageServer):
 
     def schedule(self, uri: str, delay: float) -> None:
         """Check ``uri`` after ``delay``, unless it changes again before."""
+        self._last_change = time.monotonic()
         pending = self._pending.pop(uri, None)
         if pending is not None:
             pending.cancel()
@@ -372,7 +376,10 @@ class RoslintServer(LanguageServer):
         self._graph = asyncio.ensure_future(self._check_graph())
 
     async def _check_graph(self) -> None:
-        await asyncio.sleep(GRAPH_PAUSE_S)
+        # Scheduled once a check is published, which comes ``TYPING_PAUSE_S`` and the
+        # check's own time after the change: only the rest of the pause is left to wait.
+        while (left := self._last_change + GRAPH_PAUSE_S - time.monotonic()) > 0:
+            await asyncio.sleep(left)
         session = self.session
         if session is None:
             return

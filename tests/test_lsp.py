@@ -310,3 +310,52 @@ def test_a_documents_own_findings_come_before_the_workspace_is_read(tmp_path: Pa
     write(root, "src/generated/scripts/generated_node.py", _generated_node(4000))
     events = asyncio.run(_order_of_events(root, launch, tmp_path / "cache"))
     assert events == ["RN101", "read"]
+
+
+class _GraphClock:
+    """A session whose graph builds record when they start, after ``time.monotonic``."""
+
+    def __init__(self) -> None:
+        self.started: list[float] = []
+
+    def check_graph(self) -> dict[str, list[Any]]:
+        import time
+
+        self.started.append(time.monotonic())
+        return {}
+
+
+def test_the_graph_waits_for_changes_to_pause_not_for_the_check_after_them(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """``GRAPH_PAUSE_S`` counts from the last change: the graph waited that long after
+    the change's check was published, ``TYPING_PAUSE_S`` and the check's time later (0.15
+    to 0.2 s of the 1.4 s the benchmark's editor waited at 8 copies). A change made
+    while it waits puts it off."""
+    import time
+
+    from roslint_names import lsp
+
+    pause = 0.4
+    monkeypatch.setattr(lsp, "GRAPH_PAUSE_S", pause)
+
+    async def scenario() -> tuple[float, float]:
+        server = lsp.RoslintServer()
+        clock = _GraphClock()
+        server.session = clock  # type: ignore[assignment]
+        server._last_change = changed = time.monotonic()
+        await asyncio.sleep(0.2)  # the typing pause and the document's own check
+        server._schedule_graph()
+        assert server._graph is not None
+        await server._graph
+        first = clock.started[0] - changed
+        server._last_change = changed = time.monotonic()
+        server._schedule_graph()
+        await asyncio.sleep(0.2)
+        server._last_change = changed = time.monotonic()  # typed again meanwhile
+        await server._graph
+        return first, clock.started[1] - changed
+
+    first, second = asyncio.run(scenario())
+    assert pause <= first < pause + 0.15  # not 0.2 s more
+    assert pause <= second < pause + 0.15  # from the second change, not the first
