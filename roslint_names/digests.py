@@ -90,7 +90,7 @@ class ContentDigests:
         (_, error, skip), content = self._read(name, signature, path, max_size)
         return content, error, skip
 
-    def read(self, path: Path, max_size: int) -> tuple[Read, str | None]:
+    def read(self, path: str | Path, max_size: int) -> tuple[Read, str | None]:
         """``read_file``, and the content digest of what it read, remembered for the next
         run."""
         name, signature = os.fspath(path), status_of(path)

@@ -804,7 +804,7 @@ def report_graph(
         if texts is not None and source.display in texts:
             text = texts[source.display]
         else:
-            data, _, _ = read_file(source.path, settings.max_file_size)
+            data, _, _ = read_file(source.location, settings.max_file_size)
             text = decode_for_display(data or b"")
         to_diagnostic = _DiagnosticFactory(file_facts, settings, text)
         judging = _TestCodeFilter(file_facts, text, settings, test_rules)

@@ -159,7 +159,7 @@ class Specialiser:
         data, content = self._read(source)
         if data is None:
             return None
-        package = self._packages.for_file(source.path)
+        package = self._packages.for_file(source.location)
         python2 = reads_python2(source.language, package, self._fallback, self._ros1_python2)
         cache_key = None
         if self._cache is not None:
@@ -178,7 +178,7 @@ class Specialiser:
         """A launch file's bytes and content digest, read once however many argument
         sets it is specialised under (up to 19 on realws)."""
         if source.display not in self._files:
-            data, _, _ = read_file(source.path, self._max_file_size)
+            data, _, _ = read_file(source.location, self._max_file_size)
             self._files[source.display] = data, "" if data is None else content_digest(data)
         return self._files[source.display]
 
@@ -410,7 +410,7 @@ class Gatherer:
             if self.inputs is not None:
                 (data, read_error, skip), key = self.inputs.read(index, source)
             else:
-                data, read_error, skip = read_file(source.path, self.max_file_size)
+                data, read_error, skip = read_file(source.location, self.max_file_size)
             if skip == BINARY:  # a source that is not text is a finding, never a pass
                 yield index, not_text(source), b"", None
             elif skip is not None:
@@ -419,7 +419,7 @@ class Gatherer:
             elif data is None:
                 yield index, unreadable(source, read_error), b"", None
             else:
-                package = self.packages.for_file(source.path)
+                package = self.packages.for_file(source.location)
                 if known is not None and key == known[0]:  # loaded above: the same bytes
                     self.cached += 1
                     stored: FileFacts | None = known[1]

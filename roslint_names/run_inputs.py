@@ -127,9 +127,9 @@ class RunInputs:
         """The file's bytes (as ``read_file`` gives them) and its facts key."""
         maximum = self._settings.max_file_size
         if self._keyed_first:
-            read, content = read_file(source.path, maximum), None
+            read, content = read_file(source.location, maximum), None
         else:
-            read, content = self._digests.read(source.path, maximum)
+            read, content = self._digests.read(source.location, maximum)
         data, read_error, skip = read
         if data is not None and content is None:
             content = content_digest(data)

@@ -456,8 +456,8 @@ def test_a_rerun_from_the_facts_reads_only_the_files_with_findings_or_suppressio
     read: list[str] = []
 
     def recording(real: Callable[..., Any]) -> Callable[..., Any]:
-        def read_file(path: Path, max_size: int) -> Any:
-            read.append(path.name)
+        def read_file(path: str | Path, max_size: int) -> Any:
+            read.append(os.path.basename(path))
             return real(path, max_size)
 
         return read_file

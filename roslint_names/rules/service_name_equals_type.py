@@ -144,7 +144,14 @@ def _run_type_set(generation: Generation, of_the_run: frozenset[str]) -> frozens
 
 
 def _with_names(*types: InterfaceType) -> tuple[tuple[InterfaceType, str], ...]:
-    return tuple(sorted(((found, snake_case(found.name)) for found in set(types)), key=_by_text))
+    return tuple(sorted(((found, _snake_name(found.name)) for found in set(types)), key=_by_text))
+
+
+@lru_cache(maxsize=4096)
+def _snake_name(name: str) -> str:
+    """``snake_case`` of a type's name, once per name: the types of a run are named again
+    for each set of packages a file can see (one list per set), a thousand names each."""
+    return snake_case(name)
 
 
 def _by_text(item: tuple[InterfaceType, str]) -> str:
