@@ -547,20 +547,36 @@ def test_the_language_server_judges_an_open_file_as_the_cli_does(tmp_path: Path)
 
 def test_what_a_build_file_leaves_open_is_looked_up_as_it_was_compared() -> None:
     """``_Opening`` answers from sets what comparing each word, pattern, subdirectory and
-    include with each source answered (``_may_name`` and the rest, the way every source
-    of a package was judged before): the same for every word form, from a package at the
-    run's root, below it, and outside the current directory."""
+    include with each source answered (the way every source of a package was judged
+    before, ``reference``): the same for every word form, from a package at the run's
+    root, below it, and outside the current directory."""
     import itertools
     import posixpath
+    from fnmatch import fnmatchcase
 
     from roslint_names.model import CompiledSources
     from roslint_names.workspace import built
     from roslint_names.workspace.index import join
 
+    def names(word: str, path: str) -> bool:
+        """A word names a file by its path, a directory above it, its name or its stem."""
+        name = posixpath.basename(path)
+        return (
+            path == word
+            or path.startswith(word + "/")
+            or posixpath.basename(word) in (name, name.rpartition(".")[0])
+        )
+
     def reference(
         compiled: CompiledSources, base: str, path: str, inside: str, held: set[str]
     ) -> bool:
-        if built._may_name(compiled, base, path, inside):
+        for pattern in compiled.patterns:
+            if pattern.startswith("*"):
+                if fnmatchcase(inside, pattern) or fnmatchcase(path, pattern):
+                    return True
+            elif fnmatchcase(path, join(base, pattern)):
+                return True
+        if any(names(join(base, word), path) for word in compiled.words):
             return True
         for directory in compiled.subdirectories:
             below = join(base, directory)

@@ -192,22 +192,64 @@ class BuiltSources:
 
 
 @dataclass(frozen=True)
-class _Opening:
-    """What one build file, read from one directory, leaves open: the sources it may
-    compile besides those its targets name (``_may_name``), as sets a source is looked up
-    in rather than a list of words each source is compared with."""
+class _Naming:
+    """What the patterns and words of one build file, read from ``base``, may name: as
+    sets a path is looked up in, not words each path is compared with (a build file's
+    words are asked about every C++ source of its package)."""
 
-    anything: bool  # an ``include`` of a build file the run does not hold: it may compile any
-    # ``add_subdirectory`` directories whose CMakeLists.txt the run does not hold, each + "/"
-    unknown_directories: tuple[str, ...]
     patterns: tuple[str, ...]  # as written
     base: str
     words: frozenset[str]  # joined with ``base``
     word_names: frozenset[str]  # their last parts
 
+    def names(self, path: str, inside: str) -> bool:
+        """Whether a pattern or word may name ``path`` (``inside``: the same, relative to
+        its package's directory). A word names a file by its path, a directory above
+        it, its name or its stem (a macro of another package may make
+        ``src/talker.cpp`` of ``talker``)."""
+        if self.words:
+            name = posixpath.basename(path)
+            if name in self.word_names or name.rpartition(".")[0] in self.word_names:
+                return True
+            directory = path
+            while "/" in directory:  # the word is the path, or a directory above it
+                if directory in self.words:
+                    return True
+                directory = directory.rpartition("/")[0]
+            if directory in self.words:
+                return True
+        for pattern in self.patterns:
+            if pattern.startswith("*"):  # an unknown start: any directory of the package
+                if fnmatchcase(inside, pattern) or fnmatchcase(path, pattern):
+                    return True
+            elif fnmatchcase(path, join(self.base, pattern)):
+                return True
+        return False
+
+
+@lru_cache(maxsize=4096)
+def _naming(compiled: CompiledSources, base: str) -> _Naming:
+    words = [join(base, relative) for relative in compiled.words]
+    return _Naming(
+        compiled.patterns,
+        base,
+        frozenset(words),
+        frozenset(posixpath.basename(word) for word in words),
+    )
+
+
+@dataclass(frozen=True)
+class _Opening:
+    """What one build file, read from one directory, leaves open: the sources it may
+    compile besides those its targets name."""
+
+    anything: bool  # an ``include`` of a build file the run does not hold: it may compile any
+    # ``add_subdirectory`` directories whose CMakeLists.txt the run does not hold, each + "/"
+    unknown_directories: tuple[str, ...]
+    naming: _Naming
+
     @classmethod
     def of(cls, compiled: CompiledSources, base: str, build_files: set[str]) -> _Opening:
-        words = _joined(base, compiled.words)
         unknown = tuple(
             below + "/"
             for directory in compiled.subdirectories
@@ -216,30 +258,16 @@ class _Opening:
         return cls(
             any(join(base, included) not in build_files for included in compiled.includes),
             unknown,
-            compiled.patterns,
-            base,
-            frozenset(words),
-            frozenset(posixpath.basename(word) for word in words),
+            _naming(compiled, base),
         )
 
     def may_be(self, path: str, inside: str) -> bool:
         """Whether it may compile ``path`` (``inside``: the same, relative to its
-        package's directory): ``_may_name``, then the directories and files it runs
-        that the run does not hold."""
+        package's directory): the directories and files it runs that the run does not
+        hold, then its patterns and words."""
         if self.anything or path.startswith(self.unknown_directories):
             return True
-        if self.words:
-            name = posixpath.basename(path)
-            if name in self.word_names or name.rpartition(".")[0] in self.word_names:
-                return True  # the word's name is the file's, or its stem
-            directory = path
-            while "/" in directory:  # the word is the path, or a directory above it
-                if directory in self.words:
-                    return True
-                directory = directory.rpartition("/")[0]
-            if directory in self.words:
-                return True
-        return _matches_pattern(self.patterns, self.base, path, inside)
+        return self.naming.names(path, inside)
 
 
 def _may_run(compiled: CompiledSources, base: str, lists: str, package: str) -> bool:
@@ -251,44 +279,7 @@ def _may_run(compiled: CompiledSources, base: str, lists: str, package: str) -> 
     return (
         any(join(base, subdirectory) == directory for subdirectory in compiled.subdirectories)
         or any(join(base, included) == lists for included in compiled.includes)
-        or _may_name(compiled, base, lists, inside)
-    )
-
-
-def _may_name(compiled: CompiledSources, base: str, path: str, inside: str) -> bool:
-    """Whether a pattern or word of one build file, read from ``base``, may name ``path``
-    (``inside``: the same, relative to its package's directory)."""
-    if _matches_pattern(compiled.patterns, base, path, inside):
-        return True
-    return any(_names(word, path) for word in _joined(base, compiled.words))
-
-
-def _matches_pattern(patterns: tuple[str, ...], base: str, path: str, inside: str) -> bool:
-    for pattern in patterns:
-        if pattern.startswith("*"):  # an unknown start: any directory of the package
-            if fnmatchcase(inside, pattern) or fnmatchcase(path, pattern):
-                return True
-        elif fnmatchcase(path, join(base, pattern)):
-            return True
-    return False
-
-
-@lru_cache(maxsize=4096)
-def _joined(base: str, relatives: tuple[str, ...]) -> tuple[str, ...]:
-    """``relatives`` joined with ``base``: a build file's words are matched against every
-    C++ source of its package, and joining them each time was most of the work."""
-    return tuple(join(base, relative) for relative in relatives)
-
-
-def _names(word: str, path: str) -> bool:
-    """Whether a word (joined with its build file's directory) may name the file at
-    ``path``: by its path, a directory above it, its name, or its stem (a macro of
-    another package may make ``src/talker.cpp`` of ``talker``)."""
-    name = posixpath.basename(path)
-    return (
-        path == word
-        or path.startswith(word + "/")
-        or posixpath.basename(word) in (name, name.rpartition(".")[0])
+        or _naming(compiled, base).names(lists, inside)
     )
 
 
