@@ -742,16 +742,13 @@ def workspace_packages(
         if root is None or root in found:
             continue  # the display directory is worked out once per package, not per file
         name = packages.package_name(source.location)
-        display = _display_directory(source, root)
         if name is None:
             continue
-        depends = packages.package_depends(source.location)
-        directory = Path(root)
         found[root] = Package(
             name,
-            display,
-            depends,
-            services.get(directory, ()),
+            _display_directory(source, root),
+            packages.package_depends(source.location),
+            services.get(root, ()),
             packages.for_file(source.location),
         )
     return list(found.values())

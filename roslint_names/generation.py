@@ -78,9 +78,10 @@ def package_xml_name(text: str) -> str | None:
 class _Package:
     name: str | None
     generation: Generation | None
-    directory: Path | None = None  # where its package.xml is
     depends: frozenset[str] = frozenset()
-    root: str | None = None  # ``directory`` as a string: asked for every file of a run
+    # Where its package.xml is, as a string: asked for every file of a run, where making
+    # a ``Path`` for each cost more than the lookup.
+    root: str | None = None
 
 
 _NO_PACKAGE = _Package(None, None)
@@ -117,12 +118,8 @@ class PackageGenerations:
     def package_name(self, path: str | Path) -> str | None:
         return self._for_file(path).name
 
-    def package_directory(self, path: Path) -> Path | None:
+    def package_root(self, path: str | Path) -> str | None:
         """The directory of the package.xml nearest above ``path``."""
-        return self._for_file(path).directory
-
-    def package_root(self, path: str) -> str | None:
-        """``package_directory`` of a path string, as a string: no ``Path`` made."""
         return self._for_file(path).root
 
     def package_depends(self, path: str | Path) -> frozenset[str]:
@@ -188,7 +185,6 @@ class PackageGenerations:
             package = _Package(
                 package_xml_name(text),
                 package_xml_generation(text),
-                Path(directory),
                 package_xml_depends(text),
                 directory,
             )

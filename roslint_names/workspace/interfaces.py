@@ -180,14 +180,15 @@ WELL_KNOWN: dict[str, ServiceDefinition] = {
 
 def service_definitions(
     sources: Iterable[SourceFile], packages: PackageGenerations
-) -> dict[Path, tuple[tuple[str, ServiceDefinition], ...]]:
-    """package directory -> (type name, definition) of each ``.srv`` of a package that is
-    not ROS 2 only; files that cannot be read or parsed are left out (unknown types)."""
-    found: dict[Path, list[tuple[str, ServiceDefinition]]] = {}
+) -> dict[str, tuple[tuple[str, ServiceDefinition], ...]]:
+    """package directory (``PackageGenerations.package_root``) -> (type name, definition)
+    of each ``.srv`` of a package that is not ROS 2 only; files that cannot be read or
+    parsed are left out (unknown types)."""
+    found: dict[str, list[tuple[str, ServiceDefinition]]] = {}
     for source in sources:
         if source.language is not Language.SERVICE_DEFINITION:
             continue
-        directory = packages.package_directory(source.path)
+        directory = packages.package_root(source.location)
         package = packages.package_name(source.path)
         if directory is None or package is None:
             continue
