@@ -31,14 +31,14 @@ from pathlib import Path
 from typing import Any, NamedTuple
 
 from .cache import BuiltinsUnpickler, FactsCache, code_fingerprint
-from .reading import is_racy, open_regular, status_from
+from .reading import Status, is_racy, open_regular, status_from
 
 LISTINGS = "listings"  # their directory in the facts cache, one file per named directory
 KEPT = 64
 _FORMAT = 2
 
 DirectoryStatus = tuple[int, int, int]  # mtime_ns, ctime_ns, inode
-FileStatus = tuple[int, int, int, int]  # size, mtime_ns, ctime_ns, inode
+FileStatus = Status  # a file's, as ``reading.status_of`` takes it
 
 
 class Listed(NamedTuple):
