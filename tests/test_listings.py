@@ -134,28 +134,30 @@ def _remove_link_target(root: Path) -> None:
     (root / "catkin/toplevel.cmake").unlink()
 
 
+def _rewritten(path: Path, text: str) -> None:
+    """``path`` edited in place to ``text``, its time set back: its directory's stays."""
+    path.write_text(text, encoding="utf-8")
+    _aged(path)
+
+
 def _ignore_by_gitignore(root: Path) -> None:
-    gitignore = root / "src/chatter_ros/.gitignore"
-    gitignore.write_text("*.orig\nbringup/\n", encoding="utf-8")
-    _aged(gitignore)
+    _rewritten(root / "src/chatter_ros/.gitignore", "*.orig\nbringup/\n")
 
 
 def _ignore_above(root: Path) -> None:
-    gitignore = root / "src/chatter_ros/.gitignore"
-    gitignore.write_text("*.orig\nlaunch/\n", encoding="utf-8")
-    _aged(gitignore)
+    _rewritten(root / "src/chatter_ros/.gitignore", "*.orig\nlaunch/\n")
 
 
 def _script_no_longer_python(root: Path) -> None:
-    relay = root / "src/chatter_ros/chatter/scripts/relay"
-    relay.write_text("#!/bin/bash\nrosrun chatter talker\n", encoding="utf-8")
-    _aged(relay)
+    _rewritten(
+        root / "src/chatter_ros/chatter/scripts/relay", "#!/bin/bash\nrosrun chatter talker\n"
+    )
 
 
 def _xml_no_longer_launch(root: Path) -> None:
-    nodes = root / "src/chatter_ros/chatter/launch/nodes.xml"
-    nodes.write_text(BRINGUP.replace("launch>", "robot>"), encoding="utf-8")
-    _aged(nodes)
+    _rewritten(
+        root / "src/chatter_ros/chatter/launch/nodes.xml", BRINGUP.replace("launch>", "robot>")
+    )
 
 
 def _marker(root: Path) -> None:
