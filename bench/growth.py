@@ -8,8 +8,11 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
   part: what it computed rather than waited for) and the peak memory of the process tree;
 - ``unchanged``: the same again (the stored result; the copies were left past the
   2 s racy window first, so the cold run could keep its key: ``unchanged``);
-- ``edit_cpp``, ``edit_launch``: one C++ source, then one launch file of one copy edited,
-  as pre-commit and CI see a change: what the run after an edit costs;
+- ``edit_cpp``, ``edit_launch``: one C++ source, then one launch file of one copy given
+  a comment at its end, as pre-commit and CI see a change: what the run after an edit
+  that moves no name costs (``same_facts``: the last run's graph findings stand);
+- ``edit_moves``: a line put above everything in that C++ source, so that every name in
+  it moves: what an edit the graph must be built again for costs;
 - ``identical_after_edits``: whether the last edited run printed what a run with an
   empty cache prints over the same tree (a stale cache must never change a result);
 - ``lsp`` (with ``--lsp-edits``): the language server's latencies on the grown workspace
@@ -36,11 +39,18 @@ from roslint_names.discover import discover
 from roslint_names.engine import lintable
 from roslint_names.reading import RACY_NANOSECONDS
 
-# One edit each: appended where it changes no name (a comment), so that the run measures
-# what an edit costs, not what a new finding does.
+# One edit each, a comment: at the end, where it moves no name, or (``True``) at the start,
+# where it moves every name of the file; so that the run measures what an edit costs, not
+# what a new finding does.
 _EDITS = {
-    "edit_cpp": ((".cpp",), "create_publisher", b"\n// roslint-names bench edit\n"),
-    "edit_launch": ((".launch.xml", ".launch"), "<node", b"\n<!-- roslint-names bench edit -->\n"),
+    "edit_cpp": ((".cpp",), "create_publisher", b"\n// roslint-names bench edit\n", False),
+    "edit_launch": (
+        (".launch.xml", ".launch"),
+        "<node",
+        b"\n<!-- roslint-names bench edit -->\n",
+        False,
+    ),
+    "edit_moves": ((".cpp",), "create_publisher", b"// roslint-names bench edit\n", True),
 }
 
 
@@ -66,13 +76,13 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
         arguments = ["--format", "json", "."]
         runs = {"cold": bench.cli(root, arguments, cache)}
         runs["unchanged"] = bench.cli(root, arguments, cache)
-        for name, (suffixes, marker, comment) in _EDITS.items():
+        for name, (suffixes, marker, comment, first) in _EDITS.items():
             edited = pick(root / "src", suffixes, marker)
-            _append(edited, comment)
+            _add(edited, comment, first=first)
             runs[name] = bench.cli(root, arguments, cache)
             results.setdefault("edited", {})[name] = edited.relative_to(root).as_posix()
         fresh = bench.cli(root, arguments, scratch / "fresh-cache")
-        results["identical_after_edits"] = fresh.stdout == runs["edit_launch"].stdout
+        results["identical_after_edits"] = fresh.stdout == runs["edit_moves"].stdout
         results["runs"] = {name: run.summary() for name, run in runs.items()}
         if lsp_edits:
             results["lsp"] = latency(root, lsp_edits, cache)
@@ -96,10 +106,10 @@ def grown(workspace: Path, copies: int, root: Path) -> Path:
     return root
 
 
-def _append(path: Path, comment: bytes) -> None:
-    """``comment`` appended, as a new file renamed over the old: the copies that share the
-    old file's bytes through a hard link keep them."""
-    data = path.read_bytes() + comment
+def _add(path: Path, comment: bytes, *, first: bool) -> None:
+    """``comment`` appended (``first``: put first), as a new file renamed over the old: the
+    copies that share the old file's bytes through a hard link keep them."""
+    data = comment + path.read_bytes() if first else path.read_bytes() + comment
     replacement = path.with_name(f".{path.name}.bench")
     replacement.write_bytes(data)
     os.replace(replacement, path)

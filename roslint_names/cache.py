@@ -51,6 +51,8 @@ settings, all of the tool's code: the engine makes the key, ``load_run``/``store
 the value) is served whole from ``runs/``: applying the rules again is cheap next to
 parsing, but not next to the 0.05x-the-parse-floor budget of a re-run (the README's
 Performance table). Only the ``RUNS_KEPT`` most recently used results are kept.
+``replays/`` holds what a run whose files' facts are those of a recent run takes instead
+of building the workspace graph again (``same_facts``), keyed alike but for the facts.
 ``digests/`` holds, per workspace, each file's content digest with its status, so that
 keying a re-run does not mean reading every file (``digests.ContentDigests``).
 """
@@ -92,6 +94,8 @@ DIGESTS = "digests"  # the directory of ``digests.ContentDigests``, one file per
 RUNS_KEPT = 64  # whole-run results: one per recent (file set, settings) of each checkout
 _CHECKS = "checks"  # the sets of files the per-file rules found clean (``clean_files``)
 CHECKS_KEPT = 8  # one per recent (settings, rules, packages) of each checkout
+_REPLAYS = "replays"  # what a run whose facts are the last run's takes (``same_facts``)
+REPLAYS_KEPT = 8  # one per recent (file set, settings) of each checkout
 _LOG_BATCH = 512  # lines buffered before an append; and every batch of extraction ends one
 _TAG_NAME = "CACHEDIR.TAG"
 _CACHEDIR_TAG = (
@@ -273,6 +277,15 @@ class FactsCache:
         beyond ``CHECKS_KEPT``."""
         entry = self.directory / _CHECKS / key
         self.write_newest(entry, _encode(value), CHECKS_KEPT)
+
+    def load_replay(self, key: str) -> object | None:
+        """The value ``store_replay`` kept under ``key``, or None (absent or corrupt)."""
+        return self._load_entry(_REPLAYS, key)
+
+    def store_replay(self, key: str, value: object) -> None:
+        """Keep a run's replay (``same_facts``); forget the least recently used beyond
+        ``REPLAYS_KEPT``."""
+        self.write_newest(self.directory / _REPLAYS / key, _encode(value), REPLAYS_KEPT)
 
     def _load_entry(self, kind: str, key: str) -> object | None:
         entry = os.path.join(self.directory, kind, key)

@@ -14,7 +14,7 @@ from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from . import clean_files
+from . import clean_files, same_facts
 from .collection import kept_for_the_run
 from .config import Settings, enabled_codes, ignored_for_path, ros1_python2, test_code_codes
 from .decisions import one_per_decision
@@ -42,6 +42,7 @@ from .model import (
     Decision,
     Diagnostic,
     FileFacts,
+    Finding,
     Fix,
     Generation,
     Kind,
@@ -51,7 +52,8 @@ from .model import (
 from .reading import decode_for_display, read_file
 from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
-from .run_inputs import RunInputs
+from .run_inputs import RunInputs, is_facts_key
+from .same_facts import Replay, RunWide
 from .suppress import Suppression, find_suppressions, is_our_code
 from .symbols import PackageConstants, uses_constants
 from .templates import holds_placeholder, is_template
@@ -163,6 +165,7 @@ def _lint(
 ) -> LintResult:
     enabled = enabled_codes(settings, registry)
     graph_rules = [r for r in registry.rules if r.check_workspace and r.code in enabled]
+    rule_of = {rule.code: rule for rule in graph_rules}
     packages = PackageGenerations()
     fallback = settings.ros or DEFAULT_GENERATION
     python2 = ros1_python2(settings)
@@ -260,6 +263,18 @@ def _lint(
         entry_of=entry_of,
     )
     graph: Graph | None = None
+    # A run over the files of a run that built the graph, whose facts are the same, takes
+    # its graph findings (``same_facts``); any run that builds the graph keeps them.
+    replay_key: str | None = None
+    replay: Replay | None = None
+    if graph_rules and not fresh and clean_key is not None and inputs is not None:
+        assert cache is not None
+        if inputs.place_key is not None:  # keyed first: an earlier run left its digests
+            replay_key = same_facts.key(inputs.place_key, clean_key)
+            replay = same_facts.loaded(cache.load_replay(replay_key), len(files), reported)
+    replayed: list[int] | None = None  # the edited files, where the run took a replay
+    graph_found: Mapping[int, tuple[tuple[str, Finding], ...]] = {}
+    specialised: frozenset[str] = frozenset()
     extract = partial(extract_batch, cache, checker=judge)
     # A file whose worker is killed past its time budget is one RN001 (``gave_up``).
     give_up = partial(gave_up, cache)
@@ -276,15 +291,51 @@ def _lint(
             ros1_python2=python2,
             max_file_size=settings.max_file_size,
         )
-        for index, facts, data, verdict in gathered.facts():
-            checks.take(index, facts, data, verdict)
+        edited = None if replay is None or inputs is None else replay.edited(inputs.tags)
+        if replay is not None and edited is not None and inputs is not None:
+            arrived = list(gathered.facts(edited))
+            for index, facts, data, verdict in arrived:
+                checks.take(index, facts, data, verdict)
+            if _replay_stands(
+                replay,
+                arrived,
+                files=files,
+                inputs=inputs,
+                cache=cache,
+                rules=rule_of,
+            ):
+                replayed = edited
+            else:
+                others = set(edited)
+                for index, facts, data, verdict in gathered.facts(
+                    index for index in range(len(files)) if index not in others
+                ):
+                    checks.take(index, facts, data, verdict)
+        else:
+            for index, facts, data, verdict in gathered.facts():
+                checks.take(index, facts, data, verdict)
         workers = dispatcher.workers  # that extracted the files (specialisations may start some)
         if inputs is not None and not fresh and run_key is None:
             run_key = inputs.key_last()
+            if graph_rules and clean_key is not None and inputs.place_key is not None:
+                replay_key = same_facts.key(inputs.place_key, clean_key)
+        if replay is not None and replayed is not None:
+            checks.resume(replay, replayed)
         checks.finish()
+        if replay is not None and replayed is not None:
+            graph_found, specialised = replay.graph, replay.specialised
+            _report_replayed(
+                replay,
+                replayed,
+                files=files,
+                checks=checks,
+                rules=rule_of,
+                settings=settings,
+                registry=registry,
+            )
         # (4) Launch files extracted again under their includers' arguments go through the
         # same workers, a depth of the launch trees at a time.
-        if graph_rules or want_graph:
+        elif graph_rules or want_graph:
             known_facts = checks.facts()
             specialise = Specialiser(
                 files,
@@ -298,7 +349,7 @@ def _lint(
             graph = build(
                 known_facts, workspace_packages(workspace, packages), specialise, specialise.prepare
             )
-            report_graph(
+            reported_graph = report_graph(
                 graph,
                 graph_rules,
                 reported=files[:reported],
@@ -308,8 +359,27 @@ def _lint(
                 settings=settings,
                 registry=registry,
             )
+            graph_found = {
+                index: tuple((rule.code, item.finding) for rule, item in items)
+                for index, items in reported_graph.items()
+            }
+            specialised = specialise.specialised
 
     # (5)
+    skipped = replay.skipped if replay is not None and replayed is not None else gathered.skipped
+    # What a run whose facts are these takes (``same_facts``): the findings before any is
+    # spared, with the rest of what sparing reads.
+    kept_replay = None
+    if replay_key is not None and inputs is not None:
+        kept_replay = Replay(
+            inputs.tags,
+            reported,
+            {index: tuple(found) for index, found in enumerate(checks.per_file) if found},
+            graph_found,
+            specialised,
+            checks.run_wide(),
+            tuple(skipped),
+        )
     displays = [source.display for source in files[:reported]]
     checks.spare_rejected_fixtures(displays)
     unbuilt = checks.spare_unbuilt(displays)
@@ -320,7 +390,7 @@ def _lint(
     diagnostics = sorted(
         (diagnostic for found in per_file for diagnostic in found), key=Diagnostic.sort_key
     )
-    skipped_paths = {path for path, _ in gathered.skipped}
+    skipped_paths = {path for path, _ in skipped}
     checked_count = sum(1 for source in files[:reported] if source.display not in skipped_paths)
     if cache is not None:
         cache.finish()  # the graph's specialised facts are still buffered
@@ -332,17 +402,21 @@ def _lint(
             kept = (
                 tuple(diagnostics),
                 checked_count,
-                tuple(gathered.skipped),
+                tuple(skipped),
                 tuple(unbuilt),
                 tuple(rostest_named),
             )
             cache.store_run(run_key, kept)
+            if kept_replay is not None and replay_key is not None:
+                cache.store_replay(replay_key, kept_replay.stored())
         if clean_key is not None and not inputs.changed:
             assert cache is not None
-            # A run over some files (pre-commit's) adds to the set of the whole workspace's
-            # run; a run over the workspace replaces it, forgetting files since edited.
-            found = checks.clean_now if not context else clean | checks.clean_now
-            judged = checks.verdicts_now if not context else verdicts | checks.verdicts_now
+            # A run over some files (pre-commit's), or one that checked only its edited
+            # files (``same_facts``), adds to the set of the whole workspace's run; a run
+            # over the workspace replaces it, forgetting files since edited.
+            partial_run = bool(context) or replayed is not None
+            found = clean | checks.clean_now if partial_run else checks.clean_now
+            judged = verdicts | checks.verdicts_now if partial_run else checks.verdicts_now
             if found != clean or judged != verdicts:
                 cache.store_checks(clean_key, clean_files.stored(found, judged))
         inputs.finish(kept_key)
@@ -350,10 +424,10 @@ def _lint(
         tuple(diagnostics),
         checked_count,
         gathered.extracted,
-        gathered.cached,
+        len(files) - gathered.extracted if replayed is not None else gathered.cached,
         workers,
         graph,
-        tuple(gathered.skipped),
+        tuple(skipped),
         facts=tuple(checks.facts()),
         unbuilt=tuple(unbuilt),
         rostest_named=tuple(rostest_named),
@@ -573,6 +647,37 @@ class _FileChecks:
             found = memo[key] = (self._contexts_with(wired, known), digest)
         return found
 
+    def run_wide(self) -> RunWide:
+        """What the run gathered from every file's facts, for a run whose facts are the
+        same (``same_facts``)."""
+        return RunWide(
+            frozenset(self.service_types),
+            frozenset(self._wired),
+            self._built.given(),
+            {package: frozenset(names) for package, names in self._rejected.items()},
+        )
+
+    def resume(self, replay: Replay, edited: Sequence[int]) -> None:
+        """Take a run's replay (``same_facts``) for every file but the ``edited`` ones,
+        which were taken as any: their stored findings, and what the run gathered from
+        every file's facts (the edited files' share of it is the same, as their facts
+        are). Before ``finish``: an edited file may wait for the run."""
+        mine = set(edited)
+        for index, found in replay.found.items():
+            if index not in mine:
+                self.per_file[index] = list(found)
+        run_wide = replay.run_wide
+        self.service_types.update(run_wide.service_types)
+        self._wired.update(run_wide.wired)
+        self._built = BuiltSources()
+        for facts, package in run_wide.built:
+            self._built.add(facts, package)
+        self._rejected = {package: set(names) for package, names in run_wide.rejected.items()}
+
+    def facts_of(self, index: int) -> FileFacts | None:
+        """File ``index``'s facts, when they were kept and it arrived."""
+        return self._all_facts[index]
+
     def facts(self) -> list[FileFacts]:
         """Every file's facts, in discovery order (when they were kept)."""
         return [facts for facts in self._all_facts if facts is not None]
@@ -609,6 +714,62 @@ class _FileChecks:
 
     def _check_text(self, facts: FileFacts, text: str, contexts: _Contexts) -> Verdict:
         return self.judge.check_text(facts, text, contexts)
+
+
+def _replay_stands(
+    replay: Replay,
+    arrived: Sequence[tuple[int, FileFacts, bytes | None, Verdict | None]],
+    *,
+    files: Sequence[SourceFile],
+    inputs: RunInputs,
+    cache: FactsCache | None,
+    rules: Mapping[str, Rule],
+) -> bool:
+    """Whether the run may take ``replay``: each edited file (``arrived``) has a facts key
+    and leaves it true (``Replay.stands``), and the rules of its graph findings are the
+    run's (``rules``, by code)."""
+    codes = {code for items in replay.graph.values() for code, _ in items}
+    if cache is None or not codes <= rules.keys():
+        return False
+    for index, facts, _, _ in arrived:
+        display = files[index].display
+        old = replay.tags[index]
+        before = cache.load(old, display) if is_facts_key(old) else None
+        if inputs.facts_key(index) is None or not replay.stands(display, before, facts):
+            return False
+    return True
+
+
+def _report_replayed(
+    replay: Replay,
+    edited: Sequence[int],
+    *,
+    files: Sequence[SourceFile],
+    checks: _FileChecks,
+    rules: Mapping[str, Rule],
+    settings: Settings,
+    registry: Registry,
+) -> None:
+    """The graph rules' findings of the replay in each edited reported file, made into
+    diagnostics under its new text and suppressions (``report_graph``'s part per file)."""
+    for index in edited:
+        stored = replay.graph.get(index, ())
+        facts = checks.facts_of(index)
+        if not stored or facts is None:
+            continue
+        source = files[index]
+        items = [
+            (rules[code], WorkspaceFinding(source.display, finding)) for code, finding in stored
+        ]
+        checks.per_file[index] = file_graph_findings(
+            items,
+            source,
+            facts,
+            checks.per_file[index],
+            suppressions=checks.suppressions_of.get(index, []),
+            settings=settings,
+            registry=registry,
+        )
 
 
 def waits_for_the_run(facts: FileFacts, wiring: bool) -> bool:
@@ -768,6 +929,10 @@ def _display_directory(source: SourceFile, root: str) -> str:
     return source.display[: -len(relative)].rstrip("/")
 
 
+# The graph rules' findings in the reported files, by the file's index among them.
+GraphFindings = dict[int, list[tuple[Rule, WorkspaceFinding]]]
+
+
 def report_graph(
     graph: Graph,
     rules: Sequence[Rule],
@@ -779,50 +944,70 @@ def report_graph(
     settings: Settings,
     registry: Registry,
     texts: Mapping[str, str] | None = None,
-) -> None:
+) -> GraphFindings:
     """Graph rules' findings, each into its file's slot with that file's suppressions;
     findings in files outside ``reported`` (a per-file run's context) are dropped.
     ``texts``: files' content by display path where it is not the file's on disk (an
-    editor's unsaved buffer)."""
+    editor's unsaved buffer). The findings, as the rules made them."""
     slots = {source.display: index for index, source in enumerate(reported)}
-    test_rules = test_code_codes(settings, registry)
-    facts_of = {f.path: f for f in facts}
-    found: dict[int, list[tuple[Rule, WorkspaceFinding]]] = {}
+    found: GraphFindings = {}
     for rule in rules:
         assert rule.check_workspace is not None
         for item in rule.check_workspace(graph, _context(rule, settings, frozenset())):
             index = slots.get(item.path)
             if index is not None:
                 found.setdefault(index, []).append((rule, item))
+    facts_of = {f.path: f for f in facts}
     for index, items in sorted(found.items()):
         source = reported[index]
-        file_facts = facts_of[source.display]
-        ignored = _per_file_ignored(source.display, settings, registry)
-        if texts is not None and source.display in texts:
-            text = texts[source.display]
-        else:
-            data, _, _ = read_file(source.location, settings.max_file_size)
-            text = decode_for_display(data or b"")
-        to_diagnostic = _DiagnosticFactory(file_facts, settings, text)
-        judging = _TestCodeFilter(file_facts, text, settings, test_rules)
-        fresh = [
-            to_diagnostic(
-                rule,
-                item.finding.span,
-                item.finding.message,
-                item.finding.related,
-                answer=item.finding.answer,
-                decision=item.finding.decision,
-            )
-            for rule, item in items
-            if rule.code not in ignored
-            and not (
-                (judging.spared(rule.code) or item.finding.deployment_only) and judging.is_test()
-            )
-        ]
-        suppressions = suppressions_of.get(index, [])
-        fresh, used = _apply_suppressions(fresh, suppressions, registry)
-        per_file[index] = [d for d in per_file[index] if not _now_used(d, used)] + fresh
+        per_file[index] = file_graph_findings(
+            items,
+            source,
+            facts_of[source.display],
+            per_file[index],
+            suppressions=suppressions_of.get(index, []),
+            settings=settings,
+            registry=registry,
+            text=None if texts is None else texts.get(source.display),
+        )
+    return found
+
+
+def file_graph_findings(
+    items: Sequence[tuple[Rule, WorkspaceFinding]],
+    source: SourceFile,
+    file_facts: FileFacts,
+    found: list[Diagnostic],
+    *,
+    suppressions: list[Suppression],
+    settings: Settings,
+    registry: Registry,
+    text: str | None = None,
+) -> list[Diagnostic]:
+    """One file's diagnostics, ``found`` by the per-file rules, with the graph rules'
+    findings in it (``items``) under its suppressions: an RN002 for a suppression one of
+    them uses is dropped. ``text``: the file's content, when not the file's on disk."""
+    ignored = _per_file_ignored(source.display, settings, registry)
+    if text is None:
+        data, _, _ = read_file(source.location, settings.max_file_size)
+        text = decode_for_display(data or b"")
+    to_diagnostic = _DiagnosticFactory(file_facts, settings, text)
+    judging = _TestCodeFilter(file_facts, text, settings, test_code_codes(settings, registry))
+    fresh = [
+        to_diagnostic(
+            rule,
+            item.finding.span,
+            item.finding.message,
+            item.finding.related,
+            answer=item.finding.answer,
+            decision=item.finding.decision,
+        )
+        for rule, item in items
+        if rule.code not in ignored
+        and not ((judging.spared(rule.code) or item.finding.deployment_only) and judging.is_test())
+    ]
+    fresh, used = _apply_suppressions(fresh, suppressions, registry)
+    return [d for d in found if not _now_used(d, used)] + fresh
 
 
 def _now_used(diagnostic: Diagnostic, used: set[tuple[Suppression, str]]) -> bool:

@@ -116,6 +116,11 @@ class Specialiser:
         self._memo: dict[tuple[str, LaunchArguments], FileFacts | None] = {}
         self._files: dict[str, tuple[bytes | None, str]] = {}
 
+    @property
+    def specialised(self) -> frozenset[str]:
+        """The display paths of the files read to be extracted again so far."""
+        return frozenset(self._files)
+
     def forget(self, display: str) -> None:
         """The file changed: its specialisations are to be made again when asked."""
         self._files.pop(display, None)
@@ -399,8 +404,12 @@ class Gatherer:
     skipped: list[tuple[str, str]] = field(default_factory=list)
     _extracting: dict[int, _Item] = field(default_factory=dict)  # sent to extraction
 
-    def facts(self) -> Iterator[tuple[int, FileFacts, bytes | None, Verdict | None]]:
-        for index, source in enumerate(self.files):
+    def facts(
+        self, indices: Iterable[int] | None = None
+    ) -> Iterator[tuple[int, FileFacts, bytes | None, Verdict | None]]:
+        """Those of the files at ``indices`` of ``files``, or of all of them."""
+        for index in range(len(self.files)) if indices is None else indices:
+            source = self.files[index]
             known = self._known(index, source)
             if known is not None and (index >= self.reported or not known[1].suppression_marker):
                 self.cached += 1

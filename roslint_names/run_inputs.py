@@ -45,6 +45,11 @@ if TYPE_CHECKING:
 _SKIPPED, _UNREADABLE = "skipped: ", "unreadable: "  # tags of files that have no facts key
 
 
+def is_facts_key(tag: str) -> bool:
+    """Whether a checked file's tag (``RunInputs.tags``) is a facts key, not why it has none."""
+    return not tag.startswith((_SKIPPED, _UNREADABLE))
+
+
 class RunInputs:
     def __init__(
         self,
@@ -81,6 +86,7 @@ class RunInputs:
         self._keyed_first = False
         self._statuses: list[Status | None] = []  # of ``_status_files``, as first taken
         self.changed = False  # a file read differs from what the run was keyed by
+        self.place_key: str | None = None  # once keyed: ``_place``
 
     def unchanged_key(self) -> str | None:
         """The key an earlier run kept, when nothing it was made from changed since
@@ -113,7 +119,7 @@ class RunInputs:
         if not self._keyed_first:
             return None
         tag = self._tags[index]
-        return None if tag.startswith((_SKIPPED, _UNREADABLE)) else tag
+        return tag if is_facts_key(tag) else None
 
     def facts_key(self, index: int) -> str | None:
         """The facts key of checked file ``index`` once it is known (keyed first, or
@@ -121,7 +127,7 @@ class RunInputs:
         if index >= len(self._tags):
             return None
         tag = self._tags[index]
-        return None if tag.startswith((_SKIPPED, _UNREADABLE)) else tag
+        return tag if is_facts_key(tag) else None
 
     def read(self, index: int, source: SourceFile) -> tuple[Read, str | None]:
         """The file's bytes (as ``read_file`` gives them) and its facts key."""
@@ -218,15 +224,28 @@ class RunInputs:
             content, source.display, source.language, package, self._fallback, python2=python2
         )
 
+    @property
+    def tags(self) -> tuple[str, ...]:
+        """Per checked file, its facts key or why it has none, once keyed (``_key``)."""
+        return tuple(self._tags)
+
     def _key(self) -> str:
+        """The run's key: its place (``place_key``) and each checked file's facts key."""
+        self.place_key = self._place()
+        digest = hashlib.blake2b(digest_size=20)
+        digest.update(f"{self.place_key}\0".encode())
+        digest.update(_text_bytes("\0".join(self._tags)))
+        return digest.hexdigest()
+
+    def _place(self) -> str:
+        """All the run's key holds but the checked files' facts keys: which files, where,
+        reported how, under which tool and settings, and what the packages and the
+        service definitions say (``same_facts`` keys a run by it and the facts apart)."""
         digest = hashlib.blake2b(digest_size=20)
         digest.update(_text_bytes(f"{self._fingerprints()}\0{self._reported}\0"))
         # The bytes of one line per file, hashed in one update: the same digest as an
         # update per line, without 77,000 calls.
-        lines = [
-            f"{_where(source)}\0{tag}\n"
-            for source, tag in zip(self._checked, self._tags, strict=True)
-        ]
+        lines = [f"{_where(source)}\n" for source in self._checked]
         digest.update(_text_bytes("".join(lines)))
         linted = {source.location for source in self._checked}
         lines.clear()

@@ -91,9 +91,19 @@ class BuiltSources:
     # Per package: what its build files, each read from its directories, leave open.
     _openings: dict[str, tuple[_Opening, ...]] = field(default_factory=dict)
     _cmake_built: dict[str, bool] = field(default_factory=dict)  # its root CMakeLists.txt held
+    # What was added, only the fields read: the same answers, remade in a later run.
+    _given: list[tuple[FileFacts, str | None]] = field(default_factory=list)
 
     def add(self, facts: FileFacts, package: str | None) -> None:
         """One file's facts; ``package`` the display directory of its package."""
+        read = FileFacts(
+            facts.path,
+            facts.language,
+            facts.generation,
+            compiled=facts.compiled,
+            included_sources=facts.included_sources,
+        )
+        self._given.append((read, package))
         self._included.update(facts.included_sources)
         compiled = facts.compiled
         if compiled is None:
@@ -108,6 +118,10 @@ class BuiltSources:
             self._outside.append(build_file)
         else:
             self._by_package.setdefault(package, []).append(build_file)
+
+    def given(self) -> tuple[tuple[FileFacts, str | None], ...]:
+        """What was added, as ``add`` reads it: adding it again gives the same answers."""
+        return tuple(self._given)
 
     def unbuilt(self, path: str, package: str | None) -> bool:
         """Whether the C++ file at display path ``path`` is certainly compiled by nothing."""

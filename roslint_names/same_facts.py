@@ -1,0 +1,194 @@
+"""A run whose files' facts are those of the last run: its graph findings, without the graph.
+
+Most edits leave a file's facts as they were: a comment, a function body that names
+nothing ROS reads, code below the last name. The workspace graph is made of facts only,
+so no node, launch tree or parameter moves, and no graph rule finds anything new; yet
+loading every file's facts and building the graph again was 4.5 s of the 8.7 s an edit
+cost at 77,000 files (issue 30).
+
+After a run that built the graph, ``Replay`` keeps what the end of the run needs besides
+it: each checked file's facts key, every reported file's findings once the graph rules
+added theirs (before any are spared), the graph rules' own findings per file, and what
+the run gathered from every file's facts (``RunWide``: the service types, the names the
+launch files wire, the build files' compiled sources, the fixtures tests load expecting
+them refused). It is keyed by all the run's key holds but the facts keys (``RunInputs``'s
+place key) and by the per-file checks' key (``clean_files.memo_key``: settings, rules,
+plugin names, manifests).
+
+A later run with that key whose facts keys differ for some files (``edited``) takes it
+when each of those files (``stands``):
+
+- has facts equal (``==``) to those stored under its old key: what the graph and the
+  run-wide sets were made from is the same;
+- takes no value from another file's constant (``symbols.uses_constants``): those are
+  not kept;
+- wires no name (``wiring.wired_by``): whether its wiring counts depends on its text
+  (``engine.launch_wiring``);
+- was not extracted again under an includer's arguments by the last graph build
+  (``specialised``): that reads its bytes, not its facts.
+
+Its edited files are then checked by the per-file rules, the graph rules' findings in
+them made into diagnostics again under their new text and suppressions, and every other
+file's findings are the stored ones; the rest of the run is the same code. Anything else
+(a file added or removed, settings changed, facts that differ) is a run like any other,
+which keeps a new replay. ``tests/test_same_facts.py`` compares every run of a sequence
+of edits with a run from an empty cache.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+from .model import CompiledSources, Diagnostic, FileFacts, Finding, Generation
+from .symbols import uses_constants
+from .wiring import wired_by
+
+Built = tuple[tuple[FileFacts, "str | None"], ...]  # ``BuiltSources.given``
+
+
+@dataclass(frozen=True)
+class RunWide:
+    """What a run gathers from every file's facts for the checks at its end
+    (``engine._FileChecks``)."""
+
+    service_types: frozenset[tuple[Generation | None, str]]
+    wired: frozenset[str]  # absolute names the launch files wire
+    built: Built  # the build files' compiled sources, and the sources C++ files include
+    rejected: Mapping[str, frozenset[str]]  # package: the fixture names its tests refuse
+
+
+@dataclass(frozen=True)
+class Replay:
+    """What a run that built the graph leaves for a run whose facts are the same."""
+
+    tags: tuple[str, ...]  # each checked file's facts key, or why it has none
+    reported: int
+    # Per reported file with any (its index): its findings before sparing, and the graph
+    # rules' findings in it, as (rule code, finding).
+    found: Mapping[int, tuple[Diagnostic, ...]]
+    graph: Mapping[int, tuple[tuple[str, Finding], ...]]
+    specialised: frozenset[str]  # display paths the graph build extracted again
+    run_wide: RunWide
+    skipped: tuple[tuple[str, str], ...]  # files too large, and why
+
+    def edited(self, tags: Sequence[str]) -> list[int] | None:
+        """The checked files whose facts keys differ from the replay's; None where the
+        run is not over the same files (its place key tells that: a guard) or nothing
+        differs (the run's own stored result would have served)."""
+        if len(tags) != len(self.tags):
+            return None
+        pairs = enumerate(zip(tags, self.tags, strict=True))
+        edited = [index for index, (now, then) in pairs if now != then]
+        return edited or None
+
+    def stands(self, display: str, before: FileFacts | None, now: FileFacts) -> bool:
+        """Whether an edited file leaves the replay true (module docstring): ``before``
+        its facts under its old key, if still cached."""
+        return (
+            before is not None
+            and before == now
+            and not uses_constants(now)
+            and not wired_by(now)
+            and display not in self.specialised
+        )
+
+    def stored(self) -> tuple[object, ...]:
+        """As the cache keeps it: model values and builtins only."""
+        return (
+            _FORMAT,
+            self.tags,
+            self.reported,
+            tuple(sorted(self.found.items())),
+            tuple(sorted(self.graph.items())),
+            tuple(sorted(self.specialised)),
+            tuple(sorted(self.run_wide.service_types, key=_by_text)),
+            tuple(sorted(self.run_wide.wired)),
+            self.run_wide.built,
+            tuple(
+                sorted(
+                    (package, tuple(sorted(names)))
+                    for package, names in self.run_wide.rejected.items()
+                )
+            ),
+            self.skipped,
+        )
+
+
+_FORMAT = "replay 1"
+_FIELDS = 11  # of ``stored``
+
+
+def key(place_key: str, checks_key: str) -> str:
+    """Where a run's replay is kept: its place and its per-file checks' key."""
+    return hashlib.blake2b(f"{place_key}\0{checks_key}".encode(), digest_size=20).hexdigest()
+
+
+def loaded(value: object, files: int, reported: int) -> Replay | None:
+    """A stored replay for a run of ``files`` checked files, ``reported`` of them
+    reported; None for anything else (absent, damaged, another shape)."""
+    if not isinstance(value, tuple) or len(value) != _FIELDS:
+        return None
+    (
+        form,
+        tags,
+        kept_reported,
+        found,
+        graph,
+        specialised,
+        types,
+        wired,
+        built,
+        rejected,
+        skipped,
+    ) = value
+    if form != _FORMAT or kept_reported != reported or not _strings(tags) or len(tags) != files:
+        return None
+    try:
+        found_map = {int(index): tuple(items) for index, items in found}
+        graph_map = {
+            int(index): tuple((str(code), finding) for code, finding in items)
+            for index, items in graph
+        }
+        rejected_map = {str(package): frozenset(names) for package, names in rejected}
+        built_pairs = tuple((facts, package) for facts, package in built)
+        skipped_pairs = tuple((str(path), str(why)) for path, why in skipped)
+        type_pairs = frozenset((generation, str(spelling)) for generation, spelling in types)
+    except (TypeError, ValueError):
+        return None
+    if not (
+        all(0 <= index < reported for index in found_map)
+        and all(0 <= index < reported for index in graph_map)
+        and all(isinstance(d, Diagnostic) for items in found_map.values() for d in items)
+        and all(_strings(tuple(names)) for names in rejected_map.values())
+        and all(isinstance(f, Finding) for items in graph_map.values() for _, f in items)
+        and all(
+            isinstance(facts, FileFacts)
+            and isinstance(facts.compiled, CompiledSources | None)
+            and isinstance(package, str | None)
+            for facts, package in built_pairs
+        )
+        and _strings(specialised)
+        and _strings(wired)
+        and all(isinstance(generation, Generation | None) for generation, _ in type_pairs)
+    ):
+        return None
+    return Replay(
+        tuple(tags),
+        reported,
+        found_map,
+        graph_map,
+        frozenset(specialised),
+        RunWide(type_pairs, frozenset(wired), built_pairs, rejected_map),
+        skipped_pairs,
+    )
+
+
+def _by_text(service_type: tuple[Generation | None, str]) -> tuple[str, str]:
+    generation, spelling = service_type
+    return ("" if generation is None else str(generation.value), spelling)
+
+
+def _strings(value: object) -> bool:
+    return isinstance(value, tuple) and all(isinstance(item, str) for item in value)

@@ -1,0 +1,214 @@
+"""A run after an edit that leaves the edited files' facts as they were takes the last
+run's graph findings instead of loading every file's facts and building the graph again
+(``same_facts``, issue 30); its output is byte for byte a fresh run's, over a sequence of
+edits of the example workspace that do and do not move names."""
+
+from __future__ import annotations
+
+import os
+import shutil
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from roslint_names import engine, same_facts
+from roslint_names.model import FileFacts, Generation, Language
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+FLEET = "src/fleet_bringup"
+MONITOR = f"{FLEET}/src/fleet_monitor.cpp"  # a graph finding (RN401) at line 22
+DOCK = f"{FLEET}/src/dock_manager.cpp"  # RN204 waits for the run; RN407 at line 18
+RECORDER = f"{FLEET}/fleet_bringup/pose_recorder.py"  # the other side of the RN401
+PARAMETERS = f"{FLEET}/config/waypoint_follower.yaml"  # RN405
+LOCALIZATION = f"{FLEET}/launch/localization.launch.xml"
+TURTLE_BUILD = "src/turtle_bringup/CMakeLists.txt"
+TURTLE_LAUNCH = "src/turtle_bringup/launch"
+TELEOP = f"{TURTLE_LAUNCH}/teleop.launch"
+ROBOT7 = """<launch>
+  <include file="$(find turtle_bringup)/launch/teleop.launch">
+    <arg name="robot" value="robot7"/>
+  </include>
+</launch>
+"""
+
+
+@pytest.fixture
+def workspace(tmp_path: Path) -> Path:
+    root = tmp_path / "ws"
+    shutil.copytree(EXAMPLES, root)
+    return root
+
+
+@pytest.fixture
+def replayed(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[list[int]]]:
+    """The edited files of each run that took a replay."""
+    seen: list[list[int]] = []
+    original = engine._FileChecks.resume
+
+    def recording(checks: Any, replay: Any, edited: Any) -> None:
+        seen.append(list(edited))
+        original(checks, replay, edited)
+
+    monkeypatch.setattr(engine._FileChecks, "resume", recording)
+    yield seen
+
+
+def outputs(run_cli: Any, root: Path, cache: Path) -> tuple[str, str]:
+    """A cached run's JSON and a fresh run's."""
+    arguments = ["check", "--format", "json", "--jobs", "1", "--exit-zero"]
+    cached = run_cli([*arguments, "--cache-dir", str(cache), "."], root)
+    fresh = run_cli([*arguments, "--no-cache", "."], root)
+    assert cached.exit_code == fresh.exit_code == 0, cached.stderr
+    return cached.stdout, fresh.stdout
+
+
+def edit(path: Path, old: str, new: str) -> None:
+    text = path.read_text(encoding="utf-8")
+    assert old in text, (path, old)
+    path.write_text(text.replace(old, new, 1), encoding="utf-8")
+    stamp = path.stat().st_mtime + 2  # another time than the digests remember
+    os.utime(path, (stamp, stamp))
+
+
+def append(path: Path, text: str) -> None:
+    edit(path, path.read_text(encoding="utf-8"), path.read_text(encoding="utf-8") + text)
+
+
+LINE_18 = 'get_parameter("dockframe").as_string().c_str());'
+
+# (file, text before, text after, whether the run after it takes the replay); "" before:
+# appended.
+STEPS: list[tuple[str, str, str, bool]] = [
+    # A comment below everything: the facts are the same.
+    (MONITOR, "", "\n// Reviewed: the pose is republished as is.\n", True),
+    # A line above the names moves them: the facts differ.
+    (MONITOR, "#include", "// Fleet monitor.\n#include", False),
+    # A file whose own check waits for the run's service types (RN204), with a graph
+    # finding (RN407).
+    (DOCK, "", "\n// Docking is refused while charging.\n", True),
+    # A suppression of the graph finding: the file now holds a marker, a fact.
+    (DOCK, LINE_18, f"{LINE_18}  // NOLINT(RN407)", False),
+    # The same marker, now naming another rule: the graph finding is back, the
+    # suppression silences nothing. Only the text changed.
+    (DOCK, "NOLINT(RN407)", "NOLINT(RN204)", True),
+    # The bytes of two runs ago: that run's stored result, nothing replayed.
+    (DOCK, "NOLINT(RN204)", "NOLINT(RN407)", False),
+    (RECORDER, "", "\n# Poses are recorded as they come.\n", True),
+    (PARAMETERS, "", "\n# Tuned on the warehouse floor.\n", True),
+    (TURTLE_BUILD, "", "\n# Nodes of the turtle robot.\n", True),
+    # A name changed: the RN401 pair is gone.
+    (MONITOR, '"robot_pose"', '"robot_pose_estimate"', False),
+    (MONITOR, '"robot_pose_estimate", 10);', '"robot_pose", 10);  // as it was', False),
+    (MONITOR, "", "\n// Back as it was.\n", True),
+    # A launch file nothing includes, which wires no absolute name.
+    (LOCALIZATION, "</launch>", "</launch>\n<!-- localization -->", True),
+]
+
+
+def test_a_sequence_of_edits_gives_what_a_fresh_run_gives(
+    run_cli: Any, workspace: Path, tmp_path: Path, replayed: list[list[int]]
+) -> None:
+    cache = tmp_path / "cache"
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    for relative, old, new, replays in STEPS:
+        replayed.clear()
+        if old:
+            edit(workspace / relative, old, new)
+        else:
+            append(workspace / relative, new)
+        cached, fresh = outputs(run_cli, workspace, cache)
+        assert cached == fresh, (relative, old, new)
+        assert bool(replayed) == replays, (relative, old, new)
+
+
+def test_the_step_that_holds_a_graph_finding_shows_it_moved(
+    run_cli: Any, workspace: Path, tmp_path: Path, replayed: list[list[int]]
+) -> None:
+    """The replayed run makes the edited file's graph findings again under its text:
+    a suppression renamed to another rule lets the graph finding out."""
+    cache = tmp_path / "cache"
+    dock = workspace / DOCK
+    edit(dock, LINE_18, f"{LINE_18}  // NOLINT(RN407)")
+    before, _ = outputs(run_cli, workspace, cache)
+    assert '"RN407"' not in before
+    edit(dock, "NOLINT(RN407)", "NOLINT(RN204)")
+    after, fresh = outputs(run_cli, workspace, cache)
+    assert replayed and after == fresh
+    assert '"RN407"' in after and '"RN002"' in after
+
+
+def test_an_edit_of_a_launch_file_included_with_arguments_builds_the_graph(
+    run_cli: Any, workspace: Path, tmp_path: Path, replayed: list[list[int]]
+) -> None:
+    """A launch file extracted again under its includer's arguments is read for that,
+    not only for its facts: an edit of it is never replayed, even one its own facts do
+    not show."""
+    cache = tmp_path / "cache"
+    (workspace / TURTLE_LAUNCH / "robot7.launch").write_text(ROBOT7, encoding="utf-8")
+    outputs(run_cli, workspace, cache)
+    edit(workspace / TELEOP, "</launch>", "</launch>\n<!-- one robot's teleop -->")
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    assert not replayed
+
+
+def test_a_damaged_replay_is_a_run_like_any(
+    run_cli: Any, workspace: Path, tmp_path: Path, replayed: list[list[int]]
+) -> None:
+    cache = tmp_path / "cache"
+    outputs(run_cli, workspace, cache)
+    kept = list(cache.glob("*/replays/*"))
+    assert kept
+    for entry in kept:
+        entry.write_bytes(entry.read_bytes()[:-40])
+    append(workspace / MONITOR, "\n// Reviewed.\n")
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    assert not replayed
+    append(workspace / MONITOR, "\n// Reviewed again.\n")  # the run above kept a new one
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    assert replayed
+
+
+@pytest.mark.parametrize(
+    "value",
+    [
+        None,
+        (),
+        ("replay 0",) + ("",) * 10,
+        ("replay 1", ("a",), 1, (), (), (), (), (), (), (), ()),  # two files, not one
+        ("replay 1", ("a",), 1, ((3, ()),), (), (), (), (), (), (), ()),  # not reported
+        ("replay 1", ("a",), 1, ((0, ("x",)),), (), (), (), (), (), (), ()),  # no finding
+        ("replay 1", ("a",), 1, (), ((0, (("RN401", "x"),)),), (), (), (), (), (), ()),
+        ("replay 1", ("a",), 1, (), (), (), ((7, "srv"),), (), (), (), ()),
+        ("replay 1", ("a",), 1, (), (), (), (), (), (("x", None),), (), ()),
+    ],
+)
+def test_a_stored_replay_of_another_shape_is_none(value: object) -> None:
+    assert same_facts.loaded(value, files=2 if value and len(value) > 2 else 1, reported=1) in (
+        None,
+    ) or value == ("replay 1", ("a",), 1, (), (), (), (), (), (), (), ())
+
+
+def test_a_stored_replay_reads_back_as_it_was() -> None:
+    built = FileFacts("src/a/CMakeLists.txt", Language.CMAKE, Generation.ROS2)
+    replay = same_facts.Replay(
+        tags=("k1", "skipped: too large"),
+        reported=2,
+        found={},
+        graph={},
+        specialised=frozenset({"src/a/launch/a.launch.xml"}),
+        run_wide=same_facts.RunWide(
+            frozenset({(Generation.ROS2, "std_srvs/srv/Trigger"), (None, "Empty")}),
+            frozenset({"/cmd_vel"}),
+            ((built, "src/a"),),
+            {"src/a": frozenset({"bad.launch"})},
+        ),
+        skipped=(("src/a/big.cpp", "too large"),),
+    )
+    assert same_facts.loaded(replay.stored(), files=2, reported=2) == replay
+    assert same_facts.loaded(replay.stored(), files=3, reported=2) is None
