@@ -244,6 +244,11 @@ class FactsCache:
             self.stats.hits += 1
         return facts
 
+    def stand_on(self, keys: Iterable[str]) -> None:
+        """Facts this run's result stands on without loading them (``same_facts``): used,
+        as those loaded are, so that ``finish`` keeps them when it rewrites the pack."""
+        self._used.update(keys)
+
     def store(self, key: str, facts: FileFacts) -> None:
         """Keep ``facts``; call ``flush`` before the process ends."""
         if not self.writable():

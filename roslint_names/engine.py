@@ -305,6 +305,9 @@ def _lint(
                 rules=rule_of,
             ):
                 replayed = edited
+                # Every file's facts are what the result stands on, loaded or not.
+                assert cache is not None
+                cache.stand_on(tag for tag in inputs.tags if is_facts_key(tag))
             else:
                 others = set(edited)
                 for index, facts, data, verdict in gathered.facts(

@@ -13,6 +13,7 @@ from typing import Any
 
 import pytest
 
+from roslint_names import cache as cache_module
 from roslint_names import engine, same_facts
 from roslint_names.model import FileFacts, Generation, Language
 
@@ -153,6 +154,28 @@ def test_an_edit_of_a_launch_file_included_with_arguments_builds_the_graph(
     cached, fresh = outputs(run_cli, workspace, cache)
     assert cached == fresh
     assert not replayed
+
+
+def test_a_replayed_run_keeps_every_file_s_facts_in_the_cache(
+    run_cli: Any,
+    workspace: Path,
+    tmp_path: Path,
+    replayed: list[list[int]],
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A pack past its limit is rewritten with the facts the run used: a replayed run
+    loads almost none, yet stands on all of them. Once they were dropped, the run after
+    the next edit extracted the whole workspace again (69 s at 77,000 files)."""
+    monkeypatch.setattr(cache_module, "PACK_LIMIT", 2048)
+    cache = tmp_path / "cache"
+    outputs(run_cli, workspace, cache)
+    append(workspace / MONITOR, "\n// Reviewed.\n")
+    outputs(run_cli, workspace, cache)
+    assert replayed
+    edit(workspace / MONITOR, "#include", "// Fleet monitor.\n#include")  # moves names
+    arguments = ["check", "--format", "json", "--jobs", "1", "--exit-zero", "--verbose"]
+    run = run_cli([*arguments, "--cache-dir", str(cache), "."], workspace)
+    assert ", 1 extracted by" in run.stderr, run.stderr
 
 
 def test_a_damaged_replay_is_a_run_like_any(
