@@ -369,9 +369,15 @@ def _lint(
             specialised = specialise.specialised
 
     # (5)
-    skipped = replay.skipped if replay is not None and replayed is not None else gathered.skipped
-    # What a run whose facts are these takes (``same_facts``): the findings before any is
-    # spared, with the rest of what sparing reads.
+    displays = [source.display for source in files[:reported]]
+    unbuilt, rostest_named = checks.spare(displays, replayed)
+    if replay is not None and replayed is not None:
+        skipped = replay.skipped
+        unbuilt = _with_edited(replay.unbuilt, unbuilt, replayed, displays)
+        rostest_named = _with_edited(replay.rostest_named, rostest_named, replayed, displays)
+    else:
+        skipped = tuple(gathered.skipped)
+    # What a run whose facts are these takes (``same_facts``).
     kept_replay = None
     if replay_key is not None and inputs is not None:
         kept_replay = Replay(
@@ -381,14 +387,10 @@ def _lint(
             graph_found,
             specialised,
             checks.run_wide(),
-            tuple(skipped),
+            skipped,
+            tuple(unbuilt),
+            tuple(rostest_named),
         )
-    displays = [source.display for source in files[:reported]]
-    checks.spare_rejected_fixtures(displays)
-    unbuilt = checks.spare_unbuilt(displays)
-    rostest_named = checks.spare_rostest_named(displays)
-    # After the fixtures, unbuilt sources and names rostest replaces are spared: a finding
-    # in one must not stand for the others.
     per_file = one_per_decision(checks.per_file)
     diagnostics = sorted(
         (diagnostic for found in per_file for diagnostic in found), key=Diagnostic.sort_key
@@ -560,35 +562,40 @@ class _FileChecks:
     def _bytes(self, index: int, data: bytes | None) -> bytes:
         return self.read(index) if data is None else data
 
-    def spare_rejected_fixtures(self, displays: Sequence[str]) -> None:
-        """No finding in a file that its package's tests load expecting it to be refused
-        (``extract.python.fixtures``): its mistakes are the test's point. ``displays``:
-        the reported files' display paths."""
+    def spare(
+        self, displays: Sequence[str], only: Sequence[int] | None
+    ) -> tuple[list[str], list[str]]:
+        """Drop the findings the workspace says do not hold in their files (below), in
+        the reported files at ``only`` (None: in all); the files judged unbuilt and those
+        judged named by rostest, for ``--verbose``. ``displays``: the reported files'
+        display paths. After the fixtures, unbuilt sources and names rostest replaces are
+        spared: a finding in one must not stand for the others."""
+        indices = range(len(self.per_file)) if only is None else sorted(only)
+        indices = [index for index in indices if index < self.reported]
         if self._rejected:
-            self._spare(displays, lambda _: True, self._is_rejected)
-
-    def spare_unbuilt(self, displays: Sequence[str]) -> list[str]:
-        """No finding of a rule about names in a C++ source that no build file of its
-        package compiles (``workspace.built``): it never runs. The linter's own (RN0xx:
-        a parse error, a suppression) stay. The files judged so, for ``--verbose``."""
-        return self._spare(displays, lambda d: not is_linter_code(d.code), self._built.unbuilt)
-
-    def spare_rostest_named(self, displays: Sequence[str]) -> list[str]:
-        """No finding about the node name a C++ source hands ``ros::init`` where only
-        rostest starts what it is built into (``workspace.built``): roslaunch names the
-        node (``rostest_replaces``). The files judged so, for ``--verbose``."""
-        return self._spare(displays, rostest_replaces, self._built.started_by_rostest)
+            self._spare(displays, indices, lambda _: True, self._is_rejected)
+        unbuilt = self._spare(displays, indices, _not_linter_code, self._built.unbuilt)
+        named = self._spare(displays, indices, rostest_replaces, self._built.started_by_rostest)
+        return unbuilt, named
 
     def _spare(
         self,
         displays: Sequence[str],
+        indices: Iterable[int],
         spared: Callable[[Diagnostic], bool],
         applies: Callable[[str, str | None], bool],
     ) -> list[str]:
-        """Drop the ``spared`` findings of each file the workspace says they do not hold
-        for (``applies``, asked only of a file holding some); the files it did that to."""
+        """Drop the ``spared`` findings of each file at ``indices`` the workspace says
+        they do not hold for (``applies``, asked only of a file holding some); the files
+        it did that to. The rules: a file its package's tests load expecting it to be
+        refused (``extract.python.fixtures``: its mistakes are the test's point); a C++
+        source no build file of its package compiles (``workspace.built``: it never runs;
+        the linter's own findings, RN0xx, stay); the node name a C++ source hands
+        ``ros::init`` where only rostest starts what it is built into (roslaunch names
+        the node, ``rostest_replaces``)."""
         changed: list[str] = []
-        for index, found in enumerate(self.per_file):
+        for index in indices:
+            found = self.per_file[index]
             kept = [diagnostic for diagnostic in found if not spared(diagnostic)]
             if len(kept) != len(found) and applies(displays[index], self.package_of(index)):
                 self.per_file[index] = kept
@@ -719,6 +726,19 @@ class _FileChecks:
         return self.judge.check_text(facts, text, contexts)
 
 
+def _with_edited(
+    kept: Sequence[str], edited_now: Sequence[str], edited: Sequence[int], displays: Sequence[str]
+) -> list[str]:
+    """A replay's list of files judged so (unbuilt, named by rostest), with the edited
+    files' judgements of this run in place of theirs, in discovery order."""
+    if not kept and not edited_now:
+        return []
+    mine = {displays[index] for index in edited if index < len(displays)}
+    place = {display: index for index, display in enumerate(displays)}
+    judged = [display for display in kept if display not in mine] + list(edited_now)
+    return sorted(judged, key=place.__getitem__)
+
+
 def _replay_stands(
     replay: Replay,
     arrived: Sequence[tuple[int, FileFacts, bytes | None, Verdict | None]],
@@ -838,6 +858,10 @@ def launch_wiring(
 def is_linter_code(code: str) -> bool:
     """RN0xx: the linter's own findings (parse errors, suppressions), about the text."""
     return code.startswith("RN0")
+
+
+def _not_linter_code(diagnostic: Diagnostic) -> bool:
+    return not is_linter_code(diagnostic.code)
 
 
 # The API the C++ extractor names on the node name handed to roscpp (extract/cpp/sites.py;

@@ -8,7 +8,8 @@ cost at 77,000 files (issue 30).
 
 After a run that built the graph, ``Replay`` keeps what the end of the run needs besides
 it: each checked file's facts key, every reported file's findings once the graph rules
-added theirs (before any are spared), the graph rules' own findings per file, and what
+added theirs and the workspace spared some (``engine._FileChecks.spare``: with the files
+so judged), the graph rules' own findings per file, and what
 the run gathered from every file's facts (``RunWide``: the service types, the names the
 launch files wire, the build files' compiled sources, the fixtures tests load expecting
 them refused). It is keyed by all the run's key holds but the facts keys (``RunInputs``'s
@@ -65,13 +66,16 @@ class Replay:
 
     tags: tuple[str, ...]  # each checked file's facts key, or why it has none
     reported: int
-    # Per reported file with any (its index): its findings before sparing, and the graph
-    # rules' findings in it, as (rule code, finding).
+    # Per reported file with any (its index): its findings, and the graph rules' findings
+    # in it, as (rule code, finding).
     found: Mapping[int, tuple[Diagnostic, ...]]
     graph: Mapping[int, tuple[tuple[str, Finding], ...]]
     specialised: frozenset[str]  # display paths the graph build extracted again
     run_wide: RunWide
     skipped: tuple[tuple[str, str], ...]  # files too large, and why
+    # The reported files whose findings were spared as unbuilt, and as named by rostest.
+    unbuilt: tuple[str, ...] = ()
+    rostest_named: tuple[str, ...] = ()
 
     def edited(self, tags: Sequence[str]) -> list[int] | None:
         """The checked files whose facts keys differ from the replay's; None where the
@@ -113,11 +117,13 @@ class Replay:
                 )
             ),
             self.skipped,
+            self.unbuilt,
+            self.rostest_named,
         )
 
 
-_FORMAT = "replay 1"
-_FIELDS = 11  # of ``stored``
+_FORMAT = "replay 2"
+_FIELDS = 13  # of ``stored``
 
 
 def key(place_key: str, checks_key: str) -> str:
@@ -130,19 +136,8 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
     reported; None for anything else (absent, damaged, another shape)."""
     if not isinstance(value, tuple) or len(value) != _FIELDS:
         return None
-    (
-        form,
-        tags,
-        kept_reported,
-        found,
-        graph,
-        specialised,
-        types,
-        wired,
-        built,
-        rejected,
-        skipped,
-    ) = value
+    form, tags, kept_reported, found, graph, specialised, types, wired = value[:8]
+    built, rejected, skipped, unbuilt, rostest_named = value[8:]
     if form != _FORMAT or kept_reported != reported or not _strings(tags) or len(tags) != files:
         return None
     try:
@@ -171,6 +166,8 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         )
         and _strings(specialised)
         and _strings(wired)
+        and _strings(unbuilt)
+        and _strings(rostest_named)
         and all(isinstance(generation, Generation | None) for generation, _ in type_pairs)
     ):
         return None
@@ -182,6 +179,8 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         frozenset(specialised),
         RunWide(type_pairs, frozenset(wired), built_pairs, rejected_map),
         skipped_pairs,
+        unbuilt,
+        rostest_named,
     )
 
 

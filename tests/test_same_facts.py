@@ -156,6 +156,43 @@ def test_an_edit_of_a_launch_file_included_with_arguments_builds_the_graph(
     assert not replayed
 
 
+LEGACY = """#include <ros/ros.h>
+#include <std_msgs/String.h>
+
+// Left from the ROS 1 port; no build file names it.
+int main(int argc, char** argv)
+{
+  ros::init(argc, argv, "legacyRelay");
+  ros::NodeHandle node;
+  ros::Publisher publisher = node.advertise<std_msgs::String>("Legacy-Out", 1);
+  ros::spin();
+  return 0;
+}
+"""
+
+
+def test_an_edited_unbuilt_source_is_judged_unbuilt_again(
+    run_cli: Any, workspace: Path, tmp_path: Path, replayed: list[list[int]]
+) -> None:
+    """The replay keeps the findings as the workspace spared them; an edited file's own
+    are spared again, and ``--verbose`` names the files judged unbuilt as a fresh run
+    does."""
+    cache = tmp_path / "cache"
+    legacy = workspace / "src/turtle_bringup/src/legacy_relay.cpp"
+    legacy.write_text(LEGACY, encoding="utf-8")
+    arguments = ["check", "--format", "json", "--jobs", "1", "--exit-zero", "--verbose"]
+    run_cli([*arguments, "--cache-dir", str(cache), "."], workspace)
+    append(legacy, "\n// Kept for reference.\n")
+    cached = run_cli([*arguments, "--cache-dir", str(cache), "."], workspace)
+    fresh = run_cli([*arguments, "--no-cache", "."], workspace)
+    assert replayed
+    assert cached.stdout == fresh.stdout
+    assert "Legacy-Out" not in cached.stdout
+    unbuilt = [line for line in cached.stderr.splitlines() if "legacy_relay.cpp" in line]
+    assert unbuilt
+    assert unbuilt == [line for line in fresh.stderr.splitlines() if "legacy_relay.cpp" in line]
+
+
 def test_a_replayed_run_keeps_every_file_s_facts_in_the_cache(
     run_cli: Any,
     workspace: Path,
@@ -197,7 +234,7 @@ def test_a_damaged_replay_is_a_run_like_any(
     assert replayed
 
 
-EMPTY = ("replay 1", ("k1",), 1, (), (), (), (), (), (), (), ())  # one file, nothing found
+EMPTY = ("replay 2", ("k1",), 1, (), (), (), (), (), (), (), (), (), ())  # one file, nothing found
 
 
 def test_an_empty_stored_replay_reads_back() -> None:
@@ -216,6 +253,7 @@ def test_an_empty_stored_replay_reads_back() -> None:
         ((*EMPTY[:4], ((0, (("RN401", "x"),)),), *EMPTY[5:]), 1),
         ((*EMPTY[:6], ((7, "srv"),), *EMPTY[7:]), 1),  # a generation that is not one
         ((*EMPTY[:8], (("x", None),), *EMPTY[9:]), 1),  # built sources that are not facts
+        ((*EMPTY[:11], (3,), ()), 1),  # unbuilt files that are not paths
     ],
 )
 def test_a_stored_replay_of_another_shape_is_none(value: object, files: int) -> None:
@@ -237,6 +275,7 @@ def test_a_stored_replay_reads_back_as_it_was() -> None:
             {"src/a": frozenset({"bad.launch"})},
         ),
         skipped=(("src/a/big.cpp", "too large"),),
+        unbuilt=("src/a/old.cpp",),
     )
     assert same_facts.loaded(replay.stored(), files=2, reported=2) == replay
     assert same_facts.loaded(replay.stored(), files=3, reported=2) is None
