@@ -5,6 +5,7 @@ from __future__ import annotations
 import enum
 import hashlib
 import io
+import mmap
 import multiprocessing
 import os
 import pickle
@@ -494,3 +495,78 @@ def test_getattr_in_a_record_reaches_nothing_but_an_enum_member(reduced: Any) ->
             return reduced
 
     assert cache_module._unpickle(pickle.dumps(Hostile())) is None
+
+
+def _records(count: int, size: int) -> list[tuple[str, bytes]]:
+    """``count`` records of about ``size`` bytes each, as (key, record)."""
+    made = []
+    for number in range(count):
+        key = f"{number:040x}"
+        facts = FileFacts(f"src/{number}/a.launch", Language.LAUNCH_XML, Generation.ROS1)
+        facts = FileFacts(facts.path, facts.language, facts.generation, literals=("x" * size,))
+        record = cache_module._record(key, pickle.dumps(facts, protocol=pickle.HIGHEST_PROTOCOL))
+        assert record is not None
+        made.append((key, record))
+    return made
+
+
+@pytest.mark.parametrize(
+    "damage",
+    [
+        "none",
+        "torn tail",  # a writer stopped mid-record
+        "flipped payload",  # looks whole: indexed, a miss where loaded
+        "torn middle",  # the next record follows a torn one
+        "marker in payload",
+    ],
+)
+def test_a_mapped_pack_indexes_and_loads_as_its_bytes(tmp_path: Path, damage: str) -> None:
+    """The pack is mapped and its pages handed back as it is indexed (``_released``):
+    every record, damaged or not, is found or missed as in the pack's bytes, across
+    more than one release."""
+    made = _records(40, 400_000)  # 16 MB: two releases
+    records = [record for _, record in made]
+    if damage == "torn tail":
+        records[-1] = records[-1][:1000]
+    elif damage == "flipped payload":
+        records[5] = records[5][:-10] + bytes([records[5][-10] ^ 1]) + records[5][-9:]
+    elif damage == "torn middle":
+        records[7] = records[7][:5000]
+    elif damage == "marker in payload":
+        records[3] = records[3] + cache_module._RECORD + b"garbage"
+    data = b"".join(records)
+    path = tmp_path / "facts.pack"
+    path.write_bytes(data)
+    mapped = cache_module._map(str(path))
+    assert isinstance(mapped, mmap.mmap)
+    indexed = cache_module._index(mapped)
+    assert indexed == cache_module._index(data)
+    for key, _ in made:
+        where = indexed.get(key)
+        loaded = where is not None and cache_module._intact(mapped, *where)
+        assert loaded == (where is not None and cache_module._intact(data, *where))
+        expected_missing = (damage, key) in {
+            ("torn tail", made[-1][0]),
+            ("flipped payload", made[5][0]),
+            ("torn middle", made[7][0]),
+        }
+        assert loaded != expected_missing, key
+        if loaded:
+            assert where is not None
+            assert mapped[where[0] : where[1]] == data[where[0] : where[1]]
+    mapped.close()
+
+
+def test_only_a_mapped_pack_s_pages_are_handed_back(tmp_path: Path) -> None:
+    path = tmp_path / "facts.pack"
+    path.write_bytes(b"\0" * (10 * 1024 * 1024))
+    mapped = cache_module._map(str(path))
+    assert isinstance(mapped, mmap.mmap)
+    step = cache_module._RELEASED_EVERY
+    assert cache_module._released(mapped, 0, step - 1) == 0  # not yet a step indexed
+    released = cache_module._released(mapped, 0, step + 100)
+    assert released == step + 100 - (step + 100) % mmap.PAGESIZE
+    assert cache_module._released(mapped, released, -1) == released  # the end: under a step
+    assert mapped[:10] == b"\0" * 10  # handed back, read again from the file
+    mapped.close()
+    assert cache_module._released(b"\0" * (2 * step), 0, 2 * step) == 0  # bytes: nothing
