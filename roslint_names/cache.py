@@ -30,9 +30,9 @@ descriptor, which concurrent runs cannot interleave on a local file system. Each
 once per run (the pack mapped, its pages handed back as it is indexed, and a record's
 checksum verified when it is loaded). A line or record that is torn, truncated or fails
 its checksum is skipped (the pack is searched for the next marker), its file is
-extracted again and appended again; the last whole record of a key wins. Once the pack or the log outgrows
-``PACK_LIMIT``, the run that notices rewrites it (atomically, by a rename) with only the
-records or lines it used.
+extracted again and appended again; the last whole record of a key wins. Once the pack
+or the log outgrows ``PACK_LIMIT``, the run that notices rewrites it (atomically, by a
+rename) with only the records or lines it used.
 
 Why pickle is safe enough here: entries are read with an unpickler that resolves no global
 but the fact classes and enums of ``roslint_names.model``. Unpickling can then only build

@@ -977,13 +977,11 @@ def report_graph(
     ``texts``: files' content by display path where it is not the file's on disk (an
     editor's unsaved buffer). The findings, as the rules made them."""
     slots = {source.display: index for index, source in enumerate(reported)}
-    found: GraphFindings = {}
-    for rule in rules:
-        assert rule.check_workspace is not None
-        for item in rule.check_workspace(graph, _context(rule, settings, frozenset())):
-            index = slots.get(item.path)
-            if index is not None:
-                found.setdefault(index, []).append((rule, item))
+    found: GraphFindings = {
+        slots[path]: items
+        for path, items in graph_findings(graph, rules, settings).items()
+        if path in slots
+    }
     facts_of = {f.path: f for f in facts}
     for index, items in sorted(found.items()):
         source = reported[index]
@@ -997,6 +995,18 @@ def report_graph(
             registry=registry,
             text=None if texts is None else texts.get(source.display),
         )
+    return found
+
+
+def graph_findings(
+    graph: Graph, rules: Sequence[Rule], settings: Settings
+) -> dict[str, list[tuple[Rule, WorkspaceFinding]]]:
+    """Every graph rule's findings, by the display path of the file each is in."""
+    found: dict[str, list[tuple[Rule, WorkspaceFinding]]] = {}
+    for rule in rules:
+        assert rule.check_workspace is not None
+        for item in rule.check_workspace(graph, _context(rule, settings, frozenset())):
+            found.setdefault(item.path, []).append((rule, item))
     return found
 
 

@@ -34,12 +34,13 @@ from .discover import SourceFile, classify, discover, display_path
 from .engine import (
     RunOptions,
     check_file,
+    file_graph_findings,
+    graph_findings,
     is_linter_code,
     launch_wiring,
     lint,
     lintable,
     package_display,
-    report_graph,
     rostest_replaces,
     service_types_of,
     typed_services,
@@ -61,6 +62,7 @@ from .generation import (
 from .model import Diagnostic, FileFacts, Generation
 from .reading import read_file, too_large
 from .registry import Registry
+from .rule import Rule, WorkspaceFinding
 from .suppress import Suppression
 from .symbols import PackageConstants, uses_constants
 from .workers import Dispatcher
@@ -125,6 +127,14 @@ class Session:
         self._built: BuiltSources | None = None  # made again when a build file changes
         # The last graph build's pieces: the next takes back what an edit cannot reach.
         self._graph_memory = GraphMemory()
+        # The last graph, the facts it was built from, the files its build extracted
+        # again under an includer's arguments, and its rules' findings by file: edits
+        # that leave every file's facts as they were (a comment, a body that names
+        # nothing) leave all of it standing (``_stands``).
+        self._last_graph: Graph | None = None
+        self._graph_basis: dict[str, FileFacts] = {}
+        self._graph_specialised: frozenset[str] = frozenset()
+        self._graph_items: dict[str, list[tuple[Rule, WorkspaceFinding]]] = {}
 
     def load(self) -> None:
         """Read the workspace: every file's facts, from the cache where it has them."""
@@ -132,6 +142,7 @@ class Session:
             [self.root], self._settings.exclude, self._settings.root, self.root, cache=self._cache
         )
         self._sources = {source.display: source for source in sources}
+        self._last_graph = None  # the workspace read again: nothing of a graph stands
         result = lint(
             lintable(sources),
             self._settings,
@@ -271,30 +282,29 @@ class Session:
         """The graph rules' findings for the documents open when ``job`` was made, kept
         for the later ``check`` of each; every open document's diagnostics."""
         if graph is not None:
-            opened = [
-                checked for checked in job.opened.values() if checked.source.display in self._open
-            ]
-            per_file = [list(checked.diagnostics) for checked in opened]
-            report_graph(
-                graph,
-                [rule for rule in self._registry.rules if rule.code in self._graph_codes],
-                reported=[checked.source for checked in opened],
-                facts=[job.facts[checked.source.display] for checked in opened],
-                per_file=per_file,
-                suppressions_of={i: checked.suppressions for i, checked in enumerate(opened)},
-                settings=self._settings,
-                registry=self._registry,
-                texts={checked.source.display: checked.text for checked in opened},
-            )
-            for checked, found in zip(opened, per_file, strict=True):
-                found_graph = [d for d in found if d.code in self._graph_codes]
-                self._graph_found[checked.source.display] = found_graph
+            for checked in job.opened.values():
+                display = checked.source.display
+                if display not in self._open:
+                    continue
+                found = file_graph_findings(
+                    self._graph_items.get(display, []),
+                    checked.source,
+                    job.facts[display],
+                    list(checked.diagnostics),
+                    suppressions=checked.suppressions,
+                    settings=self._settings,
+                    registry=self._registry,
+                    text=checked.text,
+                )
+                self._graph_found[display] = [d for d in found if d.code in self._graph_codes]
         return {display: self._with_graph(display) for display in self._open}
 
     def _build_graph(self, job: GraphJob) -> Graph | None:
         specialise = self._specialiser
         if not self._graph_codes or not job.opened or specialise is None:
             return None
+        if self._last_graph is not None and self._stands(job.facts):
+            return self._last_graph
         graph = build(
             job.facts.values(),
             self._workspace_packages,
@@ -304,7 +314,24 @@ class Session:
         )
         if self._graph_memory.moved:
             gc.freeze()  # what a whole build leaves the memory lives long too (``load``)
+        rules = [rule for rule in self._registry.rules if rule.code in self._graph_codes]
+        self._graph_items = graph_findings(graph, rules, self._settings)
+        self._last_graph, self._graph_basis = graph, job.facts
+        self._graph_specialised = specialise.specialised
         return graph
+
+    def _stands(self, facts: dict[str, FileFacts]) -> bool:
+        """Whether the last graph is the graph of ``facts``: the same files, each with the
+        facts the graph was built from, none of those that differ in bytes only read
+        again by the build (a launch file extracted under an includer's arguments)."""
+        basis = self._graph_basis
+        if facts.keys() != basis.keys():
+            return False
+        return all(
+            now == then and display not in self._graph_specialised
+            for display, now in facts.items()
+            if (then := basis[display]) is not now
+        )
 
     def _note_wiring(self, facts: FileFacts, data: Callable[[], bytes | str]) -> None:
         """Keep what a launch file wires, as its facts are now (an edit may drop it).

@@ -15,7 +15,11 @@ import pytest
 
 from roslint_names import cache as cache_module
 from roslint_names import engine, same_facts
+from roslint_names import session as session_module
+from roslint_names.config import load_settings
 from roslint_names.model import FileFacts, Generation, Language
+from roslint_names.registry import load_registry
+from roslint_names.session import Session
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 FLEET = "src/fleet_bringup"
@@ -279,3 +283,68 @@ def test_a_stored_replay_reads_back_as_it_was() -> None:
     )
     assert same_facts.loaded(replay.stored(), files=2, reported=2) == replay
     assert same_facts.loaded(replay.stored(), files=3, reported=2) is None
+
+
+# The language server: a graph refresh after edits that leave every file's facts as they
+# were takes the last graph's findings; the documents' diagnostics are a fresh session's.
+
+
+def _session(root: Path) -> Session:
+    registry = load_registry()
+    session = Session(root, load_settings(None, root, registry), registry, None)
+    session.load()
+    return session
+
+
+@pytest.fixture
+def builds(monkeypatch: pytest.MonkeyPatch) -> list[int]:
+    """One entry per graph the language server builds."""
+    seen: list[int] = []
+    original = session_module.build
+
+    def counting(*arguments: Any, **keywords: Any) -> Any:
+        seen.append(1)
+        return original(*arguments, **keywords)
+
+    monkeypatch.setattr(session_module, "build", counting)
+    return seen
+
+
+# (file, text before, text after, whether the refresh builds the graph)
+SESSION_STEPS: list[tuple[str, str, str, bool]] = [
+    (DOCK, "", "\n// Docking is refused while charging.\n", False),
+    (DOCK, LINE_18, f"{LINE_18}  // NOLINT(RN407)", True),  # a marker: a fact
+    (DOCK, "NOLINT(RN407)", "NOLINT(RN204)", False),  # the graph finding is back
+    (MONITOR, "#include", "// Fleet monitor.\n#include", True),  # names moved
+    (MONITOR, "", "\n// Reviewed.\n", False),
+    (TELEOP, "</launch>", "</launch>\n<!-- one robot's teleop -->", True),  # specialised
+]
+
+
+def test_the_language_server_refreshes_the_graph_of_the_same_facts_without_building_it(
+    workspace: Path, builds: list[int]
+) -> None:
+    (workspace / TURTLE_LAUNCH / "robot7.launch").write_text(ROBOT7, encoding="utf-8")
+    session = _session(workspace)
+    texts = {
+        relative: (workspace / relative).read_text(encoding="utf-8")
+        for relative in {step[0] for step in SESSION_STEPS}
+    }
+    for relative, text in texts.items():
+        session.check(workspace / relative, text)
+    session.check_graph()
+    for relative, old, new, rebuilds in SESSION_STEPS:
+        builds.clear()
+        text = texts[relative]
+        assert not old or old in text
+        texts[relative] = text.replace(old, new, 1) if old else text + new
+        session.check(workspace / relative, texts[relative])
+        found = session.check_graph()
+        assert bool(builds) == rebuilds, (relative, old, new)
+        # A fresh session over the same texts, saved: the same diagnostics everywhere.
+        for other, content in texts.items():
+            (workspace / other).write_text(content, encoding="utf-8")
+        fresh = _session(workspace)
+        for other, content in texts.items():
+            fresh.check(workspace / other, content)
+        assert found == fresh.check_graph(), (relative, old, new)
