@@ -118,6 +118,9 @@ class Session:
         self._wired_of: dict[str, frozenset[str]] = {}
         self._open: dict[str, _Checked] = {}
         self._graph_found: dict[str, list[Diagnostic]] = {}
+        # Per document, its own findings the graph's answer: an RN002 "silences nothing"
+        # on a suppression one of its graph findings uses (``report_graph``).
+        self._graph_answered: dict[str, list[Diagnostic]] = {}
         # Kept from one graph build to the next: the packages, and the launch files'
         # specialisations under their includers' arguments (made again for a file only
         # when it changes). One job: the session extracts in its own process.
@@ -248,6 +251,7 @@ class Session:
         display = self.display(path)
         self._open.pop(display, None)
         self._graph_found.pop(display, None)
+        self._graph_answered.pop(display, None)
         if display in self._facts:
             self._facts[display] = FileFacts(display, self._facts[display].language, self._fallback)
         self._wired_of.pop(display, None)
@@ -259,6 +263,7 @@ class Session:
         display = self.display(path)
         self._open.pop(display, None)
         self._graph_found.pop(display, None)
+        self._graph_answered.pop(display, None)
         source = self._sources.get(display)
         data, _, skip = read_file(path, self._settings.max_file_size)
         if source is None or data is None or skip is not None:
@@ -297,6 +302,7 @@ class Session:
                     text=checked.text,
                 )
                 self._graph_found[display] = [d for d in found if d.code in self._graph_codes]
+                self._graph_answered[display] = [d for d in checked.diagnostics if d not in found]
         return {display: self._with_graph(display) for display in self._open}
 
     def _build_graph(self, job: GraphJob) -> Graph | None:
@@ -349,7 +355,9 @@ class Session:
 
     def _with_graph(self, display: str) -> list[Diagnostic]:
         checked = self._open[display]
-        found = checked.diagnostics + self._graph_found.get(display, [])
+        answered = self._graph_answered.get(display, [])
+        own = [d for d in checked.diagnostics if d not in answered]
+        found = own + self._graph_found.get(display, [])
         if found:
             built = self._built_sources()
             package = package_display(checked.source, self._packages)

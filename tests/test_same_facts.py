@@ -348,3 +348,19 @@ def test_the_language_server_refreshes_the_graph_of_the_same_facts_without_build
         for other, content in texts.items():
             fresh.check(workspace / other, content)
         assert found == fresh.check_graph(), (relative, old, new)
+
+
+def test_the_language_server_says_nothing_of_a_suppression_a_graph_finding_uses(
+    workspace: Path,
+) -> None:
+    """``// NOLINT(RN407)`` on the line of an RN407 (a graph finding) silences it: the
+    per-file check's RN002 "silences nothing" on it is withdrawn once the graph's
+    findings are in, as a run does. The server showed that RN002 beside the silenced
+    finding."""
+    session = _session(workspace)
+    text = (workspace / DOCK).read_text(encoding="utf-8")
+    session.check(workspace / DOCK, text.replace(LINE_18, f"{LINE_18}  // NOLINT(RN407)"))
+    shown = [d.code for d in session.check_graph()[DOCK] if not d.suppressed]
+    assert "RN407" not in shown
+    assert "RN002" not in shown
+    assert "RN204" in shown  # the file's other finding stays
