@@ -41,16 +41,17 @@ from roslint_names.reading import RACY_NANOSECONDS
 
 # One edit each, a comment: at the end, where it moves no name, or (``True``) at the start,
 # where it moves every name of the file; so that the run measures what an edit costs, not
-# what a new finding does.
+# what a new finding does. No word of a suppression in them (``suppress``'s markers: the
+# tool's name, NOLINT, noqa): a file holding one is read by every run, a fact of its own.
 _EDITS = {
-    "edit_cpp": ((".cpp",), "create_publisher", b"\n// roslint-names bench edit\n", False),
+    "edit_cpp": ((".cpp",), "create_publisher", b"\n// bench edit: nothing renamed\n", False),
     "edit_launch": (
         (".launch.xml", ".launch"),
         "<node",
-        b"\n<!-- roslint-names bench edit -->\n",
+        b"\n<!-- bench edit: nothing renamed -->\n",
         False,
     ),
-    "edit_moves": ((".cpp",), "create_publisher", b"// roslint-names bench edit\n", True),
+    "edit_moves": ((".cpp",), "create_publisher", b"// bench edit: every name moves\n", True),
 }
 
 
