@@ -19,8 +19,10 @@ plugin names, manifests).
 A later run with that key whose facts keys differ for some files (``edited``) takes it
 when each of those files (``stands``):
 
-- has facts equal (``==``) to those stored under its old key: what the graph and the
-  run-wide sets were made from is the same;
+- has facts equal (``==``) to those stored under its old key, but for whether its bytes
+  hold a suppression marker (``FileFacts.suppression_marker``: which files a run reads,
+  never what the graph is made of; the edited file is read and checked anew): what the
+  graph and the run-wide sets were made from is the same;
 - takes no value from another file's constant (``symbols.uses_constants``): those are
   not kept;
 - wires no name (``wiring.wired_by``): whether its wiring counts depends on its text
@@ -40,7 +42,7 @@ from __future__ import annotations
 
 import hashlib
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from .model import CompiledSources, Diagnostic, FileFacts, Finding, Generation
 from .symbols import uses_constants
@@ -92,7 +94,7 @@ class Replay:
         its facts under its old key, if still cached."""
         return (
             before is not None
-            and before == now
+            and graph_equal(before, now)
             and not uses_constants(now)
             and not wired_by(now)
             and display not in self.specialised
@@ -120,6 +122,13 @@ class Replay:
             self.unbuilt,
             self.rostest_named,
         )
+
+
+def graph_equal(before: FileFacts, now: FileFacts) -> bool:
+    """Whether two facts of a file are the same to the graph and the run-wide sets: equal
+    but for whether the bytes hold a suppression marker (which says that a run reads
+    the file to judge it; the graph never reads it)."""
+    return replace(before, suppression_marker=now.suppression_marker) == now
 
 
 _FORMAT = "replay 2"

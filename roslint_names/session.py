@@ -63,6 +63,7 @@ from .model import Diagnostic, FileFacts, Generation
 from .reading import read_file, too_large
 from .registry import Registry
 from .rule import Rule, WorkspaceFinding
+from .same_facts import graph_equal
 from .suppress import Suppression
 from .symbols import PackageConstants, uses_constants
 from .workers import Dispatcher
@@ -328,13 +329,14 @@ class Session:
 
     def _stands(self, facts: dict[str, FileFacts]) -> bool:
         """Whether the last graph is the graph of ``facts``: the same files, each with the
-        facts the graph was built from, none of those that differ in bytes only read
-        again by the build (a launch file extracted under an includer's arguments)."""
+        facts the graph was built from (``same_facts.graph_equal``), none of those that
+        differ read again by the build (a launch file extracted under an includer's
+        arguments)."""
         basis = self._graph_basis
         if facts.keys() != basis.keys():
             return False
         return all(
-            now == then and display not in self._graph_specialised
+            graph_equal(then, now) and display not in self._graph_specialised
             for display, now in facts.items()
             if (then := basis[display]) is not now
         )
