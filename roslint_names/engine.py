@@ -272,7 +272,6 @@ def _lint(
         if inputs.place_key is not None:  # keyed first: an earlier run left its digests
             replay_key = same_facts.key(inputs.place_key, clean_key)
             replay = same_facts.loaded(cache.load_replay(replay_key), len(files), reported)
-    replayed: list[int] | None = None  # the edited files, where the run took a replay
     graph_found: Mapping[int, tuple[tuple[str, Finding], ...]] = {}
     specialised: frozenset[str] = frozenset()
     extract = partial(extract_batch, cache, checker=judge)
@@ -291,32 +290,7 @@ def _lint(
             ros1_python2=python2,
             max_file_size=settings.max_file_size,
         )
-        edited = None if replay is None or inputs is None else replay.edited(inputs.tags)
-        if replay is not None and edited is not None and inputs is not None:
-            arrived = list(gathered.facts(edited))
-            for index, facts, data, verdict in arrived:
-                checks.take(index, facts, data, verdict)
-            if _replay_stands(
-                replay,
-                arrived,
-                files=files,
-                inputs=inputs,
-                cache=cache,
-                rules=rule_of,
-            ):
-                replayed = edited
-                # Every file's facts are what the result stands on, loaded or not.
-                assert cache is not None
-                cache.stand_on(tag for tag in inputs.tags if is_facts_key(tag))
-            else:
-                others = set(edited)
-                for index, facts, data, verdict in gathered.facts(
-                    index for index in range(len(files)) if index not in others
-                ):
-                    checks.take(index, facts, data, verdict)
-        else:
-            for index, facts, data, verdict in gathered.facts():
-                checks.take(index, facts, data, verdict)
+        replayed = _take_facts(gathered, checks, replay, inputs, rules=rule_of)
         workers = dispatcher.workers  # that extracted the files (specialisations may start some)
         if inputs is not None and not fresh and run_key is None:
             run_key = inputs.key_last()
@@ -370,13 +344,15 @@ def _lint(
 
     # (5)
     displays = [source.display for source in files[:reported]]
-    unbuilt, rostest_named = checks.spare(displays, replayed)
+    unbuilt_at, named_at = checks.spare(displays, replayed)
     if replay is not None and replayed is not None:
         skipped = replay.skipped
-        unbuilt = _with_edited(replay.unbuilt, unbuilt, replayed, displays)
-        rostest_named = _with_edited(replay.rostest_named, rostest_named, replayed, displays)
+        unbuilt_at = _with_edited(replay.unbuilt, unbuilt_at, replayed)
+        named_at = _with_edited(replay.rostest_named, named_at, replayed)
     else:
         skipped = tuple(gathered.skipped)
+    unbuilt = [displays[index] for index in unbuilt_at]
+    rostest_named = [displays[index] for index in named_at]
     # What a run whose facts are these takes (``same_facts``).
     kept_replay = None
     if replay_key is not None and inputs is not None:
@@ -388,8 +364,8 @@ def _lint(
             specialised,
             checks.run_wide(),
             skipped,
-            tuple(unbuilt),
-            tuple(rostest_named),
+            tuple(unbuilt_at),
+            tuple(named_at),
         )
     per_file = one_per_decision(checks.per_file)
     diagnostics = sorted(
@@ -564,12 +540,12 @@ class _FileChecks:
 
     def spare(
         self, displays: Sequence[str], only: Sequence[int] | None
-    ) -> tuple[list[str], list[str]]:
+    ) -> tuple[list[int], list[int]]:
         """Drop the findings the workspace says do not hold in their files (below), in
         the reported files at ``only`` (None: in all); the files judged unbuilt and those
-        judged named by rostest, for ``--verbose``. ``displays``: the reported files'
-        display paths. After the fixtures, unbuilt sources and names rostest replaces are
-        spared: a finding in one must not stand for the others."""
+        judged named by rostest (their indices), for ``--verbose``. ``displays``: the
+        reported files' display paths. After the fixtures, unbuilt sources and names
+        rostest replaces are spared: a finding in one must not stand for the others."""
         indices = range(len(self.per_file)) if only is None else sorted(only)
         indices = [index for index in indices if index < self.reported]
         if self._rejected:
@@ -584,22 +560,22 @@ class _FileChecks:
         indices: Iterable[int],
         spared: Callable[[Diagnostic], bool],
         applies: Callable[[str, str | None], bool],
-    ) -> list[str]:
+    ) -> list[int]:
         """Drop the ``spared`` findings of each file at ``indices`` the workspace says
         they do not hold for (``applies``, asked only of a file holding some); the files
-        it did that to. The rules: a file its package's tests load expecting it to be
-        refused (``extract.python.fixtures``: its mistakes are the test's point); a C++
-        source no build file of its package compiles (``workspace.built``: it never runs;
-        the linter's own findings, RN0xx, stay); the node name a C++ source hands
-        ``ros::init`` where only rostest starts what it is built into (roslaunch names
-        the node, ``rostest_replaces``)."""
-        changed: list[str] = []
+        it did that to (their indices). The rules: a file its package's tests load
+        expecting it to be refused (``extract.python.fixtures``: its mistakes are the
+        test's point); a C++ source no build file of its package compiles
+        (``workspace.built``: it never runs; the linter's own findings, RN0xx, stay); the
+        node name a C++ source hands ``ros::init`` where only rostest starts what it is
+        built into (roslaunch names the node, ``rostest_replaces``)."""
+        changed: list[int] = []
         for index in indices:
             found = self.per_file[index]
             kept = [diagnostic for diagnostic in found if not spared(diagnostic)]
             if len(kept) != len(found) and applies(displays[index], self.package_of(index)):
                 self.per_file[index] = kept
-                changed.append(displays[index])
+                changed.append(index)
         return changed
 
     def _is_rejected(self, display: str, package: str | None) -> bool:
@@ -726,39 +702,68 @@ class _FileChecks:
         return self.judge.check_text(facts, text, contexts)
 
 
+def _take_facts(
+    gathered: Gatherer,
+    checks: _FileChecks,
+    replay: Replay | None,
+    inputs: RunInputs | None,
+    *,
+    rules: Mapping[str, Rule],
+) -> list[int] | None:
+    """Hand every file's facts to ``checks``, as they arrive; or, where the run can take
+    ``replay`` (``same_facts``), only those of the files edited since: then those files.
+    The edited files come first either way: whether the replay stands is their facts'
+    question."""
+    edited = None if replay is None or inputs is None else replay.edited(inputs.tags)
+    if replay is None or edited is None or inputs is None or gathered.cache is None:
+        for index, facts, data, verdict in gathered.facts():
+            checks.take(index, facts, data, verdict)
+        return None
+    arrived = list(gathered.facts(edited))
+    for index, facts, data, verdict in arrived:
+        checks.take(index, facts, data, verdict)
+    cache = gathered.cache
+    if _replay_stands(replay, arrived, inputs, files=gathered.files, cache=cache, rules=rules):
+        # Every file's facts are what the result stands on, loaded or not: kept by the
+        # pack's rewrite (``FactsCache.stand_on``).
+        cache.stand_on(tag for tag in inputs.tags if is_facts_key(tag))
+        return edited
+    others = set(edited)
+    rest = (index for index in range(len(gathered.files)) if index not in others)
+    for index, facts, data, verdict in gathered.facts(rest):
+        checks.take(index, facts, data, verdict)
+    return None
+
+
 def _with_edited(
-    kept: Sequence[str], edited_now: Sequence[str], edited: Sequence[int], displays: Sequence[str]
-) -> list[str]:
-    """A replay's list of files judged so (unbuilt, named by rostest), with the edited
-    files' judgements of this run in place of theirs, in discovery order."""
-    if not kept and not edited_now:
-        return []
-    mine = {displays[index] for index in edited if index < len(displays)}
-    place = {display: index for index, display in enumerate(displays)}
-    judged = [display for display in kept if display not in mine] + list(edited_now)
-    return sorted(judged, key=place.__getitem__)
+    kept: Sequence[int], edited_now: Sequence[int], edited: Sequence[int]
+) -> list[int]:
+    """A replay's files judged so (unbuilt, named by rostest; their indices), with the
+    edited files' judgements of this run in place of theirs, in discovery order."""
+    return sorted((set(kept) - set(edited)) | set(edited_now))
 
 
 def _replay_stands(
     replay: Replay,
     arrived: Sequence[tuple[int, FileFacts, bytes | None, Verdict | None]],
+    inputs: RunInputs,
     *,
     files: Sequence[SourceFile],
-    inputs: RunInputs,
-    cache: FactsCache | None,
+    cache: FactsCache,
     rules: Mapping[str, Rule],
 ) -> bool:
     """Whether the run may take ``replay``: each edited file (``arrived``) has a facts key
     and leaves it true (``Replay.stands``), and the rules of its graph findings are the
     run's (``rules``, by code)."""
     codes = {code for items in replay.graph.values() for code, _ in items}
-    if cache is None or not codes <= rules.keys():
+    if not codes <= rules.keys():
         return False
     for index, facts, _, _ in arrived:
-        display = files[index].display
         old = replay.tags[index]
-        before = cache.load(old, display) if is_facts_key(old) else None
-        if inputs.facts_key(index) is None or not replay.stands(display, before, facts):
+        if inputs.facts_key(index) is None or not is_facts_key(old):
+            return False
+        display = files[index].display
+        if not replay.stands(display, cache.load(old, display), facts):
             return False
     return True
 

@@ -75,9 +75,10 @@ class Replay:
     specialised: frozenset[str]  # display paths the graph build extracted again
     run_wide: RunWide
     skipped: tuple[tuple[str, str], ...]  # files too large, and why
-    # The reported files whose findings were spared as unbuilt, and as named by rostest.
-    unbuilt: tuple[str, ...] = ()
-    rostest_named: tuple[str, ...] = ()
+    # The reported files (indices) whose findings were spared as unbuilt, and as named
+    # by rostest.
+    unbuilt: tuple[int, ...] = ()
+    rostest_named: tuple[int, ...] = ()
 
     def edited(self, tags: Sequence[str]) -> list[int] | None:
         """The checked files whose facts keys differ from the replay's; None where the
@@ -131,7 +132,7 @@ def graph_equal(before: FileFacts, now: FileFacts) -> bool:
     return replace(before, suppression_marker=now.suppression_marker) == now
 
 
-_FORMAT = "replay 2"
+_FORMAT = "replay 3"
 _FIELDS = 13  # of ``stored``
 
 
@@ -175,8 +176,8 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         )
         and _strings(specialised)
         and _strings(wired)
-        and _strings(unbuilt)
-        and _strings(rostest_named)
+        and _indices(unbuilt, reported)
+        and _indices(rostest_named, reported)
         and all(isinstance(generation, Generation | None) for generation, _ in type_pairs)
     ):
         return None
@@ -196,6 +197,12 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
 def _by_text(service_type: tuple[Generation | None, str]) -> tuple[str, str]:
     generation, spelling = service_type
     return ("" if generation is None else str(generation.value), spelling)
+
+
+def _indices(value: object, reported: int) -> bool:
+    return isinstance(value, tuple) and all(
+        isinstance(item, int) and 0 <= item < reported for item in value
+    )
 
 
 def _strings(value: object) -> bool:

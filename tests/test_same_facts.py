@@ -242,7 +242,7 @@ def test_a_damaged_replay_is_a_run_like_any(
     assert replayed
 
 
-EMPTY = ("replay 2", ("k1",), 1, (), (), (), (), (), (), (), (), (), ())  # one file, nothing found
+EMPTY = ("replay 3", ("k1",), 1, (), (), (), (), (), (), (), (), (), ())  # one file, nothing found
 
 
 def test_an_empty_stored_replay_reads_back() -> None:
@@ -261,7 +261,8 @@ def test_an_empty_stored_replay_reads_back() -> None:
         ((*EMPTY[:4], ((0, (("RN401", "x"),)),), *EMPTY[5:]), 1),
         ((*EMPTY[:6], ((7, "srv"),), *EMPTY[7:]), 1),  # a generation that is not one
         ((*EMPTY[:8], (("x", None),), *EMPTY[9:]), 1),  # built sources that are not facts
-        ((*EMPTY[:11], (3,), ()), 1),  # unbuilt files that are not paths
+        ((*EMPTY[:11], (3,), ()), 1),  # an unbuilt file that is not reported
+        ((*EMPTY[:11], ("src/a.cpp",), ()), 1),  # one that is not an index
     ],
 )
 def test_a_stored_replay_of_another_shape_is_none(value: object, files: int) -> None:
@@ -283,7 +284,7 @@ def test_a_stored_replay_reads_back_as_it_was() -> None:
             {"src/a": frozenset({"bad.launch"})},
         ),
         skipped=(("src/a/big.cpp", "too large"),),
-        unbuilt=("src/a/old.cpp",),
+        unbuilt=(1,),
     )
     assert same_facts.loaded(replay.stored(), files=2, reported=2) == replay
     assert same_facts.loaded(replay.stored(), files=3, reported=2) is None
