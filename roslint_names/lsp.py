@@ -277,7 +277,9 @@ class RoslintServer(LanguageServer):
         return None if self._prepared is None else self._prepared.root
 
     async def ready_session(self) -> Session | None:
-        return await self._start_loading()
+        # Shielded: a waiter cancelled (a handler, a check put off by a newer change) must
+        # not cancel the reading of the workspace, which every later check waits for.
+        return await asyncio.shield(self._start_loading())
 
     def _start_loading(self) -> asyncio.Task[Session | None]:
         if self._loading is None:
@@ -345,7 +347,7 @@ class RoslintServer(LanguageServer):
             early = await asyncio.to_thread(_first_look, self._prepared, Path(path), text)
             if early is not None and not loading.done():
                 self.publish(uri, text, early)
-        session = await loading
+        session = await asyncio.shield(loading)  # put off, never the reading (``ready_session``)
         if session is None or path is None or document is None:
             return
         text = document.source

@@ -359,3 +359,29 @@ def test_the_graph_waits_for_changes_to_pause_not_for_the_check_after_them(
     first, second = asyncio.run(scenario())
     assert pause <= first < pause + 0.15  # not 0.2 s more
     assert pause <= second < pause + 0.15  # from the second change, not the first
+
+
+def test_a_cancelled_waiter_leaves_the_workspace_reading_on() -> None:
+    """Every check waits for the workspace to be read; a waiter cancelled (the
+    ``initialized`` handler, a check put off by a newer change) cancelled the reading
+    itself, and no document was ever checked again: the end-to-end test above timed out
+    one run in three."""
+    from roslint_names import lsp
+
+    async def scenario() -> bool:
+        server = lsp.RoslintServer()
+        read = asyncio.Event()
+
+        async def reading() -> None:
+            await read.wait()
+
+        server._loading = asyncio.ensure_future(reading())  # type: ignore[arg-type]
+        waiter = asyncio.ensure_future(server.ready_session())
+        await asyncio.sleep(0)
+        waiter.cancel()
+        await asyncio.sleep(0)
+        read.set()
+        await asyncio.sleep(0)
+        return server._loading.done() and not server._loading.cancelled()
+
+    assert asyncio.run(scenario())
