@@ -49,6 +49,7 @@ from .model import (
     RelatedLocation,
     Span,
 )
+from .moves import Moves
 from .reading import decode_for_display, read_file
 from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
@@ -290,7 +291,8 @@ def _lint(
             ros1_python2=python2,
             max_file_size=settings.max_file_size,
         )
-        replayed = _take_facts(gathered, checks, replay, inputs, rules=rule_of)
+        taken = _take_facts(gathered, checks, replay, inputs, rules=rule_of)
+        replayed, replay = (None, None) if taken is None else taken
         workers = dispatcher.workers  # that extracted the files (specialisations may start some)
         if inputs is not None and not fresh and run_key is None:
             run_key = inputs.key_last()
@@ -709,11 +711,11 @@ def _take_facts(
     inputs: RunInputs | None,
     *,
     rules: Mapping[str, Rule],
-) -> list[int] | None:
+) -> tuple[list[int], Replay] | None:
     """Hand every file's facts to ``checks``, as they arrive; or, where the run can take
-    ``replay`` (``same_facts``), only those of the files edited since: then those files.
-    The edited files come first either way: whether the replay stands is their facts'
-    question."""
+    ``replay`` (``same_facts``), only those of the files edited since: then those files,
+    and the replay with their places where they are now. The edited files come first
+    either way: whether the replay stands is their facts' question."""
     edited = None if replay is None or inputs is None else replay.edited(inputs.tags)
     if replay is None or edited is None or inputs is None or gathered.cache is None:
         for index, facts, data, verdict in gathered.facts():
@@ -723,11 +725,12 @@ def _take_facts(
     for index, facts, data, verdict in arrived:
         checks.take(index, facts, data, verdict)
     cache = gathered.cache
-    if _replay_stands(replay, arrived, inputs, files=gathered.files, cache=cache, rules=rules):
+    moved = _replay_moved(replay, arrived, inputs, files=gathered.files, cache=cache, rules=rules)
+    if moved is not None:
         # Every file's facts are what the result stands on, loaded or not: kept by the
         # pack's rewrite (``FactsCache.stand_on``).
         cache.stand_on(tag for tag in inputs.tags if is_facts_key(tag))
-        return edited
+        return edited, moved
     others = set(edited)
     rest = (index for index in range(len(gathered.files)) if index not in others)
     for index, facts, data, verdict in gathered.facts(rest):
@@ -743,7 +746,7 @@ def _with_edited(
     return sorted((set(kept) - set(edited)) | set(edited_now))
 
 
-def _replay_stands(
+def _replay_moved(
     replay: Replay,
     arrived: Sequence[tuple[int, FileFacts, bytes | None, Verdict | None]],
     inputs: RunInputs,
@@ -751,21 +754,25 @@ def _replay_stands(
     files: Sequence[SourceFile],
     cache: FactsCache,
     rules: Mapping[str, Rule],
-) -> bool:
-    """Whether the run may take ``replay``: each edited file (``arrived``) has a facts key
-    and leaves it true (``Replay.stands``), and the rules of its graph findings are the
-    run's (``rules``, by code)."""
+) -> Replay | None:
+    """``replay`` with the edited files' places where they are now, where the run may
+    take it: each edited file (``arrived``) has a facts key and leaves it true
+    (``Replay.moves``), and the rules of its graph findings are the run's (``rules``, by
+    code); else None."""
     codes = {code for items in replay.graph.values() for code, _ in items}
     if not codes <= rules.keys():
-        return False
+        return None
+    moves: list[Moves] = []
     for index, facts, _, _ in arrived:
         old = replay.tags[index]
         if inputs.facts_key(index) is None or not is_facts_key(old):
-            return False
+            return None
         display = files[index].display
-        if not replay.stands(display, cache.load(old, display), facts):
-            return False
-    return True
+        move = replay.moves(display, cache.load(old, display), facts)
+        if move is None:
+            return None
+        moves.append(move)
+    return replay.moved(moves, [source.display for source in files[: replay.reported]])
 
 
 def _report_replayed(

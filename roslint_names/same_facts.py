@@ -45,6 +45,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 
 from .model import CompiledSources, Diagnostic, FileFacts, Finding, Generation
+from .moves import Moves, UnplacedError, moved_spans
 from .symbols import uses_constants
 from .wiring import wired_by
 
@@ -90,16 +91,47 @@ class Replay:
         edited = [index for index, (now, then) in pairs if now != then]
         return edited or None
 
-    def stands(self, display: str, before: FileFacts | None, now: FileFacts) -> bool:
-        """Whether an edited file leaves the replay true (module docstring): ``before``
-        its facts under its old key, if still cached."""
-        return (
-            before is not None
-            and graph_equal(before, now)
-            and not uses_constants(now)
-            and not wired_by(now)
-            and display not in self.specialised
-        )
+    def moves(self, display: str, before: FileFacts | None, now: FileFacts) -> Moves | None:
+        """How an edited file's places moved, where it leaves the replay true (module
+        docstring); None where it does not. ``before``: its facts under its old key, if
+        still cached."""
+        if (
+            before is None
+            or uses_constants(now)
+            or wired_by(now)
+            or display in self.specialised
+            or (spans := moved_spans(before, now)) is None
+        ):
+            return None
+        moves = Moves(display, spans)
+        # Build files' facts are kept (``RunWide.built``) as they were: none of them moved.
+        return moves if moves.still or now.compiled is None else None
+
+    def moved(self, moves: Sequence[Moves], displays: Sequence[str]) -> Replay | None:
+        """The replay with every place it keeps in the edited files where it is now;
+        None where one has no known new place (``moves.UnplacedError``). ``displays``: the
+        reported files' display paths."""
+        moving = [move for move in moves if not move.still]
+        if not moving:
+            return self
+        edited = {move.display for move in moving}
+        try:
+            graph = {
+                index: tuple(
+                    (code, _moved_finding(finding, displays[index], moving))
+                    for code, finding in items
+                )
+                for index, items in self.graph.items()
+            }
+            found = {
+                index: found
+                if displays[index] in edited
+                else tuple(_moved_diagnostic(diagnostic, moving) for diagnostic in found)
+                for index, found in self.found.items()
+            }
+        except UnplacedError:
+            return None
+        return replace(self, graph=graph, found=found)
 
     def stored(self) -> tuple[object, ...]:
         """As the cache keeps it: model values and builtins only."""
@@ -123,6 +155,18 @@ class Replay:
             self.unbuilt,
             self.rostest_named,
         )
+
+
+def _moved_finding(finding: Finding, path: str, moves: Sequence[Moves]) -> Finding:
+    for move in moves:
+        finding = move.finding(finding, path)
+    return finding
+
+
+def _moved_diagnostic(diagnostic: Diagnostic, moves: Sequence[Moves]) -> Diagnostic:
+    for move in moves:
+        diagnostic = move.diagnostic(diagnostic)
+    return diagnostic
 
 
 def graph_equal(before: FileFacts, now: FileFacts) -> bool:

@@ -88,20 +88,21 @@ LINE_18 = 'get_parameter("dockframe").as_string().c_str());'
 STEPS: list[tuple[str, str, str, bool]] = [
     # A comment below everything: the facts are the same.
     (MONITOR, "", "\n// Reviewed: the pose is republished as is.\n", True),
-    # A line above the names moves them: the facts differ.
-    (MONITOR, "#include", "// Fleet monitor.\n#include", False),
+    # A line above the names moves them, and the other side of the RN401 says where.
+    (MONITOR, "#include", "// Fleet monitor.\n#include", True),
     # A file whose own check waits for the run's service types (RN204), with a graph
     # finding (RN407).
     (DOCK, "", "\n// Docking is refused while charging.\n", True),
-    # A suppression of the graph finding: the events of main() below it move (their
-    # order is a byte offset), a fact.
-    (DOCK, LINE_18, f"{LINE_18}  // NOLINT(RN407)", False),
+    # A suppression of the graph finding; main()'s events move below it.
+    (DOCK, LINE_18, f"{LINE_18}  // NOLINT(RN407)", True),
     # The same marker, now naming another rule: the graph finding is back, the
     # suppression silences nothing. Only the text changed.
     (DOCK, "NOLINT(RN407)", "NOLINT(RN204)", True),
     # The bytes of two runs ago: that run's stored result, nothing replayed.
     (DOCK, "NOLINT(RN204)", "NOLINT(RN407)", False),
     (RECORDER, "", "\n# Poses are recorded as they come.\n", True),
+    (RECORDER, "import rclpy", "# Records poses.\nimport rclpy", True),  # names move
+    (PARAMETERS, "waypoint_follower:", "# The follower's tuning.\nwaypoint_follower:", True),
     # A comment holding a suppression marker at the end: the file is read by every run
     # now (a fact), the graph is the same.
     (MONITOR, "", "\n// A bare NOLINT is cpplint's, not ours.\n", True),
