@@ -515,7 +515,7 @@ def _records(count: int, size: int) -> list[tuple[str, bytes]]:
     [
         "none",
         "torn tail",  # a writer stopped mid-record
-        "flipped payload",
+        "flipped payload",  # looks whole: indexed, a miss where loaded
         "torn middle",  # the next record follows a torn one
         "marker in payload",
     ],
