@@ -12,7 +12,9 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
   a comment at its end, as pre-commit and CI see a change: what the run after an edit
   that moves no name costs (``same_facts``: the last run's graph findings stand);
 - ``edit_moves``: a line put above everything in that C++ source, so that every name in
-  it moves: what an edit the graph must be built again for costs;
+  it moves (the last run's graph findings stand, their places in the file moved);
+- ``edit_names``: a function that publishes a new topic appended to that source: what an
+  edit the graph must be built again for costs;
 - ``identical_after_edits``: whether the last edited run printed what a run with an
   empty cache prints over the same tree (a stale cache must never change a result);
 - ``lsp`` (with ``--lsp-edits``): the language server's latencies on the grown workspace
@@ -39,10 +41,18 @@ from roslint_names.discover import discover
 from roslint_names.engine import lintable
 from roslint_names.reading import RACY_NANOSECONDS
 
-# One edit each, a comment: at the end, where it moves no name, or (``True``) at the start,
-# where it moves every name of the file; so that the run measures what an edit costs, not
-# what a new finding does. No word of a suppression in them (``suppress``'s markers: the
-# tool's name, NOLINT, noqa): a file holding one is read by every run, a fact of its own.
+# An edit that changes the graph: a function publishing a topic no file names yet.
+_NEW_TOPIC = b"""
+void bench_probe(rclcpp::Node & node)
+{
+  node.create_publisher<std_msgs::msg::Empty>("bench_probe", 1);
+}
+"""
+# One edit each, a comment but the last: at the end, where it moves no name, or (``True``)
+# at the start, where it moves every name of the file; so that the run measures what an
+# edit costs, not what a new finding does. No word of a suppression in them
+# (``suppress``'s markers: the tool's name, NOLINT, noqa): a file holding one is read by
+# every run, a fact of its own.
 _EDITS = {
     "edit_cpp": ((".cpp",), "create_publisher", b"\n// bench edit: nothing renamed\n", False),
     "edit_launch": (
@@ -52,6 +62,7 @@ _EDITS = {
         False,
     ),
     "edit_moves": ((".cpp",), "create_publisher", b"// bench edit: every name moves\n", True),
+    "edit_names": ((".cpp",), "create_publisher", _NEW_TOPIC, False),
 }
 
 
@@ -83,7 +94,7 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
             runs[name] = bench.cli(root, arguments, cache)
             results.setdefault("edited", {})[name] = edited.relative_to(root).as_posix()
         fresh = bench.cli(root, arguments, scratch / "fresh-cache")
-        results["identical_after_edits"] = fresh.stdout == runs["edit_moves"].stdout
+        results["identical_after_edits"] = fresh.stdout == runs["edit_names"].stdout
         results["runs"] = {name: run.summary() for name, run in runs.items()}
         if lsp_edits:
             results["lsp"] = latency(root, lsp_edits, cache)
