@@ -1,28 +1,30 @@
 """A run whose files' facts are those of the last run: its graph findings, without the graph.
 
-Most edits leave a file's facts as they were: a comment, a function body that names
-nothing ROS reads, code below the last name. The workspace graph is made of facts only,
-so no node, launch tree or parameter moves, and no graph rule finds anything new; yet
-loading every file's facts and building the graph again was 4.5 s of the 8.7 s an edit
-cost at 77,000 files (issue 30).
+Most edits leave a file's facts as they were, or move them: a comment, a function body
+that names nothing ROS reads, a line above the file's names. The workspace graph is made
+of facts only, so no node, launch tree or parameter changes, and no graph rule finds
+anything new; yet loading every file's facts and building the graph again was 4.5 s of
+the 8.7 s an edit cost at 77,000 files (issue 30).
 
 After a run that built the graph, ``Replay`` keeps what the end of the run needs besides
 it: each checked file's facts key, every reported file's findings once the graph rules
 added theirs and the workspace spared some (``engine._FileChecks.spare``: with the files
-so judged), the graph rules' own findings per file, and what
-the run gathered from every file's facts (``RunWide``: the service types, the names the
-launch files wire, the build files' compiled sources, the fixtures tests load expecting
-them refused). It is keyed by all the run's key holds but the facts keys (``RunInputs``'s
-place key) and by the per-file checks' key (``clean_files.memo_key``: settings, rules,
-plugin names, manifests).
+so judged), the graph rules' own findings per file, and what the run gathered from every
+file's facts (``RunWide``: the service types, the names the launch files wire, the build
+files' compiled sources, the fixtures tests load expecting them refused). It is keyed by
+all the run's key holds but the facts keys (``RunInputs``'s place key) and by the
+per-file checks' key (``clean_files.memo_key``: settings, rules, plugin names,
+manifests).
 
 A later run with that key whose facts keys differ for some files (``edited``) takes it
-when each of those files (``stands``):
+when each of those files (``moves``):
 
-- has facts equal (``==``) to those stored under its old key, but for whether its bytes
-  hold a suppression marker (``FileFacts.suppression_marker``: which files a run reads,
-  never what the graph is made of; the edited file is read and checked anew): what the
-  graph and the run-wide sets were made from is the same;
+- has the facts stored under its old key, but for their spans (``moves.moved_spans``:
+  then every place the replay keeps in the file is put where it is now, and a place no
+  fact gives refuses the replay) and for whether its bytes hold a suppression marker
+  (``graph_equal``: which files a run reads, never what the graph is made of; the edited
+  file is read and checked anew); a build file's spans may not move (``RunWide.built``
+  keeps its facts);
 - takes no value from another file's constant (``symbols.uses_constants``): those are
   not kept;
 - wires no name (``wiring.wired_by``): whether its wiring counts depends on its text
@@ -32,10 +34,11 @@ when each of those files (``stands``):
 
 Its edited files are then checked by the per-file rules, the graph rules' findings in
 them made into diagnostics again under their new text and suppressions, and every other
-file's findings are the stored ones; the rest of the run is the same code. Anything else
-(a file added or removed, settings changed, facts that differ) is a run like any other,
-which keeps a new replay. ``tests/test_same_facts.py`` compares every run of a sequence
-of edits with a run from an empty cache.
+file's findings are the stored ones (their places in the edited files moved); the rest
+of the run is the same code. Anything else (a file added or removed, settings changed, a
+name changed) is a run like any other, which keeps a new replay.
+``tests/test_same_facts.py`` compares every run of a sequence of edits with a run from
+an empty cache.
 """
 
 from __future__ import annotations
