@@ -21,6 +21,7 @@ fact's span, or a ``path:line:column`` of it no fact starts at, makes the replay
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 from dataclasses import fields, is_dataclass, replace
 from typing import Any
 
@@ -31,6 +32,22 @@ _NOT_COMPARED: dict[type, frozenset[str]] = {
     FileFacts: frozenset({"suppression_marker"}),
     RuntimeEvent: frozenset({"order", "scope"}),
 }
+
+
+def moved_finding(finding: Finding, path: str, moves: Sequence[Moves]) -> Finding:
+    """A graph rule's finding in the file at ``path``, with every edited file's places
+    where they are now."""
+    for move in moves:
+        finding = move.finding(finding, path)
+    return finding
+
+
+def moved_diagnostic(diagnostic: Diagnostic, moves: Sequence[Moves]) -> Diagnostic:
+    """A kept finding of a file not edited, with every edited file's places where they are
+    now."""
+    for move in moves:
+        diagnostic = move.diagnostic(diagnostic)
+    return diagnostic
 
 
 class UnplacedError(Exception):

@@ -48,7 +48,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 
 from .model import CompiledSources, Diagnostic, FileFacts, Finding, Generation
-from .moves import Moves, UnplacedError, moved_spans
+from .moves import Moves, UnplacedError, moved_diagnostic, moved_finding, moved_spans
 from .symbols import uses_constants
 from .wiring import wired_by
 
@@ -121,7 +121,7 @@ class Replay:
         try:
             graph = {
                 index: tuple(
-                    (code, _moved_finding(finding, displays[index], moving))
+                    (code, moved_finding(finding, displays[index], moving))
                     for code, finding in items
                 )
                 for index, items in self.graph.items()
@@ -129,7 +129,7 @@ class Replay:
             found = {
                 index: found
                 if displays[index] in edited
-                else tuple(_moved_diagnostic(diagnostic, moving) for diagnostic in found)
+                else tuple(moved_diagnostic(diagnostic, moving) for diagnostic in found)
                 for index, found in self.found.items()
             }
         except UnplacedError:
@@ -158,18 +158,6 @@ class Replay:
             self.unbuilt,
             self.rostest_named,
         )
-
-
-def _moved_finding(finding: Finding, path: str, moves: Sequence[Moves]) -> Finding:
-    for move in moves:
-        finding = move.finding(finding, path)
-    return finding
-
-
-def _moved_diagnostic(diagnostic: Diagnostic, moves: Sequence[Moves]) -> Diagnostic:
-    for move in moves:
-        diagnostic = move.diagnostic(diagnostic)
-    return diagnostic
 
 
 def graph_equal(before: FileFacts, now: FileFacts) -> bool:

@@ -60,6 +60,7 @@ from .generation import (
     workspace_plugin_names,
 )
 from .model import Diagnostic, FileFacts, Generation
+from .moves import Moves, UnplacedError, moved_finding, moved_spans
 from .reading import read_file, too_large
 from .registry import Registry
 from .rule import Rule, WorkspaceFinding
@@ -133,8 +134,9 @@ class Session:
         self._graph_memory = GraphMemory()
         # The last graph, the facts it was built from, the files its build extracted
         # again under an includer's arguments, and its rules' findings by file: edits
-        # that leave every file's facts as they were (a comment, a body that names
-        # nothing) leave all of it standing (``_stands``).
+        # that leave every file's names as they were, wherever they now are (a comment,
+        # a body that names nothing, a line above them), leave the findings standing,
+        # their places moved (``_moved_items``).
         self._last_graph: Graph | None = None
         self._graph_basis: dict[str, FileFacts] = {}
         self._graph_specialised: frozenset[str] = frozenset()
@@ -310,8 +312,11 @@ class Session:
         specialise = self._specialiser
         if not self._graph_codes or not job.opened or specialise is None:
             return None
-        if self._last_graph is not None and self._stands(job.facts):
-            return self._last_graph
+        if self._last_graph is not None:
+            items = self._moved_items(job.facts)
+            if items is not None:
+                self._graph_items, self._graph_basis = items, job.facts
+                return self._last_graph
         graph = build(
             job.facts.values(),
             self._workspace_packages,
@@ -327,19 +332,40 @@ class Session:
         self._graph_specialised = specialise.specialised
         return graph
 
-    def _stands(self, facts: dict[str, FileFacts]) -> bool:
-        """Whether the last graph is the graph of ``facts``: the same files, each with the
-        facts the graph was built from (``same_facts.graph_equal``), none of those that
-        differ read again by the build (a launch file extracted under an includer's
-        arguments)."""
+    def _moved_items(
+        self, facts: dict[str, FileFacts]
+    ) -> dict[str, list[tuple[Rule, WorkspaceFinding]]] | None:
+        """The last graph's findings as the graph of ``facts`` has them, where it is that
+        graph but for places: the same files, each with the facts the graph was built from
+        but for their spans (``moves``: the findings' places in those files are moved) and
+        the suppression marker, none of those that differ read again by the build (a
+        launch file extracted under an includer's arguments); else None."""
         basis = self._graph_basis
         if facts.keys() != basis.keys():
-            return False
-        return all(
-            graph_equal(then, now) and display not in self._graph_specialised
-            for display, now in facts.items()
-            if (then := basis[display]) is not now
-        )
+            return None
+        moving: list[Moves] = []
+        for display, now in facts.items():
+            then = basis[display]
+            if then is now or graph_equal(then, now):
+                if then is not now and display in self._graph_specialised:
+                    return None
+                continue
+            spans = None if display in self._graph_specialised else moved_spans(then, now)
+            if spans is None:
+                return None
+            moving.append(Moves(display, spans))
+        if not moving:
+            return self._graph_items
+        try:
+            return {
+                path: [
+                    (rule, WorkspaceFinding(path, moved_finding(item.finding, path, moving)))
+                    for rule, item in items
+                ]
+                for path, items in self._graph_items.items()
+            }
+        except UnplacedError:
+            return None
 
     def _note_wiring(self, facts: FileFacts, data: Callable[[], bytes | str]) -> None:
         """Keep what a launch file wires, as its facts are now (an edit may drop it).

@@ -319,16 +319,18 @@ def builds(monkeypatch: pytest.MonkeyPatch) -> list[int]:
 # (file, text before, text after, whether the refresh builds the graph)
 SESSION_STEPS: list[tuple[str, str, str, bool]] = [
     (DOCK, "", "\n// Docking is refused while charging.\n", False),
-    (DOCK, LINE_18, f"{LINE_18}  // NOLINT(RN407)", True),  # main()'s events move
+    (DOCK, LINE_18, f"{LINE_18}  // NOLINT(RN407)", False),  # main()'s events move
     (MONITOR, "", "\n// A bare NOLINT is cpplint's, not ours.\n", False),  # a marker only
     (DOCK, "NOLINT(RN407)", "NOLINT(RN204)", False),  # the graph finding is back
-    (MONITOR, "#include", "// Fleet monitor.\n#include", True),  # names moved
+    (MONITOR, "#include", "// Fleet monitor.\n#include", False),  # names moved
+    (RECORDER, "import rclpy", "# Records poses.\nimport rclpy", False),  # the other side
     (MONITOR, "", "\n// Reviewed.\n", False),
+    (MONITOR, '"robot_pose"', '"robot_pose_estimate"', True),  # a name changed
     (TELEOP, "</launch>", "</launch>\n<!-- one robot's teleop -->", True),  # specialised
 ]
 
 
-def test_the_language_server_refreshes_the_graph_of_the_same_facts_without_building_it(
+def test_the_language_server_refreshes_the_graph_of_moved_names_without_building_it(
     workspace: Path, builds: list[int]
 ) -> None:
     (workspace / TURTLE_LAUNCH / "robot7.launch").write_text(ROBOT7, encoding="utf-8")
