@@ -13,8 +13,8 @@ Left as facts that differ: a name, a role, any value but a span; the order of th
 tuple); and a span that would go to two places. Not compared: a runtime event's
 ``order`` (a byte offset) and ``scope`` (its function and the line it starts on), which
 the graph never reads (it reads whether a file calls init), and the suppression marker
-(``same_facts.graph_equal``). A kept place of the file that is no
-fact's span, or a ``path:line:column`` of it no fact starts at, makes the replay refused
+(which files a run reads to judge them). A kept place of the file that is no fact's
+span, or a ``path:line:column`` of it no fact starts at, makes the replay refused
 (``UnplacedError``): a run that builds the graph then says where it is.
 """
 

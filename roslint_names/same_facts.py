@@ -22,9 +22,8 @@ when each of those files (``moves``):
 - has the facts stored under its old key, but for their spans (``moves.moved_spans``:
   then every place the replay keeps in the file is put where it is now, and a place no
   fact gives refuses the replay) and for whether its bytes hold a suppression marker
-  (``graph_equal``: which files a run reads, never what the graph is made of; the edited
-  file is read and checked anew); a build file's spans may not move (``RunWide.built``
-  keeps its facts);
+  (which files a run reads, never what the graph is made of; the edited file is read and
+  checked anew); a build file's spans may not move (``RunWide.built`` keeps its facts);
 - takes no value from another file's constant (``symbols.uses_constants``): those are
   not kept;
 - wires no name (``wiring.wired_by``): whether its wiring counts depends on its text
@@ -158,13 +157,6 @@ class Replay:
             self.unbuilt,
             self.rostest_named,
         )
-
-
-def graph_equal(before: FileFacts, now: FileFacts) -> bool:
-    """Whether two facts of a file are the same to the graph and the run-wide sets: equal
-    but for whether the bytes hold a suppression marker (which says that a run reads
-    the file to judge it; the graph never reads it)."""
-    return replace(before, suppression_marker=now.suppression_marker) == now
 
 
 _FORMAT = "replay 3"

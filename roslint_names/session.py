@@ -64,7 +64,6 @@ from .moves import Moves, UnplacedError, moved_finding, moved_spans
 from .reading import read_file, too_large
 from .registry import Registry
 from .rule import Rule, WorkspaceFinding
-from .same_facts import graph_equal
 from .suppress import Suppression
 from .symbols import PackageConstants, uses_constants
 from .workers import Dispatcher
@@ -346,14 +345,16 @@ class Session:
         moving: list[Moves] = []
         for display, now in facts.items():
             then = basis[display]
-            if then is now or graph_equal(then, now):
-                if then is not now and display in self._graph_specialised:
-                    return None
+            if then is now:
                 continue
-            spans = None if display in self._graph_specialised else moved_spans(then, now)
+            if display in self._graph_specialised:
+                return None
+            spans = moved_spans(then, now)
             if spans is None:
                 return None
-            moving.append(Moves(display, spans))
+            move = Moves(display, spans)
+            if not move.still:
+                moving.append(move)
         if not moving:
             return self._graph_items
         try:
