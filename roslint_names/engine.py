@@ -12,7 +12,7 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from functools import partial
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NamedTuple
 
 from . import clean_files, same_facts
 from .collection import kept_for_the_run
@@ -264,15 +264,19 @@ def _lint(
         entry_of=entry_of,
     )
     graph: Graph | None = None
+
     # A run over the files of a run that built the graph, whose facts are the same, takes
     # its graph findings (``same_facts``); any run that builds the graph keeps them.
-    replay_key: str | None = None
-    replay: Replay | None = None
-    if graph_rules and not fresh and clean_key is not None and inputs is not None:
-        assert cache is not None
-        if inputs.place_key is not None:  # keyed first: an earlier run left its digests
-            replay_key = same_facts.key(inputs.place_key, clean_key)
-            replay = same_facts.loaded(cache.load_replay(replay_key), len(files), reported)
+    def replay_key() -> str | None:
+        """Where this run's replay is kept, once the run is keyed (first: an earlier
+        run left its digests; else last), for a run that keeps what it finds."""
+        if not graph_rules or fresh or clean_key is None or inputs is None:
+            return None
+        return None if inputs.place_key is None else same_facts.key(inputs.place_key, clean_key)
+
+    kept_at = replay_key()
+    raw_replay = None if kept_at is None or cache is None else cache.load_replay(kept_at)
+    last_replay = same_facts.loaded(raw_replay, len(files), reported)
     graph_found: Mapping[int, tuple[tuple[str, Finding], ...]] = {}
     specialised: frozenset[str] = frozenset()
     extract = partial(extract_batch, cache, checker=judge)
@@ -291,20 +295,16 @@ def _lint(
             ros1_python2=python2,
             max_file_size=settings.max_file_size,
         )
-        taken = _take_facts(gathered, checks, replay, inputs, rules=rule_of)
-        replayed, replay = (None, None) if taken is None else taken
+        replayed = _take_facts(gathered, checks, last_replay, inputs, rules=rule_of)
         workers = dispatcher.workers  # that extracted the files (specialisations may start some)
         if inputs is not None and not fresh and run_key is None:
             run_key = inputs.key_last()
-            if graph_rules and clean_key is not None and inputs.place_key is not None:
-                replay_key = same_facts.key(inputs.place_key, clean_key)
-        if replay is not None and replayed is not None:
-            checks.resume(replay, replayed)
+        if replayed is not None:
+            checks.resume(replayed.replay, replayed.edited)
         checks.finish()
-        if replay is not None and replayed is not None:
-            graph_found, specialised = replay.graph, replay.specialised
+        if replayed is not None:
+            graph_found, specialised = replayed.replay.graph, replayed.replay.specialised
             _report_replayed(
-                replay,
                 replayed,
                 files=files,
                 checks=checks,
@@ -346,18 +346,19 @@ def _lint(
 
     # (5)
     displays = [source.display for source in files[:reported]]
-    unbuilt_at, named_at = checks.spare(displays, replayed)
-    if replay is not None and replayed is not None:
-        skipped = replay.skipped
-        unbuilt_at = _with_edited(replay.unbuilt, unbuilt_at, replayed)
-        named_at = _with_edited(replay.rostest_named, named_at, replayed)
+    unbuilt_at, named_at = checks.spare(displays, None if replayed is None else replayed.edited)
+    if replayed is not None:
+        skipped = replayed.replay.skipped
+        unbuilt_at = _with_edited(replayed.replay.unbuilt, unbuilt_at, replayed.edited)
+        named_at = _with_edited(replayed.replay.rostest_named, named_at, replayed.edited)
     else:
         skipped = tuple(gathered.skipped)
     unbuilt = [displays[index] for index in unbuilt_at]
     rostest_named = [displays[index] for index in named_at]
     # What a run whose facts are these takes (``same_facts``).
     kept_replay = None
-    if replay_key is not None and inputs is not None:
+    kept_at = replay_key()
+    if kept_at is not None and inputs is not None:
         kept_replay = Replay(
             inputs.tags,
             reported,
@@ -390,8 +391,8 @@ def _lint(
                 tuple(rostest_named),
             )
             cache.store_run(run_key, kept)
-            if kept_replay is not None and replay_key is not None:
-                cache.store_replay(replay_key, kept_replay.stored())
+            if kept_replay is not None and kept_at is not None:
+                cache.store_replay(kept_at, kept_replay.stored())
         if clean_key is not None and not inputs.changed:
             assert cache is not None
             # A run over some files (pre-commit's), or one that checked only its edited
@@ -704,6 +705,14 @@ class _FileChecks:
         return self.judge.check_text(facts, text, contexts)
 
 
+class _Replayed(NamedTuple):
+    """A run that took a replay: the files edited since, and the replay with their places
+    where they are now."""
+
+    edited: list[int]
+    replay: Replay
+
+
 def _take_facts(
     gathered: Gatherer,
     checks: _FileChecks,
@@ -711,7 +720,7 @@ def _take_facts(
     inputs: RunInputs | None,
     *,
     rules: Mapping[str, Rule],
-) -> tuple[list[int], Replay] | None:
+) -> _Replayed | None:
     """Hand every file's facts to ``checks``, as they arrive; or, where the run can take
     ``replay`` (``same_facts``), only those of the files edited since: then those files,
     and the replay with their places where they are now. The edited files come first
@@ -730,7 +739,7 @@ def _take_facts(
         # Every file's facts are what the result stands on, loaded or not: kept by the
         # pack's rewrite (``FactsCache.stand_on``).
         cache.stand_on(tag for tag in inputs.tags if is_facts_key(tag))
-        return edited, moved
+        return _Replayed(edited, moved)
     others = set(edited)
     rest = (index for index in range(len(gathered.files)) if index not in others)
     for index, facts, data, verdict in gathered.facts(rest):
@@ -776,8 +785,7 @@ def _replay_moved(
 
 
 def _report_replayed(
-    replay: Replay,
-    edited: Sequence[int],
+    replayed: _Replayed,
     *,
     files: Sequence[SourceFile],
     checks: _FileChecks,
@@ -787,8 +795,8 @@ def _report_replayed(
 ) -> None:
     """The graph rules' findings of the replay in each edited reported file, made into
     diagnostics under its new text and suppressions (``report_graph``'s part per file)."""
-    for index in edited:
-        stored = replay.graph.get(index, ())
+    for index in replayed.edited:
+        stored = replayed.replay.graph.get(index, ())
         facts = checks.facts_of(index)
         if not stored or facts is None:
             continue
