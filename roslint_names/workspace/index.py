@@ -9,7 +9,7 @@ from __future__ import annotations
 import copy
 import posixpath
 from collections import Counter
-from collections.abc import Iterable, Sequence
+from collections.abc import Collection, Iterable, Sequence
 from dataclasses import dataclass
 
 from roslint_names.model import ExecutableKind, FileFacts, Generation, Language
@@ -40,38 +40,16 @@ def join(directory: str, relative: str) -> str:
     return "" if joined == "." else joined
 
 
-class WorkspaceIndex:
-    """Packages, files and executables of one run."""
+class PackageFiles:
+    """Which package holds each file of a run (the package of the nearest directory above
+    it holding a manifest), and the files of each package name."""
 
-    def __init__(self, facts: Iterable[FileFacts], packages: Sequence[Package]) -> None:
-        self.facts: dict[str, FileFacts] = {f.path: f for f in facts}
-        # A name two directories claim (a ROS 1 and a ROS 2 copy) is no package we can
-        # find things in: colcon and catkin refuse such a workspace, and which copy a
-        # launch file means is unknown.
-        claims = Counter(package.name for package in packages)
-        self.packages: dict[str, Package] = {
-            package.name: package for package in packages if claims[package.name] == 1
-        }
+    def __init__(self, paths: Collection[str], packages: Sequence[Package]) -> None:
+        self._paths = paths
         self._package_by_directory = {p.directory: p for p in packages}
         self._package_of: dict[str, Package | None] = {}
         self._package_of_path: dict[str, Package | None] = {}
-        self._files_by_package: dict[str, list[str]] = {}
-        for path in sorted(self.facts):
-            owner = self.package_of(path)
-            if owner is not None:
-                self._files_by_package.setdefault(owner.name, []).append(path)
-        self._programs: dict[tuple[str, str], list[str]] = {}
-        self._plugins: dict[str, list[str]] = {}
-        self._index_executables()
-
-    def with_facts(self, facts: dict[str, FileFacts]) -> WorkspaceIndex:
-        """This index over new facts of the same files, whose executables and languages
-        are unchanged (``memory.GraphMemory``): where things are stays as it was."""
-        updated = copy.copy(self)
-        updated.facts = facts
-        return updated
-
-    # -- packages -----------------------------------------------------------------------
+        self._files_by_package: dict[str, list[str]] | None = None  # made when first asked
 
     def package_of(self, path: str) -> Package | None:
         # Memoised by path too: the graph asks about the same files hundreds of thousands
@@ -93,6 +71,42 @@ class WorkspaceIndex:
         self._package_of[directory] = package
         return package
 
+    def files_of(self, package: str) -> list[str]:
+        if self._files_by_package is None:
+            self._files_by_package = {}
+            for path in sorted(self._paths):
+                owner = self.package_of(path)
+                if owner is not None:
+                    self._files_by_package.setdefault(owner.name, []).append(path)
+        return self._files_by_package.get(package, [])
+
+
+class WorkspaceIndex(PackageFiles):
+    """Packages, files and executables of one run."""
+
+    def __init__(self, facts: Iterable[FileFacts], packages: Sequence[Package]) -> None:
+        self.facts: dict[str, FileFacts] = {f.path: f for f in facts}
+        # A name two directories claim (a ROS 1 and a ROS 2 copy) is no package we can
+        # find things in: colcon and catkin refuse such a workspace, and which copy a
+        # launch file means is unknown.
+        claims = Counter(package.name for package in packages)
+        self.packages: dict[str, Package] = {
+            package.name: package for package in packages if claims[package.name] == 1
+        }
+        super().__init__(self.facts, packages)
+        self._programs: dict[tuple[str, str], list[str]] = {}
+        self._plugins: dict[str, list[str]] = {}
+        self._index_executables()
+
+    def with_facts(self, facts: dict[str, FileFacts]) -> WorkspaceIndex:
+        """This index over new facts of the same files, whose executables and languages
+        are unchanged (``memory.GraphMemory``): where things are stays as it was."""
+        updated = copy.copy(self)
+        updated.facts = facts
+        return updated
+
+    # -- packages -----------------------------------------------------------------------
+
     def companions(self) -> dict[str, frozenset[str]]:
         """package -> the workspace packages it is meant to run with: itself, those it
         depends on, those depending on it, and those sharing a dependent with it (the
@@ -112,9 +126,6 @@ class WorkspaceIndex:
         for package in self.packages.values():
             found.update((f"{package.name}/{name}", known) for name, known in package.services)
         return found
-
-    def files_of(self, package: str) -> list[str]:
-        return self._files_by_package.get(package, [])
 
     def find_in_package(self, package: str, relative: str) -> str | None:
         """A package file by its path in the package; else by its path in the *installed*
