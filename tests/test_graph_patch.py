@@ -1,0 +1,153 @@
+"""A graph patched after an edit of a node's code is the graph a build gives
+(``workspace.patch``, issue 30): each step edits the example workspace's code as a
+developer would, and the last graph with the edited files' nodes resolved again must
+equal the graph built from every file's facts; an edit the patch cannot follow is
+refused, never patched wrong."""
+
+from __future__ import annotations
+
+import itertools
+import shutil
+from dataclasses import replace
+from pathlib import Path
+
+import pytest
+
+from roslint_names.config import load_settings
+from roslint_names.discover import discover
+from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
+from roslint_names.generation import PackageGenerations
+from roslint_names.model import FileFacts
+from roslint_names.registry import load_registry
+from roslint_names.workspace.graph import Graph
+from roslint_names.workspace.index import PackageFiles
+from roslint_names.workspace.patch import Moved, code_edit, patched
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+MONITOR = "src/fleet_bringup/src/fleet_monitor.cpp"  # ROS 2, launched by fleet.launch.py
+RECORDER = "src/fleet_bringup/fleet_bringup/pose_recorder.py"
+RELAY = "src/turtle_bringup/src/odom_relay.cpp"  # ROS 1, launched in robot namespaces
+DOCK = "src/fleet_bringup/src/dock_manager.cpp"
+
+# (file, text before, text after); each step's graph is patched from the step before's.
+PATCHED = [
+    # A topic renamed: the RN401 pair with the recorder is gone.
+    (MONITOR, '"robot_pose"', '"robot_pose_estimate"'),
+    # A publisher added in the middle: the names below it move, the parameters above not.
+    (
+        MONITOR,
+        "    odom_sub_ =",
+        '    auto status = create_publisher<std_msgs::msg::String>("status", 1);\n    odom_sub_ =',
+    ),
+    # A line above everything: every parameter use moves with the new endpoints.
+    (MONITOR, "#include <chrono>", "// Fleet monitor.\n#include <chrono>"),
+    # A message type changed.
+    (MONITOR, "PoseStamped>(", "Pose>("),
+    # ROS 1: a name through the node's handle, launched in each robot's namespace.
+    (RELAY, 'advertise<nav_msgs::Odometry>("odom"', 'advertise<nav_msgs::Odometry>("odometry"'),
+    (RELAY, "nh.subscribe(odom_topic_", 'private_nh.subscribe("wheel_odom"'),
+    # Python: the subscription renamed to what the monitor publishes now.
+    (RECORDER, '"Robot_Pose"', '"robot_pose_estimate"'),
+    # A comment: the facts are those of the step before.
+    (RECORDER, "", "\n# Recorded as they come.\n"),
+]
+
+# Edits a patch cannot follow: the graph is built.
+REFUSED = [
+    (MONITOR, '"map_frame"', '"map_frame_id"'),  # a parameter renamed
+    (RECORDER, '__init__("pose_recorder")', '__init__("pose_logger")'),  # the node renamed
+]
+
+
+class _Workspace:
+    def __init__(self, root: Path) -> None:
+        shutil.copytree(EXAMPLES, root)
+        self.root = root
+        self.registry = load_registry()
+        self.settings = load_settings(None, root, self.registry)
+
+    def edit(self, relative: str, old: str, new: str) -> None:
+        path = self.root / relative
+        text = path.read_text(encoding="utf-8")
+        assert old in text, f"{old!r} is not in {relative}"
+        path.write_text(text.replace(old, new, 1) if old else text + new, encoding="utf-8")
+
+    def built(self) -> tuple[Graph, dict[str, FileFacts]]:
+        root = self.root
+        sources = lintable(discover([root], (), root, root))
+        result = lint(sources, self.settings, self.registry, RunOptions(), want_graph=True)
+        assert result.graph is not None
+        self.packages = PackageFiles(
+            [facts.path for facts in result.facts],
+            workspace_packages(sources, PackageGenerations()),
+        )
+        return result.graph, {facts.path: facts for facts in result.facts}
+
+    def patched(
+        self, graph: Graph, edits: dict[str, Moved], now: dict[str, FileFacts]
+    ) -> Graph | None:
+        return patched(graph, edits, now.get, lambda: self.packages)
+
+
+@pytest.fixture(scope="module")
+def steps(tmp_path_factory: pytest.TempPathFactory) -> list[tuple[str, Graph, Graph | None]]:
+    """Each step: the file edited, the graph built after it, and the graph patched."""
+    workspace = _Workspace(tmp_path_factory.mktemp("patch") / "ws")
+    graph, facts = workspace.built()
+    found: list[tuple[str, Graph, Graph | None]] = []
+    for relative, old, new in PATCHED:
+        workspace.edit(relative, old, new)
+        built, now = workspace.built()
+        moves = code_edit(facts[relative], now[relative])
+        patch = None if moves is None else workspace.patched(graph, {relative: moves}, now)
+        found.append((relative, built, patch))
+        graph, facts = built, now
+    return found
+
+
+@pytest.mark.parametrize("step", range(len(PATCHED)))
+def test_a_patched_graph_is_the_built_graph(
+    steps: list[tuple[str, Graph, Graph | None]], step: int
+) -> None:
+    relative, built, patch = steps[step]
+    assert patch is not None, f"step {step} ({relative}) was not patched"
+    assert patch == built
+
+
+def test_the_steps_change_what_the_graph_rules_read(
+    steps: list[tuple[str, Graph, Graph | None]],
+) -> None:
+    """Not a sequence of edits the graph never sees: most steps change endpoints."""
+    changed = sum(
+        1
+        for (_, before, _), (_, after, _) in itertools.pairwise(steps)
+        if before.endpoints != after.endpoints
+    )
+    assert changed >= 5
+
+
+@pytest.mark.parametrize(("relative", "old", "new"), REFUSED)
+def test_an_edit_of_more_than_endpoints_is_refused(
+    tmp_path: Path, relative: str, old: str, new: str
+) -> None:
+    workspace = _Workspace(tmp_path / "ws")
+    _, before = workspace.built()
+    workspace.edit(relative, old, new)
+    _, after = workspace.built()
+    assert code_edit(before[relative], after[relative]) is None
+
+
+@pytest.mark.parametrize(("sources", "refused"), [((MONITOR, DOCK), True), ((DOCK,), False)])
+def test_two_nodes_of_one_name_in_one_tree_running_one_file_are_refused(
+    tmp_path: Path, sources: tuple[str, ...], refused: bool
+) -> None:
+    """Whose endpoints are whose is known by the node's name, tree and code: not where
+    two namesakes run the edited file."""
+    workspace = _Workspace(tmp_path / "ws")
+    graph, facts = workspace.built()
+    node = next(node for node in graph.nodes if MONITOR in node.sources)
+    twin = replace(node, sources=sources)
+    doubled = replace(graph, nodes=(*graph.nodes, twin))
+    moves = code_edit(facts[MONITOR], facts[MONITOR])
+    assert moves is not None
+    assert (workspace.patched(doubled, {MONITOR: moves}, facts) is None) is refused
