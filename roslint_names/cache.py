@@ -53,7 +53,9 @@ the value) is served whole from ``runs/``: applying the rules again is cheap nex
 parsing, but not next to the 0.05x-the-parse-floor budget of a re-run (the README's
 Performance table). Only the ``RUNS_KEPT`` most recently used results are kept.
 ``replays/`` holds what a run whose files' facts are those of a recent run takes instead
-of building the workspace graph again (``same_facts``), keyed alike but for the facts.
+of building the workspace graph again (``same_facts``), keyed alike but for the facts;
+``graphs/`` the graph of the last replays, with the facts keys it was built from, for a run
+whose edits change only what a node's code declares (``workspace.patch``).
 ``digests/`` holds, per workspace, each file's content digest with its status, so that
 keying a re-run does not mean reading every file (``digests.ContentDigests``).
 """
@@ -61,6 +63,7 @@ keying a re-run does not mean reading every file (``digests.ContentDigests``).
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import enum
 import hashlib
 import io
@@ -98,6 +101,8 @@ _CHECKS = "checks"  # the sets of files the per-file rules found clean (``clean_
 CHECKS_KEPT = 8  # one per recent (settings, rules, packages) of each checkout
 _REPLAYS = "replays"  # what a run whose facts are the last run's takes (``same_facts``)
 REPLAYS_KEPT = 8  # one per recent (file set, settings) of each checkout
+_GRAPHS = "graphs"  # the graph of each replay, for a run that patches it (``workspace.patch``)
+GRAPHS_KEPT = 2  # tens of MB each in a large workspace: the last file sets only
 _LOG_BATCH = 512  # lines buffered before an append; and every batch of extraction ends one
 _TAG_NAME = "CACHEDIR.TAG"
 _CACHEDIR_TAG = (
@@ -298,14 +303,25 @@ class FactsCache:
         ``REPLAYS_KEPT``."""
         self.write_newest(self.directory / _REPLAYS / key, _encode(value), REPLAYS_KEPT)
 
-    def _load_entry(self, kind: str, key: str) -> object | None:
+    def load_graph(self, key: str) -> object | None:
+        """The value ``store_graph`` kept under ``key``, or None (absent or corrupt)."""
+        return self._load_entry(_GRAPHS, key, _GraphUnpickler)
+
+    def store_graph(self, key: str, value: object) -> None:
+        """Keep the graph a replay was made from; forget all but the ``GRAPHS_KEPT`` most
+        recently used."""
+        self.write_newest(self.directory / _GRAPHS / key, _encode(value), GRAPHS_KEPT)
+
+    def _load_entry(
+        self, kind: str, key: str, unpickler: type[pickle.Unpickler] | None = None
+    ) -> object | None:
         entry = os.path.join(self.directory, kind, key)
         try:
             with open_regular(entry) as stream:
                 blob = stream.read()
         except OSError:
             return None
-        value = _decode(blob)
+        value = _decode(blob, unpickler or _FactsUnpickler)
         if value is not None:
             with contextlib.suppress(OSError):  # "recently used": kept by the pruning
                 os.utime(entry)
@@ -537,10 +553,11 @@ def _unpickle_facts(payload: bytes) -> FileFacts | None:
     return facts if isinstance(facts, FileFacts) else None
 
 
-def _unpickle(payload: bytes) -> object | None:
-    """The value of a payload, through the unpickler that builds only model values."""
+def _unpickle(payload: bytes, unpickler: type[pickle.Unpickler] | None = None) -> object | None:
+    """The value of a payload, through the unpickler that builds only model values (or
+    ``unpickler``)."""
     try:
-        value: object = _FactsUnpickler(io.BytesIO(payload)).load()
+        value: object = (unpickler or _FactsUnpickler)(io.BytesIO(payload)).load()
     except Exception:  # any malformed pickle: a miss, never a crash
         return None
     return value
@@ -602,7 +619,7 @@ def _encode(value: object) -> bytes:
     return _MAGIC + hashlib.blake2b(payload, digest_size=_CHECKSUM_BYTES).digest() + payload
 
 
-def _decode(blob: bytes) -> object | None:
+def _decode(blob: bytes, unpickler: type[pickle.Unpickler] | None = None) -> object | None:
     """What ``_encode`` wrote; None for a blob that is truncated, corrupt or foreign."""
     header = len(_MAGIC) + _CHECKSUM_BYTES
     if len(blob) < header or not blob.startswith(_MAGIC):
@@ -610,7 +627,7 @@ def _decode(blob: bytes) -> object | None:
     payload = blob[header:]
     if hashlib.blake2b(payload, digest_size=_CHECKSUM_BYTES).digest() != blob[len(_MAGIC) : header]:
         return None
-    return _unpickle(payload)
+    return _unpickle(payload, unpickler or _FactsUnpickler)
 
 
 _MODEL_CLASSES = frozenset(
@@ -642,13 +659,49 @@ class _FactsUnpickler(pickle.Unpickler):
         raise pickle.UnpicklingError(f"{module}.{name} is not a fact class")
 
 
-def _model_enum_member(owner: object, name: str) -> enum.Enum:
+class _GraphUnpickler(pickle.Unpickler):
+    """Builds fact values and the graph's (``workspace.graph``, its parameters and
+    service definitions): the data classes and enums those modules define, nothing else."""
+
+    def find_class(self, module: str, name: str) -> Any:
+        if module in _GRAPH_MODULES:
+            value = getattr(sys.modules.get(module), name, None)
+            if (
+                isinstance(value, type)
+                and value.__module__ == module
+                and (dataclasses.is_dataclass(value) or issubclass(value, enum.Enum))
+            ):
+                return value
+        if (module, name) == ("builtins", "getattr"):
+            return _graph_enum_member
+        raise pickle.UnpicklingError(f"{module}.{name} is not a graph class")
+
+
+# Imported by the time a graph is loaded: the engine builds graphs from them.
+_GRAPH_MODULES = frozenset(
+    {
+        model.__name__,
+        "roslint_names.workspace.graph",
+        "roslint_names.workspace.parameters",
+        "roslint_names.workspace.interfaces",
+    }
+)
+
+
+def _graph_enum_member(owner: object, name: str) -> enum.Enum:
+    """``getattr(owner, name)`` for a member of an enum of the graph's modules."""
+    if isinstance(owner, type) and owner.__module__ in _GRAPH_MODULES:
+        return _model_enum_member(owner, name, owner.__module__)
+    raise pickle.UnpicklingError(f"getattr({owner!r}, {name!r}) is no member of a graph enum")
+
+
+def _model_enum_member(owner: object, name: str, module: str = model.__name__) -> enum.Enum:
     """``getattr(owner, name)`` where ``owner`` is an enum of the model and ``name`` one of
     its members; an unpickling error for anything else."""
     if (
         isinstance(owner, type)
         and issubclass(owner, enum.Enum)
-        and owner.__module__ == model.__name__
+        and owner.__module__ == module
         and isinstance(name, str)
         and name in owner.__members__
     ):

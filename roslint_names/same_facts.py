@@ -50,6 +50,7 @@ from .model import CompiledSources, Diagnostic, FileFacts, Finding, Generation
 from .moves import Moves, UnplacedError, moved_diagnostic, moved_finding, moved_spans
 from .symbols import uses_constants
 from .wiring import wired_by
+from .workspace.graph import Graph
 
 Built = tuple[tuple[FileFacts, "str | None"], ...]  # ``BuiltSources.given``
 
@@ -219,6 +220,25 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         unbuilt,
         rostest_named,
     )
+
+
+_GRAPH_FORMAT = "graph 1"
+
+
+def graph_stored(tags: Sequence[str], graph: Graph) -> tuple[object, ...]:
+    """A replay's graph as the cache keeps it, with the facts keys it was built from."""
+    return (_GRAPH_FORMAT, tuple(tags), graph)
+
+
+def loaded_graph(value: object, files: int) -> tuple[tuple[str, ...], Graph] | None:
+    """A stored graph of a run over ``files`` checked files, and the facts keys it was
+    built from; None for anything else."""
+    if not isinstance(value, tuple) or len(value) != 3:
+        return None
+    form, tags, graph = value
+    if form != _GRAPH_FORMAT or not _strings(tags) or len(tags) != files:
+        return None
+    return (tags, graph) if isinstance(graph, Graph) else None
 
 
 def _by_text(service_type: tuple[Generation | None, str]) -> tuple[str, str]:

@@ -18,7 +18,18 @@ import pytest
 
 from roslint_names import cache as cache_module
 from roslint_names.cache import FactsCache, default_directory
-from roslint_names.model import FileFacts, Generation, Kind, Language, NameUse, Role, Span
+from roslint_names.model import (
+    FileFacts,
+    Generation,
+    Kind,
+    Language,
+    NameUse,
+    ParameterAccess,
+    Role,
+    Span,
+)
+from roslint_names.workspace.graph import EdgeKind, Endpoint, Graph, Location, NodeInstance, Reach
+from roslint_names.workspace.parameters import Incomplete, NodeParameters, ParameterUse
 from tests.conftest import write, write_package
 
 LAUNCH = """<launch>
@@ -570,3 +581,40 @@ def test_only_a_mapped_pack_s_pages_are_handed_back(tmp_path: Path) -> None:
     assert mapped[:10] == b"\0" * 10  # handed back, read again from the file
     mapped.close()
     assert cache_module._released(b"\0" * (2 * step), 0, 2 * step) == 0  # bytes: nothing
+
+
+def test_a_kept_graph_reads_back_as_it_was(tmp_path: Path) -> None:
+    """The graph a build keeps for a later patch (``workspace.patch``): its classes, enums
+    and the facts' own, through the unpickler that builds nothing else."""
+    location = Location("src/a/src/talker.cpp", Span(3, 5, 3, 12))
+    node = NodeInstance(
+        "/talker",
+        Generation.ROS2,
+        "a",
+        "talker",
+        "",
+        (),
+        ("src/a/src/talker.cpp",),
+        code_parameters=NodeParameters(
+            declared=("rate",),
+            incomplete=(Incomplete.RUN_TIME_READ,),
+            uses=(ParameterUse("rate", ParameterAccess.DECLARE, location, "declare_parameter"),),
+        ),
+        reach=Reach(Generation.ROS2, packages=("a",)),
+    )
+    endpoint = Endpoint(
+        "/chatter", Kind.TOPIC, EdgeKind.PUBLISH, "/talker", "", None, location, "chatter"
+    )
+    graph = Graph((node,), (endpoint,), {"a": frozenset({"a"})})
+    cache = FactsCache(tmp_path)
+    cache.store_graph("k", ("graph 1", ("t",), graph))
+    assert FactsCache(tmp_path).load_graph("k") == ("graph 1", ("t",), graph)
+
+
+@pytest.mark.parametrize("value", [os.getcwd, Path("x"), pickle.loads])
+def test_a_kept_graph_naming_anything_but_graph_classes_is_never_unpickled(
+    tmp_path: Path, value: object
+) -> None:
+    cache = FactsCache(tmp_path)
+    cache.store_graph("k", ("graph 1", (), value))
+    assert FactsCache(tmp_path).load_graph("k") is None

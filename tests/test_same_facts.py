@@ -60,6 +60,23 @@ def replayed(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[list[int]]]:
     yield seen
 
 
+@pytest.fixture
+def taken(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[str]]:
+    """What each run that took facts did: "replay" (the last graph's findings stand),
+    "patch" (the last graph patched, ``workspace.patch``) or "build"; a run served its
+    stored result ("stored") takes none."""
+    seen: list[str] = []
+    original = engine._take_facts
+
+    def recording(*arguments: Any, **keywords: Any) -> Any:
+        found = original(*arguments, **keywords)
+        seen.append("build" if found is None else "replay" if found.graph is None else "patch")
+        return found
+
+    monkeypatch.setattr(engine, "_take_facts", recording)
+    yield seen
+
+
 def outputs(run_cli: Any, root: Path, cache: Path) -> tuple[str, str]:
     """A cached run's JSON and a fresh run's."""
     arguments = ["check", "--format", "json", "--jobs", "1", "--exit-zero"]
@@ -82,56 +99,70 @@ def append(path: Path, text: str) -> None:
 
 
 LINE_18 = 'get_parameter("dockframe").as_string().c_str());'
+STATUS = 'auto status = create_publisher<std_msgs::msg::String>("fleet_status", 1);'
+RELAY = "src/turtle_bringup/src/odom_relay.cpp"  # ROS 1, launched in robot namespaces
 
-# (file, text before, text after, whether the run after it takes the replay); "" before:
+# (file, text before, text after, what the run after it does: ``taken``); "" before:
 # appended.
-STEPS: list[tuple[str, str, str, bool]] = [
+STEPS: list[tuple[str, str, str, str]] = [
     # A comment below everything: the facts are the same.
-    (MONITOR, "", "\n// Reviewed: the pose is republished as is.\n", True),
+    (MONITOR, "", "\n// Reviewed: the pose is republished as is.\n", "replay"),
     # A line above the names moves them, and the other side of the RN401 says where.
-    (MONITOR, "#include", "// Fleet monitor.\n#include", True),
+    (MONITOR, "#include", "// Fleet monitor.\n#include", "replay"),
     # A file whose own check waits for the run's service types (RN204), with a graph
     # finding (RN407).
-    (DOCK, "", "\n// Docking is refused while charging.\n", True),
+    (DOCK, "", "\n// Docking is refused while charging.\n", "replay"),
     # A suppression of the graph finding; main()'s events move below it.
-    (DOCK, LINE_18, f"{LINE_18}  // NOLINT(RN407)", True),
+    (DOCK, LINE_18, f"{LINE_18}  // NOLINT(RN407)", "replay"),
     # The same marker, now naming another rule: the graph finding is back, the
     # suppression silences nothing. Only the text changed.
-    (DOCK, "NOLINT(RN407)", "NOLINT(RN204)", True),
+    (DOCK, "NOLINT(RN407)", "NOLINT(RN204)", "replay"),
     # The bytes of two runs ago: that run's stored result, nothing replayed.
-    (DOCK, "NOLINT(RN204)", "NOLINT(RN407)", False),
-    (RECORDER, "", "\n# Poses are recorded as they come.\n", True),
-    (RECORDER, "import rclpy", "# Records poses.\nimport rclpy", True),  # names move
-    (PARAMETERS, "waypoint_follower:", "# The follower's tuning.\nwaypoint_follower:", True),
+    (DOCK, "NOLINT(RN204)", "NOLINT(RN407)", "stored"),
+    (RECORDER, "", "\n# Poses are recorded as they come.\n", "replay"),
+    (RECORDER, "import rclpy", "# Records poses.\nimport rclpy", "replay"),  # names move
+    (PARAMETERS, "waypoint_follower:", "# The follower's tuning.\nwaypoint_follower:", "replay"),
     # A comment holding a suppression marker at the end: the file is read by every run
     # now (a fact), the graph is the same.
-    (MONITOR, "", "\n// A bare NOLINT is cpplint's, not ours.\n", True),
-    (PARAMETERS, "", "\n# Tuned on the warehouse floor.\n", True),
-    (TURTLE_BUILD, "", "\n# Nodes of the turtle robot.\n", True),
-    # A name changed: the RN401 pair is gone.
-    (MONITOR, '"robot_pose"', '"robot_pose_estimate"', False),
-    (MONITOR, '"robot_pose_estimate", 10);', '"robot_pose", 10);  // as it was', False),
-    (MONITOR, "", "\n// Back as it was.\n", True),
+    (MONITOR, "", "\n// A bare NOLINT is cpplint's, not ours.\n", "replay"),
+    (PARAMETERS, "", "\n# Tuned on the warehouse floor.\n", "replay"),
+    (TURTLE_BUILD, "", "\n# Nodes of the turtle robot.\n", "replay"),
+    # A name changed: the RN401 pair is gone. The graph is built: a parameter file moved
+    # since the last build, and the kept graph holds its places (``workspace.patch``).
+    (MONITOR, '"robot_pose"', '"robot_pose_estimate"', "build"),
+    # Since, code alone: the last graph, the monitor's node resolved again.
+    (MONITOR, '"robot_pose_estimate", 10);', '"robot_pose", 10);  // as it was', "patch"),
+    (MONITOR, "", "\n// Back as it was.\n", "replay"),
+    # A publisher added in the middle of the node (the names below it move), and the
+    # recorder's subscription renamed to it: a new RN401 pair, the old one gone.
+    (MONITOR, "    odom_sub_ =", f"    {STATUS}\n    odom_sub_ =", "patch"),
+    (RECORDER, '"Robot_Pose"', '"Fleet_Status"', "patch"),
+    # ROS 1 code launched in each robot's namespace: a relative name renamed.
+    (RELAY, '<nav_msgs::Odometry>("odom"', '<nav_msgs::Odometry>("odometry"', "patch"),
+    # The publisher taken out again, and a parameter renamed (the graph is built).
+    (MONITOR, f"    {STATUS}\n", "", "patch"),
+    (MONITOR, '"map_frame"', '"map_frame_id"', "build"),
     # A launch file nothing includes, which wires no absolute name.
-    (LOCALIZATION, "</launch>", "</launch>\n<!-- localization -->", True),
+    (LOCALIZATION, "</launch>", "</launch>\n<!-- localization -->", "replay"),
 ]
 
 
 def test_a_sequence_of_edits_gives_what_a_fresh_run_gives(
-    run_cli: Any, workspace: Path, tmp_path: Path, replayed: list[list[int]]
+    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str]
 ) -> None:
     cache = tmp_path / "cache"
     cached, fresh = outputs(run_cli, workspace, cache)
     assert cached == fresh
-    for relative, old, new, replays in STEPS:
-        replayed.clear()
+    for relative, old, new, how in STEPS:
+        taken.clear()
         if old:
             edit(workspace / relative, old, new)
         else:
             append(workspace / relative, new)
         cached, fresh = outputs(run_cli, workspace, cache)
         assert cached == fresh, (relative, old, new)
-        assert bool(replayed) == replays, (relative, old, new)
+        # The cached run, then the fresh one (which builds).
+        assert taken == [*([] if how == "stored" else [how]), "build"], (relative, old, new, taken)
 
 
 def test_the_step_that_holds_a_graph_finding_shows_it_moved(
@@ -373,3 +404,23 @@ def test_the_language_server_says_nothing_of_a_suppression_a_graph_finding_uses(
     assert "RN407" not in shown
     assert "RN002" not in shown
     assert "RN204" in shown  # the file's other finding stays
+
+
+def test_a_damaged_kept_graph_is_a_build(
+    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str]
+) -> None:
+    """An edit of a node's endpoints patches the graph the last build kept; a torn one is
+    no graph: the run builds, and says what a fresh run says."""
+    cache = tmp_path / "cache"
+    outputs(run_cli, workspace, cache)
+    (kept,) = cache.glob("*/graphs/*")
+    kept.write_bytes(kept.read_bytes()[:-40])
+    taken.clear()
+    edit(workspace / MONITOR, '"robot_pose"', '"robot_pose_estimate"')
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    assert taken == ["build", "build"]
+    edit(workspace / MONITOR, '"robot_pose_estimate"', '"robot_pose_stamped"')
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    assert taken[2:] == ["patch", "build"]  # the build above kept a graph again
