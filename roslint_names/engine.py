@@ -49,7 +49,7 @@ from .model import (
     RelatedLocation,
     Span,
 )
-from .moves import Moves, moved_spans
+from .moves import Moves
 from .reading import decode_for_display, read_file
 from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
@@ -67,7 +67,7 @@ from .workspace.built import BuiltSources
 from .workspace.graph import Graph
 from .workspace.index import Package, PackageFiles
 from .workspace.interfaces import service_definitions
-from .workspace.patch import Moved, code_edit
+from .workspace.patch import Moved, code_edit, same_places
 from .workspace.patch import patched as patch_graph
 
 if TYPE_CHECKING:
@@ -830,7 +830,7 @@ class _GraphPatch:
             moves = code_edit(before, facts)
             if moves is not None:
                 edits[display] = moves
-            elif not _same_places(before, facts):
+            elif not same_places(before, facts):
                 return None  # a launch, build or parameter file changed: the graph is built
         slots = {source.display: index for index, source in enumerate(files)}
         patched = patch_graph(
@@ -856,12 +856,6 @@ class _GraphPatch:
         for index, facts, data, verdict in self.gathered.facts(rest):
             self.checks.take(index, facts, data, verdict)
         return _Replayed(sorted(again), replace(replay, graph=found), patched)
-
-
-def _same_places(before: FileFacts, now: FileFacts) -> bool:
-    """The same facts, every one where it was (``moves``: but for what no graph reads)."""
-    spans = moved_spans(before, now)
-    return spans is not None and all(old == new for old, new in spans.items())
 
 
 def _patchable(before: FileFacts, now: FileFacts) -> bool:

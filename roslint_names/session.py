@@ -70,8 +70,10 @@ from .workers import Dispatcher
 from .workspace.build import build
 from .workspace.built import BuiltSources
 from .workspace.graph import Graph
-from .workspace.index import Package
+from .workspace.index import Package, PackageFiles
 from .workspace.memory import GraphMemory
+from .workspace.patch import Moved, code_edit, same_places
+from .workspace.patch import patched as patch_graph
 
 
 @dataclass(frozen=True)
@@ -135,8 +137,11 @@ class Session:
         # again under an includer's arguments, and its rules' findings by file: edits
         # that leave every file's names as they were, wherever they now are (a comment,
         # a body that names nothing, a line above them), leave the findings standing,
-        # their places moved (``_moved_items``).
+        # their places moved (``_moved_items``: then the findings are of later facts,
+        # ``_graph_basis``, than the graph object, ``_graph_made_from``); an edit of a
+        # node's endpoints patches the graph (``_patched_graph``).
         self._last_graph: Graph | None = None
+        self._graph_made_from: dict[str, FileFacts] = {}
         self._graph_basis: dict[str, FileFacts] = {}
         self._graph_specialised: frozenset[str] = frozenset()
         self._graph_items: dict[str, list[tuple[Rule, WorkspaceFinding]]] = {}
@@ -311,11 +316,18 @@ class Session:
         specialise = self._specialiser
         if not self._graph_codes or not job.opened or specialise is None:
             return None
+        rules = [rule for rule in self._registry.rules if rule.code in self._graph_codes]
         if self._last_graph is not None:
             items = self._moved_items(job.facts)
             if items is not None:
                 self._graph_items, self._graph_basis = items, job.facts
                 return self._last_graph
+            patched = self._patched_graph(job.facts)
+            if patched is not None:
+                self._graph_items = graph_findings(patched, rules, self._settings)
+                self._last_graph, self._graph_basis = patched, job.facts
+                self._graph_made_from = job.facts
+                return patched
         graph = build(
             job.facts.values(),
             self._workspace_packages,
@@ -325,9 +337,9 @@ class Session:
         )
         if self._graph_memory.moved:
             gc.freeze()  # what a whole build leaves the memory lives long too (``load``)
-        rules = [rule for rule in self._registry.rules if rule.code in self._graph_codes]
         self._graph_items = graph_findings(graph, rules, self._settings)
         self._last_graph, self._graph_basis = graph, job.facts
+        self._graph_made_from = job.facts
         self._graph_specialised = specialise.specialised
         return graph
 
@@ -367,6 +379,37 @@ class Session:
             }
         except UnplacedError:
             return None
+
+    def _patched_graph(self, facts: dict[str, FileFacts]) -> Graph | None:
+        """The last graph with the nodes of edited code resolved again
+        (``workspace.patch``), where every file whose facts differ from those it was made
+        from is code whose edit changed its endpoints alone, or has the same facts in the
+        same places, none of them read again by the build (``_moved_items``); else None.
+        The graph memory is left as the last build left it: the next build compares with
+        what that build was made from."""
+        # Against the facts the graph object is of: a move since (``_moved_items``) moved
+        # its findings, not its places.
+        basis, graph = self._graph_made_from, self._last_graph
+        if graph is None or facts.keys() != basis.keys():
+            return None
+        edits: dict[str, Moved] = {}
+        for display, now in facts.items():
+            then = basis[display]
+            if then is now:
+                continue
+            if display in self._graph_specialised:
+                return None
+            moves = code_edit(then, now)
+            if moves is not None:
+                edits[display] = moves
+            elif not same_places(then, now):
+                return None
+        return patch_graph(
+            graph,
+            edits,
+            facts.get,
+            lambda: PackageFiles(facts.keys(), self._workspace_packages),
+        )
 
     def _note_wiring(self, facts: FileFacts, data: Callable[[], bytes | str]) -> None:
         """Keep what a launch file wires, as its facts are now (an edit may drop it).

@@ -356,7 +356,10 @@ SESSION_STEPS: list[tuple[str, str, str, bool]] = [
     (MONITOR, "#include", "// Fleet monitor.\n#include", False),  # names moved
     (RECORDER, "import rclpy", "# Records poses.\nimport rclpy", False),  # the other side
     (MONITOR, "", "\n// Reviewed.\n", False),
-    (MONITOR, '"robot_pose"', '"robot_pose_estimate"', True),  # a name changed
+    # A name changed: the monitor's node resolved again in the last graph.
+    (MONITOR, '"robot_pose"', '"robot_pose_estimate"', False),
+    (RECORDER, '"Robot_Pose"', '"robot_pose_estimate"', False),  # the other side renamed
+    (MONITOR, '"map_frame"', '"map_frame_id"', True),  # a parameter renamed: built
     (TELEOP, "</launch>", "</launch>\n<!-- one robot's teleop -->", True),  # specialised
 ]
 
@@ -424,3 +427,35 @@ def test_a_damaged_kept_graph_is_a_build(
     cached, fresh = outputs(run_cli, workspace, cache)
     assert cached == fresh
     assert taken[2:] == ["patch", "build"]  # the build above kept a graph again
+
+
+def test_the_language_server_patches_a_graph_whose_findings_moved_since(
+    workspace: Path, builds: list[int]
+) -> None:
+    """Names moved in one file keep the last graph's findings, moved, but not the graph:
+    a name changed in another file then patches that graph with both files' edits, and
+    the case collision between them is shown where each name is now."""
+    session = _session(workspace)
+    texts = {
+        relative: (workspace / relative).read_text(encoding="utf-8")
+        for relative in (MONITOR, RECORDER)
+    }
+    for relative, text in texts.items():
+        session.check(workspace / relative, text)
+    session.check_graph()
+    builds.clear()
+    texts[RECORDER] = texts[RECORDER].replace("import rclpy", "# Records poses.\nimport rclpy")
+    session.check(workspace / RECORDER, texts[RECORDER])
+    session.check_graph()
+    texts[MONITOR] = texts[MONITOR].replace('"robot_pose"', '"ROBOT_POSE"')
+    session.check(workspace / MONITOR, texts[MONITOR])
+    found = session.check_graph()
+    assert not builds
+    for relative, text in texts.items():
+        (workspace / relative).write_text(text, encoding="utf-8")
+    fresh = _session(workspace)
+    for relative, text in texts.items():
+        fresh.check(workspace / relative, text)
+    expected = fresh.check_graph()
+    assert any(d.code == "RN401" for d in expected[RECORDER])
+    assert found == expected

@@ -68,6 +68,13 @@ def code_edit(before: FileFacts, now: FileFacts) -> Moved | None:
     return moved_spans(_without_endpoints(before), _without_endpoints(now))
 
 
+def same_places(before: FileFacts, now: FileFacts) -> bool:
+    """The same facts, every one where it was (``moves``: but for what no graph reads):
+    nothing of the graph to patch."""
+    spans = moved_spans(before, now)
+    return spans is not None and all(old == new for old, new in spans.items())
+
+
 def _without_endpoints(facts: FileFacts) -> FileFacts:
     kept = tuple(use for use in facts.names if use.role not in ENDPOINT_ROLES)
     return replace(facts, names=kept, literals=())
