@@ -410,7 +410,9 @@ def _lint(
             cache.store_run(run_key, kept)
             if kept_replay is not None and kept_at is not None:
                 cache.store_replay(kept_at, kept_replay.stored())
-                if graph is not None:  # what a later run patches (``workspace.patch``)
+                # What a later run over the workspace patches (``workspace.patch``); not
+                # a run over some files (pre-commit's), whose set is seldom run again.
+                if graph is not None and not context:
                     cache.store_graph(kept_at, same_facts.graph_stored(inputs.tags, graph))
         if clean_key is not None and not inputs.changed:
             assert cache is not None

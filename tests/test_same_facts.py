@@ -459,3 +459,26 @@ def test_the_language_server_patches_a_graph_whose_findings_moved_since(
     expected = fresh.check_graph()
     assert any(d.code == "RN401" for d in expected[RECORDER])
     assert found == expected
+
+
+def test_only_a_run_over_the_workspace_keeps_its_graph(
+    run_cli: Any, workspace: Path, tmp_path: Path
+) -> None:
+    """A pre-commit run names some files: its replay serves that set again, and keeping
+    the workspace's graph for it too would cost every such run the graph's pickling."""
+    cache = tmp_path / "cache"
+    arguments = [
+        "check",
+        "--format",
+        "json",
+        "--jobs",
+        "1",
+        "--exit-zero",
+        "--cache-dir",
+        str(cache),
+    ]
+    run_cli([*arguments, MONITOR, RECORDER], workspace)
+    assert list(cache.glob("*/replays/*"))
+    assert not list(cache.glob("*/graphs/*"))
+    run_cli([*arguments, "."], workspace)
+    assert len(list(cache.glob("*/graphs/*"))) == 1
