@@ -54,7 +54,7 @@ from .reading import decode_for_display, read_file
 from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
 from .run_inputs import RunInputs, is_facts_key
-from .same_facts import Replay, RunWide
+from .same_facts import KeptGraph, Replay, RunWide
 from .suppress import Suppression, find_suppressions, is_our_code
 from .symbols import PackageConstants, uses_constants
 from .templates import holds_placeholder, is_template
@@ -67,7 +67,7 @@ from .workspace.built import BuiltSources
 from .workspace.graph import Graph
 from .workspace.index import Package, PackageFiles
 from .workspace.interfaces import service_definitions
-from .workspace.patch import Moved, code_edit, same_places
+from .workspace.patch import Moved, code_edit, parameters_moved, same_places
 from .workspace.patch import patched as patch_graph
 
 if TYPE_CHECKING:
@@ -413,7 +413,8 @@ def _lint(
                 # What a later run over the workspace patches (``workspace.patch``); not
                 # a run over some files (pre-commit's), whose set is seldom run again.
                 if graph is not None and not context:
-                    cache.store_graph(kept_at, same_facts.graph_stored(inputs.tags, graph))
+                    kept_graph = KeptGraph(inputs.tags, graph, graph_found)
+                    cache.store_graph(kept_at, kept_graph.stored())
         if clean_key is not None and not inputs.changed:
             assert cache is not None
             # A run over some files (pre-commit's), or one that checked only its edited
@@ -799,12 +800,18 @@ class _GraphPatch:
 
     def __call__(self, replay: Replay, arrived: Sequence[_Arrived]) -> _Replayed | None:
         files = self.gathered.files
-        stored = same_facts.loaded_graph(self.cache.load_graph(self.stored_at), len(files))
-        if stored is None or not {code for items in replay.graph.values() for code, _ in items} <= {
-            rule.code for rule in self.rules
-        }:
+        stored = same_facts.loaded_graph(
+            self.cache.load_graph(self.stored_at), len(files), replay.reported
+        )
+        codes = {rule.code for rule in self.rules}
+        if stored is None or not all(
+            code in codes
+            for found in (replay.graph, stored.found)
+            for items in found.values()
+            for code, _ in items
+        ):
             return None
-        built_from, graph = stored
+        built_from, graph = stored.tags, stored.graph
         arrived_facts = {index: facts for index, facts, _, _ in arrived}
         loaded: dict[int, FileFacts | None] = {}
 
@@ -844,10 +851,28 @@ class _GraphPatch:
         if patched is None:
             return None
         reported = {display: index for display, index in slots.items() if index < replay.reported}
+        # A rule that reads no name the patch changed has the built graph's findings.
+        kept = (
+            frozenset()
+            if parameters_moved(graph, edits)
+            else frozenset(rule.code for rule in self.rules if not rule.reads_code_names)
+        )
+        fresh = [rule for rule in self.rules if rule.code not in kept]
+        by_rule: dict[int, dict[str, list[Finding]]] = {}
+        for path, items in graph_findings(patched, fresh, self.settings).items():
+            if path in reported:
+                for rule, item in items:
+                    by_rule.setdefault(reported[path], {}).setdefault(rule.code, []).append(
+                        item.finding
+                    )
+        for index, built in stored.found.items():
+            for code, finding in built:
+                if code in kept:
+                    by_rule.setdefault(index, {}).setdefault(code, []).append(finding)
+        # In the rules' order, as ``graph_findings`` lists them.
         found = {
-            reported[path]: tuple((rule.code, item.finding) for rule, item in items)
-            for path, items in graph_findings(patched, self.rules, self.settings).items()
-            if path in reported
+            index: tuple((rule.code, f) for rule in self.rules for f in codes.get(rule.code, ()))
+            for index, codes in by_rule.items()
         }
         again = set(arrived_facts) | {
             index

@@ -86,6 +86,10 @@ class Rule:
     # Whether ``check`` reads ``RuleContext.plugin_names``: a run over some files then
     # reads the package.xml files of the rest of their workspace (not their sources).
     reads_plugins: bool = False
+    # Whether ``check_workspace`` reads what a node's code names: its endpoints, the names
+    # it uses (``NodeInstance.uses``), its package's literals (``Graph.mentions``). One that
+    # reads none keeps its findings where an edit changed only those (``workspace.patch``).
+    reads_code_names: bool = True
 
     def severity_for(self, generation: Generation) -> Severity:
         if generation is Generation.ROS1 and self.ros1_severity is not None:

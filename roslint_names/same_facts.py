@@ -222,23 +222,47 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
     )
 
 
-_GRAPH_FORMAT = "graph 1"
+_GRAPH_FORMAT = "graph 2"
+
+# The graph rules' findings per reported file (its index), as ``Replay.graph`` holds them.
+GraphFound = Mapping[int, tuple[tuple[str, Finding], ...]]
 
 
-def graph_stored(tags: Sequence[str], graph: Graph) -> tuple[object, ...]:
-    """A replay's graph as the cache keeps it, with the facts keys it was built from."""
-    return (_GRAPH_FORMAT, tuple(tags), graph)
+@dataclass(frozen=True)
+class KeptGraph:
+    """The graph a run built, the facts keys it was built from, and its rules' findings
+    (``workspace.patch``: a rule that reads no name the patch changes keeps them)."""
+
+    tags: tuple[str, ...]
+    graph: Graph
+    found: GraphFound
+
+    def stored(self) -> tuple[object, ...]:
+        return (_GRAPH_FORMAT, self.tags, self.graph, tuple(sorted(self.found.items())))
 
 
-def loaded_graph(value: object, files: int) -> tuple[tuple[str, ...], Graph] | None:
-    """A stored graph of a run over ``files`` checked files, and the facts keys it was
-    built from; None for anything else."""
-    if not isinstance(value, tuple) or len(value) != 3:
+def loaded_graph(value: object, files: int, reported: int) -> KeptGraph | None:
+    """A kept graph of a run over ``files`` checked files, ``reported`` of them reported;
+    None for anything else."""
+    if not isinstance(value, tuple) or len(value) != 4:
         return None
-    form, tags, graph = value
+    form, tags, graph, found = value
     if form != _GRAPH_FORMAT or not _strings(tags) or len(tags) != files:
         return None
-    return (tags, graph) if isinstance(graph, Graph) else None
+    try:
+        found_map = {
+            int(index): tuple((str(code), finding) for code, finding in items)
+            for index, items in found
+        }
+    except (TypeError, ValueError):
+        return None
+    if not (
+        isinstance(graph, Graph)
+        and all(0 <= index < reported for index in found_map)
+        and all(isinstance(f, Finding) for items in found_map.values() for _, f in items)
+    ):
+        return None
+    return KeptGraph(tags, graph, found_map)
 
 
 def _by_text(service_type: tuple[Generation | None, str]) -> tuple[str, str]:

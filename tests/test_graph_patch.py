@@ -19,6 +19,7 @@ from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
 from roslint_names.generation import PackageGenerations
 from roslint_names.model import FileFacts
 from roslint_names.registry import load_registry
+from roslint_names.rule import Rule, RuleContext
 from roslint_names.workspace.graph import Graph
 from roslint_names.workspace.index import PackageFiles
 from roslint_names.workspace.patch import Moved, code_edit, patched
@@ -151,3 +152,39 @@ def test_two_nodes_of_one_name_in_one_tree_running_one_file_are_refused(
     moves = code_edit(facts[MONITOR], facts[MONITOR])
     assert moves is not None
     assert (workspace.patched(doubled, {MONITOR: moves}, facts) is None) is refused
+
+
+def _findings(graph: Graph, rule: Rule) -> list[object]:
+    assert rule.check_workspace is not None
+    return list(rule.check_workspace(graph, RuleContext()))
+
+
+def test_a_rule_that_reads_no_code_name_finds_the_same_without_them(tmp_path: Path) -> None:
+    """``Rule.reads_code_names``: a patch that changes only the nodes' endpoints, the names
+    their code uses and their packages' literals keeps the findings of the rules that say
+    they read none of them; the example graph stripped of all three must give those rules
+    the same findings (and each of them finds something there)."""
+    workspace = _Workspace(tmp_path / "ws")
+    graph, _ = workspace.built()
+    stripped = replace(
+        graph,
+        endpoints=(),
+        mentions={},
+        nodes=tuple(
+            replace(node, uses=(), uses_relative=(), uses_complete=not node.uses_complete)
+            for node in graph.nodes
+        ),
+    )
+    rules = [rule for rule in workspace.registry.rules if rule.check_workspace is not None]
+    blind = [rule for rule in rules if not rule.reads_code_names]
+    assert {rule.code for rule in blind} == {"RN402", "RN405", "RN406", "RN407"}
+    for rule in blind:
+        found = _findings(graph, rule)
+        assert found, rule.code
+        assert _findings(stripped, rule) == found, rule.code
+    # The stripping is one the other rules see.
+    assert any(
+        _findings(stripped, rule) != _findings(graph, rule)
+        for rule in rules
+        if rule.reads_code_names
+    )

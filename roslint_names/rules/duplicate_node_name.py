@@ -72,4 +72,5 @@ RULE = Rule(
     severity=Severity.ERROR,
     check=None,
     check_workspace=check_workspace,
+    reads_code_names=False,
 )

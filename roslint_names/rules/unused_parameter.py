@@ -278,4 +278,5 @@ RULE = Rule(
     severity=Severity.WARNING,
     check=None,
     check_workspace=check_workspace,
+    reads_code_names=False,
 )
