@@ -351,16 +351,11 @@ class Session:
         but for their spans (``moves``: the findings' places in those files are moved) and
         the suppression marker, none of those that differ read again by the build (a
         launch file extracted under an includer's arguments); else None."""
-        basis = self._graph_basis
-        if facts.keys() != basis.keys():
+        changed = self._changed_since(self._graph_basis, facts)
+        if changed is None:
             return None
         moving: list[Moves] = []
-        for display, now in facts.items():
-            then = basis[display]
-            if then is now:
-                continue
-            if display in self._graph_specialised:
-                return None
+        for display, then, now in changed:
             spans = moved_spans(then, now)
             if spans is None:
                 return None
@@ -389,16 +384,12 @@ class Session:
         what that build was made from."""
         # Against the facts the graph object is of: a move since (``_moved_items``) moved
         # its findings, not its places.
-        basis, graph = self._graph_made_from, self._last_graph
-        if graph is None or facts.keys() != basis.keys():
+        graph = self._last_graph
+        changed = self._changed_since(self._graph_made_from, facts)
+        if graph is None or changed is None:
             return None
         edits: dict[str, Moved] = {}
-        for display, now in facts.items():
-            then = basis[display]
-            if then is now:
-                continue
-            if display in self._graph_specialised:
-                return None
+        for display, then, now in changed:
             moves = code_edit(then, now)
             if moves is not None:
                 edits[display] = moves
@@ -410,6 +401,24 @@ class Session:
             facts.get,
             lambda: PackageFiles(facts.keys(), self._workspace_packages),
         )
+
+    def _changed_since(
+        self, basis: dict[str, FileFacts], facts: dict[str, FileFacts]
+    ) -> list[tuple[str, FileFacts, FileFacts]] | None:
+        """Each file whose facts are not those of ``basis``: its display path, its facts
+        then and now; None where the files are not the same, or one of them was
+        extracted again by the last build under an includer's arguments (its bytes, not
+        only its facts, made the graph)."""
+        if facts.keys() != basis.keys():
+            return None
+        changed = [
+            (display, then, now)
+            for display, now in facts.items()
+            if (then := basis[display]) is not now
+        ]
+        if any(display in self._graph_specialised for display, _, _ in changed):
+            return None
+        return changed
 
     def _note_wiring(self, facts: FileFacts, data: Callable[[], bytes | str]) -> None:
         """Keep what a launch file wires, as its facts are now (an edit may drop it).
