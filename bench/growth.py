@@ -13,8 +13,11 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
   that moves no name costs (``same_facts``: the last run's graph findings stand);
 - ``edit_moves``: a line put above everything in that C++ source, so that every name in
   it moves (the last run's graph findings stand, their places in the file moved);
-- ``edit_names``: a function that publishes a new topic appended to that source: what an
-  edit the graph must be built again for costs;
+- ``edit_names``: a function that publishes a new topic appended to that source: the
+  graph the last build kept, patched (``workspace.patch``: the nodes running the file
+  resolved again), the graph rules over it;
+- ``edit_graph``: a node added to that launch file: what an edit the graph must be built
+  again for costs;
 - ``identical_after_edits``: whether the last edited run printed what a run with an
   empty cache prints over the same tree (a stale cache must never change a result);
 - ``lsp`` (with ``--lsp-edits``): the language server's latencies on the grown workspace
@@ -48,21 +51,26 @@ void bench_probe(rclcpp::Node & node)
   node.create_publisher<std_msgs::msg::Empty>("bench_probe", 1);
 }
 """
-# One edit each, a comment but the last: at the end, where it moves no name, or (``True``)
-# at the start, where it moves every name of the file; so that the run measures what an
-# edit costs, not what a new finding does. No word of a suppression in them
+# An edit the graph is built again for: a node the launch file starts (put before the end
+# of its root element).
+_NEW_NODE = b"""  <node pkg="bench" exec="bench_node" name="bench_node"/>
+"""
+# One edit each, a comment but the last two: at the end, where it moves no name, or at the
+# start, where it moves every name of the file; so that the run measures what an edit
+# costs, not what a new finding does. No word of a suppression in them
 # (``suppress``'s markers: the tool's name, NOLINT, noqa): a file holding one is read by
 # every run, a fact of its own.
 _EDITS = {
-    "edit_cpp": ((".cpp",), "create_publisher", b"\n// bench edit: nothing renamed\n", False),
+    "edit_cpp": ((".cpp",), "create_publisher", b"\n// bench edit: nothing renamed\n", "end"),
     "edit_launch": (
         (".launch.xml", ".launch"),
         "<node",
         b"\n<!-- bench edit: nothing renamed -->\n",
-        False,
+        "end",
     ),
-    "edit_moves": ((".cpp",), "create_publisher", b"// bench edit: every name moves\n", True),
-    "edit_names": ((".cpp",), "create_publisher", _NEW_TOPIC, False),
+    "edit_moves": ((".cpp",), "create_publisher", b"// bench edit: every name moves\n", "start"),
+    "edit_names": ((".cpp",), "create_publisher", _NEW_TOPIC, "end"),
+    "edit_graph": ((".launch.xml", ".launch"), "<node", _NEW_NODE, "inside"),
 }
 
 
@@ -88,13 +96,13 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
         arguments = ["--format", "json", "."]
         runs = {"cold": bench.cli(root, arguments, cache)}
         runs["unchanged"] = bench.cli(root, arguments, cache)
-        for name, (suffixes, marker, comment, first) in _EDITS.items():
+        for name, (suffixes, marker, text, where) in _EDITS.items():
             edited = pick(root / "src", suffixes, marker)
-            _add(edited, comment, first=first)
+            _add(edited, text, where)
             runs[name] = bench.cli(root, arguments, cache)
             results.setdefault("edited", {})[name] = edited.relative_to(root).as_posix()
         fresh = bench.cli(root, arguments, scratch / "fresh-cache")
-        results["identical_after_edits"] = fresh.stdout == runs["edit_names"].stdout
+        results["identical_after_edits"] = fresh.stdout == runs["edit_graph"].stdout
         results["runs"] = {name: run.summary() for name, run in runs.items()}
         if lsp_edits:
             results["lsp"] = latency(root, lsp_edits, cache)
@@ -118,10 +126,13 @@ def grown(workspace: Path, copies: int, root: Path) -> Path:
     return root
 
 
-def _add(path: Path, comment: bytes, *, first: bool) -> None:
-    """``comment`` appended (``first``: put first), as a new file renamed over the old: the
-    copies that share the old file's bytes through a hard link keep them."""
-    data = comment + path.read_bytes() if first else path.read_bytes() + comment
+def _add(path: Path, text: bytes, where: str) -> None:
+    """``text`` put at the "end", the "start", or "inside" the root element (before the
+    last end tag), as a new file renamed over the old: the copies that share the old
+    file's bytes through a hard link keep them."""
+    data = path.read_bytes()
+    at = {"end": len(data), "start": 0, "inside": data.rfind(b"</")}[where]
+    data = data[:at] + text + data[at:]
     replacement = path.with_name(f".{path.name}.bench")
     replacement.write_bytes(data)
     os.replace(replacement, path)

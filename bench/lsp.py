@@ -5,8 +5,9 @@
 Starts ``roslint-names server`` as an editor would (a pygls client on stdio) with the
 workspace as its root, after a CLI run has filled the facts cache (``--cache``, else a
 fresh temporary one filled here): the warm workspace of the target. Then, for one launch
-file, one C++ file and one Python file of the workspace, opens the document and makes
-``--edits`` changes, each a whole-document change as editors send them, waiting between
+file, one C++ file and one Python file of the workspace, and that C++ file again with a
+topic it publishes renamed (``cpp-names``), opens the document and makes ``--edits``
+changes, each a whole-document change as editors send them, waiting between
 two for everything the change brings. Measured, from the moment the change is sent:
 
 - ``file``: until the document's diagnostics are published (its own text checked by the
@@ -26,11 +27,13 @@ from __future__ import annotations
 import argparse
 import asyncio
 import json
+import re
 import statistics
 import subprocess
 import sys
 import tempfile
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -40,12 +43,6 @@ from pygls.uris import from_fs_path
 
 CLI = [sys.executable, "-c", "import sys; from roslint_names.cli import main; sys.exit(main())"]
 SERVER = [*CLI, "server"]
-# One edit each way: a line that gives the document a finding, then the line taken out.
-EDITS = {
-    "launch": '  <node name="bench-node" pkg="bench" type="bench_node"/>\n',
-    "cpp": '// bench: "cmd vel"\n',
-    "python": '# bench: "cmd vel"\n',
-}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -130,6 +127,7 @@ async def _measure(workspace: Path, home: Path, edits: int) -> dict[str, Any]:
         "launch": pick(workspace, (".launch", ".launch.xml"), "<node"),
         "cpp": pick(workspace, (".cpp",), "create_publisher"),
         "python": pick(workspace, (".py",), "create_subscription"),
+        "cpp-names": pick(workspace, (".cpp",), "create_publisher"),
     }
     client = _Client()
     await client.lsp.start_io(*SERVER, env={"XDG_CACHE_HOME": str(home), "PATH": ""})
@@ -154,7 +152,9 @@ async def _measure(workspace: Path, home: Path, edits: int) -> dict[str, Any]:
                     types.TextDocumentItem(uri=uri, language_id=language, version=1, text=text)
                 )
             )
-            arrivals = await client.arrivals_after(uri, 2)  # its diagnostics, then the graph's
+            # Counted from the open: ``cpp-names`` opens the C++ file again.
+            before = len(client.arrivals.get(uri, []))
+            arrivals = (await client.arrivals_after(uri, before + 2))[before:]  # its, the graph's
             # The server says it read the workspace before it publishes the diagnostics
             # made with it; it says nothing where it reads none.
             read = client.workspace_read
@@ -162,7 +162,7 @@ async def _measure(workspace: Path, home: Path, edits: int) -> dict[str, Any]:
                 # The first came before the workspace was read (its own findings alone):
                 # then its diagnostics with the workspace, then the graph's, the first
                 # graph a whole build. Edits start after it, or they would wait for it.
-                arrivals = await client.arrivals_after(uri, 3)
+                arrivals = (await client.arrivals_after(uri, before + 3))[before:]
             if "load_s" not in results:
                 results["load_s"] = round((read or arrivals[0]) - started, 3)
                 results["first_graph_s"] = round(arrivals[-1] - started, 3)
@@ -170,7 +170,7 @@ async def _measure(workspace: Path, home: Path, edits: int) -> dict[str, Any]:
             file_s: list[float] = []
             graph_s: list[float] = []
             for edit in range(edits):
-                changed = _edited(text, EDITS[language]) if edit % 2 == 0 else text
+                changed = EDITS[language](text) if edit % 2 == 0 else text
                 count = len(client.arrivals[uri])
                 sent = time.perf_counter()
                 client.lsp.text_document_did_change(
@@ -199,6 +199,30 @@ def _edited(text: str, line: str) -> str:
     lines = text.splitlines(keepends=True)
     middle = len(lines) // 2
     return "".join([*lines[:middle], line, *lines[middle:]])
+
+
+_PUBLISHED = re.compile(r'create_publisher\s*<[^;]*?>\s*\(\s*"([^"]+)"')
+
+
+def _renamed(text: str) -> str:
+    """``text`` with the first topic it publishes by a literal name renamed."""
+    found = _PUBLISHED.search(text)
+    if found is None:
+        raise SystemExit("no create_publisher with a literal topic in the C++ file picked")
+    return f"{text[: found.end(1)]}_bench{text[found.end(1) :]}"
+
+
+# One edit each way, then the text as it was: a line that gives the document a finding
+# (in the middle: ``_edited``), or a topic renamed (``_renamed``: the graph changes, and
+# the server patches it, ``workspace.patch``).
+EDITS: dict[str, Callable[[str], str]] = {
+    "launch": lambda text: _edited(
+        text, '  <node name="bench-node" pkg="bench" type="bench_node"/>\n'
+    ),
+    "cpp": lambda text: _edited(text, '// bench: "cmd vel"\n'),
+    "python": lambda text: _edited(text, '# bench: "cmd vel"\n'),
+    "cpp-names": _renamed,
+}
 
 
 def _summary(values: list[float], path: Path, workspace: Path) -> dict[str, Any]:
