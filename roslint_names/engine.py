@@ -49,7 +49,7 @@ from .model import (
     RelatedLocation,
     Span,
 )
-from .moves import Moves
+from .moves import Moves, UnplacedError, moved_finding
 from .reading import decode_for_display, read_file
 from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
@@ -67,7 +67,7 @@ from .workspace.built import BuiltSources
 from .workspace.graph import Graph
 from .workspace.index import Package, PackageFiles
 from .workspace.interfaces import service_definitions
-from .workspace.patch import Moved, code_edit, parameters_moved, same_places
+from .workspace.patch import Moved, code_edit, same_places
 from .workspace.patch import patched as patch_graph
 
 if TYPE_CHECKING:
@@ -851,12 +851,9 @@ class _GraphPatch:
         if patched is None:
             return None
         reported = {display: index for display, index in slots.items() if index < replay.reported}
-        # A rule that reads no name the patch changed has the built graph's findings.
-        kept = (
-            frozenset()
-            if parameters_moved(graph, edits)
-            else frozenset(rule.code for rule in self.rules if not rule.reads_code_names)
-        )
+        # A rule that reads no name the patch changed has the built graph's findings, the
+        # places of the edited files moved (only places can have: its parameter uses').
+        kept, kept_found = _kept_findings(stored.found, edits, self.rules, files)
         fresh = [rule for rule in self.rules if rule.code not in kept]
         by_rule: dict[int, dict[str, list[Finding]]] = {}
         for path, items in graph_findings(patched, fresh, self.settings).items():
@@ -865,10 +862,9 @@ class _GraphPatch:
                     by_rule.setdefault(reported[path], {}).setdefault(rule.code, []).append(
                         item.finding
                     )
-        for index, built in stored.found.items():
+        for index, built in kept_found.items():
             for code, finding in built:
-                if code in kept:
-                    by_rule.setdefault(index, {}).setdefault(code, []).append(finding)
+                by_rule.setdefault(index, {}).setdefault(code, []).append(finding)
         # In the rules' order, as ``graph_findings`` lists them.
         found = {
             index: tuple((rule.code, f) for rule in self.rules for f in codes.get(rule.code, ()))
@@ -883,6 +879,30 @@ class _GraphPatch:
         for index, facts, data, verdict in self.gathered.facts(rest):
             self.checks.take(index, facts, data, verdict)
         return _Replayed(sorted(again), replace(replay, graph=found), patched)
+
+
+def _kept_findings(
+    found: same_facts.GraphFound,
+    edits: Mapping[str, Moved],
+    rules: Sequence[Rule],
+    files: Sequence[SourceFile],
+) -> tuple[frozenset[str], dict[int, list[tuple[str, Finding]]]]:
+    """The rules whose findings a patch keeps (``Rule.reads_code_names``) and those
+    findings, from the built graph's (``found``), with the edited files' places where they
+    are now; none where one of those places is no longer known."""
+    kept = frozenset(rule.code for rule in rules if not rule.reads_code_names)
+    moving = [move for display, spans in edits.items() if not (move := Moves(display, spans)).still]
+    try:
+        return kept, {
+            index: [
+                (code, moved_finding(finding, files[index].display, moving))
+                for code, finding in items
+                if code in kept
+            ]
+            for index, items in found.items()
+        }
+    except UnplacedError:
+        return frozenset(), {}
 
 
 def _patchable(before: FileFacts, now: FileFacts) -> bool:

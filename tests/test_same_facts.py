@@ -141,6 +141,18 @@ STEPS: list[tuple[str, str, str, str]] = [
     (RELAY, '<nav_msgs::Odometry>("odom"', '<nav_msgs::Odometry>("odometry"', "patch"),
     # The publisher taken out again, and a parameter renamed (the graph is built).
     (MONITOR, f"    {STATUS}\n", "", "patch"),
+    # A service renamed below a new comment line: the RN407 of the line below is the
+    # kept graph's, moved (a rule that reads no code name: ``Rule.reads_code_names``).
+    (DOCK, "what it does.\n", "what it does.\n    // Renamed.\n", "replay"),
+    (DOCK, '"StartDocking"', '"start_docking"', "patch"),
+    # A service of another type: the service types every file is compared with (RN204)
+    # change, and the graph is built.
+    (
+        MONITOR,
+        "create_service<std_srvs::srv::SetBool>",
+        "create_service<std_srvs::srv::Empty>",
+        "build",
+    ),
     (MONITOR, '"map_frame"', '"map_frame_id"', "build"),
     # A launch file nothing includes, which wires no absolute name.
     (LOCALIZATION, "</launch>", "</launch>\n<!-- localization -->", "replay"),

@@ -124,20 +124,6 @@ def _mentions(
     return mentions
 
 
-def parameters_moved(graph: Graph, edits: Mapping[str, Moved]) -> bool:
-    """Whether a patch of ``graph`` with ``edits`` moves a node's parameter use: else it
-    changes only what the nodes' code names (``Rule.reads_code_names``)."""
-    parameters = [node.code_parameters for node in graph.nodes]
-    parameters += [r.parameters for kept in graph.unnamed_parameter_files.values() for r in kept]
-    return any(
-        (moves := edits.get(use.location.path)) is not None
-        and moves.get(use.location.span) != use.location.span
-        for found in parameters
-        if found is not None
-        for use in found.uses
-    )
-
-
 def _patched(
     graph: Graph, edits: Mapping[str, Moved], code_of: Callable[[str], FileFacts | None]
 ) -> Graph | None:
