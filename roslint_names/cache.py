@@ -54,8 +54,9 @@ parsing, but not next to the 0.05x-the-parse-floor budget of a re-run (the READM
 Performance table). Only the ``RUNS_KEPT`` most recently used results are kept.
 ``replays/`` holds what a run whose files' facts are those of a recent run takes instead
 of building the workspace graph again (``same_facts``), keyed alike but for the facts;
-``graphs/`` the graph of the last replays, with the facts keys it was built from, for a run
-whose edits change only what a node's code declares (``workspace.patch``).
+``graphs/`` the graph the last runs over a whole workspace built, with the facts keys it
+was built from, for a run whose edits change only what a node's code names
+(``workspace.patch``).
 ``digests/`` holds, per workspace, each file's content digest with its status, so that
 keying a re-run does not mean reading every file (``digests.ContentDigests``).
 """
@@ -101,7 +102,7 @@ _CHECKS = "checks"  # the sets of files the per-file rules found clean (``clean_
 CHECKS_KEPT = 8  # one per recent (settings, rules, packages) of each checkout
 _REPLAYS = "replays"  # what a run whose facts are the last run's takes (``same_facts``)
 REPLAYS_KEPT = 8  # one per recent (file set, settings) of each checkout
-_GRAPHS = "graphs"  # the graph of each replay, for a run that patches it (``workspace.patch``)
+_GRAPHS = "graphs"  # a built graph, kept by its replay's key, to patch (``workspace.patch``)
 GRAPHS_KEPT = 2  # tens of MB each in a large workspace: the last file sets only
 _LOG_BATCH = 512  # lines buffered before an append; and every batch of extraction ends one
 _TAG_NAME = "CACHEDIR.TAG"
@@ -308,8 +309,8 @@ class FactsCache:
         return self._load_entry(_GRAPHS, key, _GraphUnpickler)
 
     def store_graph(self, key: str, value: object) -> None:
-        """Keep the graph a replay was made from; forget all but the ``GRAPHS_KEPT`` most
-        recently used."""
+        """Keep a built graph (``same_facts.KeptGraph``); forget all but the
+        ``GRAPHS_KEPT`` most recently used."""
         self.write_newest(self.directory / _GRAPHS / key, _encode(value), GRAPHS_KEPT)
 
     def _load_entry(

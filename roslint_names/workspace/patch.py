@@ -15,9 +15,10 @@ file, whose facts are those it had but for the endpoints its code declares, its
 name-shaped literals and the places of the rest (``moves.moved_spans`` of the facts
 without those). ``patched`` then gives the graph a build would: the nodes running the
 file with their endpoints and names resolved again and their parameter uses where they
-are now. A graph it cannot patch exactly (two nodes of one name in one tree, a node
-whose namespace the graph does not show, a parameter use no fact places) is None: the
-caller builds. ``tests/test_graph_patch.py`` compares patched graphs with built ones.
+are now. A graph it cannot patch exactly (two nodes of one name in one tree running the
+edited file, a node whose namespace the graph does not show, a parameter use no fact
+places, a file of a package whose literals it keeps without facts) is None: the caller
+builds. ``tests/test_graph_patch.py`` compares patched graphs with built ones.
 """
 
 from __future__ import annotations
@@ -125,7 +126,7 @@ def _mentions(
 
 
 def _patched(
-    graph: Graph, edits: Mapping[str, Moved], code_of: Callable[[str], FileFacts | None]
+    graph: Graph, edits: Mapping[str, Moved], facts_of: Callable[[str], FileFacts | None]
 ) -> Graph | None:
     touched = [node for node in graph.nodes if not edits.keys().isdisjoint(node.sources)]
     if not touched:
@@ -139,7 +140,7 @@ def _patched(
     fresh: list[Endpoint] = []
     for node in touched:
         instance = _instance_of(node)
-        code = [facts for path in node.sources if (facts := code_of(path)) is not None]
+        code = [facts for path in node.sources if (facts := facts_of(path)) is not None]
         shared = any(
             other is not node and not set(other.sources).isdisjoint(node.sources)
             for other in namesakes[node.name, node.root]
