@@ -57,6 +57,12 @@ PATCHED = [
 REFUSED = [
     (MONITOR, '"map_frame"', '"map_frame_id"'),  # a parameter renamed
     (RECORDER, '__init__("pose_recorder")', '__init__("pose_logger")'),  # the node renamed
+    # Its only endpoint gone: a program no launch file starts is one that has some.
+    (
+        RECORDER,
+        'self.create_subscription(PoseStamped, "Robot_Pose", self.poses.append, 10)',
+        "pass",
+    ),
 ]
 
 

@@ -494,3 +494,18 @@ def test_only_a_run_over_the_workspace_keeps_its_graph(
     assert not list(cache.glob("*/graphs/*"))
     run_cli([*arguments, "."], workspace)
     assert len(list(cache.glob("*/graphs/*"))) == 1
+
+
+def test_edits_of_two_nodes_in_one_run_patch_the_graph_once(
+    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str]
+) -> None:
+    """A commit that renames a topic on both sides: one run, both nodes resolved again."""
+    cache = tmp_path / "cache"
+    outputs(run_cli, workspace, cache)
+    taken.clear()
+    edit(workspace / MONITOR, '"robot_pose"', '"fleet/robot_pose"')
+    edit(workspace / RECORDER, '"Robot_Pose"', '"fleet/robot_pose"')
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    assert taken == ["patch", "build"]
+    assert '"RN401"' not in cached  # the case collision between them is gone
