@@ -67,7 +67,7 @@ from .workspace.built import BuiltSources
 from .workspace.graph import Graph
 from .workspace.index import Package, PackageFiles
 from .workspace.interfaces import service_definitions
-from .workspace.patch import Moved, code_edit, same_places
+from .workspace.patch import Moved, edits_of
 from .workspace.patch import patched as patch_graph
 
 if TYPE_CHECKING:
@@ -824,11 +824,11 @@ class _GraphPatch:
                 loaded[index] = None if known is None or uses_constants(known) else known
             return loaded[index]
 
-        edits: dict[str, Moved] = {}
+        changed: list[tuple[str, FileFacts, FileFacts]] = []
         pairs = zip(self.inputs.tags, built_from, strict=True)
-        against = [index for index, (now, then) in enumerate(pairs) if now != then]
-        for index in against:
-            now, then = self.inputs.tags[index], built_from[index]
+        for index, (now, then) in enumerate(pairs):
+            if now == then:
+                continue
             display = files[index].display
             if display in replay.specialised:
                 return None  # the graph read its bytes under an includer's arguments
@@ -836,11 +836,10 @@ class _GraphPatch:
             facts = facts_at(index) if is_facts_key(now) else None
             if before is None or facts is None or not _patchable(before, facts):
                 return None
-            moves = code_edit(before, facts)
-            if moves is not None:
-                edits[display] = moves
-            elif not same_places(before, facts):
-                return None  # a launch, build or parameter file changed: the graph is built
+            changed.append((display, before, facts))
+        edits = edits_of(changed)
+        if edits is None:
+            return None
         slots = {source.display: index for index, source in enumerate(files)}
         patched = patch_graph(
             graph,

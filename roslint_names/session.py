@@ -72,7 +72,7 @@ from .workspace.built import BuiltSources
 from .workspace.graph import Graph
 from .workspace.index import Package, PackageFiles
 from .workspace.memory import GraphMemory
-from .workspace.patch import Moved, code_edit, same_places
+from .workspace.patch import edits_of
 from .workspace.patch import patched as patch_graph
 
 
@@ -386,15 +386,9 @@ class Session:
         # its findings, not its places.
         graph = self._last_graph
         changed = self._changed_since(self._graph_made_from, facts)
-        if graph is None or changed is None:
+        edits = None if changed is None else edits_of(changed)
+        if graph is None or edits is None:
             return None
-        edits: dict[str, Moved] = {}
-        for display, then, now in changed:
-            moves = code_edit(then, now)
-            if moves is not None:
-                edits[display] = moves
-            elif not same_places(then, now):
-                return None
         return patch_graph(
             graph,
             edits,

@@ -23,7 +23,7 @@ builds. ``tests/test_graph_patch.py`` compares patched graphs with built ones.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import replace
 
 from roslint_names.model import ENDPOINT_ROLES, FileFacts, Span
@@ -69,9 +69,22 @@ def code_edit(before: FileFacts, now: FileFacts) -> Moved | None:
     return moved_spans(_without_endpoints(before), _without_endpoints(now))
 
 
-def same_places(before: FileFacts, now: FileFacts) -> bool:
-    """The same facts, every one where it was (``moves``: but for what no graph reads):
-    nothing of the graph to patch."""
+def edits_of(changed: Iterable[tuple[str, FileFacts, FileFacts]]) -> dict[str, Moved] | None:
+    """``patched``'s edits for the files whose facts changed since the graph was made
+    (display path, facts then and now): each a ``code_edit``, or the same facts in the same
+    places (nothing of the graph to patch); None where one is neither."""
+    edits: dict[str, Moved] = {}
+    for display, then, now in changed:
+        moves = code_edit(then, now)
+        if moves is not None:
+            edits[display] = moves
+        elif not _same_places(then, now):
+            return None  # a launch, build or parameter file changed: the graph is built
+    return edits
+
+
+def _same_places(before: FileFacts, now: FileFacts) -> bool:
+    """The same facts, every one where it was (``moves``: but for what no graph reads)."""
     spans = moved_spans(before, now)
     return spans is not None and all(old == new for old, new in spans.items())
 
