@@ -730,11 +730,10 @@ class _FileChecks:
 class _Replayed(NamedTuple):
     """A run that took a replay: the files edited since (and those whose graph findings a
     patched graph changed), and the replay with their places where they are now (with
-    the patched graph's findings); the patched graph, if the run patched one."""
+    the patched graph's findings)."""
 
     edited: list[int]
     replay: Replay
-    graph: Graph | None = None
 
 
 def _take_facts(
@@ -877,7 +876,7 @@ class _GraphPatch:
         rest = sorted(again - arrived_facts.keys())
         for index, facts, data, verdict in self.gathered.facts(rest):
             self.checks.take(index, facts, data, verdict)
-        return _Replayed(sorted(again), replace(replay, graph=found), patched)
+        return _Replayed(sorted(again), replace(replay, graph=found))
 
 
 def _kept_findings(

@@ -66,14 +66,23 @@ def taken(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[str]]:
     "patch" (the last graph patched, ``workspace.patch``) or "build"; a run served its
     stored result ("stored") takes none."""
     seen: list[str] = []
+    patched: list[bool] = []
     original = engine._take_facts
+    patch = engine._GraphPatch.__call__
 
     def recording(*arguments: Any, **keywords: Any) -> Any:
+        patched.clear()
         found = original(*arguments, **keywords)
-        seen.append("build" if found is None else "replay" if found.graph is None else "patch")
+        seen.append("build" if found is None else "patch" if any(patched) else "replay")
+        return found
+
+    def patching(*arguments: Any, **keywords: Any) -> Any:
+        found = patch(*arguments, **keywords)
+        patched.append(found is not None)
         return found
 
     monkeypatch.setattr(engine, "_take_facts", recording)
+    monkeypatch.setattr(engine._GraphPatch, "__call__", patching)
     yield seen
 
 
