@@ -803,12 +803,7 @@ class _GraphPatch:
             self.cache.load_graph(self.stored_at), len(files), replay.reported
         )
         codes = {rule.code for rule in self.rules}
-        if stored is None or not all(
-            code in codes
-            for found in (replay.graph, stored.found)
-            for items in found.values()
-            for code, _ in items
-        ):
+        if stored is None or not same_facts.codes_of(replay.graph, stored.found) <= codes:
             return None
         built_from, graph = stored.tags, stored.graph
         arrived_facts = {index: facts for index, facts, _, _ in arrived}
@@ -935,8 +930,7 @@ def _replay_moved(
     take it: each edited file (``arrived``) has a facts key and leaves it true
     (``Replay.moves``), and the rules of its graph findings are the run's (``rules``, by
     code); else None."""
-    codes = {code for items in replay.graph.values() for code, _ in items}
-    if not codes <= rules.keys():
+    if not same_facts.codes_of(replay.graph) <= rules.keys():
         return None
     moves: list[Moves] = []
     for index, facts, _, _ in arrived:

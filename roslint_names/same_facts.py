@@ -228,6 +228,12 @@ _GRAPH_FORMAT = "graph 2"
 GraphFound = Mapping[int, tuple[tuple[str, Finding], ...]]
 
 
+def codes_of(*found: GraphFound) -> set[str]:
+    """The rules that made some of these graph findings: a run takes them only where it
+    runs every one of those rules."""
+    return {code for each in found for items in each.values() for code, _ in items}
+
+
 @dataclass(frozen=True)
 class KeptGraph:
     """The graph a run built, the facts keys it was built from, and its rules' findings
