@@ -56,8 +56,8 @@ def memo_key(
         " ".join(sorted(plugin_names)),
     ):
         digest.update(part.encode("utf-8", "surrogateescape") + b"\0")
-    for manifest, text in sorted(manifests.items()):
-        digest.update(f"{manifest}\0{len(text)}\0{text}\n".encode("utf-8", "surrogateescape"))
+    for manifest, content in sorted(manifests.items()):  # path, digest of its text
+        digest.update(f"{manifest}\0{content}\n".encode("utf-8", "surrogateescape"))
     return digest.hexdigest()
 
 

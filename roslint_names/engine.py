@@ -231,8 +231,9 @@ def _lint(
     clean: frozenset[bytes] = frozenset()
     verdicts: dict[bytes, clean_files.Verdict] = {}
     if cache is not None and inputs is not None:
-        manifests = {str(path): text for path, text in packages.manifests.items()}
-        clean_key = clean_files.memo_key(settings, registry, enabled, plugin_names, manifests)
+        clean_key = clean_files.memo_key(
+            settings, registry, enabled, plugin_names, packages.manifests
+        )
         clean, verdicts = clean_files.loaded(cache.load_checks(clean_key))
     known_inputs = inputs
 

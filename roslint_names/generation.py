@@ -13,14 +13,14 @@ from __future__ import annotations
 import os
 import re
 import stat
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .model import Generation, Language
 from .plugins import exported_descriptions, plugin_names
-from .reading import Status, status_from, status_of
+from .reading import Status, content_digest, status_from, status_of
 
 if TYPE_CHECKING:
     from .discover import SourceFile
@@ -86,6 +86,13 @@ class _Package:
 
 _NO_PACKAGE = _Package(None, None)
 
+# A package as ``PackageGenerations.lookups`` keeps it: its name, generation, dependencies
+# and directory.
+_KeptPackage = tuple[str | None, int | None, tuple[str, ...], str | None]
+# Each package found once; each directory looked up, by its package's place among them;
+# each manifest read, by the digest of its text; the plugin names they export.
+KeptLookups = tuple[list[_KeptPackage], dict[str, int], dict[str, str], list[str]]
+
 
 # A plugin description is a short XML file; a larger one is no such file.
 _MAX_DESCRIPTION = 1 << 20
@@ -102,15 +109,58 @@ class PackageGenerations:
         # it, its package for the graph), and even ``os.path.dirname`` costs more than this.
         # By the path's string too: hashing a ``Path`` builds a tuple of its parts each time.
         self._by_file: dict[str, _Package] = {}
-        # Every package.xml read, and every plugin description one exports, with its text:
-        # what a cached run's result depends on.
-        self.manifests: dict[Path, str] = {}
+        # Every package.xml read, and every plugin description one exports, with the
+        # digest of its text: what a cached run's result depends on.
+        self.manifests: dict[str, str] = {}
         # The names pluginlib gives the plugins those descriptions declare (``plugins``).
         self.plugin_names: set[str] = set()
         # The status of every package.xml looked for (None where there is none), and of
         # every plugin description, taken before reading it: what says that a re-run
         # would find the same packages (``unchanged``).
         self.statuses: dict[str, Status | None] = {}
+
+    def lookups(self) -> KeptLookups:
+        """What the lookups so far found, as builtins (``unchanged`` keeps them)."""
+        places: dict[int, int] = {}  # by the package object: one entry per package
+        packages: list[_KeptPackage] = []
+        directories: dict[str, int] = {}
+        for directory, package in self._by_directory.items():
+            place = places.get(id(package))
+            if place is None:
+                place = places[id(package)] = len(packages)
+                generation = None if package.generation is None else package.generation.value
+                depends = tuple(sorted(package.depends))
+                packages.append((package.name, generation, depends, package.root))
+            directories[directory] = place
+        return packages, directories, dict(self.manifests), sorted(self.plugin_names)
+
+    def restore(self, lookups: KeptLookups, statuses: Mapping[str, Status | None]) -> bool:
+        """Take up what an earlier run's lookups found (``lookups``), each package.xml and
+        plugin description they read having the status it had then (``statuses``, as
+        ``unchanged`` takes them again): the same files, so the same answers. Only before
+        any lookup; False (nothing taken) for one that is not of that shape."""
+        if self._by_directory:
+            return False
+        try:
+            packages, directories, kept_manifests, kept_names = lookups
+            made = [
+                _NO_PACKAGE
+                if kept == (None, None, (), None)
+                else _Package(
+                    kept[0],
+                    None if kept[1] is None else Generation(kept[1]),
+                    frozenset(kept[2]),
+                    kept[3],
+                )
+                for kept in packages
+            ]
+            by_directory = {directory: made[place] for directory, place in directories.items()}
+            manifests, names = dict(kept_manifests), set(kept_names)
+        except (TypeError, ValueError, IndexError, KeyError):
+            return False  # damaged: looked up again
+        self._by_directory, self.manifests, self.plugin_names = by_directory, manifests, names
+        self.statuses = dict(statuses)
+        return True
 
     def for_file(self, path: str | Path) -> Generation | None:
         return self._for_file(path).generation
@@ -143,7 +193,7 @@ class PackageGenerations:
                     text = stream.read(_MAX_DESCRIPTION)
             except OSError:
                 continue  # a missing description declares nothing
-            self.manifests[Path(description)] = text
+            self.manifests[description] = content_digest(text.encode())
             self.plugin_names |= plugin_names(text)
 
     def _for_file(self, path: str | Path) -> _Package:
@@ -180,7 +230,7 @@ class PackageGenerations:
                     text = stream.read()
             except OSError:
                 text = ""
-            self.manifests[Path(manifest)] = text
+            self.manifests[manifest] = content_digest(text.encode())
             self._read_plugin_descriptions(directory, text)
             package = _Package(
                 package_xml_name(text),

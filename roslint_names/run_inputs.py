@@ -37,7 +37,7 @@ from .generation import PackageGenerations, reads_python2
 from .model import Generation, Language
 from .reading import MAX_DEFINITION_BYTES, Read, Status, content_digest, read_file, status_of
 from .registry import Registry
-from .unchanged import KeptKey
+from .unchanged import KeptKey, Keying
 
 if TYPE_CHECKING:
     from .cache import FactsCache
@@ -87,13 +87,26 @@ class RunInputs:
         self._statuses: list[Status | None] = []  # of ``_status_files``, as first taken
         self.changed = False  # a file read differs from what the run was keyed by
         self.place_key: str | None = None  # once keyed: ``_place``
+        self._keying: Keying | None = None  # an earlier run's, taken up (``unchanged``)
 
     def unchanged_key(self) -> str | None:
         """The key an earlier run kept, when nothing it was made from changed since
         (``unchanged``): no file is keyed. The statuses taken are those ``key_first``
-        goes on with, when it must."""
+        goes on with, when it must; and what the kept key was made of, where the packages
+        are as they were, is taken up (``unchanged.Keying``): the packages' lookups now,
+        the files' facts keys and the place when ``key_first`` asks."""
         self._statuses = [status_of(path) for path in self._status_files]
-        return self._kept.key(self._identity, self._statuses)
+        key = self._kept.key(self._identity, self._statuses)
+        if key is None:
+            keying = self._kept.keying(self._identity)
+            if (
+                keying is not None
+                and len(keying.tags) == len(self._checked)
+                and len(keying.file_statuses) == len(self._statuses)
+                and self._packages.restore(keying.lookups, keying.package_statuses)
+            ):
+                self._keying = keying
+        return key
 
     def key_first(self) -> str | None:
         """The run's key before anything is extracted, when an earlier run of this
@@ -106,10 +119,22 @@ class RunInputs:
             self._digests.summary(source.location, maximum, status)
             for source, status in zip(self._checked, taken, strict=False)
         ]
-        self._tags = [
-            self._tag(source, *summary)
-            for source, summary in zip(self._checked, summaries, strict=True)
-        ]
+        keying = self._keying
+        if keying is None:
+            self._tags = [
+                self._tag(source, *summary)
+                for source, summary in zip(self._checked, summaries, strict=True)
+            ]
+        else:  # a file whose status is as kept has the facts key it had
+            kept_statuses, kept_tags = keying.file_statuses, keying.tags
+            self._tags = [
+                kept_tags[index]
+                if status is not None and status == kept_statuses[index]
+                else self._tag(source, *summary)
+                for index, (source, summary, status) in enumerate(
+                    zip(self._checked, summaries, self._statuses, strict=False)
+                )
+            ]
         self._contents = [content for content, _, _ in summaries]
         self._keyed_first = True
         return self._key()
@@ -161,9 +186,11 @@ class RunInputs:
             return
         statuses = self._digests.statuses
         files = self._status_files
-        if all(path in statuses for path in files):
+        if all(path in statuses for path in files) and self.place_key is not None:
             file_statuses = [statuses[path] for path in files]
-            self._kept.keep(self._identity, kept_key, file_statuses, self._packages.statuses)
+            keying = (self._tags, self.place_key, self._packages.lookups())
+            packages = self._packages.statuses
+            self._kept.keep(self._identity, kept_key, file_statuses, packages, keying)
 
     # Both below are asked at the start of the run and again at its end: made once.
     @cached_property
@@ -231,11 +258,23 @@ class RunInputs:
 
     def _key(self) -> str:
         """The run's key: its place (``place_key``) and each checked file's facts key."""
-        self.place_key = self._place()
+        self.place_key = self._kept_place() or self._place()
         digest = hashlib.blake2b(digest_size=20)
         digest.update(f"{self.place_key}\0".encode())
         digest.update(_text_bytes("\0".join(self._tags)))
         return digest.hexdigest()
+
+    def _kept_place(self) -> str | None:
+        """The kept place, when no ``.srv`` file changed since (the packages did not, or
+        their keying would not have been taken up)."""
+        keying, checked = self._keying, len(self._checked)
+        if keying is None or self._statuses[checked:] != keying.file_statuses[checked:]:
+            return None
+        # Noted as keyed by the statuses taken, their digests kept for the next run.
+        services = zip(self._status_files[checked:], self._statuses[checked:], strict=True)
+        for path, status in services:
+            self._digests.summary(path, MAX_DEFINITION_BYTES, status)
+        return keying.place_key
 
     def _place(self) -> str:
         """All the run's key holds but the checked files' facts keys: which files, where,
@@ -257,8 +296,8 @@ class RunInputs:
                 content = self._digests.summary(source.location, MAX_DEFINITION_BYTES)[0]
                 lines.append(f"{content}\n")
         digest.update(_text_bytes("".join(lines)))
-        for manifest, text in sorted(self._packages.manifests.items()):
-            digest.update(_text_bytes(f"{manifest}\0{len(text)}\0{text}"))
+        for manifest, content in sorted(self._packages.manifests.items()):  # path, digest
+            digest.update(_text_bytes(f"{manifest}\0{content}\n"))
         return digest.hexdigest()
 
 

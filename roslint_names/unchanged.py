@@ -18,27 +18,53 @@ time. So the key is kept here with:
   (a home directory, ``/tmp``) may change for other reasons all they like.
 
 A re-run whose identity and statuses are all equal is keyed by the kept key. A status
-taken within ``reading.RACY_NANOSECONDS`` of a change is never kept
-(an edit in the same clock tick would not show: git's "racily clean" files); such a run
-keeps nothing, and the next is keyed file by file. The file is builtins only, read with
-an unpickler that resolves no class; one that cannot be read is no key.
+taken within ``reading.RACY_NANOSECONDS`` of a change is never kept (an edit in the same
+clock tick would not show: git's "racily clean" files): such a file is kept as changed,
+and a package status so taken keeps nothing. The file is builtins only, read with an
+unpickler that resolves no class; one that cannot be read is no key.
+
+A re-run that edited some files is keyed file by file, yet most of that work gives what it
+gave last time too: so the kept key comes with what it was made of (``Keying``), which a
+run of the same identity takes up when every package status is as kept: the packages'
+lookups (``PackageGenerations.lookups``: which package each directory is in, read from no
+manifest again), each file's facts key, for the files whose status is as kept, and the
+run's place (``RunInputs.place_key``) when no ``.srv`` file changed. At 77,000 files that
+spares a run after an edit 0.6 s (every manifest read, 0.25 s; every file's facts key and
+the place hashed, 0.3 s) for 0.1 s (the package statuses taken again, what was kept loaded).
 """
 
 from __future__ import annotations
 
 import hashlib
+import io
 import os
 import pickle
 import time
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING, NamedTuple
 
 from .cache import BuiltinsUnpickler, FactsCache
 from .reading import Status, is_racy, open_regular, status_of
 
+if TYPE_CHECKING:
+    from .generation import KeptLookups
+
 KEYS = "keys"  # their directory in the facts cache: one file per workspace
 KEPT = 64
-_FORMAT = 1
+_FORMAT = 2
+
+
+@dataclass(frozen=True)
+class Keying:
+    """What an earlier run of the same identity was keyed from and by."""
+
+    file_statuses: list[Status | bool | None]  # as ``KeptKey.keep`` stores them
+    package_statuses: dict[str, Status | None]
+    tags: list[str]  # the facts key of each checked file, or why it has none
+    place_key: str
+    lookups: KeptLookups
 
 
 class KeptKey:
@@ -49,19 +75,32 @@ class KeptKey:
         self._path = cache.directory / KEYS / name
         self._cache = cache
         self.started = time.time_ns()  # before any status of this run is taken
+        self._kept: _Kept | None = None
+        self._loaded = False
+        self._packages_stand: bool | None = None  # once asked: their statuses are as kept
 
     def key(self, identity: str, statuses: Sequence[Status | None]) -> str | None:
         """The kept key, if it was kept for ``identity`` and every status it was kept with
         is the status now (``statuses``: the files', in the order they were kept)."""
         kept = self._load()
-        if kept is None:
+        if kept is None or kept.identity != identity or list(statuses) != kept.file_statuses:
             return None
-        kept_identity, key, file_statuses, package_paths, package_statuses = kept
-        if kept_identity != identity or list(statuses) != file_statuses:
+        return kept.key if self._packages_as_kept(kept) else None
+
+    def keying(self, identity: str) -> Keying | None:
+        """What the kept key was made of, if it was kept for ``identity`` and every package
+        status it was kept with is the status now (its files' statuses may differ)."""
+        kept = self._load()
+        if kept is None or kept.identity != identity or not self._packages_as_kept(kept):
             return None
-        if [status_of(path) for path in package_paths] != package_statuses:
+        try:
+            tags, lookups = BuiltinsUnpickler(io.BytesIO(kept.made_of)).load()
+            package_statuses = dict(zip(kept.package_paths, kept.package_statuses, strict=True))
+        except Exception:  # damaged: keyed file by file
             return None
-        return key
+        if not isinstance(tags, list):
+            return None
+        return Keying(kept.file_statuses, package_statuses, tags, kept.place_key, lookups)
 
     def keep(
         self,
@@ -69,30 +108,54 @@ class KeptKey:
         key: str,
         file_statuses: Sequence[Status | None],
         package_statuses: Mapping[str, Status | None],
+        keying: tuple[Sequence[str], str, KeptLookups],
     ) -> None:
-        """Keep ``key`` with what it was made from, unless a status is too recent to say
-        that nothing changed after it was taken."""
-        statuses = [*file_statuses, *package_statuses.values()]
-        if any(s is not None and is_racy(s[1], s[2], self.started) for s in statuses):
+        """Keep ``key`` with what it was made from (``keying``: each file's facts key, the
+        place and the packages' lookups), unless a package status is too recent to say
+        that nothing changed after it was taken. A file whose status is that recent is
+        kept as changed (False: no status is)."""
+        if any(s is not None and self._racy(s) for s in package_statuses.values()):
             return
-        paths = tuple(package_statuses)
-        kept = (_FORMAT, identity, key, list(file_statuses), paths, list(package_statuses.values()))
+        files = [False if s is not None and self._racy(s) else s for s in file_statuses]
+        tags, place_key, lookups = keying
+        made_of = pickle.dumps((list(tags), lookups), pickle.HIGHEST_PROTOCOL)
+        paths, statuses = tuple(package_statuses), list(package_statuses.values())
+        kept = (_FORMAT, identity, key, files, paths, statuses, place_key, made_of)
         self._cache.write_newest(self._path, pickle.dumps(kept, pickle.HIGHEST_PROTOCOL), KEPT)
 
+    def _racy(self, status: Status) -> bool:
+        return is_racy(status[1], status[2], self.started)
+
+    def _packages_as_kept(self, kept: _Kept) -> bool:
+        if self._packages_stand is None:
+            now = [status_of(path) for path in kept.package_paths]
+            self._packages_stand = now == kept.package_statuses
+        return self._packages_stand
+
     def _load(self) -> _Kept | None:
+        if not self._loaded:
+            self._kept, self._loaded = self._read(), True
+        return self._kept
+
+    def _read(self) -> _Kept | None:
         try:
             with open_regular(self._path) as stream:
                 loaded = BuiltinsUnpickler(stream).load()
         except Exception:  # absent, unreadable or damaged: the run is keyed file by file
             return None
-        if not (isinstance(loaded, tuple) and len(loaded) == 6 and loaded[0] == _FORMAT):
+        if not (isinstance(loaded, tuple) and len(loaded) == 8 and loaded[0] == _FORMAT):
             return None
-        _, identity, key, file_statuses, paths, package_statuses = loaded
-        shapes = (str, str, list, tuple, list)
+        shapes = (str, str, list, tuple, list, str, bytes)
         if not all(map(isinstance, loaded[1:], shapes)):
             return None
-        return identity, key, file_statuses, paths, package_statuses
+        return _Kept(*loaded[1:])
 
 
-# identity, key, file statuses, package paths, their statuses
-_Kept = tuple[str, str, list[Status | None], tuple[str, ...], list[Status | None]]
+class _Kept(NamedTuple):
+    identity: str
+    key: str
+    file_statuses: list[Status | bool | None]
+    package_paths: tuple[str, ...]
+    package_statuses: list[Status | None]
+    place_key: str
+    made_of: bytes  # the pickled tags and lookups: read only by a run that takes them up

@@ -570,6 +570,139 @@ def test_a_package_xml_above_the_linted_directory_is_seen(
     assert after.stdout == run_cli([*arguments, "--no-cache"], linted).stdout
 
 
+@pytest.fixture
+def rekeyed(monkeypatch: pytest.MonkeyPatch) -> tuple[list[str], list[str]]:
+    """The files given a facts key from their digest, and the manifests looked for."""
+    files: list[str] = []
+    manifests: list[str] = []
+    key_of_digest = cache_module.FactsCache.key_of_digest
+    is_manifest = PackageGenerations._is_manifest
+
+    def keyed_file(
+        self: cache_module.FactsCache, content: str, path: str, *rest: Any, **options: Any
+    ) -> str:
+        files.append(Path(path).name)
+        return key_of_digest(self, content, path, *rest, **options)
+
+    def looked_for(self: PackageGenerations, manifest: str) -> bool:
+        manifests.append(manifest)
+        return is_manifest(self, manifest)
+
+    monkeypatch.setattr(cache_module.FactsCache, "key_of_digest", keyed_file)
+    monkeypatch.setattr(PackageGenerations, "_is_manifest", looked_for)
+    return files, manifests
+
+
+@pytest.mark.usefixtures("old_tree")
+def test_the_run_after_an_edit_keys_the_edited_file_alone(
+    check: Callable[..., Any],
+    workspace: Path,
+    keyed: list[int],
+    rekeyed: tuple[list[str], list[str]],
+) -> None:
+    """It takes up what the last run's key was made of (``unchanged.Keying``): no
+    package.xml is looked for again, each other file keeps its facts key; and prints what
+    a run with no cache prints."""
+    age_all(workspace)
+    check()
+    files, manifests = rekeyed
+    files.clear()
+    manifests.clear()
+    before = time.time_ns()
+    time.sleep(0.05)  # change times tick with the kernel's coarse clock
+    _edit_code(workspace)
+    age_all(workspace, before)
+    after = check()
+    assert keyed == [1, 1] and files == ["driver.cpp"] and manifests == []
+    assert after.stdout == check("--no-cache").stdout
+    keyed.clear()
+    assert reused(check()) and keyed == []  # and it kept its own key
+
+
+@pytest.mark.parametrize("change", [_package_depends, _service_edited])
+@pytest.mark.usefixtures("old_tree")
+def test_a_changed_manifest_or_service_is_read_again_after_an_edit(
+    check: Callable[..., Any],
+    workspace: Path,
+    rekeyed: tuple[list[str], list[str]],
+    change: Callable[[Path], None],
+) -> None:
+    """What the packages say is taken up only where every manifest is as it was; the
+    run's place only where every ``.srv`` file is."""
+    write(workspace, "src/robot_base/srv/CmdVel.srv", "---\nbool ok\n")
+    age_all(workspace)
+    check()
+    files, manifests = rekeyed
+    files.clear()
+    manifests.clear()
+    before = time.time_ns()
+    time.sleep(0.05)
+    _edit_code(workspace)
+    change(workspace)
+    age_all(workspace, before)
+    after = check()
+    if change is _package_depends:
+        assert manifests and len(files) == 3  # every file keyed again
+    else:
+        assert (manifests, files) == ([], ["driver.cpp"])
+    assert after.stdout == check("--no-cache").stdout
+
+
+@pytest.mark.parametrize(
+    "made_of",
+    [
+        b"not a pickle",
+        pickle.dumps((["one tag"], None)),  # the wrong number of tags, no lookups
+        pickle.dumps((["a", "b", "c"], ([("robot_base", 7, (), "/")], {"/": 3}, {}, []))),
+        pickle.dumps((types.SimpleNamespace(), None)),  # a class: refused
+    ],
+)
+@pytest.mark.usefixtures("old_tree")
+def test_a_damaged_kept_keying_keys_every_file(
+    check: Callable[..., Any],
+    workspace: Path,
+    private_cache: Path,
+    rekeyed: tuple[list[str], list[str]],
+    made_of: bytes,
+) -> None:
+    age_all(workspace)
+    check()
+    (kept,) = private_cache.glob("facts-v*/keys/*")
+    loaded = pickle.loads(kept.read_bytes())
+    kept.write_bytes(pickle.dumps((*loaded[:-1], made_of)))
+    files, _ = rekeyed
+    files.clear()
+    before = time.time_ns()
+    time.sleep(0.05)
+    _edit_code(workspace)
+    age_all(workspace, before)
+    after = check()
+    assert after.exit_code == 1 and len(files) == 3
+    assert after.stdout == check("--no-cache").stdout
+
+
+def test_a_file_edited_within_the_racy_window_is_kept_as_changed(
+    check: Callable[..., Any],
+    workspace: Path,
+    keyed: list[int],
+    rekeyed: tuple[list[str], list[str]],
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A run just after an edit keeps its key with that file as changed (its status may
+    hide a later edit): the next run keys that file again, and only it."""
+    monkeypatch.setattr(reading, "RACY_NANOSECONDS", 1_000_000_000)
+    age_all(workspace)
+    time.sleep(1.1)  # every status but the edited file's past the racy window
+    _edit_code(workspace)
+    check()
+    files, manifests = rekeyed
+    files.clear()
+    manifests.clear()
+    keyed.clear()
+    again = check()
+    assert reused(again) and keyed == [1] and files == ["driver.cpp"] and manifests == []
+
+
 def test_a_status_taken_just_after_a_change_keeps_no_key(
     check: Callable[..., Any], workspace: Path, keyed: list[int]
 ) -> None:
