@@ -5,25 +5,25 @@ from __future__ import annotations
 
 import hashlib
 import os
-import pickle
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from .cache import DIGESTS, BuiltinsUnpickler, FactsCache
+from .journal import Journaled
 from .reading import (
     BINARY,
     Read,
     Status,
     content_digest,
     is_racy,
-    open_regular,
     read_file,
     status_of,
     too_large,
 )
 
-KEPT = 64  # digest files: one per recently linted workspace
+KEPT = 128  # digest files: a base and a journal per recently linted workspace
+_FORMAT = 1
 
 
 class Untaken:
@@ -46,7 +46,8 @@ class ContentDigests:
     seconds before its status was recorded, the others are read again.
 
     ``summary`` answers for one file; ``save`` keeps what was learned, atomically, in one
-    file per workspace (the ``KEPT`` most recently saved are kept). A wrong digest
+    base and journal per workspace (``journal``; the ``KEPT`` most recently saved files
+    are kept). A wrong digest
     would serve a stale result: the status test and the racy window are what rule it out.
     """
 
@@ -58,6 +59,10 @@ class ContentDigests:
     statuses: dict[str, Status | None] = field(default_factory=dict)
     _loaded: bool = False
     _present: bool = False  # the file exists (damaged or not)
+    _kept: Journaled = field(init=False)
+
+    def __post_init__(self) -> None:
+        self._kept = Journaled(self.cache, self.path, KEPT, BuiltinsUnpickler, _FORMAT)
 
     @classmethod
     def of(cls, cache: FactsCache, root: Path) -> ContentDigests:
@@ -115,19 +120,12 @@ class ContentDigests:
         return self._known
 
     def save(self) -> None:
-        """Keep the digests of the files this run saw (only those: deleted files go)."""
+        """Keep the digests of the files this run saw (only those: deleted files go): those
+        that changed, as a journal (``journal``)."""
         self._remembered()
-        changed = not self._present or self._seen != self._known
-        if changed:
-            self.cache.write_newest(
-                self.path, pickle.dumps(self._seen, pickle.HIGHEST_PROTOCOL), KEPT
-            )
+        self._kept.save((self._seen,))
 
     def _load(self) -> dict[str, tuple[Status, str, bool]]:
-        try:
-            with open_regular(self.path) as stream:
-                self._present = True
-                loaded = BuiltinsUnpickler(stream).load()
-        except Exception:  # absent, unreadable or damaged: every file is read again
-            return {}
-        return loaded if isinstance(loaded, dict) else {}
+        loaded = self._kept.load(1)  # None: absent, unreadable or damaged: all read again
+        self._present = loaded is not None or self.path.exists()
+        return {} if loaded is None else loaded[0]

@@ -15,27 +15,29 @@ A status taken within ``reading.RACY_NANOSECONDS`` of a change is not trusted (g
 directory is listed again the next time; such a ``.gitignore`` makes its subtree walked
 whole.
 
-The file is pickled builtins and ``Listed`` only, read with an unpickler that resolves no
-other class, and written atomically through the facts cache; one that cannot be read is
-an empty one (everything listed again), never an error.
+The listings are kept as a base and a journal of the directories listed again since
+(``journal``), pickled builtins and ``Listed`` only, read with an unpickler that resolves
+no other class, and written atomically through the facts cache; one that cannot be read
+is an empty one (everything listed again), never an error.
 """
 
 from __future__ import annotations
 
 import hashlib
 import os
-import pickle
 import time
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, NamedTuple
 
 from .cache import BuiltinsUnpickler, FactsCache, code_fingerprint
-from .reading import Status, is_racy, open_regular, status_from
+from .journal import Journaled
+from .reading import Status, is_racy, status_from
 
 LISTINGS = "listings"  # their directory in the facts cache, one file per named directory
-KEPT = 64
-_FORMAT = 2
+KEPT = 128  # listing files: a base and a journal per named directory and patterns
+_FORMAT = 3
+_ANCESTORS = "ancestors"  # the one key of the section that keeps them
 
 DirectoryStatus = tuple[int, int, int]  # mtime_ns, ctime_ns, inode
 FileStatus = Status  # a file's, as ``reading.status_of`` takes it
@@ -57,8 +59,7 @@ class Listings:
     """The kept listings of one named directory's walk, and the new ones it makes."""
 
     def __init__(self, path: Path, cache: FactsCache) -> None:
-        self._path = path
-        self._cache = cache
+        self._kept = Journaled(cache, path, KEPT, _ListingsUnpickler, _FORMAT)
         self.started = time.time_ns()  # before any status is taken
         self._known: dict[str, Listed] = {}
         self._known_ancestors: tuple[tuple[str, FileStatus | None], ...] | None = None
@@ -130,22 +131,16 @@ class Listings:
             self._sniffed[path] = (status, said)
 
     def save(self) -> None:
-        """Keep what this walk listed (only that: a deleted directory goes), if it differs."""
-        new = (self._ancestors, self._listed, self._sniffed)
-        if new == (self._known_ancestors, self._known, self._known_sniffed):
-            return
-        blob = pickle.dumps((_FORMAT, *new), pickle.HIGHEST_PROTOCOL)
-        self._cache.write_newest(self._path, blob, KEPT)
+        """Keep what this walk listed (only that: a deleted directory goes), if it differs:
+        the listings that changed, as a journal (``journal``)."""
+        self._kept.save(({_ANCESTORS: self._ancestors}, self._listed, self._sniffed))
 
     def _load(self) -> None:
-        try:
-            with open_regular(self._path) as stream:
-                loaded = _ListingsUnpickler(stream).load()
-            version, ancestors, listed, sniffed = loaded
-        except Exception:  # absent, unreadable, damaged or of another shape: list again
+        loaded = self._kept.load(3)
+        if loaded is None:  # absent, unreadable, damaged or of another shape: list again
             return
-        if version == _FORMAT and isinstance(listed, dict) and isinstance(sniffed, dict):
-            self._known_ancestors, self._known, self._known_sniffed = ancestors, listed, sniffed
+        ancestors, self._known, self._known_sniffed = loaded
+        self._known_ancestors = ancestors.get(_ANCESTORS)
 
 
 class _ListingsUnpickler(BuiltinsUnpickler):

@@ -681,6 +681,33 @@ def test_a_damaged_kept_keying_keys_every_file(
     assert after.stdout == check("--no-cache").stdout
 
 
+@pytest.mark.usefixtures("old_tree")
+def test_an_edit_journals_the_digests_and_listings_it_changed(
+    check: Callable[..., Any], workspace: Path, private_cache: Path
+) -> None:
+    """The digests and the listings of 77,000 files are not written whole for the few an
+    edit changed (``journal``): their bases stay as they were."""
+    for module in range(12):  # more files and directories than an edit changes 1/4 of
+        for name in ("util.cpp", "util.hpp"):
+            write(workspace, f"src/robot_base/src/module{module}/{name}", "int helper();\n")
+    age_all(workspace)
+    check()
+    bases = sorted(private_cache.glob("facts-v*/[dl][ii][gs]*/*"))
+    assert [path.parent.name for path in bases] == ["digests", "listings"]
+    written = [path.read_bytes() for path in bases]
+    before = time.time_ns()
+    time.sleep(0.05)
+    _edit_code(workspace)
+    _add_file(workspace)
+    age_all(workspace, before)
+    after = check()
+    assert [path.read_bytes() for path in bases] == written
+    assert all(path.with_name(f"{path.name}-journal").exists() for path in bases)
+    assert after.stdout == check("--no-cache").stdout
+    again = check()
+    assert reused(again) and again.stdout == after.stdout
+
+
 def test_a_file_edited_within_the_racy_window_is_kept_as_changed(
     check: Callable[..., Any],
     workspace: Path,
