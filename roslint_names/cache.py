@@ -554,11 +554,15 @@ def _unpickle_facts(payload: bytes) -> FileFacts | None:
     return facts if isinstance(facts, FileFacts) else None
 
 
-def _unpickle(payload: bytes, unpickler: type[pickle.Unpickler] | None = None) -> object | None:
-    """The value of a payload, through the unpickler that builds only model values (or
-    ``unpickler``)."""
+def _unpickle(
+    payload: bytes, unpickler: type[pickle.Unpickler] | None = None, start: int = 0
+) -> object | None:
+    """The value of a payload (from ``start`` on), through the unpickler that builds only
+    model values (or ``unpickler``)."""
+    stream = io.BytesIO(payload)  # shares the bytes, where a slice or a view copies them
+    stream.seek(start)
     try:
-        value: object = (unpickler or _FactsUnpickler)(io.BytesIO(payload)).load()
+        value: object = (unpickler or _FactsUnpickler)(stream).load()
     except Exception:  # any malformed pickle: a miss, never a crash
         return None
     return value
@@ -625,10 +629,11 @@ def _decode(blob: bytes, unpickler: type[pickle.Unpickler] | None = None) -> obj
     header = len(_MAGIC) + _CHECKSUM_BYTES
     if len(blob) < header or not blob.startswith(_MAGIC):
         return None
-    payload = blob[header:]
+    # Not sliced: the kept graph is 13 MB, and the copy was the peak of a run patching it.
+    payload = memoryview(blob)[header:]
     if hashlib.blake2b(payload, digest_size=_CHECKSUM_BYTES).digest() != blob[len(_MAGIC) : header]:
         return None
-    return _unpickle(payload, unpickler or _FactsUnpickler)
+    return _unpickle(blob, unpickler or _FactsUnpickler, start=header)
 
 
 _MODEL_CLASSES = frozenset(

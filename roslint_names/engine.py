@@ -67,7 +67,7 @@ from .workspace.built import BuiltSources
 from .workspace.graph import Graph
 from .workspace.index import Package, PackageFiles
 from .workspace.interfaces import service_definitions
-from .workspace.patch import Moved, edits_of
+from .workspace.patch import Moved, edits_of, for_patching
 from .workspace.patch import patched as patch_graph
 
 if TYPE_CHECKING:
@@ -414,7 +414,7 @@ def _lint(
                 # What a later run over the workspace patches (``workspace.patch``); not
                 # a run over some files (pre-commit's), whose set is seldom run again.
                 if graph is not None and not context:
-                    kept_graph = KeptGraph(inputs.tags, graph, graph_found)
+                    kept_graph = KeptGraph(inputs.tags, for_patching(graph), graph_found)
                     cache.store_graph(kept_at, kept_graph.stored())
         if clean_key is not None and not inputs.changed:
             assert cache is not None

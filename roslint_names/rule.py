@@ -89,6 +89,8 @@ class Rule:
     # Whether ``check_workspace`` reads what a node's code names: its endpoints, the names
     # it uses (``NodeInstance.uses``), its package's literals (``Graph.mentions``). One that
     # reads none keeps its findings where an edit changed only those (``workspace.patch``).
+    # One that does is run over the patched graph, which holds no parameter declarations,
+    # settings or files (``patch.for_patching``): it may not read those.
     reads_code_names: bool = True
 
     def severity_for(self, generation: Generation) -> Severity:

@@ -22,7 +22,7 @@ from roslint_names.registry import load_registry
 from roslint_names.rule import Rule, RuleContext
 from roslint_names.workspace.graph import Graph
 from roslint_names.workspace.index import PackageFiles
-from roslint_names.workspace.patch import Moved, code_edit, patched
+from roslint_names.workspace.patch import Moved, code_edit, for_patching, patched
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 MONITOR = "src/fleet_bringup/src/fleet_monitor.cpp"  # ROS 2, launched by fleet.launch.py
@@ -194,3 +194,20 @@ def test_a_rule_that_reads_no_code_name_finds_the_same_without_them(tmp_path: Pa
         for rule in rules
         if rule.reads_code_names
     )
+
+
+def test_the_rules_run_over_a_patched_graph_read_nothing_it_does_not_keep(tmp_path: Path) -> None:
+    """The CLI keeps a build's graph without the parameters' declarations, settings and
+    files (``for_patching``): the rules it runs over a patched graph must find the same
+    there, and each finds something; the rules that read those find less."""
+    workspace = _Workspace(tmp_path / "ws")
+    graph, _ = workspace.built()
+    kept = for_patching(graph)
+    rules = [rule for rule in workspace.registry.rules if rule.check_workspace is not None]
+    for rule in rules:
+        if rule.reads_code_names:
+            found = _findings(graph, rule)
+            assert found, rule.code
+            assert _findings(kept, rule) == found, rule.code
+    blind = [rule for rule in rules if not rule.reads_code_names]
+    assert any(_findings(kept, rule) != _findings(graph, rule) for rule in blind)

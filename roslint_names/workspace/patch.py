@@ -89,6 +89,26 @@ def _same_places(before: FileFacts, now: FileFacts) -> bool:
     return spans is not None and all(old == new for old, new in spans.items())
 
 
+def for_patching(graph: Graph) -> Graph:
+    """``graph`` less what neither ``patched`` nor a rule run over a patched graph reads
+    (``Rule.reads_code_names``): what nodes declare and read as parameters, the settings
+    and files launch hands them, which only the rules whose built findings a patch keeps
+    read. What the CLI keeps of a build (``same_facts.KeptGraph``): a third of its bytes,
+    loaded by every run that patches it."""
+    nodes = tuple(
+        replace(node, code_parameters=None, parameter_settings=(), parameter_files=())
+        for node in graph.nodes
+    )
+    return replace(
+        graph,
+        nodes=nodes,
+        parameter_files={},
+        parameter_loads=(),
+        unnamed_parameter_files={},
+        parameter_declarations=None,
+    )
+
+
 def _without_endpoints(facts: FileFacts) -> FileFacts:
     kept = tuple(use for use in facts.names if use.role not in ENDPOINT_ROLES)
     return replace(facts, names=kept, literals=())
