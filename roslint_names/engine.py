@@ -214,8 +214,13 @@ def _lint(
                 return stored
     # Read from the manifests of the whole workspace (``plugins``) before the run is keyed,
     # which then covers every description they export (and after the inputs were made:
-    # what the packages are seen to be is taken after they started, ``unchanged``).
-    plugin_names = workspace_plugin_names(named, packages)
+    # what the packages are seen to be is taken after they started, ``unchanged``); or
+    # the last run's, where the inputs took up its packages' lookups (the same files, their
+    # manifests as they were).
+    if packages.restored:
+        plugin_names = frozenset(packages.plugin_names)
+    else:
+        plugin_names = workspace_plugin_names(named, packages)
     if inputs is not None:
         assert cache is not None
         run_key = None if fresh else inputs.key_first()

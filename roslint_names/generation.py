@@ -118,9 +118,13 @@ class PackageGenerations:
         # every plugin description, taken before reading it: what says that a re-run
         # would find the same packages (``unchanged``).
         self.statuses: dict[str, Status | None] = {}
+        # What ``restore`` took up, and how many directories it knew.
+        self._restored: tuple[KeptLookups, int] | None = None
 
     def lookups(self) -> KeptLookups:
         """What the lookups so far found, as builtins (``unchanged`` keeps them)."""
+        if self._restored is not None and len(self._by_directory) == self._restored[1]:
+            return self._restored[0]  # no directory looked up since: what was restored
         places: dict[int, int] = {}  # by the package object: one entry per package
         packages: list[_KeptPackage] = []
         directories: dict[str, int] = {}
@@ -160,7 +164,13 @@ class PackageGenerations:
             return False  # damaged: looked up again
         self._by_directory, self.manifests, self.plugin_names = by_directory, manifests, names
         self.statuses = dict(statuses)
+        self._restored = (lookups, len(by_directory))
         return True
+
+    @property
+    def restored(self) -> bool:
+        """Whether the lookups are an earlier run's (``restore``)."""
+        return self._restored is not None
 
     def for_file(self, path: str | Path) -> Generation | None:
         return self._for_file(path).generation

@@ -6,8 +6,10 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import pytest
 from conftest import CATKIN_PACKAGE, write
 
+from roslint_names.generation import PackageGenerations
 from roslint_names.plugins import exported_descriptions, plugin_names
 
 # ROS 1 navigation, reduced: base_local_planner exports TrajectoryPlannerROS to nav_core,
@@ -107,3 +109,30 @@ def test_a_node_named_like_a_plugin_class_is_the_writers_choice(
     )
     write(tmp_path, RECOVERY, node)
     assert rn203(run_cli, tmp_path) == [(RECOVERY, 9)]
+
+
+@pytest.mark.usefixtures("old_tree")
+def test_a_run_after_an_edit_knows_the_plugins_without_reading_a_manifest(
+    run_cli: Any, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """It takes up the last run's package lookups (``unchanged``), the plugin names with
+    them; an edited description is read again (its status is one they were kept with)."""
+    navigation(tmp_path)
+    assert rn203(run_cli, tmp_path) == []
+    looked_for: list[str] = []
+    is_manifest = PackageGenerations._is_manifest
+
+    def counted(self: PackageGenerations, manifest: str) -> bool:
+        looked_for.append(manifest)
+        return is_manifest(self, manifest)
+
+    monkeypatch.setattr(PackageGenerations, "_is_manifest", counted)
+    recovery = tmp_path / RECOVERY
+    recovery.write_text(recovery.read_text().replace("3.2", "3.25"))
+    assert rn203(run_cli, tmp_path) == []
+    assert looked_for == []
+    renamed = BLP_PLUGIN_XML.replace("base_local_planner/TrajectoryPlannerROS", "blp/Planner")
+    write(tmp_path, "src/navigation/base_local_planner/blp_plugin.xml", renamed)
+    recovery.write_text(recovery.read_text().replace("3.25", "3.3"))
+    assert rn203(run_cli, tmp_path) == [(RECOVERY, 10)]
+    assert looked_for
