@@ -298,7 +298,8 @@ def _run_check(options: argparse.Namespace) -> int:
         # Of the files named one by one: a directory's thousands of files would cost a
         # read each, and the question is "why does my file show nothing?".
         named = {(cwd / path).absolute() for path in options.paths if (cwd / path).is_file()}
-        linted = [source for source in lintable(sources) if source.path in named]
+        # Not a ``Path`` for each of a named directory's files: 0.35 s at 77,000 of them.
+        linted = [source for source in lintable(sources) if source.path in named] if named else []
         for display, fate in fates(linted, settings):
             print(f"roslint-names: {display}: {fate}", file=sys.stderr)
         for path in sorted(named - {source.path for source in linted}):
