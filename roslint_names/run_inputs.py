@@ -137,7 +137,9 @@ class RunInputs:
             ]
         self._contents = [content for content, _, _ in summaries]
         self._keyed_first = True
-        return self._key()
+        key = self._key()
+        self._keying = None  # in the tags and the place now: its statuses (17 MB) go
+        return key
 
     def known_key(self, index: int) -> str | None:
         """The facts key of checked file ``index`` as ``key_first`` found it, if any."""

@@ -89,8 +89,11 @@ class KeptKey:
 
     def keying(self, identity: str) -> Keying | None:
         """What the kept key was made of, if it was kept for ``identity`` and every package
-        status it was kept with is the status now (its files' statuses may differ)."""
+        status it was kept with is the status now (its files' statuses may differ). Asked
+        last: what was kept is let go (30 MB at 77,000 files), ``Keying`` holds what is
+        still needed."""
         kept = self._load()
+        self._kept = None
         if kept is None or kept.identity != identity or not self._packages_as_kept(kept):
             return None
         try:
