@@ -74,10 +74,10 @@ import pickle
 import re
 import sys
 import time
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import IO, Any
 
 from . import __version__, model
 from .model import FileFacts, Generation, Language
@@ -147,6 +147,10 @@ class CacheStats:
     misses: int = 0
     corrupt: int = 0
     written: int = 0
+
+
+# Writes an entry's bytes into the open file (``FactsCache.write_atomically``).
+Writer = Callable[[IO[bytes]], object]
 
 
 @dataclass
@@ -333,14 +337,15 @@ class FactsCache:
         recently used beyond ``RUNS_KEPT``."""
         self.write_newest(self.directory / _RUNS / key, _encode(value), RUNS_KEPT)
 
-    def write_newest(self, entry: Path, blob: bytes, kept: int) -> None:
-        """Write ``blob`` as ``entry`` atomically, then forget all but the ``kept`` most
-        recently written or used entries of its directory."""
+    def write_newest(self, entry: Path, blob: bytes | Writer, kept: int) -> None:
+        """Write ``blob`` (or what a ``Writer`` writes) as ``entry`` atomically, then forget
+        all but the ``kept`` most recently written or used entries of its directory."""
         if self.writable() and self.write_atomically(entry, blob):
             keep_newest(entry.parent, kept)
 
-    def write_atomically(self, entry: Path, blob: bytes) -> bool:
-        """Write ``blob`` as ``entry`` atomically; False (and a problem noted) on failure."""
+    def write_atomically(self, entry: Path, blob: bytes | Writer) -> bool:
+        """Write ``blob`` as ``entry`` atomically; False (and a problem noted) on failure.
+        A ``Writer`` writes into the file itself: a large pickle is not held whole first."""
         # A unique temporary name in the entry's own directory: the rename stays on one
         # file system (so it is atomic) and two writers never share a temporary file.
         temporary = entry.with_name(f".{entry.name}.{os.getpid()}.{os.urandom(4).hex()}.tmp")
@@ -349,7 +354,10 @@ class FactsCache:
             descriptor = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
             try:
                 with os.fdopen(descriptor, "wb") as stream:
-                    stream.write(blob)
+                    if isinstance(blob, bytes):
+                        stream.write(blob)
+                    else:
+                        blob(stream)
                 os.replace(temporary, entry)
             except BaseException:
                 _remove(temporary)

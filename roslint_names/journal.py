@@ -20,6 +20,7 @@ import contextlib
 import os
 import pickle
 from collections.abc import Callable
+from functools import partial
 from pathlib import Path
 from typing import IO, Any
 
@@ -30,6 +31,7 @@ from .reading import open_regular
 Sections = tuple[dict[Any, Any], ...]
 
 _ABSENT = object()
+_PROTOCOL = pickle.HIGHEST_PROTOCOL
 _JOURNAL_SHARE = 4  # the whole is written again once the journal holds 1/4 of its entries
 
 
@@ -90,13 +92,15 @@ class Journaled:
         if sum(map(len, journal)) * _JOURNAL_SHARE > sum(map(len, sections)):
             self._write_base(sections)
             return
-        blob = pickle.dumps((self._version, self._token, journal), pickle.HIGHEST_PROTOCOL)
+        blob = pickle.dumps((self._version, self._token, journal), _PROTOCOL)
         self._cache.write_newest(self._journal_path, blob, self._kept)
 
     def _write_base(self, sections: Sections) -> None:
         token = os.urandom(8).hex()
-        blob = pickle.dumps((self._version, token, sections), pickle.HIGHEST_PROTOCOL)
-        self._cache.write_newest(self._path, blob, self._kept)
+        whole = (self._version, token, sections)  # pickled into the file, not held first
+        self._cache.write_newest(
+            self._path, partial(pickle.dump, whole, protocol=_PROTOCOL), self._kept
+        )
         with contextlib.suppress(OSError):  # none; else left naming a base that is gone
             self._journal_path.unlink()
 
