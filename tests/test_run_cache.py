@@ -246,7 +246,8 @@ def test_a_stored_value_that_is_not_a_result_is_a_miss(
     good = check()
     [entry] = stored_runs(private_cache)
     # Well-formed, checksummed, of fact classes only, but not a run's result.
-    entry.write_bytes(cache_module._encode((("not a diagnostic",), 1, ())))
+    with entry.open("wb") as stream:
+        cache_module._encoded((("not a diagnostic",), 1, ()))(stream)
     again = check()
     assert not reused(again) and again.stdout == good.stdout
 
