@@ -47,8 +47,8 @@ class ContentDigests:
 
     ``summary`` answers for one file; ``save`` keeps what was learned, atomically, in one
     base and journal per workspace (``journal``; the ``KEPT`` most recently saved files
-    are kept). A wrong digest
-    would serve a stale result: the status test and the racy window are what rule it out.
+    are kept). A wrong digest would serve a stale result: the status test and the racy
+    window are what rule it out.
     """
 
     path: Path
