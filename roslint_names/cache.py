@@ -720,6 +720,7 @@ _GRAPH_MODULES = frozenset(
         "roslint_names.workspace.graph",
         "roslint_names.workspace.parameters",
         "roslint_names.workspace.interfaces",
+        "roslint_names.workspace.index",  # the packages a kept graph was built with
     }
 )
 

@@ -272,6 +272,7 @@ def _lint(
         entry_of=entry_of,
     )
     graph: Graph | None = None
+    built_with: list[Package] = []  # the packages the graph was built with
 
     # A run over the files of a run that built the graph, whose facts are the same, takes
     # its graph findings (``same_facts``); any run that builds the graph keeps them.
@@ -313,10 +314,6 @@ def _lint(
                 kept_at,
                 graph_rules,
                 settings,
-                lambda: PackageFiles(
-                    [source.display for source in files],
-                    workspace_packages(workspace, packages),
-                ),
             )
         replayed = _take_facts(gathered, checks, last_replay, inputs, rules=rule_of, patch=patch)
         workers = dispatcher.workers  # that extracted the files (specialisations may start some)
@@ -348,9 +345,8 @@ def _lint(
                 dispatcher=dispatcher,
                 ros1_python2=python2,
             )
-            graph = build(
-                known_facts, workspace_packages(workspace, packages), specialise, specialise.prepare
-            )
+            built_with = workspace_packages(workspace, packages)
+            graph = build(known_facts, built_with, specialise, specialise.prepare)
             reported_graph = report_graph(
                 graph,
                 graph_rules,
@@ -419,7 +415,9 @@ def _lint(
                 # What a later run over the workspace patches (``workspace.patch``); not
                 # a run over some files (pre-commit's), whose set is seldom run again.
                 if graph is not None and not context:
-                    kept_graph = KeptGraph(inputs.tags, for_patching(graph), graph_found)
+                    kept_graph = KeptGraph(
+                        inputs.tags, for_patching(graph), graph_found, tuple(built_with)
+                    )
                     cache.store_graph(kept_at, kept_graph.stored())
         if clean_key is not None and not inputs.changed:
             assert cache is not None
@@ -801,7 +799,6 @@ class _GraphPatch:
     stored_at: str  # the replay's key: its graph is kept under it
     rules: Sequence[Rule]
     settings: Settings
-    packages: Callable[[], PackageFiles]
 
     def __call__(self, replay: Replay, arrived: Sequence[_Arrived]) -> _Replayed | None:
         files = self.gathered.files
@@ -845,7 +842,7 @@ class _GraphPatch:
             graph,
             edits,
             lambda display: None if (at := slots.get(display)) is None else facts_at(at),
-            self.packages,
+            lambda: PackageFiles([source.display for source in files], stored.packages),
         )
         if patched is None:
             return None

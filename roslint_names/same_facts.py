@@ -51,6 +51,7 @@ from .moves import Moves, UnplacedError, moved_diagnostic, moved_finding, moved_
 from .symbols import uses_constants
 from .wiring import wired_by
 from .workspace.graph import Graph
+from .workspace.index import Package
 
 Built = tuple[tuple[FileFacts, "str | None"], ...]  # ``BuiltSources.given``
 
@@ -222,7 +223,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
     )
 
 
-_GRAPH_FORMAT = "graph 2"
+_GRAPH_FORMAT = "graph 3"
 
 # The graph rules' findings per reported file (its index), as ``Replay.graph`` holds them.
 GraphFound = Mapping[int, tuple[tuple[str, Finding], ...]]
@@ -242,18 +243,24 @@ class KeptGraph:
     tags: tuple[str, ...]
     graph: Graph
     found: GraphFound
+    # The workspace's packages as the build had them: the same where the graph can be
+    # patched (no manifest or ``.srv`` file changed), and gathered from every file else.
+    packages: tuple[Package, ...]
 
     def stored(self) -> tuple[object, ...]:
-        return (_GRAPH_FORMAT, self.tags, self.graph, tuple(sorted(self.found.items())))
+        found = tuple(sorted(self.found.items()))
+        return (_GRAPH_FORMAT, self.tags, self.graph, found, self.packages)
 
 
 def loaded_graph(value: object, files: int, reported: int) -> KeptGraph | None:
     """A kept graph of a run over ``files`` checked files, ``reported`` of them reported;
     None for anything else."""
-    if not isinstance(value, tuple) or len(value) != 4:
+    if not isinstance(value, tuple) or len(value) != 5:
         return None
-    form, tags, graph, found = value
+    form, tags, graph, found, packages = value
     if form != _GRAPH_FORMAT or not _strings(tags) or len(tags) != files:
+        return None
+    if not (isinstance(packages, tuple) and all(isinstance(p, Package) for p in packages)):
         return None
     try:
         found_map = {
@@ -268,7 +275,7 @@ def loaded_graph(value: object, files: int, reported: int) -> KeptGraph | None:
         and all(isinstance(f, Finding) for items in found_map.values() for _, f in items)
     ):
         return None
-    return KeptGraph(tags, graph, found_map)
+    return KeptGraph(tags, graph, found_map, packages)
 
 
 def _by_text(service_type: tuple[Generation | None, str]) -> tuple[str, str]:

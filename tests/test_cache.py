@@ -29,6 +29,7 @@ from roslint_names.model import (
     Span,
 )
 from roslint_names.workspace.graph import EdgeKind, Endpoint, Graph, Location, NodeInstance, Reach
+from roslint_names.workspace.index import Package
 from roslint_names.workspace.parameters import Incomplete, NodeParameters, ParameterUse
 from tests.conftest import write, write_package
 
@@ -607,8 +608,10 @@ def test_a_kept_graph_reads_back_as_it_was(tmp_path: Path) -> None:
     )
     graph = Graph((node,), (endpoint,), {"a": frozenset({"a"})})
     cache = FactsCache(tmp_path)
-    cache.store_graph("k", ("graph 1", ("t",), graph))
-    assert FactsCache(tmp_path).load_graph("k") == ("graph 1", ("t",), graph)
+    # The packages the graph was built with, kept with it (``same_facts.KeptGraph``).
+    package = Package("a", "src/a", frozenset({"rclcpp"}), generation=Generation.ROS2)
+    cache.store_graph("k", ("graph 1", ("t",), graph, (package,)))
+    assert FactsCache(tmp_path).load_graph("k") == ("graph 1", ("t",), graph, (package,))
 
 
 @pytest.mark.parametrize("value", [os.getcwd, Path("x"), pickle.loads])
