@@ -595,6 +595,26 @@ def rekeyed(monkeypatch: pytest.MonkeyPatch) -> tuple[list[str], list[str]]:
     return files, manifests
 
 
+def edited_after_a_run(
+    check: Callable[..., Any],
+    workspace: Path,
+    rekeyed: tuple[list[str], list[str]],
+    *changes: Callable[[Path], object],
+) -> Any:
+    """Run, make ``changes`` with the times they move set back, and run again: that run,
+    ``rekeyed`` holding what it alone keyed and looked for."""
+    age_all(workspace)
+    check()
+    for seen in rekeyed:
+        seen.clear()
+    before = time.time_ns()
+    time.sleep(0.05)  # change times tick with the kernel's coarse clock
+    for change in changes:
+        change(workspace)
+    age_all(workspace, before)
+    return check()
+
+
 @pytest.mark.usefixtures("old_tree")
 def test_the_run_after_an_edit_keys_the_edited_file_alone(
     check: Callable[..., Any],
@@ -605,16 +625,8 @@ def test_the_run_after_an_edit_keys_the_edited_file_alone(
     """It takes up what the last run's key was made of (``unchanged.Keying``): no
     package.xml is looked for again, each other file keeps its facts key; and prints what
     a run with no cache prints."""
-    age_all(workspace)
-    check()
+    after = edited_after_a_run(check, workspace, rekeyed, _edit_code)
     files, manifests = rekeyed
-    files.clear()
-    manifests.clear()
-    before = time.time_ns()
-    time.sleep(0.05)  # change times tick with the kernel's coarse clock
-    _edit_code(workspace)
-    age_all(workspace, before)
-    after = check()
     assert keyed == [1, 1] and files == ["driver.cpp"] and manifests == []
     assert after.stdout == check("--no-cache").stdout
     keyed.clear()
@@ -632,17 +644,8 @@ def test_a_changed_manifest_or_service_is_read_again_after_an_edit(
     """What the packages say is taken up only where every manifest is as it was; the
     run's place only where every ``.srv`` file is."""
     write(workspace, "src/robot_base/srv/CmdVel.srv", "---\nbool ok\n")
-    age_all(workspace)
-    check()
+    after = edited_after_a_run(check, workspace, rekeyed, _edit_code, change)
     files, manifests = rekeyed
-    files.clear()
-    manifests.clear()
-    before = time.time_ns()
-    time.sleep(0.05)
-    _edit_code(workspace)
-    change(workspace)
-    age_all(workspace, before)
-    after = check()
     if change is _package_depends:
         assert manifests and len(files) == 3  # every file keyed again
     else:
@@ -667,18 +670,13 @@ def test_a_damaged_kept_keying_keys_every_file(
     rekeyed: tuple[list[str], list[str]],
     made_of: bytes,
 ) -> None:
-    age_all(workspace)
-    check()
-    (kept,) = private_cache.glob("facts-v*/keys/*")
-    loaded = pickle.loads(kept.read_bytes())
-    kept.write_bytes(pickle.dumps((*loaded[:-1], made_of)))
+    def damaged(_: Path) -> None:
+        (kept,) = private_cache.glob("facts-v*/keys/*")
+        loaded = pickle.loads(kept.read_bytes())
+        kept.write_bytes(pickle.dumps((*loaded[:-1], made_of)))
+
+    after = edited_after_a_run(check, workspace, rekeyed, damaged, _edit_code)
     files, _ = rekeyed
-    files.clear()
-    before = time.time_ns()
-    time.sleep(0.05)
-    _edit_code(workspace)
-    age_all(workspace, before)
-    after = check()
     assert after.exit_code == 1 and len(files) == 3
     assert after.stdout == check("--no-cache").stdout
 
