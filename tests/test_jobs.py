@@ -185,6 +185,28 @@ def test_dispatcher_returns_every_result_once(jobs: int, count: int, started: in
 
 
 @pytest.mark.usefixtures("small_chunks")
+def test_putting_an_item_waits_on_no_future(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The main process asks after every item it puts which chunks came back: by each
+    future's state, not ``concurrent.futures.wait``, which installs a waiter on every
+    future in flight (0.25 s of a cold run's 3 s serial part). It waits only where it
+    must: the workers' queue full, or every item put."""
+    import concurrent.futures
+
+    waits: list[object] = []
+    real = concurrent.futures.wait
+
+    def counted(futures: Any, timeout: float | None = None, **options: Any) -> Any:
+        waits.append(timeout)
+        return real(futures, timeout=timeout, **options)
+
+    monkeypatch.setattr(concurrent.futures, "wait", counted)
+    count = 400
+    results = run_all(Dispatcher(_square_all, 2, min_items=1), range(count))
+    assert sorted(results) == [(item, item * item) for item in range(count)]
+    assert waits and 0 not in waits  # it waited, never only to poll
+
+
+@pytest.mark.usefixtures("small_chunks")
 @pytest.mark.parametrize("jobs", [1, 2])
 def test_a_worker_error_reaches_the_caller(jobs: int) -> None:
     with pytest.raises(ValueError, match="seven"):
