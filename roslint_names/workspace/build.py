@@ -269,11 +269,15 @@ def _mentions(index: WorkspaceIndex, nodes: Iterable[NodeInstance]) -> dict[str,
     has remaps of its own."""
     packages = {node.package for node in nodes if node.package and any(r.own for r in node.remaps)}
     return {
-        package: frozenset(
-            literal for path in index.files_of(package) for literal in index.facts[path].literals
-        )
+        package: package_literals(index.facts[path] for path in index.files_of(package))
         for package in sorted(packages)
     }
+
+
+def package_literals(code: Iterable[FileFacts]) -> frozenset[str]:
+    """The literals of a package's files, as ``Graph.mentions`` keeps them (``_mentions``,
+    and ``patch`` for an edited package)."""
+    return frozenset(literal for facts in code for literal in facts.literals)
 
 
 # ---------------------------------------------------------------------------------------

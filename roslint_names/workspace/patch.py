@@ -33,6 +33,7 @@ from roslint_names.workspace.build import (
     _Instance,
     _resolve_code,
     _unique,
+    package_literals,
 )
 from roslint_names.workspace.graph import Endpoint, Graph, Location, NodeInstance
 from roslint_names.workspace.index import CODE_LANGUAGES, PackageFiles
@@ -150,11 +151,10 @@ def _mentions(
     mentions = dict(graph.mentions)
     for name in edited & mentions.keys():
         code = [facts_of(path) for path in owners.files_of(name)]
-        if any(facts is None for facts in code):
+        known = [facts for facts in code if facts is not None]
+        if len(known) != len(code):
             return None
-        mentions[name] = frozenset(
-            literal for facts in code if facts is not None for literal in facts.literals
-        )
+        mentions[name] = package_literals(known)
     return mentions
 
 
