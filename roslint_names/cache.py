@@ -659,7 +659,7 @@ def _decode(blob: bytes, unpickler: type[pickle.Unpickler] | None = None) -> obj
     header = len(_MAGIC) + _CHECKSUM_BYTES
     if len(blob) < header or not blob.startswith(_MAGIC):
         return None
-    # Not sliced: the kept graph is 13 MB, and the copy was the peak of a run patching it.
+    # Not sliced: the kept graph is 14 MB, and the copy was the peak of a run patching it.
     payload = memoryview(blob)[header:]
     if hashlib.blake2b(payload, digest_size=_CHECKSUM_BYTES).digest() != blob[len(_MAGIC) : header]:
         return None
