@@ -9,8 +9,10 @@ the two graphs must be equal.
 
 from __future__ import annotations
 
+import random
 import shutil
 from collections.abc import Callable
+from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
 
@@ -24,7 +26,7 @@ from roslint_names.generation import PackageGenerations
 from roslint_names.model import FileFacts
 from roslint_names.registry import load_registry
 from roslint_names.workers import Dispatcher
-from roslint_names.workspace.build import build
+from roslint_names.workspace.build import _Sorting, _unique, build
 from roslint_names.workspace.graph import Graph
 from roslint_names.workspace.memory import GraphMemory
 
@@ -274,3 +276,101 @@ def test_a_changed_manifest_keeps_nothing(tmp_path: Path, relative: str) -> None
     remembered, fresh = ws.graphs()
     assert ws.memory.moved
     assert remembered == fresh
+
+
+def _never() -> object:
+    raise AssertionError("made again: the memory did not keep it")
+
+
+_LAUNCH_PIECES = (
+    "launch files",
+    "launch roots",
+    "unlaunched programs",
+    "workspace declarations",
+    "sorted nodes",
+    "sorted endpoints",
+)
+
+
+def test_a_node_added_to_a_launch_file_keeps_what_no_launch_file_makes(tmp_path: Path) -> None:
+    """The code's programs and declarations, which files are launch files and which are
+    roots: the last build's while no changed file differs in what each is made from."""
+    ws = _Workspace(tmp_path / "ws")
+    ws.graphs()
+    kept = {name: ws.memory.piece(name, (), _never) for name in _LAUNCH_PIECES}
+    ws.edit(
+        f"{TURTLE}/launch/base.launch",
+        "</launch>",
+        '  <node name="spare_relay" pkg="turtle_bringup" type="odom_relay"/>\n</launch>',
+    )
+    remembered, fresh = ws.graphs()
+    assert remembered == fresh
+    assert any(node.name.endswith("/spare_relay") for node in fresh.nodes)
+    for name, piece in kept.items():
+        assert ws.memory.piece(name, (), _never) is piece, name
+
+
+def test_a_parameter_declared_in_code_makes_the_declarations_again(tmp_path: Path) -> None:
+    ws = _Workspace(tmp_path / "ws")
+    ws.graphs()
+    before = ws.memory.piece("workspace declarations", (), _never)
+    ws.edit(
+        f"{FLEET}/src/dock_manager.cpp",
+        'declare_parameter("dock_frame", "charging_dock");',
+        'declare_parameter("dock_frame", "charging_dock");\n'
+        '    declare_parameter("undock_speed", 0.1);',
+    )
+    remembered, fresh = ws.graphs()
+    assert remembered == fresh
+    assert fresh.parameter_declarations is not None
+    assert "undock_speed" in fresh.parameter_declarations.names
+    assert ws.memory.piece("workspace declarations", (), _never) is not before
+
+
+@dataclass(frozen=True)
+class _Item:
+    key: int
+    label: str  # items of one key with other labels are not equal: both kept, in order
+
+    def sort_key(self) -> int:
+        return self.key
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_a_sorting_kept_between_builds_sorts_as_unique_does(seed: int) -> None:
+    """``_Sorting`` takes the last sort where few items are new or gone, and must give
+    exactly what ``_unique`` gives: shared keys, equal items, items of one key in their
+    order of arrival, the kept items reordered."""
+    chance = random.Random(seed)
+    # Keys mostly distinct, as a graph's are; some shared, with equal items and not.
+    items = [_Item(chance.randrange(20_000), chance.choice("ab")) for _ in range(400)]
+    items += [_Item(item.key, chance.choice("ab")) for item in items[:20]]
+    chance.shuffle(items)
+    sorting: _Sorting[_Item] = _Sorting(_Item.sort_key)
+    taken = 0
+    for _ in range(40):
+        edited = list(items)
+        for _ in range(chance.randrange(1, 6)):
+            what = chance.random()
+            at = chance.randrange(len(edited))
+            if what < 0.3:  # made again: a new object of the same value
+                edited[at] = _Item(edited[at].key, edited[at].label)
+            elif what < 0.5:
+                del edited[at]
+            elif what < 0.8:
+                known = chance.random() < 0.2  # the key of another item
+                key = chance.choice(edited).key if known else chance.randrange(20_000)
+                edited.insert(at, _Item(key, chance.choice("ab")))
+            elif what < 0.81:  # the same item twice: sorted anew while it stays
+                edited.insert(at, edited[chance.randrange(len(edited))])
+            elif what < 0.86:  # the kept items in another order
+                other = chance.randrange(len(edited))
+                edited[at], edited[other] = edited[other], edited[at]
+        expected = _unique(edited, _Item.sort_key)
+        updated = sorting._updated(edited)  # the kept sort, where it can be taken
+        if updated is not None:
+            assert updated.items == expected
+            taken += 1
+        assert sorting(edited) == expected
+        items = edited
+    assert taken >= 3  # the kept sort was taken, not only made anew

@@ -11,9 +11,11 @@ from __future__ import annotations
 
 import posixpath
 import re
+from bisect import bisect_left
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
-from typing import Any, TypeVar
+from itertools import pairwise
+from typing import Any, Generic, TypeVar
 
 from roslint_names.model import (
     ENDPOINT_ROLES,
@@ -43,7 +45,7 @@ from roslint_names.workspace.graph import (
 )
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
 from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Prepare, Specialise
-from roslint_names.workspace.memory import GraphMemory, Reads
+from roslint_names.workspace.memory import Field, GraphMemory, Reads
 from roslint_names.workspace.parameter_files import ros1_names, ros2_names
 from roslint_names.workspace.parameter_settings import (
     file_settings,
@@ -103,7 +105,7 @@ def build(
     # Code no build file compiles never runs: it joins no node (``built``).
     unbuilt = memory.piece("unbuilt", BUILD_FIELDS, lambda: unbuilt_sources(index))
     launched_sources: set[str] = set(unbuilt)
-    trees = LaunchTrees(index, specialise, prepare, memory.reads("launch trees"))
+    trees = LaunchTrees(index, specialise, prepare, memory)
     # parameter file -> the code (and generation) of each node of unknown name it is
     # handed to
     unnamed: dict[str, set[tuple[Generation, tuple[str, ...]]]] = {}
@@ -128,7 +130,14 @@ def build(
             unnamed.setdefault(path, set()).add(receiver)
     unlaunched = memory.reads("unlaunched")
     code = memory.piece("code files", ("language",), lambda: _code_files(index))
-    for sources in _unlaunched_programs(index, tests, code, launched_sources):
+    programs: dict[frozenset[str], list[tuple[str, ...]]] = memory.piece(
+        "unlaunched programs", _PROGRAM_FIELDS, dict
+    )
+    launched_key = frozenset(launched_sources)
+    if launched_key not in programs:  # the last build's, where the same code was launched
+        programs.clear()
+        programs[launched_key] = _unlaunched_programs(index, tests, code, launched_sources)
+    for sources in programs[launched_key]:
         if sources not in unlaunched:
             unlaunched[sources] = (_unlaunched_instance(index, sources), Reads(sources))
         node, found_endpoints = unlaunched[sources][0]
@@ -159,8 +168,8 @@ def build(
     ]
     finished.forget_the_rest()
     return Graph(
-        _unique(nodes, NodeInstance.sort_key),
-        _unique(endpoints, Endpoint.sort_key),
+        _sorting(memory, "sorted nodes", NodeInstance.sort_key)(nodes),
+        _sorting(memory, "sorted endpoints", Endpoint.sort_key)(endpoints),
         index.companions(),
         _mentions(index, nodes),
         index.service_definitions(),
@@ -177,29 +186,118 @@ def build(
     )
 
 
+_T = TypeVar("_T")
+_NO_KEY = object()
+
+
+def _sorting(
+    memory: GraphMemory, name: str, key: Callable[[_T], Any]
+) -> Callable[[Iterable[_T]], tuple[_T, ...]]:
+    """``_unique`` by ``key``, through the memory's ``_Sorting`` where it keeps pieces for
+    a next build."""
+    if not memory.keeps:
+        return lambda items: _unique(items, key)
+    sorting: _Sorting[_T] = memory.piece(name, (), lambda: _Sorting(key))
+    return sorting
+
+
 def _unique(items: Iterable[_T], key: Callable[[_T], Any]) -> tuple[_T, ...]:
     """``items`` sorted by ``key``, each once. Equal items have equal keys: only the
     items of one key are compared, and none is hashed (hashing a node hashes all it
     holds, 17,000 nodes a build). Items of one key but not equal keep their order."""
-    found: list[_T] = []
-    run: list[_T] = []  # the items found of the current key
-    last: object = _NO_KEY
-    listed = list(items)
-    # Each key made once; a tie goes to the order of arrival, never to the items.
-    keyed = sorted((key(item), position) for position, item in enumerate(listed))
-    for current, position in keyed:
-        item = listed[position]
-        if current != last:
-            run = []
-            last = current
-        if item not in run:
-            run.append(item)
-            found.append(item)
-    return tuple(found)
+    return _Sorted.of(list(items), key).items
 
 
-_T = TypeVar("_T")
-_NO_KEY = object()
+@dataclass(frozen=True)
+class _Sorted(Generic[_T]):
+    """What ``_unique`` makes of a list: the items sorted and each once, with their keys;
+    and the keys that more than one item of the list has (those only are compared)."""
+
+    items: tuple[_T, ...]
+    keys: list[Any]
+    shared: set[Any]
+
+    @classmethod
+    def of(cls, listed: list[_T], key: Callable[[_T], Any]) -> _Sorted[_T]:
+        found: list[_T] = []
+        found_keys: list[Any] = []
+        shared: set[Any] = set()
+        run: list[_T] = []  # the items found of the current key
+        last: object = _NO_KEY
+        # Each key made once; a tie goes to the order of arrival, never to the items.
+        keyed = sorted((key(item), position) for position, item in enumerate(listed))
+        for current, position in keyed:
+            item = listed[position]
+            if current != last:
+                run = []
+                last = current
+            else:
+                shared.add(current)
+            if item not in run:
+                run.append(item)
+                found.append(item)
+                found_keys.append(current)
+        return cls(tuple(found), found_keys, shared)
+
+
+class _Sorting(Generic[_T]):
+    """``_unique`` of one list of each build (its nodes, its endpoints), taken from the
+    last build's where few items are new: a launch file's edit makes its trees' nodes
+    again, and sorting 17,000 nodes and 13,000 endpoints anew cost 0.13 s of the
+    language server's 1 s after it. The result is ``_unique``'s: where an item new or
+    gone shares its key with another item, or the items kept came in another order
+    (which orders the items of one key), the list is sorted anew."""
+
+    def __init__(self, key: Callable[[_T], Any]) -> None:
+        self._key = key
+        self._listed: list[_T] = []  # the last list: holding it keeps its items' ids theirs
+        self._positions: dict[int, int] = {}  # id of an item of it -> where
+        self._sorted: _Sorted[_T] | None = None
+
+    def __call__(self, items: Iterable[_T]) -> tuple[_T, ...]:
+        listed = list(items)
+        found = self._updated(listed) or _Sorted.of(listed, self._key)
+        self._listed, self._sorted = listed, found
+        self._positions = {id(item): position for position, item in enumerate(listed)}
+        return found.items
+
+    def _updated(self, listed: list[_T]) -> _Sorted[_T] | None:
+        last = self._sorted
+        if last is None:
+            return None
+        added: list[_T] = []
+        kept: set[int] = set()
+        previous = -1
+        for item in listed:
+            position = self._positions.get(id(item), -1)
+            if position < 0:
+                added.append(item)
+            elif position <= previous:
+                return None  # the kept items in another order
+            else:
+                kept.add(position)
+                previous = position
+        gone = {id(item) for position, item in enumerate(self._listed) if position not in kept}
+        if len(added) + len(gone) > len(listed) // 8:
+            return None
+        items, keys = [], []
+        for item, key in zip(last.items, last.keys, strict=True):
+            if id(item) in gone:
+                if key in last.shared:
+                    return None  # an item of its key may have been left out for it
+            else:
+                items.append(item)
+                keys.append(key)
+        fresh = sorted((self._key(item), index) for index, item in enumerate(added))
+        if any(one == other for (one, _), (other, _) in pairwise(fresh)):
+            return None  # two new items of one key
+        for key, index in fresh:
+            at = bisect_left(keys, key)
+            if at < len(keys) and keys[at] == key:
+                return None
+            items.insert(at, added[index])
+            keys.insert(at, key)
+        return _Sorted(tuple(items), keys, last.shared)
 
 
 @dataclass(frozen=True)
@@ -592,6 +690,11 @@ def _is_test_launch(tests: _TestFiles, path: str) -> bool:
 
 def _has_endpoints(facts: FileFacts) -> bool:
     return any(use.role in ENDPOINT_ROLES for use in facts.names)
+
+
+# What ``_unlaunched_programs`` reads of each file besides where it is: the build's
+# programs, which files are code, and which of those declare endpoints.
+_PROGRAM_FIELDS: tuple[Field, ...] = ("executables", "language", _has_endpoints)
 
 
 # ---------------------------------------------------------------------------------------

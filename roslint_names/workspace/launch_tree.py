@@ -12,7 +12,6 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
-from typing import Any
 
 from roslint_names.model import (
     FileFacts,
@@ -27,7 +26,7 @@ from roslint_names.model import (
 from roslint_names.names import join_namespace
 from roslint_names.workspace.graph import Location
 from roslint_names.workspace.index import WorkspaceIndex, join, parent
-from roslint_names.workspace.memory import Reads
+from roslint_names.workspace.memory import GraphMemory, Reads
 
 LAUNCH_LANGUAGES = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.LAUNCH_PYTHON})
 MAX_INCLUDE_DEPTH = 16  # deeper than any real bringup; stops include cycles and blow-ups
@@ -105,18 +104,28 @@ class LaunchTrees:
         index: WorkspaceIndex,
         specialise: Specialise,
         prepare: Prepare | None = None,
-        kept: dict[Any, tuple[Any, Reads]] | None = None,
+        memory: GraphMemory | None = None,
     ) -> None:
-        """``kept``: each root's tree with the files its walk read, from the last build
-        (``memory.GraphMemory``): a tree whose files did not change is not walked again."""
+        """``memory``: what the last build left (``memory.GraphMemory``): a tree whose
+        files did not change is not walked again, and the launch files and the roots are
+        the last build's where no changed file differs in what they are made from."""
+        memory = GraphMemory(keeps=False) if memory is None else memory
         self.index = index
         self.specialise = specialise
         self.prepare = prepare
-        self._trees: dict[Any, tuple[Any, Reads]] = {} if kept is None else kept
-        self.launch_files = sorted(
+        self._trees = memory.reads("launch trees")
+        self.launch_files: list[str] = memory.piece(
+            "launch files", _LAUNCH_FILE_FIELDS, self._launch_files
+        )
+        self._roots: list[str] = memory.piece(
+            "launch roots", (*_LAUNCH_FILE_FIELDS, _include_targets), self._find_roots
+        )
+
+    def _launch_files(self) -> list[str]:
+        return sorted(
             path
-            for path, facts in index.facts.items()
-            if facts.language in LAUNCH_LANGUAGES and runs(index, facts)
+            for path, facts in self.index.facts.items()
+            if facts.language in LAUNCH_LANGUAGES and runs(self.index, facts)
         )
 
     def target(self, path: str, include: LaunchInclude) -> str | None:
@@ -136,6 +145,9 @@ class LaunchTrees:
         return candidate if candidate in self.index.facts else None
 
     def roots(self) -> list[str]:
+        return self._roots
+
+    def _find_roots(self) -> list[str]:
         included = {
             self.target(path, include)
             for path in self.launch_files
@@ -280,6 +292,15 @@ class LaunchTrees:
             site_namespaces=(*frame.site_namespaces, namespace),
             conditional=frame.conditional or node.conditional,
         )
+
+
+# What decides whether a file is a launch file a tool runs (``runs``), besides where it is
+_LAUNCH_FILE_FIELDS = ("language", "generation")
+
+
+def _include_targets(facts: FileFacts) -> tuple[tuple[str | None, str | None], ...]:
+    """What a launch file's includes name: all ``LaunchTrees.roots`` reads of them."""
+    return tuple((include.package, include.path) for include in facts.includes)
 
 
 def _start(root: str) -> _Frame:

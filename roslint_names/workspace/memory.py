@@ -15,8 +15,9 @@ executable has): nothing is taken back then. Otherwise each piece says what it w
 made from:
 
 - a piece made from one field of every file's facts (the index's executables, the build
-  files' compiled sources, the classes the parameter sets follow) is taken back when no
-  changed file's field differs (``same``);
+  files' compiled sources, the classes the parameter sets follow), or from what a
+  function makes of each file's facts (what its code declares as parameters), is taken
+  back when no changed file's field or view differs (``same``);
 - a piece made from some files (a node instance from its launch file, its code and its
   parameter files; a launch tree from the files it visits; a node's parameters from its
   code, the headers and base classes followed, its packages' code) is taken back when
@@ -37,6 +38,8 @@ from roslint_names.model import FileFacts
 from roslint_names.workspace.index import Package, WorkspaceIndex
 
 T = TypeVar("T")
+# What a piece is made from in each file's facts: a field, or what a function makes of them
+Field = str | Callable[[FileFacts], object]
 
 
 @dataclass(frozen=True)
@@ -71,11 +74,11 @@ class GraphMemory:
         self.changed: frozenset[str] = frozenset()  # files whose facts differ
         self.changed_packages: frozenset[str] = frozenset()  # the packages holding them
         self._index: WorkspaceIndex | None = None
-        self._pieces: dict[str, tuple[tuple[str, ...], Any]] = {}  # name: (fields, value)
+        self._pieces: dict[str, tuple[tuple[Field, ...], Any]] = {}  # name: (fields, value)
         # Pieces made from some files, by what they are for: value and what it read; and
         # the fields of every file's facts each kind is made from besides.
         self._reads: dict[str, dict[Any, tuple[Any, Reads]]] = {}
-        self._reads_fields: dict[str, tuple[str, ...]] = {}
+        self._reads_fields: dict[str, tuple[Field, ...]] = {}
 
     def begin(self, facts: Mapping[str, FileFacts], packages: Sequence[Package]) -> WorkspaceIndex:
         """Compare ``facts`` (display path -> facts) with the last build's; the index of
@@ -122,15 +125,15 @@ class GraphMemory:
                     del kept[key]
         return self._index
 
-    def same(self, *fields: str) -> bool:
+    def same(self, *fields: Field) -> bool:
         """Whether every changed file's facts agree on ``fields`` before and after."""
         return not self.moved and all(
-            getattr(old, field) == getattr(new, field)
+            _viewed(old, field) == _viewed(new, field)
             for old, new in self._pairs
             for field in fields
         )
 
-    def piece(self, name: str, fields: tuple[str, ...], make: Callable[[], T]) -> T:
+    def piece(self, name: str, fields: tuple[Field, ...], make: Callable[[], T]) -> T:
         """The last build's piece ``name`` where no changed file differs in ``fields``
         (what it is made from), else made again."""
         if name in self._pieces:
@@ -145,9 +148,13 @@ class GraphMemory:
         nothing for a next build."""
         return Reads(paths, packages) if self.keeps else NOTHING
 
-    def reads(self, kind: str, fields: tuple[str, ...] = ()) -> dict[Any, tuple[Any, Reads]]:
+    def reads(self, kind: str, fields: tuple[Field, ...] = ()) -> dict[Any, tuple[Any, Reads]]:
         """The pieces of one kind made from some files each (and from ``fields`` of every
         file's facts), those still valid (``begin`` forgot the others): the map a build
         takes from and adds to."""
         self._reads_fields[kind] = fields
         return self._reads.setdefault(kind, {})
+
+
+def _viewed(facts: FileFacts, field: Field) -> object:
+    return getattr(facts, field) if isinstance(field, str) else field(facts)

