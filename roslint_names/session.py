@@ -144,6 +144,8 @@ class Session:
         self._graph_made_from: dict[str, FileFacts] = {}
         self._graph_basis: dict[str, FileFacts] = {}
         self._graph_specialised: frozenset[str] = frozenset()
+        # The last ``_changed_since``: its basis, facts and specialised files, and answer
+        self._changed: tuple[Any, ...] | None = None
         self._graph_items: dict[str, list[tuple[Rule, WorkspaceFinding]]] = {}
 
     def load(self) -> None:
@@ -403,15 +405,22 @@ class Session:
         then and now; None where the files are not the same, or one of them was
         extracted again by the last build under an includer's arguments (its bytes, not
         only its facts, made the graph)."""
-        if facts.keys() != basis.keys():
-            return None
-        changed = [
-            (display, then, now)
-            for display, now in facts.items()
-            if (then := basis[display]) is not now
-        ]
-        if any(display in self._graph_specialised for display, _, _ in changed):
-            return None
+        known, specialised = self._changed, self._graph_specialised
+        if known is not None and all(
+            one is other for one, other in zip(known, (basis, facts, specialised), strict=False)
+        ):
+            answer: list[tuple[str, FileFacts, FileFacts]] | None = known[3]
+            return answer  # asked by ``_moved_items``, then ``_patched_graph``
+        changed: list[tuple[str, FileFacts, FileFacts]] | None = None
+        if facts.keys() == basis.keys():
+            changed = [
+                (display, then, now)
+                for display, now in facts.items()
+                if (then := basis[display]) is not now
+            ]
+            if any(display in self._graph_specialised for display, _, _ in changed):
+                changed = None
+        self._changed = (basis, facts, specialised, changed)
         return changed
 
     def _note_wiring(self, facts: FileFacts, data: Callable[[], bytes | str]) -> None:
