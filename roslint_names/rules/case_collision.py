@@ -23,15 +23,31 @@ from .graph_common import finding, instances, launch_site, where
 _Uses = dict[tuple[str, str], list[tuple[Location, Placed]]]
 
 
+def _colliding(graph: Graph) -> set[str]:
+    """The lower-case forms shared by two resolved names (of endpoints the rule judges,
+    and of launched nodes): the only names ``_uses`` must place. Most of a workspace's
+    tens of thousands are alone in their case."""
+    names = {endpoint.resource for endpoint in graph.endpoints if endpoint.certain}
+    names.update(node.name for node in graph.nodes if node.launched_at)
+    spellings: dict[str, int] = defaultdict(int)
+    for name in names:
+        spellings[name.lower()] += 1
+    return {lower for lower, count in spellings.items() if count > 1}
+
+
 def _uses(graph: Graph) -> _Uses:
-    nodes = instances(graph)
+    colliding = _colliding(graph)
     spellings: _Uses = defaultdict(list)
+    if not colliding:
+        return spellings
+    nodes = instances(graph)
     by_code: dict[Location, set[str]] = defaultdict(set)
     for endpoint in graph.endpoints:
-        by_code[endpoint.location].add(endpoint.resource)
+        if endpoint.resource.lower() in colliding:  # what _spelled_twice compares
+            by_code[endpoint.location].add(endpoint.resource)
     for endpoint in graph.endpoints:
-        if not endpoint.certain:
-            continue  # placed in the node's namespace by guess
+        if not endpoint.certain or endpoint.resource.lower() not in colliding:
+            continue  # placed in the node's namespace by guess, or alone in its case
         location = endpoint.location
         node = nodes.get((endpoint.root, endpoint.node))
         # One code location under two spellings: the namespaces differ in case.
@@ -41,7 +57,7 @@ def _uses(graph: Graph) -> _Uses:
         spellings[(endpoint.resource_kind.value, endpoint.resource)].append((location, endpoint))
     for node in graph.nodes:
         site = launch_site(node)
-        if site is not None:
+        if site is not None and node.name.lower() in colliding:
             spellings[("node", node.name)].append((site, node))
     return spellings
 
