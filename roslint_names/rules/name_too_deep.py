@@ -127,8 +127,7 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
     subscriber's remap of a name a publisher of the workspace produces is left to the
     publisher's finding, which lists it."""
     limit = context.max_depth
-    sides = _sides(graph)
-    producers = _producers(graph, sides)
+    looked_up = _LookedUp(graph)
     # remap location -> node name -> the first launch of that node (trees including one
     # file twice start the same node twice)
     deep_remaps: dict[Location, dict[str, _Launch]] = {}
@@ -137,11 +136,11 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
     for instance in graph.nodes:
         for remap in instance.remaps:
             remapped.add((instance.root, instance.name, remap.target))
-            side = sides[(instance.root, instance.name, remap)]
             if not _judged_here(instance, remap, limit):
                 continue
+            side = looked_up.side(instance, remap)
             location = Location(remap.path, remap.target_span or remap.span)
-            if side is Side.CONSUMER and _produced(graph, producers, instance, remap.target):
+            if side is Side.CONSUMER and looked_up.produced(instance, remap.target):
                 wired.setdefault(remap.target, set()).add(location)
                 continue
             launches = deep_remaps.setdefault(location, {})
@@ -204,25 +203,59 @@ def _transport_base(topic: str) -> str:
     return base if base and last in TRANSPORT_SUFFIXES else ""
 
 
-def _sides(graph: Graph) -> dict[tuple[str, str, NodeRemap], Side]:
-    """Each remap of each node: the side its node's code uses the target on, else the
-    side its source names by convention."""
-    edges: dict[tuple[str, str, str], set[EdgeKind]] = {}
-    for endpoint in graph.endpoints:
-        key = (endpoint.root, endpoint.node, endpoint.resource)
-        edges.setdefault(key, set()).add(endpoint.edge)
-    sides: dict[tuple[str, str, NodeRemap], Side] = {}
-    for node in graph.nodes:
-        for remap in node.remaps:
-            used = edges.get((node.root, node.name, remap.target), set())
-            if used & _PRODUCING:
-                side = Side.PRODUCER
-            elif used & _CONSUMING:
-                side = Side.CONSUMER
-            else:
-                side = _conventional_side(_after_node(remap.source, node.name))
-            sides[(node.root, node.name, remap)] = side
-    return sides
+class _LookedUp:
+    """The graph's endpoints by resource and its nodes' remaps by target, indexed when
+    first asked: the rule asks about the few remaps past the limit, not about the
+    tens of thousands of a workspace's endpoints and remaps."""
+
+    def __init__(self, graph: Graph) -> None:
+        self._graph = graph
+        self._endpoints: dict[str, list[Endpoint]] | None = None
+        self._remaps: dict[str, list[tuple[NodeInstance, NodeRemap]]] | None = None
+
+    def endpoints_of(self, resource: str) -> list[Endpoint]:
+        if self._endpoints is None:
+            self._endpoints = {}
+            for endpoint in self._graph.endpoints:
+                self._endpoints.setdefault(endpoint.resource, []).append(endpoint)
+        return self._endpoints.get(resource, [])
+
+    def remaps_to(self, resource: str) -> list[tuple[NodeInstance, NodeRemap]]:
+        if self._remaps is None:
+            self._remaps = {}
+            for node in self._graph.nodes:
+                for remap in node.remaps:
+                    self._remaps.setdefault(remap.target, []).append((node, remap))
+        return self._remaps.get(resource, [])
+
+    def side(self, node: NodeInstance, remap: NodeRemap) -> Side:
+        """The side the node's code uses the remap's target on, else the side its source
+        names by convention."""
+        used = {
+            endpoint.edge
+            for endpoint in self.endpoints_of(remap.target)
+            if endpoint.node == node.name and endpoint.root == node.root
+        }
+        if used & _PRODUCING:
+            return Side.PRODUCER
+        if used & _CONSUMING:
+            return Side.CONSUMER
+        return _conventional_side(_after_node(remap.source, node.name))
+
+    def produced(self, node: NodeInstance, resource: str) -> bool:
+        """Whether something the node can meet produces ``resource``: code that publishes
+        or serves it, or a node whose publishing remap names it."""
+        producers: list[Placed] = [
+            endpoint
+            for endpoint in self.endpoints_of(resource)
+            if endpoint.certain and endpoint.edge in _PRODUCING
+        ]
+        producers += [
+            other
+            for other, remap in self.remaps_to(resource)
+            if self.side(other, remap) is Side.PRODUCER
+        ]
+        return any(self._graph.can_meet(node, other) for other in producers)
 
 
 def _after_node(source: str, node: str) -> str:
@@ -231,28 +264,6 @@ def _after_node(source: str, node: str) -> str:
         if source.startswith(prefix):
             return source[len(prefix) :]
     return source
-
-
-def _producers(
-    graph: Graph, sides: dict[tuple[str, str, NodeRemap], Side]
-) -> dict[str, list[Placed]]:
-    """resource -> what produces it in the workspace: code that publishes or serves it,
-    and the nodes whose publishing remap names it."""
-    found: dict[str, list[Placed]] = {}
-    for endpoint in graph.endpoints:
-        if endpoint.certain and endpoint.edge in _PRODUCING:
-            found.setdefault(endpoint.resource, []).append(endpoint)
-    for node in graph.nodes:
-        for remap in node.remaps:
-            if sides[(node.root, node.name, remap)] is Side.PRODUCER:
-                found.setdefault(remap.target, []).append(node)
-    return found
-
-
-def _produced(
-    graph: Graph, producers: dict[str, list[Placed]], node: NodeInstance, resource: str
-) -> bool:
-    return any(graph.can_meet(node, other) for other in producers.get(resource, ()))
 
 
 def _judged_here(node: NodeInstance, remap: NodeRemap, limit: int) -> bool:
@@ -321,9 +332,13 @@ def _pushed_endpoints(
     """The code's names a launch site's namespace pushes past the limit: one finding per
     site, listing them (a ``<node>`` whose namespace makes ten ``~/debug/*`` topics too
     deep is one decision)."""
-    nodes = instances(graph)
+    nodes: dict[tuple[str, str], NodeInstance] | None = None
     pushed: dict[Location, dict[str, tuple[Endpoint, NodeInstance, int]]] = {}
     for endpoint in graph.endpoints:
+        if _within(endpoint.resource, limit):
+            continue
+        if nodes is None:
+            nodes = instances(graph)
         node = nodes.get((endpoint.root, endpoint.node))
         if node is None or not node.launched_at:
             continue
@@ -377,6 +392,14 @@ _LISTED = 3  # names a pushed finding's message spells out; its related location
 
 def _by_name(launch: _Launch) -> str:
     return launch.node.name
+
+
+def _within(resource: str, limit: int) -> bool:
+    """Whether a fully qualified name has at most ``limit`` levels by its separators
+    alone: no more tokens than separators after the leading one (``names.tokens``), and
+    ``chosen_depth`` counts no more than the tokens. Most names are: they need no
+    tokenising."""
+    return resource.startswith("/") and resource.count("/") <= limit
 
 
 def _own_depth(written: str, kind: Kind, generation: Generation) -> int:
