@@ -38,7 +38,8 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
     # One finding per launch site: a copied include duplicates every node it starts.
     at: dict[Location, dict[str, list[Location]]] = defaultdict(dict)
     roots: dict[Location, str] = {}
-    for (root, name), nodes in sorted(started.items()):
+    twice = [(key, nodes) for key, nodes in started.items() if len(nodes) > 1]
+    for (root, name), nodes in sorted(twice):
         for node in nodes:
             # rostest runs its <test>s one at a time: two of one name never meet.
             others = [o for o in nodes if o is not node and not (o.test and node.test)]

@@ -90,13 +90,27 @@ class _Types:
             return known[0].same_md5(known[1]) is not False
         return _same_type(mine, theirs)
 
-    def mismatch(self, endpoints: list[Endpoint]) -> bool:
-        """Any two of the endpoints that do not connect (the types of one name and
-        generation are few: one endpoint of each is enough)."""
-        one_each = list({(e.type_name, e.reach.generation): e for e in endpoints}.values())
-        return any(
-            not self.compatible(a, b) for i, a in enumerate(one_each) for b in one_each[i + 1 :]
-        )
+    def incompatible(self, endpoints: list[Endpoint]) -> dict[int, list[Endpoint]]:
+        """The endpoints of one name whose types do not connect to all of the others', by
+        ``id``, each with the endpoints it does not connect to; empty where every two
+        connect. Compared a type against a type (the types of one name and generation
+        are few), not an endpoint against an endpoint."""
+        kinds: dict[tuple[str, Generation], list[Endpoint]] = {}
+        for endpoint in endpoints:
+            kinds.setdefault((endpoint.type_name or "", endpoint.reach.generation), []).append(
+                endpoint
+            )
+        found: dict[int, list[Endpoint]] = {}
+        for mine in kinds.values():
+            others = [
+                other
+                for theirs in kinds.values()
+                if not self.compatible(mine[0], theirs[0])
+                for other in theirs
+            ]
+            if others:
+                found.update((id(endpoint), others) for endpoint in mine)
+        return found
 
 
 def _ros1_service(endpoint: Endpoint) -> bool:
@@ -149,17 +163,16 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
     for (kind, resource), found in sorted(by_resource.items()):
         switching = _alternatives(found)
         endpoints = [e for e in found if _code_of(e) not in switching]
-        if not types.mismatch(endpoints):
+        incompatible = types.incompatible(endpoints)
+        if not incompatible:
             continue
         for endpoint in sorted(endpoints, key=Endpoint.sort_key):
             mine = endpoint.type_name or ""
             conflicting = sorted(
                 {
                     other
-                    for other in endpoints
-                    if not types.compatible(endpoint, other)
-                    and _facing(endpoint, other)
-                    and graph.can_meet(endpoint, other)
+                    for other in incompatible.get(id(endpoint), ())
+                    if _facing(endpoint, other) and graph.can_meet(endpoint, other)
                 },
                 key=lambda o: (o.location, o.edge.value),
             )
