@@ -374,3 +374,17 @@ def test_a_sorting_kept_between_builds_sorts_as_unique_does(seed: int) -> None:
         assert sorting(edited) == expected
         items = edited
     assert taken >= 3  # the kept sort was taken, not only made anew
+
+
+def test_the_index_of_what_pieces_read_made_anew_forgets_as_before(tmp_path: Path) -> None:
+    """The index by which an edit forgets pieces is made anew once its entries are mostly
+    of pieces gone; made anew, it must know every piece kept."""
+    ws = _Workspace(tmp_path / "ws")
+    ws.graphs()
+    ws.edit(f"{TURTLE}/launch/base.launch", '<remap from="cmd_vel_raw"', '<remap from="cmd_raw"')
+    ws.graphs()
+    ws.memory._index_reads()
+    ws.edit(f"{TURTLE}/src/velocity_smoother.cpp", '"cmd_vel"', '"cmd_vel_in"')
+    remembered, fresh = ws.graphs()
+    assert remembered == fresh
+    assert any(e.written == "cmd_vel_in" for e in fresh.endpoints)
