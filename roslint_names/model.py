@@ -6,8 +6,11 @@ cacheable and comparable. Nothing in this module parses, reads files or prints.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, fields
 from enum import Enum
+from operator import attrgetter
+from typing import Any
 
 
 class Kind(str, Enum):
@@ -120,8 +123,35 @@ class Severity(str, Enum):
     WARNING = "warning"
 
 
-@dataclass(frozen=True, order=True)
-class Span:
+class Compact:
+    """A base of frozen dataclasses with slots that a run holds by the hundred thousand
+    (the graph's nodes, endpoints and places): no ``__dict__`` per object, and pickled as
+    the class and its fields' values, built again by its ``__init__``. Pickled as a
+    state dict, each object's dict stays in the unpickler's memo to the end of a load:
+    50 MB of the kept graph's 14 MB at 77,000 files, the peak of a run that patches it."""
+
+    __slots__ = ()
+
+    def __reduce__(self) -> tuple[type[Compact], tuple[object, ...]]:
+        return (type(self), _values(self))
+
+
+_GETTERS: dict[type, Callable[[Any], tuple[object, ...]]] = {}
+
+
+def _values(instance: Any) -> tuple[object, ...]:
+    """The values of a dataclass's fields, in ``__init__``'s order."""
+    getter = _GETTERS.get(type(instance))
+    if getter is None:
+        names = [item.name for item in fields(instance)]
+        several = attrgetter(*names)
+        getter = several if len(names) > 1 else lambda value: (several(value),)
+        _GETTERS[type(instance)] = getter
+    return getter(instance)
+
+
+@dataclass(frozen=True, order=True, slots=True)
+class Span(Compact):
     """Where a name literal sits: 1-based lines, 1-based columns in Unicode code points.
 
     The span starts at the literal's first character (the opening quote in code, the first
@@ -167,8 +197,8 @@ class NameUse:
     suffix: str | None = None
 
 
-@dataclass(frozen=True)
-class Remap:
+@dataclass(frozen=True, slots=True)
+class Remap(Compact):
     source: str
     target: str
     span: Span  # the source (``from``): what RN404 says is unused

@@ -28,7 +28,15 @@ from roslint_names.model import (
     Role,
     Span,
 )
-from roslint_names.workspace.graph import EdgeKind, Endpoint, Graph, Location, NodeInstance, Reach
+from roslint_names.workspace.graph import (
+    EdgeKind,
+    Endpoint,
+    Graph,
+    Location,
+    NodeInstance,
+    NodeRemap,
+    Reach,
+)
 from roslint_names.workspace.index import Package
 from roslint_names.workspace.parameters import Incomplete, NodeParameters, ParameterUse
 from tests.conftest import write, write_package
@@ -612,6 +620,30 @@ def test_a_kept_graph_reads_back_as_it_was(tmp_path: Path) -> None:
     package = Package("a", "src/a", frozenset({"rclcpp"}), generation=Generation.ROS2)
     cache.store_graph("k", ("graph 1", ("t",), graph, (package,)))
     assert FactsCache(tmp_path).load_graph("k") == ("graph 1", ("t",), graph, (package,))
+
+
+def test_a_kept_graph_holds_no_state_dict_per_object(tmp_path: Path) -> None:
+    """The graph's classes keep their fields in slots and pickle as their class and
+    values (``model.Compact``): a dict per node, endpoint and place, held by the
+    unpickler to the end of a load, was the peak of a run that patched the graph."""
+    location = Location("src/a/src/talker.cpp", Span(3, 5, 3, 12))
+    remap = NodeRemap("/a", "/b", Span(1, 1, 1, 4), path="a.launch", own=True)
+    node = NodeInstance(
+        "/talker", Generation.ROS2, "a", "talker", "a.launch", (location,), (), remaps=(remap,)
+    )
+    endpoint = Endpoint(
+        "/chatter", Kind.TOPIC, EdgeKind.PUBLISH, "/talker", "", None, location, "chatter"
+    )
+    graph = Graph((node,), (endpoint,))
+    for value in (location, location.span, remap, node, node.reach, endpoint, graph):
+        assert not hasattr(value, "__dict__"), type(value)
+    blob = pickle.dumps(graph, protocol=5)
+    assert b"launch_namespaces" not in blob and b"resource_kind" not in blob  # no field names
+    cache = FactsCache(tmp_path)
+    cache.store_graph("k", ("graph 1", (), graph, ()))
+    loaded = FactsCache(tmp_path).load_graph("k")
+    assert loaded == ("graph 1", (), graph, ())
+    assert isinstance(loaded, tuple) and hash(loaded[2].nodes[0]) == hash(node)
 
 
 @pytest.mark.parametrize("value", [os.getcwd, Path("x"), pickle.loads])

@@ -12,15 +12,15 @@ from dataclasses import dataclass, field, replace
 from enum import Enum
 from typing import TYPE_CHECKING, Protocol
 
-from roslint_names.model import Generation, Kind, ParameterBlock, Remap, Span
+from roslint_names.model import Compact, Generation, Kind, ParameterBlock, Remap, Span
 from roslint_names.workspace.interfaces import ServiceDefinition
 
 if TYPE_CHECKING:  # parameters.py builds on Location: no import cycle at run time
     from roslint_names.workspace.parameters import NodeParameters, WorkspaceDeclarations
 
 
-@dataclass(frozen=True, order=True)
-class Location:
+@dataclass(frozen=True, order=True, slots=True)
+class Location(Compact):
     """A place in a file of the run: a display path and a span."""
 
     path: str
@@ -38,8 +38,8 @@ class EdgeKind(str, Enum):
     ACTION_CALL = "action-call"
 
 
-@dataclass(frozen=True, order=True)
-class Reach:
+@dataclass(frozen=True, order=True, slots=True)
+class Reach(Compact):
     """What decides which other nodes a node can exchange messages with.
 
     Two nodes can meet when one launch tree starts both, or when nothing keeps them apart
@@ -65,7 +65,7 @@ class Placed(Protocol):
     def reach(self) -> Reach: ...
 
 
-@dataclass(frozen=True, order=True)
+@dataclass(frozen=True, order=True, slots=True)
 class NodeRemap(Remap):
     """A remap applied to one node: both sides fully qualified, where it is written, the
     target as written there (RN201 judges what the node's namespace makes of it), and
@@ -77,8 +77,8 @@ class NodeRemap(Remap):
     written_target: str = ""
 
 
-@dataclass(frozen=True, order=True)
-class ParameterFileUse:
+@dataclass(frozen=True, order=True, slots=True)
+class ParameterFileUse(Compact):
     """A parameter file of the workspace that a launch file hands a node, or (ROS 1)
     loads into a namespace.
 
@@ -103,8 +103,8 @@ class SettingSource(str, Enum):
     FILE = "file"  # a parameter file handed to the node or (ROS 1) loaded into its namespace
 
 
-@dataclass(frozen=True)
-class ParameterSetting:
+@dataclass(frozen=True, slots=True)
+class ParameterSetting(Compact):
     """A parameter a launch sets on a node: its name as the node reads it (ROS 2: dotted;
     ROS 1: relative to the node's private namespace when below it, else fully
     qualified), where the name is written (the ``<param name>``, dictionary key or
@@ -122,8 +122,8 @@ class ParameterSetting:
         return (self.name, self.location, self.source.value)
 
 
-@dataclass(frozen=True)
-class NodeInstance:
+@dataclass(frozen=True, slots=True)
+class NodeInstance(Compact):
     """One node as it runs: launched by a launch tree, or code no launch file starts.
 
     ``name`` is fully qualified (``/robot1/driver``). ``launched_at`` is the chain of launch
@@ -175,8 +175,8 @@ class NodeInstance:
         return (self.name, self.root, self.launched_at, self.sources)
 
 
-@dataclass(frozen=True)
-class Endpoint:
+@dataclass(frozen=True, slots=True)
+class Endpoint(Compact):
     """A node publishing, subscribing, serving or calling one resolved name.
 
     ``resource`` is fully qualified, after the node's namespace and remaps. ``type_name``
@@ -211,8 +211,8 @@ class Endpoint:
         )
 
 
-@dataclass(frozen=True)
-class UnnamedReceiver:
+@dataclass(frozen=True, slots=True)
+class UnnamedReceiver(Compact):
     """A node of unknown name a parameter file is handed to: any key may be its, but it
     keeps only what its code may take."""
 
@@ -220,8 +220,8 @@ class UnnamedReceiver:
     parameters: NodeParameters
 
 
-@dataclass(frozen=True)
-class Graph:
+@dataclass(frozen=True, slots=True)
+class Graph(Compact):
     nodes: tuple[NodeInstance, ...]
     endpoints: tuple[Endpoint, ...]
     # package -> the packages it is meant to run with (``WorkspaceIndex.companions``)
