@@ -165,8 +165,8 @@ class Span(Compact):
     end_column: int
 
 
-@dataclass(frozen=True)
-class NameUse:
+@dataclass(frozen=True, slots=True)
+class NameUse(Compact):
     """One occurrence of a ROS name in a file.
 
     ``value`` is the name exactly as the runtime will see it after static folding (constant
@@ -205,8 +205,8 @@ class Remap(Compact):
     target_span: Span | None = None  # the target (``to``): what RN201 says is too deep
 
 
-@dataclass(frozen=True)
-class ParameterLoad:
+@dataclass(frozen=True, slots=True)
+class ParameterLoad(Compact):
     """A parameter file a launch file hands a node, or (ROS 1) loads into a namespace.
 
     ``package`` and ``path`` locate the file as ``LaunchInclude``'s do; ``span`` is the
@@ -225,8 +225,8 @@ class ParameterLoad:
     conditional: bool = False
 
 
-@dataclass(frozen=True)
-class ParameterBlock:
+@dataclass(frozen=True, slots=True)
+class ParameterBlock(Compact):
     """The parameters one part of a parameter file sets, each name with its key's span.
 
     ROS 2: one node key (``controller_server``, ``/ns/node``, ``/**``) and the parameters
@@ -241,8 +241,8 @@ class ParameterBlock:
     parameters: tuple[tuple[str, Span], ...] = ()
 
 
-@dataclass(frozen=True)
-class ReconfigureConfig:
+@dataclass(frozen=True, slots=True)
+class ReconfigureConfig(Compact):
     """What a dynamic_reconfigure ``.cfg`` file generates: the parameters of one config.
 
     ``gen.generate(package, node, name)`` generates the C++ class ``package::nameConfig``
@@ -259,8 +259,8 @@ class ReconfigureConfig:
     complete: bool = True
 
 
-@dataclass(frozen=True)
-class LaunchNode:
+@dataclass(frozen=True, slots=True)
+class LaunchNode(Compact):
     """A node started by a launch file, with the scope the file gives it.
 
     The workspace model (resolution across files) is built from these; file rules look at
@@ -300,8 +300,8 @@ class LaunchNode:
     parameter_spans: tuple[Span, ...] = ()
 
 
-@dataclass(frozen=True, order=True)
-class InPackage:
+@dataclass(frozen=True, order=True, slots=True)
+class InPackage(Compact):
     """A value known only as a file of a package: ``$(find-pkg-share pkg)/config/a.yaml``,
     ``$(find pkg)/config/a.yaml``, ``PathJoinSubstitution([FindPackageShare('pkg'),
     'config', 'a.yaml'])``. Where the package is installed is the machine's; which file of
@@ -318,8 +318,8 @@ class InPackage:
 LaunchArguments = tuple[tuple[str, "str | InPackage | None"], ...]
 
 
-@dataclass(frozen=True)
-class LaunchInclude:
+@dataclass(frozen=True, slots=True)
+class LaunchInclude(Compact):
     """A launch file including another: where the included file is and the scope it gets.
 
     ``package`` and ``path`` locate the included file: ``$(find pkg)/launch/a.launch``,
@@ -349,8 +349,8 @@ class ExecutableKind(str, Enum):
     PLUGIN = "plugin"  # a component class, what <composable_node plugin> names
 
 
-@dataclass(frozen=True)
-class Executable:
+@dataclass(frozen=True, slots=True)
+class Executable(Compact):
     """A program or component plugin a package builds or installs, and its source files.
 
     ``name`` is what launch files use: the CMake target or ``EXECUTABLE`` name, the
@@ -366,8 +366,8 @@ class Executable:
     span: Span
 
 
-@dataclass(frozen=True)
-class CompiledSources:
+@dataclass(frozen=True, slots=True)
+class CompiledSources(Compact):
     """Which source files one build file compiles, as far as its text tells.
 
     Paths are relative to the build file's directory, '/'-separated, normalised (as
@@ -401,8 +401,8 @@ class EventKind(str, Enum):
     HANDLE = "handle"  # ros::NodeHandle, rclcpp::Node, an rclpy Node, a rospy endpoint...
 
 
-@dataclass(frozen=True)
-class RuntimeEvent:
+@dataclass(frozen=True, slots=True)
+class RuntimeEvent(Compact):
     """An init call or a construction that needs one, in the order the code runs them.
 
     ``scope`` names the code the event runs in: a function (unique within the file, e.g.
@@ -420,16 +420,16 @@ class RuntimeEvent:
     static_storage: bool = False
 
 
-@dataclass(frozen=True)
-class ParseError:
+@dataclass(frozen=True, slots=True)
+class ParseError(Compact):
     """A file, or part of one, that could not be decoded or parsed (becomes RN001)."""
 
     message: str
     span: Span
 
 
-@dataclass(frozen=True)
-class FileFacts:
+@dataclass(frozen=True, slots=True)
+class FileFacts(Compact):
     """Everything one extraction learned about one file."""
 
     path: str  # as given on the command line or found by discovery
@@ -488,8 +488,8 @@ class FileFacts:
     reconfigure_servers: tuple[str, ...] = ()
 
 
-@dataclass(frozen=True)
-class Fix:
+@dataclass(frozen=True, slots=True)
+class Fix(Compact):
     """A rule's certain fix: write ``replacement`` where the finding's name ``value`` is.
 
     ``safe``: the fix cannot change what the running system does (``--fix`` applies it;
@@ -505,8 +505,8 @@ class Fix:
     tokens: tuple[tuple[str, str], ...] = ()
 
 
-@dataclass(frozen=True)
-class Edit:
+@dataclass(frozen=True, slots=True)
+class Edit(Compact):
     """A fix located in a file: ``span`` (one line) becomes ``text``.
 
     ``path`` is None for the finding's own file; a rename's edits of the name's other
@@ -519,8 +519,8 @@ class Edit:
     path: str | None = None
 
 
-@dataclass(frozen=True)
-class Answer:
+@dataclass(frozen=True, slots=True)
+class Answer(Compact):
     """The setting that would state a finding's name as the project's convention, and its
     value: ``max-depth`` 7, ``rules.RN202.extend-allow`` "/api/state". Many findings
     sharing one answer are one decision (``conventions`` proposes it)."""
@@ -533,8 +533,8 @@ class Answer:
     kind: Kind | None = None
 
 
-@dataclass(frozen=True)
-class Decision:
+@dataclass(frozen=True, slots=True)
+class Decision(Compact):
     """The name a finding judges, as one choice however many places write it.
 
     Findings of one rule on equal decisions are reported once (``decisions``): the place
@@ -556,8 +556,8 @@ class Decision:
     bound: bool = False
 
 
-@dataclass(frozen=True)
-class Finding:
+@dataclass(frozen=True, slots=True)
+class Finding(Compact):
     """What a rule reports: no code or severity, the engine attaches those from the rule."""
 
     span: Span
@@ -574,15 +574,15 @@ class Finding:
     deployment_only: bool = False
 
 
-@dataclass(frozen=True)
-class RelatedLocation:
+@dataclass(frozen=True, slots=True)
+class RelatedLocation(Compact):
     path: str
     span: Span
     message: str
 
 
-@dataclass(frozen=True)
-class Diagnostic:
+@dataclass(frozen=True, slots=True)
+class Diagnostic(Compact):
     """A finding bound to its rule, file and effective severity; what reporters format."""
 
     path: str
