@@ -10,7 +10,7 @@ collision that comes from the namespaces (one code launched under ``robot1`` and
 
 from __future__ import annotations
 
-from collections import defaultdict
+from collections import Counter, defaultdict
 from collections.abc import Iterator
 
 from ..model import Severity
@@ -29,9 +29,7 @@ def _colliding(graph: Graph) -> set[str]:
     tens of thousands are alone in their case."""
     names = {endpoint.resource for endpoint in graph.endpoints if endpoint.certain}
     names.update(node.name for node in graph.nodes if node.launched_at)
-    spellings: dict[str, int] = defaultdict(int)
-    for name in names:
-        spellings[name.lower()] += 1
+    spellings = Counter(name.lower() for name in names)
     return {lower for lower, count in spellings.items() if count > 1}
 
 
