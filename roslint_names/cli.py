@@ -260,7 +260,7 @@ def _run_check(options: argparse.Namespace) -> int:
         extend_exclude=tuple(options.extend_exclude),
     )
     cache = _facts_cache(options)
-    registry, settings, sources, workspace = _prepare(options, overrides, cache)
+    registry, settings, sources, workspace, without_manifest = _prepare(options, overrides, cache)
     cwd = Path.cwd()
     # Renames are offered when unsafe fixes are asked for: they need every file's facts
     # and a search of the workspace's text (``renames``), which a warm run must not pay
@@ -278,7 +278,9 @@ def _run_check(options: argparse.Namespace) -> int:
         if renaming:
             snapshot.remember(source.display for source in lintable(workspace))
     try:
-        run = RunOptions(jobs=options.jobs, cache=cache, progress=bar)
+        run = RunOptions(
+            jobs=options.jobs, cache=cache, progress=bar, without_manifest=without_manifest
+        )
         want_facts = renaming and cache is None
         result = lint(sources, settings, registry, run, context=workspace, want_facts=want_facts)
         diagnostics: Sequence[Diagnostic] = result.diagnostics
@@ -495,21 +497,38 @@ def _prepare(
     cache: FactsCache | None,
     *,
     for_graph: bool = False,
-) -> tuple[Registry, Settings, list[SourceFile], list[SourceFile]]:
+) -> tuple[Registry, Settings, list[SourceFile], list[SourceFile], frozenset[str]]:
     """The rules, the settings, the files named and the rest of their workspace (their
-    walks' listings kept in ``cache``)."""
+    walks' listings kept in ``cache``), and the directories the walks found no
+    package.xml in."""
     registry = load_registry()
     cwd = Path.cwd()
     start = config_search_start(options.paths, cwd)
     settings = apply_overrides(load_settings(options.config, start, registry), overrides, registry)
     warnings: list[str] = []  # what the walks passed over: said, never skipped in silence
-    sources = discover(options.paths, settings.exclude, settings.root, cwd, warnings, cache=cache)
+    without_manifest: set[str] = set()
+    sources = discover(
+        options.paths,
+        settings.exclude,
+        settings.root,
+        cwd,
+        warnings,
+        cache=cache,
+        without_manifest=without_manifest,
+    )
     workspace = _workspace_context(
-        options.paths, settings, registry, cwd, warnings, cache=cache, for_graph=for_graph
+        options.paths,
+        settings,
+        registry,
+        cwd,
+        warnings,
+        cache=cache,
+        for_graph=for_graph,
+        without_manifest=without_manifest,
     )
     for warning in dict.fromkeys(warnings):  # a directory both walks pass over: said once
         print(f"roslint-names: warning: {warning}", file=sys.stderr)
-    return registry, settings, sources, workspace
+    return registry, settings, sources, workspace, frozenset(without_manifest)
 
 
 def _workspace_context(
@@ -521,6 +540,7 @@ def _workspace_context(
     *,
     cache: FactsCache | None,
     for_graph: bool = False,
+    without_manifest: set[str] | None = None,
 ) -> list[SourceFile]:
     """For a run over files (what pre-commit does): the rest of their workspaces, which
     the graph rules need to see, and whose launch files say which absolute names are
@@ -538,7 +558,15 @@ def _workspace_context(
     roots = sorted({root for path in files if (root := workspace_root(path)) is not None})
     if not roots:
         return []
-    return discover(roots, settings.exclude, settings.root, cwd, warnings, cache=cache)
+    return discover(
+        roots,
+        settings.exclude,
+        settings.root,
+        cwd,
+        warnings,
+        cache=cache,
+        without_manifest=without_manifest,
+    )
 
 
 def _run_server(options: argparse.Namespace) -> int:
@@ -557,8 +585,10 @@ def _run_graph(options: argparse.Namespace) -> int:
 
     overrides = Overrides(ros=_generation(options.ros))
     cache = _facts_cache(options)
-    registry, settings, sources, workspace = _prepare(options, overrides, cache, for_graph=True)
-    run = RunOptions(jobs=options.jobs, cache=cache)
+    registry, settings, sources, workspace, without_manifest = _prepare(
+        options, overrides, cache, for_graph=True
+    )
+    run = RunOptions(jobs=options.jobs, cache=cache, without_manifest=without_manifest)
     result = lint(sources, settings, registry, run, context=workspace, want_graph=True)
     assert result.graph is not None
     graph = result.graph

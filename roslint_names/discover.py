@@ -22,7 +22,7 @@ import os
 import re
 import stat
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import Enum
 from functools import cached_property
 from pathlib import Path
@@ -38,6 +38,7 @@ if TYPE_CHECKING:
     import pathspec
 
 IGNORE_MARKERS = ("COLCON_IGNORE", "CATKIN_IGNORE", "AMENT_IGNORE")
+MANIFEST = "package.xml"
 SKIPPED_DIRECTORIES = frozenset({".git", ".hg", ".svn", "__pycache__", ".mypy_cache", ".tox"})
 SNIFF_BYTES = 64 * 1024
 _T = TypeVar("_T")
@@ -154,7 +155,7 @@ def _by_name(file_name: str) -> Language | _Sniff | None:
         return _Sniff.CFG
     if suffix == ".srv":
         return Language.SERVICE_DEFINITION
-    if name == "package.xml":
+    if name == MANIFEST:
         return Language.PACKAGE_XML
     if suffix == ".xml":
         return _Sniff.XML
@@ -365,18 +366,28 @@ def discover(
     warnings: list[str] | None = None,
     *,
     cache: FactsCache | None = None,
+    without_manifest: set[str] | None = None,
 ) -> list[SourceFile]:
     """Every lintable file under ``paths``, sorted by display path, each once.
 
     What was passed over and why, one line each, is appended to ``warnings``; the
     paths named that cannot be linted at all raise ``DiscoveryError``. With a ``cache``,
     each named directory's walk keeps its listings there (``listings``) and lists again
-    only what changed since the last one.
+    only what changed since the last one. The directories walked that hold no entry
+    named ``package.xml`` join ``without_manifest`` (``generation.PackageGenerations``).
     """
     # What the walk finds lives as long as the run, and holds no cycle: the collector
     # does not walk it again and again (``collection``).
     with kept_for_the_run():
-        return _discover(paths, exclude, exclude_root, cwd, warnings, cache=cache)
+        return _discover(
+            paths,
+            exclude,
+            exclude_root,
+            cwd,
+            warnings,
+            cache=cache,
+            without_manifest=without_manifest,
+        )
 
 
 def _discover(
@@ -387,6 +398,7 @@ def _discover(
     warnings: list[str] | None,
     *,
     cache: FactsCache | None,
+    without_manifest: set[str] | None,
 ) -> list[SourceFile]:
     prefix = os.path.join(os.fspath(cwd), "")
     notes = _Notes(prefix, [] if warnings is None else warnings)
@@ -401,7 +413,9 @@ def _discover(
             if cache is not None:
                 listings = Listings.of(cache, os.fspath(absolute), exclude, exclude_root)
             try:
-                walked = _walk_named(absolute, rules, _by_name, notes, listings)
+                walked = _walk_named(
+                    absolute, rules, _by_name, notes, listings, without_manifest=without_manifest
+                )
             except OSError as error:
                 reason = error.strerror or str(error)
                 raise DiscoveryError(f"{given}: cannot read directory: {reason}") from None
@@ -559,11 +573,14 @@ def _walk_named(
     select: Callable[[str], _T | None],
     notes: _Notes,
     listings: Listings | None = None,
+    *,
+    without_manifest: set[str] | None = None,
 ) -> list[tuple[str, _T]]:
     """The walk of a directory named by the user, under the ``.gitignore`` files of its
     repository above it, as git applies them. Raises ``OSError`` when ``directory``
     itself cannot be read. With ``listings`` (``select`` is then ``_by_name``), the
-    directories whose status is what it was are not listed again."""
+    directories whose status is what it was are not listed again. The directories
+    walked that hold no ``package.xml`` join ``without_manifest``."""
     top = os.fspath(directory)
     ancestors = _repository_ancestors(directory)
     trusted = listings is not None and listings.trusts_ancestors(
@@ -571,7 +588,10 @@ def _walk_named(
     )
     pushed = sum(rules.enter(ancestor)[0] for ancestor in ancestors)
     found: list[tuple[str, _T]] = []
-    _Walker(rules, select, found, notes, listings).walk(top, trusted=trusted, named=True)
+    walker = _Walker(rules, select, found, notes, listings)
+    if without_manifest is not None:
+        walker.without_manifest = without_manifest
+    walker.walk(top, trusted=trusted, named=True)
     rules.leave(pushed)
     return found
 
@@ -590,6 +610,9 @@ class _Walker(Generic[_T]):
     found: list[tuple[str, _T]]
     notes: _Notes
     listings: Listings | None
+    # The directories listed (or replayed: as they were listed) holding no entry named
+    # ``package.xml``: no package lookup needs to look for one there.
+    without_manifest: set[str] = field(default_factory=set)
 
     def walk(self, top: str, *, trusted: bool, named: bool = False) -> None:
         """Walk ``top``; ``trusted`` when the ignore rules above it are those its kept
@@ -620,6 +643,8 @@ class _Walker(Generic[_T]):
                 return False
             pushed, _ = self.rules.enter(top, known_valid=kept.gitignore_valid)
         self.listings.keep(top, kept)
+        if not kept.manifest:
+            self.without_manifest.add(top)
         if not kept.stop:
             # Joined by hand: ``os.path.join`` for every file of the workspace costs 0.1 s.
             base = top if top.endswith(os.sep) else top + os.sep
@@ -642,11 +667,14 @@ class _Walker(Generic[_T]):
     ) -> None:
         """Walk ``top`` from its ``entries``, and keep what it found."""
         names = {entry.name for entry in entries}
+        manifest = MANIFEST in names
+        if not manifest:
+            self.without_manifest.add(top)
         listings = self.listings
         previous = None if listings is None else listings.previous(top)
         if not names.isdisjoint(IGNORE_MARKERS):
             if listings is not None:
-                listings.keep(top, Listed(status, None, False, True, (), (), ()))
+                listings.keep(top, Listed(status, None, False, True, (), (), (), manifest))
             return
         gitignore: FileStatus | None = None
         pushed, valid = 0, False
@@ -683,7 +711,14 @@ class _Walker(Generic[_T]):
         self.rules.leave(pushed)
         if listings is not None and keepable:
             kept = Listed(
-                status, gitignore, valid, False, tuple(directories), tuple(files), tuple(links)
+                status,
+                gitignore,
+                valid,
+                False,
+                tuple(directories),
+                tuple(files),
+                tuple(links),
+                manifest,
             )
             listings.keep(top, kept)
 

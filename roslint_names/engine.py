@@ -109,6 +109,8 @@ class RunOptions:
     jobs: int = 1  # worker processes for extraction; 0: every core; 1: none
     cache: FactsCache | None = None
     progress: Progress | None = None
+    # The directories the walk listed with no package.xml (``discover``): none is looked for.
+    without_manifest: frozenset[str] = frozenset()
 
 
 def lintable(sources: Iterable[SourceFile]) -> list[SourceFile]:
@@ -169,7 +171,7 @@ def _lint(
     enabled = enabled_codes(settings, registry)
     graph_rules = [r for r in registry.rules if r.check_workspace and r.code in enabled]
     rule_of = {rule.code: rule for rule in graph_rules}
-    packages = PackageGenerations()
+    packages = PackageGenerations(run.without_manifest)
     fallback = settings.ros or DEFAULT_GENERATION
     python2 = ros1_python2(settings)
     cache = run.cache

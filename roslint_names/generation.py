@@ -13,7 +13,7 @@ from __future__ import annotations
 import os
 import re
 import stat
-from collections.abc import Iterable, Mapping
+from collections.abc import Collection, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -101,7 +101,10 @@ _MAX_DESCRIPTION = 1 << 20
 class PackageGenerations:
     """Nearest-package.xml lookup with one read per directory for the whole run."""
 
-    def __init__(self) -> None:
+    def __init__(self, without_manifest: Collection[str] = frozenset()) -> None:
+        # The directories a walk of this run listed with no entry named package.xml
+        # (``discover``): looking for one there takes no status, none can be there.
+        self._without_manifest = without_manifest
         # By directory, as a string: every file of every run is looked up here, and
         # building ``Path.parent`` for each costs more than the lookup.
         self._by_directory: dict[str, _Package] = {}
@@ -213,13 +216,24 @@ class PackageGenerations:
             found = self._by_file[text] = self._for_directory(_parent(text))
         return found
 
-    def _is_manifest(self, manifest: str) -> bool:
+    def status(self, path: str) -> Status | None:
+        """The status of a package.xml or plugin description as the lookups take it
+        (``statuses``): none for a package.xml where the walk found no such entry."""
+        if path.endswith(_IN_DIRECTORY) and path[: -len(_IN_DIRECTORY)] in self._without_manifest:
+            return None
+        return status_of(path)
+
+    def _is_manifest(self, directory: str, manifest: str) -> bool:
         """Whether ``manifest`` is a file to read (``os.path.isfile``), its status kept
         (None where there is none to take): what says that the lookup would find the same
         next time. Not the directory's: a home directory or ``/tmp`` changes all the
         time, a ``package.xml`` appearing there does not; and a link to nothing, or into
         a directory that cannot be searched, may become a manifest with its directory
-        unchanged."""
+        unchanged. Where the walk listed the directory with no entry of that name, none
+        is there: the walk's listings are trusted as they are for finding every file."""
+        if directory in self._without_manifest:
+            self.statuses[manifest] = None
+            return False
         try:
             found = os.stat(manifest)
         except OSError:
@@ -234,7 +248,7 @@ class PackageGenerations:
             return found
         manifest = os.path.join(directory, "package.xml")
         package: _Package
-        if self._is_manifest(manifest):
+        if self._is_manifest(directory, manifest):
             try:
                 with open(manifest, encoding="utf-8", errors="replace") as stream:
                     text = stream.read()
@@ -254,6 +268,9 @@ class PackageGenerations:
             package = self._for_directory(up)
         self._by_directory[directory] = package
         return package
+
+
+_IN_DIRECTORY = os.sep + "package.xml"
 
 
 def _parent(path: str) -> str:

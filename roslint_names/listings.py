@@ -36,7 +36,7 @@ from .reading import Status, is_racy, status_from
 
 LISTINGS = "listings"  # their directory in the facts cache, one file per named directory
 KEPT = 128  # listing files: a base and a journal per named directory and patterns
-_FORMAT = 3
+_FORMAT = 4
 _ANCESTORS = "ancestors"  # the one key of the section that keeps them
 
 DirectoryStatus = tuple[int, int, int]  # mtime_ns, ctime_ns, inode
@@ -53,6 +53,9 @@ class Listed(NamedTuple):
     directories: tuple[str, ...]  # the subdirectories walked, by name
     files: tuple[tuple[str, str], ...]  # the files selected: name, what the name says
     links: tuple[tuple[str, str], ...]  # the links selected: followed again each time
+    # An entry named ``package.xml``, of any kind, ignored or not: where there is none, no
+    # package lookup takes the status of one (``generation.PackageGenerations``).
+    manifest: bool
 
 
 class Listings:

@@ -79,7 +79,8 @@ class RunInputs:
         self._fallback = fallback
         self._ros1_python2 = ros1_python2  # the environment's part (``config.ros1_python2``)
         root = _common_directory(checked)
-        self._kept = KeptKey(cache, root)  # first: every status of the run is taken after
+        # First: every status of the run is taken after.
+        self._kept = KeptKey(cache, root, packages.status)
         self._digests = ContentDigests.of(cache, root)
         self._tags: list[str] = []  # per checked file: its facts key, or why it has none
         self._contents: list[str | None] = []  # per checked file: its digest, as keyed first

@@ -40,7 +40,7 @@ import io
 import os
 import pickle
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
@@ -72,10 +72,18 @@ class Keying:
 class KeptKey:
     """The key kept for one workspace, and what it was made from."""
 
-    def __init__(self, cache: FactsCache, root: Path) -> None:
+    def __init__(
+        self,
+        cache: FactsCache,
+        root: Path,
+        package_status: Callable[[str], Status | None] = status_of,
+    ) -> None:
         name = hashlib.blake2b(os.fsencode(root), digest_size=8).hexdigest()
         self._path = cache.directory / KEYS / name
         self._cache = cache
+        # A package.xml's or plugin description's status now, as the lookups take it
+        # (``PackageGenerations.status``).
+        self._package_status = package_status
         self.started = time.time_ns()  # before any status of this run is taken
         self._kept: _Kept | None = None
         self._loaded = False
@@ -134,7 +142,7 @@ class KeptKey:
 
     def _packages_as_kept(self, kept: _Kept) -> bool:
         if self._packages_stand is None:
-            now = [status_of(path) for path in kept.package_paths]
+            now = [self._package_status(path) for path in kept.package_paths]
             self._packages_stand = now == kept.package_statuses
         return self._packages_stand
 

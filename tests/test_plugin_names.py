@@ -122,9 +122,9 @@ def test_a_run_after_an_edit_knows_the_plugins_without_reading_a_manifest(
     looked_for: list[str] = []
     is_manifest = PackageGenerations._is_manifest
 
-    def counted(self: PackageGenerations, manifest: str) -> bool:
+    def counted(self: PackageGenerations, directory: str, manifest: str) -> bool:
         looked_for.append(manifest)
-        return is_manifest(self, manifest)
+        return is_manifest(self, directory, manifest)
 
     monkeypatch.setattr(PackageGenerations, "_is_manifest", counted)
     recovery = tmp_path / RECOVERY

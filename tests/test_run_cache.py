@@ -100,6 +100,28 @@ def test_a_rerun_over_unchanged_files_is_the_stored_result(
     assert len(stored_runs(private_cache)) == 1
 
 
+@pytest.mark.usefixtures("old_tree")
+def test_a_rerun_looks_for_no_manifest_where_the_walk_found_none(
+    check: Callable[..., Any], workspace: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """In the directories the walk listed, a package.xml is looked for only where the
+    listing holds one (``driver.cpp``'s lookup passes through ``src/``)."""
+    age_all(workspace)
+    check()
+    looked_for: list[str] = []
+    real = os.stat
+
+    def counted(path: Any, *arguments: Any, **options: Any) -> os.stat_result:
+        if os.fspath(path).endswith("package.xml"):
+            looked_for.append(os.fspath(path))
+        return real(path, *arguments, **options)
+
+    monkeypatch.setattr(os, "stat", counted)
+    assert reused(check())
+    inside = [path for path in looked_for if path.startswith(f"{workspace}{os.sep}")]
+    assert inside == [os.fspath(workspace / "src/robot_base/package.xml")]
+
+
 def _edit_code(workspace: Path) -> None:
     driver = workspace / "src/robot_base/src/driver.cpp"
     driver.write_text(driver.read_text().replace('"cmd_vel"', '"Cmd_Vel"'))
@@ -123,6 +145,12 @@ def _package_depends(workspace: Path) -> None:
 def _package_generation(workspace: Path) -> None:
     manifest = workspace / "src/robot_base/package.xml"
     manifest.write_text(manifest.read_text().replace("catkin", "ament_cmake"))
+
+
+def _nested_package(workspace: Path) -> None:
+    # A directory the walk listed with no package.xml gets one: its launch file is now
+    # of another package, of another generation.
+    write(workspace, "src/robot_base/launch/package.xml", AMENT_PACKAGE.format(name="bringup"))
 
 
 def _build_file(workspace: Path) -> None:
@@ -152,6 +180,7 @@ _CHANGES = (
     _delete_file,
     _package_depends,
     _package_generation,
+    _nested_package,
     _build_file,
     _config,
 )
@@ -586,9 +615,9 @@ def rekeyed(monkeypatch: pytest.MonkeyPatch) -> tuple[list[str], list[str]]:
         files.append(Path(path).name)
         return key_of_digest(self, content, path, *rest, **options)
 
-    def looked_for(self: PackageGenerations, manifest: str) -> bool:
+    def looked_for(self: PackageGenerations, directory: str, manifest: str) -> bool:
         manifests.append(manifest)
-        return is_manifest(self, manifest)
+        return is_manifest(self, directory, manifest)
 
     monkeypatch.setattr(cache_module.FactsCache, "key_of_digest", keyed_file)
     monkeypatch.setattr(PackageGenerations, "_is_manifest", looked_for)
