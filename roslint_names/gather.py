@@ -177,7 +177,7 @@ class Specialiser:
             if found is not None:
                 return found
         job = _Job(index, display, source.language, package, self._fallback, arguments, python2)
-        return job, OnDisk(source.location, data), cache_key
+        return job, OnDisk(source.location, data, content), cache_key
 
     def _read(self, source: SourceFile) -> tuple[bytes | None, str]:
         """A launch file's bytes and content digest, read once however many argument
@@ -207,16 +207,20 @@ class OnDisk:
     they are: the worker reads them again, from the page cache. Piped, every byte of the
     workspace went through the main process, a fifth of its part of a cold run (pickled,
     then written to the pipe in 64 KB pieces). The worker gets None where the file no
-    longer holds those bytes (edited since): the main process extracts its own then."""
+    longer holds those bytes (edited since): the main process extracts its own then.
+    ``digest``: the bytes' content digest where the main process made it already (keying
+    the file): hashing every file twice was a tenth of a cold run's serial part."""
 
-    __slots__ = ("data", "path")
+    __slots__ = ("data", "digest", "path")
 
-    def __init__(self, path: str, data: bytes) -> None:
+    def __init__(self, path: str, data: bytes, digest: str | None = None) -> None:
         self.path = path
         self.data = data
+        self.digest = digest
 
     def __reduce__(self) -> tuple[Callable[[str, int, str], bytes | None], tuple[str, int, str]]:
-        return _read_again, (self.path, len(self.data), content_digest(self.data))
+        digest = content_digest(self.data) if self.digest is None else self.digest
+        return _read_again, (self.path, len(self.data), digest)
 
 
 def _as_read(result: Extracted, item: _Item, dispatcher: Dispatcher[_Item, Extracted]) -> Extracted:
@@ -416,8 +420,9 @@ class Gatherer:
                 yield index, known[1], None, None
                 continue
             key: str | None = None
+            content: str | None = None  # the bytes' digest, where keying them made it
             if self.inputs is not None:
-                (data, read_error, skip), key = self.inputs.read(index, source)
+                (data, read_error, skip), key, content = self.inputs.read(index, source)
             else:
                 data, read_error, skip = read_file(source.location, self.max_file_size)
             if skip == BINARY:  # a source that is not text is a finding, never a pass
@@ -449,7 +454,8 @@ class Gatherer:
                     checked=index < self.reported,
                 )
                 self.extracted += 1
-                item = self._extracting[index] = (job, OnDisk(source.location, data), key)
+                on_disk = OnDisk(source.location, data, content)
+                item = self._extracting[index] = (job, on_disk, key)
                 yield from self._arrived(self.dispatcher.put(item, len(data)))
         yield from self._arrived(self.dispatcher.finish())
 

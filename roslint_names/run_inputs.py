@@ -157,8 +157,9 @@ class RunInputs:
         tag = self._tags[index]
         return tag if is_facts_key(tag) else None
 
-    def read(self, index: int, source: SourceFile) -> tuple[Read, str | None]:
-        """The file's bytes (as ``read_file`` gives them) and its facts key."""
+    def read(self, index: int, source: SourceFile) -> tuple[Read, str | None, str | None]:
+        """The file's bytes (as ``read_file`` gives them), its facts key and its content
+        digest."""
         maximum = self._settings.max_file_size
         if self._keyed_first:
             read, content = read_file(source.location, maximum), None
@@ -175,7 +176,7 @@ class RunInputs:
             self.changed |= tag != self._tags[index]
         else:
             self._tags.append(tag)
-        return read, None if data is None else tag
+        return read, None if data is None else tag, content
 
     def key_last(self) -> str | None:
         """The run's key once every file was read: for a run not keyed first."""

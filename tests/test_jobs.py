@@ -104,6 +104,24 @@ def test_a_file_goes_to_a_worker_as_where_it_is(tmp_path: Path) -> None:
     assert pickle.loads(sent) is None
 
 
+def test_a_file_keyed_already_is_sent_without_hashing_it_again(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The main process hashed the bytes to key them: the digest it sends is that one."""
+    launch = tmp_path / "bringup.launch"
+    launch.write_text(TWO_ROBOTS_LAUNCH)
+    data = launch.read_bytes()
+    digest = gather.content_digest(data)
+
+    def hashed_again(data: bytes) -> str:
+        raise AssertionError("hashed again")
+
+    monkeypatch.setattr(gather, "content_digest", hashed_again)
+    sent = pickle.dumps(OnDisk(str(launch), data, digest))
+    monkeypatch.undo()
+    assert pickle.loads(sent) == data
+
+
 def _edited_since(path: str, size: int, digest: str) -> bytes | None:
     return None  # module-level: the main process pickles it by name
 
