@@ -9,7 +9,10 @@ start and every item they take is pickled across a pipe, so:
   a run that ends below that (the one-file pre-commit case, a re-run where nearly
   everything came from the cache) does its work in-process at ``finish``;
 - a small run on a many-core machine gets one worker per ``ITEMS_PER_WORKER`` items;
-- items travel in chunks (a few files or a few hundred KiB) to keep messages few;
+- items travel in chunks (up to a few dozen files or a few hundred KiB) to keep messages
+  few: each costs the main process's threads a pickling, a send, a result received and
+  unpickled (at 8 files a chunk, a quarter second of a cold run's serial part on realws);
+  a run of few items sends smaller ones, so that every worker still gets several;
 - at most a few chunks per worker are in flight, so the bytes of files waiting to be
   extracted stay bounded however large the workspace is.
 
@@ -51,7 +54,8 @@ Result = TypeVar("Result")
 
 MIN_ITEMS = 20
 ITEMS_PER_WORKER = 10  # fewer expected items per worker: fewer workers (forks cost too)
-CHUNK_ITEMS = 8
+CHUNK_ITEMS = 32  # at most; fewer where the expected items would give a worker few chunks
+CHUNKS_EACH = 8  # the chunks a worker should get at least, where there are items enough
 CHUNK_BYTES = 256 * 1024
 CHUNKS_PER_WORKER = 3
 
@@ -154,8 +158,11 @@ class Dispatcher(Generic[Item, Result]):
         self._work = work
         self._give_up = give_up
         self._workers = worker_count(jobs)
+        self._chunk_items = CHUNK_ITEMS
         if expected_items is not None:
             self._workers = min(self._workers, max(1, expected_items // ITEMS_PER_WORKER))
+            spread = expected_items // (self._workers * CHUNKS_EACH)
+            self._chunk_items = max(1, min(CHUNK_ITEMS, spread))
         self._min_items = MIN_ITEMS if min_items is None else min_items
         self._pending: list[tuple[int, Item]] = []
         self._pending_bytes = 0
@@ -184,7 +191,7 @@ class Dispatcher(Generic[Item, Result]):
             if len(self._pending) < self._min_items:
                 return []
             self._start()
-        if len(self._pending) >= CHUNK_ITEMS or self._pending_bytes >= CHUNK_BYTES:
+        if len(self._pending) >= self._chunk_items or self._pending_bytes >= CHUNK_BYTES:
             self._submit()
         return self._collect(block=len(self._inflight) >= self._workers * CHUNKS_PER_WORKER)
 
@@ -357,8 +364,8 @@ class Dispatcher(Generic[Item, Result]):
             for entry in suspects:
                 self._send([entry])
             rest = [entry for entry in retry if entry[0] not in self._strikes]
-            for start in range(0, len(rest), CHUNK_ITEMS):
-                self._send(rest[start : start + CHUNK_ITEMS])
+            for start in range(0, len(rest), self._chunk_items):
+                self._send(rest[start : start + self._chunk_items])
         return results
 
     def _kill_workers(self) -> None:

@@ -202,6 +202,31 @@ def test_dispatcher_returns_every_result_once(jobs: int, count: int, started: in
         list(probe.finish())
 
 
+def _chunk_sizes(items: Iterable[int]) -> list[tuple[int, int]]:
+    taken = list(items)
+    return [(item, len(taken)) for item in taken]
+
+
+@pytest.mark.parametrize(
+    ("expected", "largest"),
+    [
+        (5_000, workers.CHUNK_ITEMS),  # a workspace: few messages
+        (160, 10),  # a few files: each of the two workers gets eight chunks or so
+        (40, 2),
+    ],
+)
+def test_chunks_are_large_where_there_are_items_enough(expected: int, largest: int) -> None:
+    """Each chunk costs the main process a message each way: as large as keeps every
+    worker given several, and the items each worker takes as they come."""
+    dispatcher: Dispatcher[int, tuple[int, int]] = Dispatcher(
+        _chunk_sizes, 2, min_items=1, expected_items=expected
+    )
+    results = run_all(dispatcher, range(expected))
+    assert sorted(item for item, _ in results) == list(range(expected))
+    sizes = {size for _, size in results}
+    assert max(sizes) == largest
+
+
 @pytest.mark.usefixtures("small_chunks")
 def test_putting_an_item_waits_on_no_future(monkeypatch: pytest.MonkeyPatch) -> None:
     """The main process asks after every item it puts which chunks came back: by each
