@@ -6,6 +6,7 @@ from __future__ import annotations
 import hashlib
 import os
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -94,6 +95,31 @@ class ContentDigests:
                 return (None, "", BINARY) if known[2] else (known[1], "", None)
         (_, error, skip), content = self._read(name, signature, path, max_size)
         return content, error, skip
+
+    def summaries(
+        self, paths: Sequence[str], max_size: int, statuses: Sequence[Status | Untaken | None]
+    ) -> list[tuple[str | None, str, str | None]]:
+        """``summary`` of each of ``paths`` with its status: those whose digest is
+        remembered under the status they have, nearly all of a re-run's, answered here in
+        one loop (a call each cost 0.1 s of a re-run at 77,000 files)."""
+        remembered, seen, taken = self._remembered(), self._seen, self.statuses
+        found: list[tuple[str | None, str, str | None]] = []
+        for path, status in zip(paths, statuses, strict=True):
+            known = remembered.get(path)
+            if (
+                known is None
+                or known[0] != status
+                or known[2]  # binary: ``summary`` says so
+                or status is None
+                or isinstance(status, Untaken)
+                or status[0] > max_size
+            ):
+                found.append(self.summary(path, max_size, status))
+            else:
+                taken[path] = status
+                seen[path] = known
+                found.append((known[1], "", None))
+        return found
 
     def read(self, path: str | Path, max_size: int) -> tuple[Read, str | None]:
         """``read_file``, and the content digest of what it read, remembered for the next

@@ -35,7 +35,14 @@ from .digests import UNTAKEN, ContentDigests, Untaken
 from .discover import SourceFile
 from .generation import PackageGenerations, reads_python2
 from .model import Generation, Language
-from .reading import MAX_DEFINITION_BYTES, Read, Status, content_digest, read_file, status_of
+from .reading import (
+    MAX_DEFINITION_BYTES,
+    Read,
+    Status,
+    content_digest,
+    read_file,
+    statuses_of,
+)
 from .registry import Registry
 from .unchanged import KeptKey, Keying
 
@@ -96,7 +103,7 @@ class RunInputs:
         goes on with, when it must; and what the kept key was made of, where the packages
         are as they were, is taken up (``unchanged.Keying``): the packages' lookups now,
         the files' facts keys and the place when ``key_first`` asks."""
-        self._statuses = [status_of(path) for path in self._status_files]
+        self._statuses = statuses_of(self._status_files)
         key = self._kept.key(self._identity, self._statuses)
         if key is None:
             keying = self._kept.keying(self._identity)
@@ -116,10 +123,8 @@ class RunInputs:
             return None
         maximum = self._settings.max_file_size
         taken: Sequence[Status | Untaken | None] = self._statuses or [UNTAKEN] * len(self._checked)
-        summaries = [
-            self._digests.summary(source.location, maximum, status)
-            for source, status in zip(self._checked, taken, strict=False)
-        ]
+        paths = [source.location for source in self._checked]
+        summaries = self._digests.summaries(paths, maximum, taken[: len(paths)])
         keying = self._keying
         if keying is None:
             self._tags = [

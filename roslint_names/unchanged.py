@@ -47,7 +47,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, NamedTuple
 
 from .cache import BuiltinsUnpickler, FactsCache
-from .reading import Status, is_racy, open_regular, status_of
+from .reading import Status, is_racy, open_regular, racy_from, status_of
 
 if TYPE_CHECKING:
     from .generation import KeptLookups
@@ -129,7 +129,11 @@ class KeptKey:
         kept as changed (False: no status is)."""
         if any(s is not None and self._racy(s) for s in package_statuses.values()):
             return
-        files = [False if s is not None and self._racy(s) else s for s in file_statuses]
+        recent = racy_from(self.started)  # ``_racy`` of each, without a call each
+        files = [
+            False if s is not None and (s[1] >= recent or s[2] >= recent) else s
+            for s in file_statuses
+        ]
         tags, place_key, lookups = keying
         made_of = pickle.dumps((list(tags), lookups), _PROTOCOL)
         paths, statuses = tuple(package_statuses), list(package_statuses.values())

@@ -414,6 +414,52 @@ def test_a_file_modified_just_now_is_read_again_next_time(
     assert reused(check()) and reads == ["driver.cpp"]
 
 
+@pytest.mark.usefixtures("old_tree")
+def test_the_digests_of_many_files_are_what_each_file_s_digest_is(
+    workspace: Path, tmp_path: Path
+) -> None:
+    """``summaries`` answers in one loop what ``summary`` answers file by file: a digest
+    remembered under the status the file has, the digest of a file edited since, a file
+    now too large, one that is not text, one gone, one whose status was not taken."""
+    package = workspace / "src/robot_base"
+    binary = write(package, "launch/blob.launch", "<launch>\0</launch>\n")
+    large = write(package, "launch/large.launch", "<launch/>\n")
+    paths = [
+        os.fspath(path)
+        for path in (
+            package / "src/driver.cpp",
+            package / "launch/base.launch",
+            binary,
+            large,
+            package / "launch/gone.launch",
+            package / "CMakeLists.txt",
+        )
+    ]
+    cache = cache_module.FactsCache(tmp_path / "cache")
+    first = digests_module.ContentDigests.of(cache, workspace)
+    for path in paths:
+        first.summary(path, 1 << 20)
+    first.save()
+    (package / "src/driver.cpp").write_text(DRIVER.replace("cmd_vel", "Cmd_Vel"))
+    large.write_text("<launch>\n" + "<!-- padding -->\n" * 100 + "</launch>\n")
+    statuses: list[Any] = [reading.status_of(path) for path in paths]
+    statuses[-1] = digests_module.UNTAKEN
+    one_by_one = digests_module.ContentDigests.of(cache, workspace)
+    expected = [
+        one_by_one.summary(path, 1_000, status)
+        for path, status in zip(paths, statuses, strict=True)
+    ]
+    together = digests_module.ContentDigests.of(cache, workspace)
+    assert together.summaries(paths, 1_000, statuses) == expected
+    assert together.statuses == one_by_one.statuses
+    assert together._seen == one_by_one._seen
+    assert [skip for _, _, skip in expected][2:5] == [
+        reading.BINARY,
+        reading.too_large(statuses[3][0], 1_000),
+        None,
+    ]
+
+
 def test_damaged_digests_are_ignored(
     check: Callable[..., Any], workspace: Path, reads: list[str], private_cache: Path
 ) -> None:
