@@ -26,7 +26,7 @@ from .collection import no_collections
 from .discover import SourceFile
 from .generation import PackageGenerations, reads_python2
 from .model import Diagnostic, FileFacts, Generation, Language, LaunchArguments, ParseError, Span
-from .reading import BINARY, content_digest, open_regular, read_file
+from .reading import BINARY, content_digest, read_file, read_regular
 from .run_inputs import RunInputs
 from .suppress import Suppression, may_hold_suppression
 from .workers import Dispatcher
@@ -233,9 +233,10 @@ def _read_again(path: str, size: int, digest: str) -> bytes | None:
     """In the worker: the bytes at ``path`` if they are still the ``size`` bytes of
     ``digest`` the main process read, else None."""
     try:
-        with open_regular(path) as stream:
-            data = stream.read(size + 1)
+        data, _ = read_regular(path, size)
     except OSError:
+        return None
+    if data is None:  # larger now
         return None
     return data if len(data) == size and content_digest(data) == digest else None
 

@@ -79,6 +79,35 @@ def open_regular(path: str | os.PathLike[str]) -> BinaryIO:
         raise
 
 
+def read_regular(path: str | os.PathLike[str], max_size: int) -> tuple[bytes | None, int]:
+    """The bytes of the regular file at ``path`` (as ``open_regular`` opens it), and its
+    size; None for the bytes of a file larger than ``max_size``, which is not read.
+
+    On the descriptor, without a file object: a cold run reads every file of the
+    workspace twice (to key it, in the main process; to extract it, in a worker), and
+    the buffered reader and its second status cost a third of each read (0.04 s of
+    realws's 9,663 files)."""
+    descriptor = os.open(path, _READ_FLAGS)
+    try:
+        found = os.fstat(descriptor)
+        if not stat.S_ISREG(found.st_mode):
+            raise NotRegularFileError(path, found.st_mode)
+        if found.st_size > max_size:
+            return None, found.st_size
+        # Until the end: a file grown since its status was taken is read whole, as it is.
+        chunks = []
+        wanted = found.st_size + 1
+        while chunk := os.read(descriptor, wanted):
+            chunks.append(chunk)
+            wanted = _READ_CHUNK
+        return (chunks[0] if len(chunks) == 1 else b"".join(chunks)), found.st_size
+    finally:
+        os.close(descriptor)
+
+
+_READ_CHUNK = 1 << 16
+
+
 def read_file(path: str | Path, max_size: int) -> Read:
     """The file's bytes, else why it cannot be read; and why it is skipped, if it is.
 
@@ -89,13 +118,11 @@ def read_file(path: str | Path, max_size: int) -> Read:
     """
     # One open, then the size of what was opened: this runs for every file of every run.
     try:
-        with open_regular(path) as stream:
-            size = os.fstat(stream.fileno()).st_size
-            if size > max_size:
-                return None, "", too_large(size, max_size)
-            data = stream.read()
+        data, size = read_regular(path, max_size)
     except OSError as error:
         return None, error.strerror or str(error), None
+    if data is None:
+        return None, "", too_large(size, max_size)
     if is_binary(data):
         return None, "", BINARY
     return data, "", None

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 from conftest import write, write_package
 
-from roslint_names.reading import Read, read_file
+from roslint_names.reading import Read, read_file, too_large
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs FIFOs (POSIX)")
 
@@ -163,3 +163,25 @@ def test_read_file_refuses_a_fifo_without_waiting_on_it(tmp_path: Path) -> None:
         os.close(os.open(fifo, os.O_WRONLY | os.O_NONBLOCK))
         reader.join(timeout=TIMEOUT)
     assert results == [(None, "not a regular file (a FIFO)", None)]
+
+
+@pytest.mark.parametrize("size", [0, 1, 3 * (1 << 16) + 5])
+def test_read_file_reads_every_byte_of_a_file_within_the_limit(tmp_path: Path, size: int) -> None:
+    """An empty file, one byte, and more than one read's worth: read whole, as written."""
+    written = bytes(ord("a") + index % 26 for index in range(size))
+    launch = tmp_path / "bringup.launch"
+    launch.write_bytes(written)
+    assert read_file(launch, size) == (written, "", None)
+
+
+def test_read_file_reads_no_byte_of_a_file_past_the_limit(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    launch = tmp_path / "bringup.launch"
+    launch.write_bytes(b"<launch/>\n" * 100)
+
+    def read(descriptor: int, length: int) -> bytes:
+        raise AssertionError("read past the limit")
+
+    monkeypatch.setattr(os, "read", read)
+    assert read_file(launch, 999) == (None, "", too_large(1000, 999))
