@@ -474,28 +474,39 @@ class ParameterSets:
         In a base class's files only that class's bases are followed: the other classes
         there (a QoS helper beside nav2's LifecycleNode) are not the node's."""
         index = self._index
+        excluded = self._excluded
         # path -> the classes of it whose bases are followed; None: all of them
         files: dict[str, set[str] | None] = dict.fromkeys(sources)
         pending: list[tuple[str, set[str] | None]] = [(path, None) for path in sources]
         unknown = False
 
         def add(path: str, classes: set[str] | None) -> None:
-            if self._excluded(path):
-                return
-            if path in files:
-                known = files[path]
-                if known is None or (classes is not None and classes <= known):
+            # Known first: a node's code is reached again and again (a million times for
+            # 4,600 nodes at 8 copies of the benchmark's workspace), and what is known
+            # was not excluded (or is a source, whose bases are all followed already).
+            known = files.get(path, _UNKNOWN)
+            if known is _UNKNOWN:
+                if excluded(path):
                     return
-                classes = None if classes is None else classes | known
+            elif known is None or (classes is not None and classes <= known):
+                return
+            elif classes is not None:
+                classes = classes | known
             files[path] = classes
             pending.append((path, classes))
 
         while pending:
             path, classes = pending.pop()
             facts = index.facts[path]
-            nested = None if classes is None else set[str]()
-            for found in self._reached(path):
-                add(found, nested)
+            if classes is None:
+                for found in self._reached(path):
+                    if files.get(found, _UNKNOWN) is not None:  # else followed whole
+                        add(found, None)
+            else:
+                nested: set[str] = set()
+                for found in self._reached(path):
+                    if found not in files:  # else ``nested`` adds nothing to it
+                        add(found, nested)
             for name, bases in facts.class_bases:
                 if classes is not None and name not in classes:
                     continue
@@ -762,6 +773,13 @@ def _words(name: str) -> frozenset[str]:
     spaced = re.sub(r"([a-z0-9])([A-Z])", r"\1 \2", name)
     words = re.split(r"[^A-Za-z0-9]+", spaced.lower())
     return frozenset(word for word in words if word and word not in _CONSTANT_WORDS)
+
+
+class _Reached(Enum):
+    NOT_YET = 0  # a file ``_own_code`` has not reached
+
+
+_UNKNOWN = _Reached.NOT_YET
 
 
 def _parameter_uses(facts: FileFacts) -> Iterable[NameUse]:
