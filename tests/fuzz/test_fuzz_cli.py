@@ -47,11 +47,16 @@ _SUMMARY = re.compile(
     r"Found \d+ problems? \(.*\) in \d+ files? \(\d+ files? checked\)\."
     r"|All checks passed: \d+ files? checked, no problems\."
 )
-# --verbose: where the cache is, files skipped (too large, binary), cache problems, and
-# what became of each file.
+# --verbose: where the cache is, files skipped (too large, binary), cache problems, what
+# became of each file, and the sources whose findings the workspace spares (a build file
+# fuzzed away leaves its package's sources compiled by nothing).
 _VERBOSE = re.compile(
     r"roslint-names: (?:cache|skipped|warning:) .*"
     r"|roslint-names: \S.*: (?:checked|not (?:parsed|checked): .*|(?:test|example) code: .*)"
+    r"|roslint-names: \S.*: no build file of its package compiles it; its findings about "
+    r"names are not reported"
+    r"|roslint-names: \S.*: only rostest starts what it is built into, naming the node; "
+    r"the node name it hands ros::init is not judged"
 )
 
 
@@ -189,3 +194,21 @@ def test_fuzz_cli(tmp_path: Path) -> None:
     failures = report_failures(stats)
     if failures:
         pytest.fail(failures, pytrace=False)
+
+
+def test_the_lines_of_a_build_file_fuzzed_away_are_known(tmp_path: Path) -> None:
+    """The sample the fuzzer found: an empty CMakeLists.txt leaves its package's node
+    compiled by nothing, which ``--verbose`` says in a line of its own."""
+    workspace = tmp_path / "ws"
+    shutil.copytree(EXAMPLES, workspace)
+    sample = CliSample(
+        file="src/turtle_bringup/CMakeLists.txt",
+        kind="random bytes",
+        origin="random bytes; src/turtle_bringup/CMakeLists.txt",
+        data=b"",
+        arguments=("check", ".", "--format", "json", "--verbose", "--jobs", "1"),
+    )
+    (workspace / sample.file).write_bytes(sample.data)
+    outcome = invoke([*sample.arguments, "--no-cache"], workspace)
+    assert "no build file of its package compiles it" in outcome.stderr
+    check_outcome(sample, outcome)
