@@ -667,7 +667,7 @@ class _Walker(Generic[_T]):
     ) -> None:
         """Walk ``top`` from its ``entries``, and keep what it found."""
         names = {entry.name for entry in entries}
-        manifest = MANIFEST in names
+        manifest = _holds_manifest(names)
         if not manifest:
             self.without_manifest.add(top)
         listings = self.listings
@@ -721,6 +721,14 @@ class _Walker(Generic[_T]):
                 manifest,
             )
             listings.keep(top, kept)
+
+
+def _holds_manifest(names: set[str]) -> bool:
+    """Whether a directory of these entries may hold a package.xml: an entry of that name
+    in any case, which a file system that ignores case (macOS's, Windows') opens as one."""
+    return MANIFEST in names or any(
+        name.lower() == MANIFEST for name in names if len(name) == len(MANIFEST)
+    )
 
 
 def _is_file(entry: os.DirEntry[str] | str, notes: _Notes) -> bool:

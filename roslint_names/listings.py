@@ -53,8 +53,8 @@ class Listed(NamedTuple):
     directories: tuple[str, ...]  # the subdirectories walked, by name
     files: tuple[tuple[str, str], ...]  # the files selected: name, what the name says
     links: tuple[tuple[str, str], ...]  # the links selected: followed again each time
-    # An entry named ``package.xml``, of any kind, ignored or not: where there is none, no
-    # package lookup takes the status of one (``generation.PackageGenerations``).
+    # An entry named ``package.xml`` (in any case), of any kind, ignored or not: where there
+    # is none, no package lookup takes the status of one (``generation.PackageGenerations``).
     manifest: bool
 
 

@@ -339,3 +339,34 @@ def test_patterns_compiled_late_leave_an_invalid_one_out() -> None:
     assert not spec.match_file("launch/sim.launch")
     with pytest.raises(ValueError):
         discover_module._Spec(["!", "*.bak.launch"])
+
+
+def test_the_directories_without_a_manifest_are_those_the_walk_saw_none_in(
+    workspace: Path, tmp_path: Path
+) -> None:
+    """Listed or replayed alike; a package.xml counts ignored, as a link to nothing, and
+    in another case (which a file system ignoring case opens as one)."""
+    repository = workspace / "src/chatter_ros"
+    write(repository, ".gitignore", "*.orig\nhidden/package.xml\n")
+    write(repository, "hidden/package.xml", CATKIN_PACKAGE.format(name="hidden"))
+    write(repository, "hidden/launch/robot.launch", BRINGUP)
+    (repository / "linked").mkdir()
+    os.symlink("nowhere.xml", repository / "linked/package.xml")
+    write(repository, "shouting/PACKAGE.XML", CATKIN_PACKAGE.format(name="shouting"))
+    write(repository, "shouting/src/node.cpp", TALKER)
+    _age(workspace)
+    cache = FactsCache(tmp_path / "cache")
+    walks = []
+    for kept in (None, cache, cache):  # no listings, then listed, then replayed
+        without: set[str] = set()
+        discover([workspace], [], workspace, workspace, [], cache=kept, without_manifest=without)
+        walks.append(without)
+    assert walks[0] == walks[1] == walks[2]
+    manifests = {
+        os.fspath(repository / name) for name in ("chatter", "bringup", "linked", "hidden")
+    }
+    assert manifests.isdisjoint(walks[0])
+    assert os.fspath(repository / "shouting") not in walks[0]
+    assert os.fspath(repository / "chatter/src") in walks[0]
+    assert os.fspath(repository / "shouting/src") in walks[0]
+    assert os.fspath(repository / "hidden/launch") in walks[0]
