@@ -260,6 +260,16 @@ class FactsCache:
             self.stats.hits += 1
         return facts
 
+    def holds_facts(self) -> bool:
+        """Whether any file's facts are stored: none in a first run of this version of the
+        tool, where looking a file up by its content would find nothing."""
+        if self._empty is None:
+            self._empty = _read_log(os.path.join(self.directory, _EMPTY_LOG))
+        if self._records is None:
+            self._pack = _map(os.path.join(self.directory, _PACK))
+            self._records = _index(self._pack)
+        return bool(self._empty or self._records or self._stored)
+
     def stand_on(self, keys: Iterable[str]) -> None:
         """Facts this run's result stands on without loading them (``same_facts``): used,
         as those loaded are, so that ``finish`` keeps them when it rewrites the pack."""

@@ -16,6 +16,7 @@ from .reading import (
     BINARY,
     Read,
     Status,
+    Taken,
     content_digest,
     is_racy,
     read_file,
@@ -121,6 +122,12 @@ class ContentDigests:
                 found.append((known[1], "", None))
         return found
 
+    def record(self, name: str, taken: Taken) -> None:
+        """Remember what another process found reading the file at ``name`` (``reading.
+        taken``), as ``read`` remembers what it reads."""
+        self.statuses[name] = taken.status
+        self._remember(name, taken.status, taken.content, taken.skip, taken.racy)
+
     def read(self, path: str | Path, max_size: int) -> tuple[Read, str | None]:
         """``read_file``, and the content digest of what it read, remembered for the next
         run."""
@@ -136,9 +143,14 @@ class ContentDigests:
         data, error, skip = read_file(path, max_size)
         content = None if data is None else content_digest(data)
         racy = signature is None or is_racy(signature[1], signature[2], time.time_ns())
+        self._remember(name, signature, content, skip, racy)
+        return (data, error, skip), content
+
+    def _remember(
+        self, name: str, signature: Status | None, content: str | None, skip: str | None, racy: bool
+    ) -> None:
         if signature is not None and not racy and (content is not None or skip == BINARY):
             self._seen[name] = (signature, content or "", content is None)
-        return (data, error, skip), content
 
     def _remembered(self) -> dict[str, tuple[Status, str, bool]]:
         if not self._loaded:

@@ -26,9 +26,10 @@ from .collection import no_collections
 from .discover import SourceFile
 from .generation import PackageGenerations, reads_python2
 from .model import Diagnostic, FileFacts, Generation, Language, LaunchArguments, ParseError, Span
-from .reading import BINARY, content_digest, read_file, read_regular
+from .reading import BINARY, Taken, content_digest, read_file, read_regular, taken
 from .run_inputs import RunInputs
 from .suppress import Suppression, may_hold_suppression
+from .wiring import wired_by
 from .workers import Dispatcher
 
 if TYPE_CHECKING:
@@ -226,7 +227,8 @@ class OnDisk:
 def _as_read(result: Extracted, item: _Item, dispatcher: Dispatcher[_Item, Extracted]) -> Extracted:
     """``result``; where the worker found the file edited since the main process read it,
     the extraction of the bytes as read, here."""
-    return result if result[1] is not None else dispatcher.here([item])[0]
+    edited = result[1] is None and result[3] is None
+    return dispatcher.here([item])[0] if edited else result
 
 
 def _read_again(path: str, size: int, digest: str) -> bytes | None:
@@ -241,16 +243,38 @@ def _read_again(path: str, size: int, digest: str) -> bytes | None:
     return data if len(data) == size and content_digest(data) == digest else None
 
 
-# A job, the file's bytes (or where they are), and the key its facts are cached under.
-_Item = tuple[_Job, "bytes | OnDisk | None", str | None]
+class Unread:
+    """A file the worker reads itself, keyed by what it finds (``reading.taken``): in a
+    run where no file's facts can be found by its content (the cache holds none, or there
+    is none) the main process reads no file to look it up, and each is read once, where
+    it is extracted. Reading and hashing every file was a tenth of a cold run's main
+    process."""
+
+    __slots__ = ("max_size", "path")
+
+    def __init__(self, path: str, max_size: int) -> None:
+        self.path = path
+        self.max_size = max_size
+
+    def __reduce__(self) -> tuple[type[Unread], tuple[str, int]]:
+        return Unread, (self.path, self.max_size)
+
+
+# A job, the file's bytes (or where they are, or that the worker is to read them), and
+# the key its facts are cached under.
+_Item = tuple[_Job, "bytes | OnDisk | Unread | None", str | None]
 # What the per-file rules found in a file (``engine.FileChecks``): diagnostics and the
 # file's suppressions; None where its verdict waits for the whole run.
 Verdict = tuple[list[Diagnostic], list[Suppression]]
 Checker = Callable[[FileFacts, bytes], "Verdict | None"]
-# A file's index, its facts, and the per-file rules' verdict when it was judged with them.
-# Facts None: the worker found the file edited since the main process read it
-# (``OnDisk``); the main process extracts the bytes it read (``Dispatcher.here``).
-Extracted = tuple[int, "FileFacts | None", "Verdict | None"]
+# A file's index, its facts, and the per-file rules' verdict when it was judged with them;
+# for a file the worker read (``Unread``), what reading it found and its bytes where the
+# main process needs them (a verdict it makes, a launch file's wiring), else None. Facts
+# None: the worker found the file edited since the main process read it (``OnDisk``),
+# and the main process extracts the bytes it read (``Dispatcher.here``); or the file the
+# worker read is one no extractor reads (too large, not text, unreadable).
+Read = tuple[Taken, "bytes | None"]
+Extracted = tuple[int, "FileFacts | None", "Verdict | None", "Read | None"]
 
 
 def extract_batch(
@@ -265,10 +289,19 @@ def extract_batch(
     a file past it is one RN001, stored like any facts (``gave_up``).
     """
     results: list[Extracted] = []
-    for job, payload, key in batch:
-        data = payload.data if isinstance(payload, OnDisk) else payload
+    for job, payload, sent_key in batch:
+        found: Taken | None = None
+        key = sent_key
+        if isinstance(payload, Unread):
+            found, data = taken(payload.path, payload.max_size)
+            if data is None:  # too large, not text, unreadable: the main process says so
+                results.append((job.index, None, None, (found, None)))
+                continue
+            key = _key_of(cache, job, found)
+        else:
+            data = payload.data if isinstance(payload, OnDisk) else payload
         if data is None:  # edited since the main process read it
-            results.append((job.index, None, None))
+            results.append((job.index, None, None, None))
             continue
         facts = _extract_within_budget(job, data)
         if may_hold_suppression(data):
@@ -276,10 +309,29 @@ def extract_batch(
         if cache is not None and key is not None:
             cache.store(key, facts)
         verdict = checker(facts, data) if checker is not None and job.checked else None
-        results.append((job.index, facts, verdict))
+        read = None
+        if found is not None:
+            needed = (job.checked and verdict is None) or bool(wired_by(facts))
+            read = (found, data if needed else None)
+        results.append((job.index, facts, verdict, read))
     if cache is not None:
         cache.flush()  # a worker process has no "end of run": every batch ends its writes
     return results
+
+
+def _key_of(cache: FactsCache | None, job: _Job, found: Taken) -> str | None:
+    """The key the facts of a file a worker read are stored under: the one the main
+    process keys the file by (``RunInputs.record``)."""
+    if cache is None or found.content is None:
+        return None
+    return cache.key_of_digest(
+        found.content,
+        job.display,
+        job.language,
+        job.package_generation,
+        job.fallback_generation,
+        python2=job.python2,
+    )
 
 
 def _extract_within_budget(job: _Job, data: bytes) -> FileFacts:
@@ -325,11 +377,18 @@ def gave_up(cache: FactsCache | None, item: _Item, why: workers.Stopped) -> Extr
     version of the tool (the cache key has both), so the next run does not wait again;
     ``--no-cache`` tries anew."""
     job, payload, key = item
-    data = payload.data if isinstance(payload, OnDisk) else payload or b""
+    read: Read | None = None
+    if isinstance(payload, Unread):  # read here, as its worker read it
+        found, unread = taken(payload.path, payload.max_size)
+        if unread is None:
+            return job.index, None, None, (found, None)
+        data, key, read = unread, _key_of(cache, job, found), (found, unread)
+    else:
+        data = payload.data if isinstance(payload, OnDisk) else payload or b""
     facts = gave_up_facts(job.display, job.language, data, why)
     if cache is not None and key is not None:
         cache.store(key, facts)
-    return job.index, facts, None
+    return job.index, facts, None, read
 
 
 def gave_up_facts(display: str, language: Language, data: bytes, why: workers.Stopped) -> FileFacts:
@@ -406,8 +465,14 @@ class Gatherer:
     max_file_size: int
     extracted: int = 0
     cached: int = 0
-    skipped: list[tuple[str, str]] = field(default_factory=list)
+    _skipped: dict[int, tuple[str, str]] = field(default_factory=dict)  # by file index
     _extracting: dict[int, _Item] = field(default_factory=dict)  # sent to extraction
+    _unread: bool | None = None  # once asked: workers read the files (``Unread``)
+
+    @property
+    def skipped(self) -> list[tuple[str, str]]:
+        """The files skipped (display path, why), in the order of ``files``."""
+        return [self._skipped[index] for index in sorted(self._skipped)]
 
     def facts(
         self, indices: Iterable[int] | None = None
@@ -420,6 +485,12 @@ class Gatherer:
                 self.cached += 1
                 yield index, known[1], None, None
                 continue
+            if known is None and self._read_where_extracted():
+                unread = Unread(source.location, self.max_file_size)
+                item: _Item = (self._job(index, source), unread, None)
+                self._extracting[index] = item
+                yield from self._arrived(self.dispatcher.put(item, 0))
+                continue
             key: str | None = None
             content: str | None = None  # the bytes' digest, where keying them made it
             if self.inputs is not None:
@@ -429,12 +500,10 @@ class Gatherer:
             if skip == BINARY:  # a source that is not text is a finding, never a pass
                 yield index, not_text(source), b"", None
             elif skip is not None:
-                self.skipped.append((source.display, skip))
-                yield index, FileFacts(source.display, source.language, self.fallback), b"", None
+                yield self._skip(index, source, skip)
             elif data is None:
                 yield index, unreadable(source, read_error), b"", None
             else:
-                package = self.packages.for_file(source.location)
                 if known is not None and key == known[0]:  # loaded above: the same bytes
                     self.cached += 1
                     stored: FileFacts | None = known[1]
@@ -443,22 +512,39 @@ class Gatherer:
                 if stored is not None:
                     yield index, stored, data, None
                     continue
-                python2 = reads_python2(source.language, package, self.fallback, self.ros1_python2)
-                job = _Job(
-                    index,
-                    source.display,
-                    source.language,
-                    package,
-                    self.fallback,
-                    (),
-                    python2,
-                    checked=index < self.reported,
-                )
                 self.extracted += 1
                 on_disk = OnDisk(source.location, data, content)
-                item = self._extracting[index] = (job, on_disk, key)
+                item = self._extracting[index] = (self._job(index, source), on_disk, key)
                 yield from self._arrived(self.dispatcher.put(item, len(data)))
         yield from self._arrived(self.dispatcher.finish())
+
+    def _read_where_extracted(self) -> bool:
+        """Whether each file is read by the worker that extracts it (``Unread``): where no
+        file's facts can be found by its content, for a run keyed as it reads."""
+        if self._unread is None:
+            keyed_first = self.inputs is not None and self.inputs.keyed_first
+            self._unread = not keyed_first and (self.cache is None or not self.cache.holds_facts())
+        return self._unread
+
+    def _job(self, index: int, source: SourceFile) -> _Job:
+        package = self.packages.for_file(source.location)
+        python2 = reads_python2(source.language, package, self.fallback, self.ros1_python2)
+        return _Job(
+            index,
+            source.display,
+            source.language,
+            package,
+            self.fallback,
+            (),
+            python2,
+            checked=index < self.reported,
+        )
+
+    def _skip(
+        self, index: int, source: SourceFile, why: str
+    ) -> tuple[int, FileFacts, bytes | None, Verdict | None]:
+        self._skipped[index] = (source.display, why)
+        return index, FileFacts(source.display, source.language, self.fallback), b"", None
 
     def _known(self, index: int, source: SourceFile) -> tuple[str, FileFacts] | None:
         """The facts cached under the key the file's remembered digest gives, and that key.
@@ -485,6 +571,31 @@ class Gatherer:
     ) -> Iterator[tuple[int, FileFacts, bytes | None, Verdict | None]]:
         for result in results:
             item = self._extracting.pop(result[0])
-            index, facts, verdict = _as_read(result, item, self.dispatcher)
+            index, facts, verdict, read = _as_read(result, item, self.dispatcher)
+            if read is not None:
+                yield self._read_there(index, facts, verdict, *read)
+                continue
             assert facts is not None and isinstance(item[1], OnDisk)
             yield index, facts, item[1].data, verdict
+
+    def _read_there(
+        self,
+        index: int,
+        facts: FileFacts | None,
+        verdict: Verdict | None,
+        found: Taken,
+        data: bytes | None,
+    ) -> tuple[int, FileFacts, bytes | None, Verdict | None]:
+        """A file its worker read (``Unread``): keyed by what it found, and what the main
+        process makes of it where it read no bytes to extract, as for one it reads."""
+        source = self.files[index]
+        if self.inputs is not None:
+            self.inputs.record(index, source, found)
+        if found.skip == BINARY:  # a source that is not text is a finding, never a pass
+            return index, not_text(source), b"", None
+        if found.skip is not None:
+            return self._skip(index, source, found.skip)
+        if facts is None:
+            return index, unreadable(source, found.error), b"", None
+        self.extracted += 1
+        return index, facts, data, verdict

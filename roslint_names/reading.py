@@ -12,9 +12,10 @@ import errno
 import hashlib
 import os
 import stat
+import time
 from collections.abc import Iterable
 from pathlib import Path
-from typing import BinaryIO
+from typing import BinaryIO, NamedTuple
 
 Read = tuple["bytes | None", str, "str | None"]  # the bytes, why unreadable, why skipped
 
@@ -176,6 +177,28 @@ def statuses_of(paths: Iterable[str]) -> list[Status | None]:
             continue
         taken.append((found.st_size, found.st_mtime_ns, found.st_ctime_ns, found.st_ino))
     return taken
+
+
+class Taken(NamedTuple):
+    """What reading a file found, to key it by (``digests``, ``run_inputs``), where the
+    process that read it is not the one that keys it (a worker's, for a first run)."""
+
+    status: Status | None  # taken before the bytes were read
+    content: str | None  # the bytes' digest; None where they were not read
+    error: str  # why they could not be, else ""
+    skip: str | None  # why they are skipped (too large, binary), as ``read_file`` says
+    racy: bool  # the status was taken too soon after a change to vouch for the bytes
+
+
+def taken(path: str, max_size: int) -> tuple[Taken, bytes | None]:
+    """Read ``path`` as a run keys it: its status first, then its bytes (``read_file``),
+    their digest, and whether the status can vouch for them (``is_racy``, as of the
+    read)."""
+    status = status_of(path)
+    data, error, skip = read_file(path, max_size)
+    content = None if data is None else content_digest(data)
+    racy = status is None or is_racy(status[1], status[2], time.time_ns())
+    return Taken(status, content, error, skip, racy), data
 
 
 def status_from(found: os.stat_result) -> Status:

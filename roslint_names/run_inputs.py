@@ -39,6 +39,7 @@ from .reading import (
     MAX_DEFINITION_BYTES,
     Read,
     Status,
+    Taken,
     content_digest,
     read_file,
     statuses_of,
@@ -89,7 +90,8 @@ class RunInputs:
         # First: every status of the run is taken after.
         self._kept = KeptKey(cache, root, packages.status)
         self._digests = ContentDigests.of(cache, root)
-        self._tags: list[str] = []  # per checked file: its facts key, or why it has none
+        # Per checked file: its facts key, or why it has none ("" until it is known).
+        self._tags: list[str] = [""] * len(checked)
         self._contents: list[str | None] = []  # per checked file: its digest, as keyed first
         self._keyed_first = False
         self._statuses: list[Status | None] = []  # of ``_status_files``, as first taken
@@ -157,10 +159,20 @@ class RunInputs:
     def facts_key(self, index: int) -> str | None:
         """The facts key of checked file ``index`` once it is known (keyed first, or
         read), None before that and for a file that has none."""
-        if index >= len(self._tags):
-            return None
         tag = self._tags[index]
         return tag if is_facts_key(tag) else None
+
+    @property
+    def keyed_first(self) -> bool:
+        """Whether ``key_first`` keyed the run: else each file is keyed as it is read."""
+        return self._keyed_first
+
+    def record(self, index: int, source: SourceFile, taken: Taken) -> None:
+        """Key a file another process read (``gather``, for a run not keyed first), as
+        ``read`` keys one it reads: ``taken`` is what that process found."""
+        assert not self._keyed_first
+        self._digests.record(source.location, taken)
+        self._tags[index] = self._tag(source, taken.content, taken.error, taken.skip)
 
     def read(self, index: int, source: SourceFile) -> tuple[Read, str | None, str | None]:
         """The file's bytes (as ``read_file`` gives them), its facts key and its content
@@ -179,8 +191,7 @@ class RunInputs:
             tag = self._tag(source, content, read_error, skip)
         if self._keyed_first:
             self.changed |= tag != self._tags[index]
-        else:
-            self._tags.append(tag)
+        self._tags[index] = tag
         return read, None if data is None else tag, content
 
     def key_last(self) -> str | None:

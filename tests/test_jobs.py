@@ -7,6 +7,7 @@ measures time: the benchmark in bench/ does that.
 from __future__ import annotations
 
 import io
+import os
 import pickle
 import re
 import shutil
@@ -15,8 +16,10 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from conftest import write
 
-from roslint_names import gather, workers
+from roslint_names import digests as digests_module
+from roslint_names import gather, run_inputs, workers
 from roslint_names.gather import OnDisk
 from roslint_names.progress import DELAY_SECONDS, ProgressBar, wanted
 from roslint_names.workers import Dispatcher, worker_count
@@ -90,6 +93,49 @@ def test_output_bytes_do_not_depend_on_jobs_or_cache(
         assert result.stderr.splitlines()[1:] == reference.stderr.splitlines()[1:]
 
 
+@pytest.mark.usefixtures("small_chunks", "old_tree")
+def test_a_first_run_reads_each_file_where_it_is_extracted(
+    run_cli: Any, workspace: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """With no facts to look up by content, the main process reads no file to key it: the
+    worker extracting it does, and hands back what the main process keys it by, and the
+    bytes of the files it judges itself. Files too large or not text are said as ever,
+    in the order of the files; the next run reads none of them again."""
+    write(workspace, "roslint-names.toml", "max-file-size = 2000\n")
+    launch = workspace / "src" / "fleet_bringup" / "launch"
+    write(launch, "zz_generated.launch", "<launch>\n" + "<!-- padding -->\n" * 200 + "</launch>\n")
+    write(launch, "aa_generated.launch", "<launch>\n" + "<!-- padding -->\n" * 300 + "</launch>\n")
+    (launch / "blob.launch").write_bytes(b"<launch>\0</launch>\n")
+    keyed_here: list[str] = []
+    for module in (digests_module, run_inputs):
+        real = module.read_file
+
+        def counted(path: Any, max_size: int, real: Any = real) -> Any:
+            keyed_here.append(os.path.basename(path))
+            return real(path, max_size)
+
+        monkeypatch.setattr(module, "read_file", counted)
+    arguments = ["check", "--format", "json", "--verbose", "--cache-dir", str(tmp_path / "c")]
+    first = run_cli([*arguments, "--jobs", "2", "."], workspace)
+    assert "extracted by 2 worker processes" in first.stderr
+    assert keyed_here == []
+    reference = run_cli(["check", "--format", "json", "--verbose", "--no-cache", "."], workspace)
+    assert (first.stdout, first.exit_code) == (reference.stdout, reference.exit_code)
+    assert first.stderr.splitlines()[1:] == reference.stderr.splitlines()[1:]
+    skipped = [
+        line.split(":")[1].removeprefix(" skipped ")
+        for line in first.stderr.splitlines()
+        if line.startswith("roslint-names: skipped")
+    ]
+    assert skipped == sorted(skipped)
+    assert {f"src/fleet_bringup/launch/{name}_generated.launch" for name in ("aa", "zz")} <= {
+        *skipped
+    }
+    again = run_cli([*arguments, "--jobs", "2", "."], workspace)
+    assert "its result reused" in again.stderr and keyed_here == []
+    assert again.stdout == first.stdout
+
+
 def test_a_file_goes_to_a_worker_as_where_it_is(tmp_path: Path) -> None:
     """The worker reads the bytes the main process read; edited since, it gets None."""
     launch = tmp_path / "bringup.launch"
@@ -132,9 +178,15 @@ def test_files_edited_before_a_worker_reads_them_are_extracted_as_read(
 ) -> None:
     """Every file edited between the main process's read and its worker's (the workers,
     forked, see the patch): each is extracted in the main process from the bytes it read,
-    the bytes the run is keyed by and its findings point into."""
-    arguments = ["check", "--format", "json", "--no-cache", "."]
-    reference = run_cli([*arguments, "--jobs", "1"], workspace)
+    the bytes the run is keyed by and its findings point into. The main process reads
+    them where the cache holds facts: here, of every file before a line was added."""
+    cache = str(workspace.parent / "cache")
+    arguments = ["check", "--format", "json", "--cache-dir", cache, "."]
+    run_cli(arguments, workspace)
+    for path in workspace.rglob("*"):
+        if path.suffix in {".launch", ".xml", ".py", ".cpp", ".yaml"}:
+            path.write_bytes(path.read_bytes() + b"\n")
+    reference = run_cli(["check", "--format", "json", "--no-cache", "--jobs", "1", "."], workspace)
     monkeypatch.setattr(gather, "_read_again", _edited_since)
     edited = run_cli([*arguments, "--jobs", "2", "--verbose"], workspace)
     assert "extracted by 2 worker processes" in edited.stderr

@@ -357,8 +357,12 @@ def counting_reads(monkeypatch: pytest.MonkeyPatch, module: Any) -> list[str]:
 
 @pytest.fixture
 def reads(monkeypatch: pytest.MonkeyPatch) -> list[str]:
-    """The files the digests read (all of a first run; those whose status changed)."""
-    return counting_reads(monkeypatch, digests_module)
+    """The files read to be keyed: by the digests (those whose status changed), or where
+    they are extracted (``reading.taken``: all of a first run, with ``--jobs 1`` in this
+    process)."""
+    seen = counting_reads(monkeypatch, digests_module)
+    monkeypatch.setattr(reading, "read_file", digests_module.read_file)
+    return seen
 
 
 def age(workspace: Path, seconds: float = 60) -> None:
