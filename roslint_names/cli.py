@@ -9,7 +9,7 @@ import argparse
 import json
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import NoReturn, TextIO
 
@@ -507,24 +507,21 @@ def _prepare(
     settings = apply_overrides(load_settings(options.config, start, registry), overrides, registry)
     warnings: list[str] = []  # what the walks passed over: said, never skipped in silence
     without_manifest: set[str] = set()
-    sources = discover(
-        options.paths,
-        settings.exclude,
-        settings.root,
-        cwd,
-        warnings,
-        cache=cache,
-        without_manifest=without_manifest,
-    )
+
+    def walk(paths: Sequence[Path]) -> list[SourceFile]:
+        return discover(
+            paths,
+            settings.exclude,
+            settings.root,
+            cwd,
+            warnings,
+            cache=cache,
+            without_manifest=without_manifest,
+        )
+
+    sources = walk(options.paths)
     workspace = _workspace_context(
-        options.paths,
-        settings,
-        registry,
-        cwd,
-        warnings,
-        cache=cache,
-        for_graph=for_graph,
-        without_manifest=without_manifest,
+        options.paths, settings, registry, cwd, walk, for_graph=for_graph
     )
     for warning in dict.fromkeys(warnings):  # a directory both walks pass over: said once
         print(f"roslint-names: warning: {warning}", file=sys.stderr)
@@ -536,17 +533,15 @@ def _workspace_context(
     settings: Settings,
     registry: Registry,
     cwd: Path,
-    warnings: list[str],
+    walk: Callable[[Sequence[Path]], list[SourceFile]],
     *,
-    cache: FactsCache | None,
-    for_graph: bool = False,
-    without_manifest: set[str] | None = None,
+    for_graph: bool,
 ) -> list[SourceFile]:
     """For a run over files (what pre-commit does): the rest of their workspaces, which
     the graph rules need to see, and whose launch files say which absolute names are
-    wired (RN202). Nothing is reported in them, but what their walk passes over joins
-    ``warnings``: the graph does not see it. A run over directories is taken to name its
-    workspace."""
+    wired (RN202). Nothing is reported in them, but what their ``walk`` passes over is
+    said with what the walk of the files named passes over: the graph does not see it. A
+    run over directories is taken to name its workspace."""
     enabled = enabled_codes(settings, registry)
     workspace_rules = any(
         (rule.check_workspace or rule.reads_wiring or rule.reads_plugins) and rule.code in enabled
@@ -558,15 +553,7 @@ def _workspace_context(
     roots = sorted({root for path in files if (root := workspace_root(path)) is not None})
     if not roots:
         return []
-    return discover(
-        roots,
-        settings.exclude,
-        settings.root,
-        cwd,
-        warnings,
-        cache=cache,
-        without_manifest=without_manifest,
-    )
+    return walk(roots)
 
 
 def _run_server(options: argparse.Namespace) -> int:
