@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import hashlib
 import os
-import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -14,25 +13,18 @@ from .cache import DIGESTS, BuiltinsUnpickler, FactsCache
 from .journal import Journaled
 from .reading import (
     BINARY,
+    UNTAKEN,
     Read,
     Status,
     Taken,
-    content_digest,
-    is_racy,
-    read_file,
+    Untaken,
     status_of,
+    taken,
     too_large,
 )
 
 KEPT = 128  # digest files: a base and a journal per recently linted workspace
 _FORMAT = 1
-
-
-class Untaken:
-    """A status not taken yet (None is one: the file's that cannot be looked at)."""
-
-
-UNTAKEN = Untaken()
 
 
 @dataclass
@@ -94,8 +86,9 @@ class ContentDigests:
             if known is not None and known[0] == signature:
                 self._seen[name] = known
                 return (None, "", BINARY) if known[2] else (known[1], "", None)
-        (_, error, skip), content = self._read(name, signature, path, max_size)
-        return content, error, skip
+        found, _ = taken(path, max_size, signature)
+        self.record(name, found)
+        return found.content, found.error, found.skip
 
     def summaries(
         self, paths: Sequence[str], max_size: int, statuses: Sequence[Status | Untaken | None]
@@ -122,35 +115,20 @@ class ContentDigests:
                 found.append((known[1], "", None))
         return found
 
-    def record(self, name: str, taken: Taken) -> None:
-        """Remember what another process found reading the file at ``name`` (``reading.
-        taken``), as ``read`` remembers what it reads."""
-        self.statuses[name] = taken.status
-        self._remember(name, taken.status, taken.content, taken.skip, taken.racy)
+    def record(self, name: str, found: Taken) -> None:
+        """Remember what reading the file at ``name`` found (``reading.taken``), here or
+        in the worker process that read it."""
+        status, content = found.status, found.content
+        self.statuses[name] = status
+        if status is not None and not found.racy and (content is not None or found.skip == BINARY):
+            self._seen[name] = (status, content or "", content is None)
 
     def read(self, path: str | Path, max_size: int) -> tuple[Read, str | None]:
         """``read_file``, and the content digest of what it read, remembered for the next
         run."""
-        name, signature = os.fspath(path), status_of(path)
-        self.statuses[name] = signature
-        return self._read(name, signature, path, max_size)
-
-    def _read(
-        self, name: str, signature: Status | None, path: str | Path, max_size: int
-    ) -> tuple[Read, str | None]:
-        # The status is taken before the bytes are read: a change in between shows as
-        # a status the next run does not find here.
-        data, error, skip = read_file(path, max_size)
-        content = None if data is None else content_digest(data)
-        racy = signature is None or is_racy(signature[1], signature[2], time.time_ns())
-        self._remember(name, signature, content, skip, racy)
-        return (data, error, skip), content
-
-    def _remember(
-        self, name: str, signature: Status | None, content: str | None, skip: str | None, racy: bool
-    ) -> None:
-        if signature is not None and not racy and (content is not None or skip == BINARY):
-            self._seen[name] = (signature, content or "", content is None)
+        found, data = taken(path, max_size)
+        self.record(os.fspath(path), found)
+        return (data, found.error, found.skip), found.content
 
     def _remembered(self) -> dict[str, tuple[Status, str, bool]]:
         if not self._loaded:

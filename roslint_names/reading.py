@@ -190,11 +190,22 @@ class Taken(NamedTuple):
     racy: bool  # the status was taken too soon after a change to vouch for the bytes
 
 
-def taken(path: str, max_size: int) -> tuple[Taken, bytes | None]:
-    """Read ``path`` as a run keys it: its status first, then its bytes (``read_file``),
-    their digest, and whether the status can vouch for them (``is_racy``, as of the
-    read)."""
-    status = status_of(path)
+class Untaken:
+    """A status not taken yet (None is one: the file's that cannot be looked at)."""
+
+
+UNTAKEN = Untaken()
+
+
+def taken(
+    path: str | Path, max_size: int, status: Status | Untaken | None = UNTAKEN
+) -> tuple[Taken, bytes | None]:
+    """Read ``path`` as a run keys it: its status first (``status``, where the caller
+    took it already), then its bytes (``read_file``), their digest, and whether the status
+    can vouch for them (``is_racy``, as of the read: a change in between shows as a
+    status the next run does not find)."""
+    if isinstance(status, Untaken):
+        status = status_of(path)
     data, error, skip = read_file(path, max_size)
     content = None if data is None else content_digest(data)
     racy = status is None or is_racy(status[1], status[2], time.time_ns())

@@ -31,15 +31,17 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .config import Settings, settings_fingerprint
-from .digests import UNTAKEN, ContentDigests, Untaken
+from .digests import ContentDigests
 from .discover import SourceFile
 from .generation import PackageGenerations, reads_python2
 from .model import Generation, Language
 from .reading import (
     MAX_DEFINITION_BYTES,
+    UNTAKEN,
     Read,
     Status,
     Taken,
+    Untaken,
     content_digest,
     read_file,
     statuses_of,

@@ -18,8 +18,7 @@ from typing import Any
 import pytest
 from conftest import write
 
-from roslint_names import digests as digests_module
-from roslint_names import gather, run_inputs, workers
+from roslint_names import gather, reading, run_inputs, workers
 from roslint_names.gather import OnDisk
 from roslint_names.progress import DELAY_SECONDS, ProgressBar, wanted
 from roslint_names.workers import Dispatcher, worker_count
@@ -107,7 +106,7 @@ def test_a_first_run_reads_each_file_where_it_is_extracted(
     write(launch, "aa_generated.launch", "<launch>\n" + "<!-- padding -->\n" * 300 + "</launch>\n")
     (launch / "blob.launch").write_bytes(b"<launch>\0</launch>\n")
     keyed_here: list[str] = []
-    for module in (digests_module, run_inputs):
+    for module in (reading, run_inputs):
         real = module.read_file
 
         def counted(path: Any, max_size: int, real: Any = real) -> Any:

@@ -357,12 +357,10 @@ def counting_reads(monkeypatch: pytest.MonkeyPatch, module: Any) -> list[str]:
 
 @pytest.fixture
 def reads(monkeypatch: pytest.MonkeyPatch) -> list[str]:
-    """The files read to be keyed: by the digests (those whose status changed), or where
-    they are extracted (``reading.taken``: all of a first run, with ``--jobs 1`` in this
+    """The files read to be keyed (``reading.taken``): by the digests (those whose status
+    changed), or where they are extracted (all of a first run, with ``--jobs 1`` in this
     process)."""
-    seen = counting_reads(monkeypatch, digests_module)
-    monkeypatch.setattr(reading, "read_file", digests_module.read_file)
-    return seen
+    return counting_reads(monkeypatch, reading)
 
 
 def age(workspace: Path, seconds: float = 60) -> None:
@@ -447,7 +445,7 @@ def test_the_digests_of_many_files_are_what_each_file_s_digest_is(
     (package / "src/driver.cpp").write_text(DRIVER.replace("cmd_vel", "Cmd_Vel"))
     large.write_text("<launch>\n" + "<!-- padding -->\n" * 100 + "</launch>\n")
     statuses: list[Any] = [reading.status_of(path) for path in paths]
-    statuses[-1] = digests_module.UNTAKEN
+    statuses[-1] = reading.UNTAKEN
     one_by_one = digests_module.ContentDigests.of(cache, workspace)
     expected = [
         one_by_one.summary(path, 1_000, status)
