@@ -231,20 +231,15 @@ class FactsCache:
 
     def load(self, key: str, path: str) -> FileFacts | None:
         """The facts stored under ``key`` (for the file reported as ``path``), or None."""
-        if self._empty is None:
-            self._empty = _read_log(os.path.join(self.directory, _EMPTY_LOG))
         self._used.add(key)
-        empty = self._empty.get(key)
+        empty = self._empty_facts().get(key)
         if empty is not None:
             self.stats.hits += 1
             return FileFacts(path, *empty)
         if key in self._stored:
             self.stats.hits += 1
             return self._stored[key]
-        if self._records is None:
-            self._pack = _map(os.path.join(self.directory, _PACK))
-            self._records = _index(self._pack)
-        where = self._records.get(key)
+        where = self._pack_records().get(key)
         if where is None:  # the usual miss: extract
             self.stats.misses += 1
             return None
@@ -263,12 +258,20 @@ class FactsCache:
     def holds_facts(self) -> bool:
         """Whether any file's facts are stored: none in a first run of this version of the
         tool, where looking a file up by its content would find nothing."""
+        return bool(self._empty_facts() or self._pack_records() or self._stored)
+
+    def _empty_facts(self) -> dict[str, tuple[Language, Generation]]:
+        """The keys of the facts that hold nothing (``_EMPTY_LOG``), read once."""
         if self._empty is None:
             self._empty = _read_log(os.path.join(self.directory, _EMPTY_LOG))
+        return self._empty
+
+    def _pack_records(self) -> dict[str, tuple[int, int]]:
+        """Where each key's facts are in the pack, the pack mapped once."""
         if self._records is None:
             self._pack = _map(os.path.join(self.directory, _PACK))
             self._records = _index(self._pack)
-        return bool(self._empty or self._records or self._stored)
+        return self._records
 
     def stand_on(self, keys: Iterable[str]) -> None:
         """Facts this run's result stands on without loading them (``same_facts``): used,

@@ -497,12 +497,8 @@ class Gatherer:
                 (data, read_error, skip), key, content = self.inputs.read(index, source)
             else:
                 data, read_error, skip = read_file(source.location, self.max_file_size)
-            if skip == BINARY:  # a source that is not text is a finding, never a pass
-                yield index, not_text(source), b"", None
-            elif skip is not None:
-                yield self._skip(index, source, skip)
-            elif data is None:
-                yield index, unreadable(source, read_error), b"", None
+            if data is None:
+                yield self._not_extracted(index, source, read_error, skip)
             else:
                 if known is not None and key == known[0]:  # loaded above: the same bytes
                     self.cached += 1
@@ -540,11 +536,16 @@ class Gatherer:
             checked=index < self.reported,
         )
 
-    def _skip(
-        self, index: int, source: SourceFile, why: str
+    def _not_extracted(
+        self, index: int, source: SourceFile, error: str, skip: str | None
     ) -> tuple[int, FileFacts, bytes | None, Verdict | None]:
-        self._skipped[index] = (source.display, why)
-        return index, FileFacts(source.display, source.language, self.fallback), b"", None
+        """A file whose bytes no extractor reads (``read_file``'s ``error`` or ``skip``)."""
+        if skip == BINARY:  # a source that is not text is a finding, never a pass
+            return index, not_text(source), b"", None
+        if skip is not None:
+            self._skipped[index] = (source.display, skip)
+            return index, FileFacts(source.display, source.language, self.fallback), b"", None
+        return index, unreadable(source, error), b"", None
 
     def _known(self, index: int, source: SourceFile) -> tuple[str, FileFacts] | None:
         """The facts cached under the key the file's remembered digest gives, and that key.
@@ -591,11 +592,7 @@ class Gatherer:
         source = self.files[index]
         if self.inputs is not None:
             self.inputs.record(index, source, found)
-        if found.skip == BINARY:  # a source that is not text is a finding, never a pass
-            return index, not_text(source), b"", None
-        if found.skip is not None:
-            return self._skip(index, source, found.skip)
         if facts is None:
-            return index, unreadable(source, found.error), b"", None
+            return self._not_extracted(index, source, found.error, found.skip)
         self.extracted += 1
         return index, facts, data, verdict
