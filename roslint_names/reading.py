@@ -145,7 +145,7 @@ RACY_NANOSECONDS = 2_000_000_000  # coarser than any file system's time stamps
 
 def is_racy(mtime_ns: int, ctime_ns: int, now_ns: int) -> bool:
     """Whether a status with these times, taken at ``now_ns`` or later, may hide a change."""
-    return max(mtime_ns, ctime_ns) + RACY_NANOSECONDS >= now_ns
+    return max(mtime_ns, ctime_ns) >= racy_from(now_ns)
 
 
 def racy_from(now_ns: int) -> int:
