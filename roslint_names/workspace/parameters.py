@@ -649,9 +649,16 @@ class _Names:
         return not any(self._sets())
 
     def join(self, other: _Names) -> None:
-        """Add what ``other`` gathered."""
-        for mine, theirs in zip(self._sets(), other._sets(), strict=True):
-            mine.update(theirs)
+        """Add what ``other`` gathered. Each set by name, not through ``_sets``: called
+        96,000 times a build at 8 copies of the benchmark's workspace, where two tuples and
+        a zip each time cost a tenth of the names' part."""
+        self.declared |= other.declared
+        self.read |= other.read
+        self.declared_suffixes |= other.declared_suffixes
+        self.read_suffixes |= other.read_suffixes
+        self.read_prefixes |= other.read_prefixes
+        self.literals |= other.literals
+        self.constants |= other.constants
 
     def add_declarations(self, facts: FileFacts) -> None:
         for use in _parameter_uses(facts):
