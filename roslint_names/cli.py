@@ -64,6 +64,29 @@ class UsageError(Exception):
     pass
 
 
+def entry() -> NoReturn:
+    """The ``roslint-names`` command and ``python -m roslint_names``: ``main``, then the
+    process ends without taking its objects apart one by one.
+
+    A run that built the graph leaves every file's facts and the graph to the collector
+    (some of them in cycles): at 8 copies of realws, 1.9 million objects whose collection
+    at interpreter exit cost 1.0 s after the report was out, a tenth of the run. What
+    the run writes into the cache and the user's tree is written and closed before
+    ``main`` returns (``cache.finish``, ``editing.files``); the worker processes are
+    joined by then (``workers.Dispatcher``); output streams are flushed here. mypy ends
+    its runs so (``mypy.util.hard_exit``). A caller of ``main`` (the tests, a program
+    embedding the linter) gets the exit code back as before; an error exit
+    (``SystemExit``) goes the usual way."""
+    code = main()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            if not stream.closed:  # the language server's stdout, closed at the client's exit
+                stream.flush()
+        except BrokenPipeError:  # the reader went away after the report (`... | head`)
+            code = EXIT_ERROR
+    os._exit(code)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     arguments = list(sys.argv[1:] if argv is None else argv)
     if not arguments or arguments[0] not in (*COMMANDS, "-h", "--help", "--version"):
@@ -764,4 +787,4 @@ def rules_table(registry: Registry) -> str:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    entry()
