@@ -44,6 +44,7 @@ from roslint_names.workspace.graph import (
     UnnamedReceiver,
 )
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
+from roslint_names.workspace.launch_parts import LaunchParts, TreePart, Unnamed
 from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Prepare, Specialise
 from roslint_names.workspace.memory import Field, GraphMemory, Reads
 from roslint_names.workspace.parameter_files import ros1_names, ros2_names
@@ -97,6 +98,17 @@ def build(
     """The workspace graph; ``prepare`` is told each depth's specialisations first.
     ``memory``: what the last build of this workspace left (``memory.GraphMemory``): the
     pieces nothing changed under are taken from it, and this build's are left in it."""
+    return build_parts(facts, packages, specialise, prepare, memory)[0]
+
+
+def build_parts(
+    facts: Iterable[FileFacts],
+    packages: Sequence[Package],
+    specialise: Specialise,
+    prepare: Prepare | None = None,
+    memory: GraphMemory | None = None,
+) -> tuple[Graph, LaunchParts]:
+    """``build``'s graph, and each launch tree's part of it (``launch_parts``)."""
     memory = GraphMemory(keeps=False) if memory is None else memory
     index = memory.begin({f.path: f for f in facts}, packages)
     tests = _TestFiles(index, memory.piece("test files", (), dict))
@@ -113,11 +125,15 @@ def build(
     # one hashes all it holds. A tree walked again starts nodes that are new objects.
     started = memory.reads("launched")
     place: tuple[str, int] = ("", 0)
+    # Each tree's code and parameter files handed to nodes of unknown name
+    tree_sources: dict[str, set[str]] = {}
+    tree_unnamed: dict[str, list[Unnamed]] = {}
     for launched in trees.launched():
         place = (launched.root, place[1] + 1 if place[0] == launched.root else 0)
         found = index.sources_of(launched.node.package, launched.node.executable)
         sources = tuple(path for path in found if path not in unbuilt)
         launched_sources.update(sources)
+        tree_sources.setdefault(launched.root, set()).update(sources)
         kept = started.get(place)
         if kept is None or kept[0][0] is not launched or kept[0][1] != sources:
             instance, read = _launched_instance(index, tests, launched, sources, trees)
@@ -128,6 +144,7 @@ def build(
             endpoints.extend(instance.endpoints)
         for path, receiver in instance.unnamed:
             unnamed.setdefault(path, set()).add(receiver)
+        tree_unnamed.setdefault(launched.root, []).extend(instance.unnamed)
     unlaunched = memory.reads("unlaunched")
     code = memory.piece("code files", ("language",), lambda: _code_files(index))
     programs: dict[frozenset[str], list[tuple[str, ...]]] = memory.piece(
@@ -167,7 +184,31 @@ def build(
         for node in nodes
     ]
     finished.forget_the_rest()
-    return Graph(
+    tree_loads: dict[str, list[ParameterFileUse]] = {}
+    for root, use in rooted_loads:
+        tree_loads.setdefault(root, []).append(use)
+    parts = LaunchParts(
+        tuple(trees.roots()),
+        {
+            root: TreePart(
+                trees.visited(root),
+                tuple(sorted(tree_sources.get(root, ()))),
+                tuple(tree_unnamed.get(root, ())),
+                tuple(tree_loads.get(root, ())),
+            )
+            for root in trees.roots()
+        },
+        frozenset(unbuilt),
+        index.executables(),
+        {
+            sources: parameters.of(sources)
+            for sources in sorted(
+                {node.sources for node in nodes}
+                | {sources for receivers in unnamed.values() for _, sources in receivers}
+            )
+        },
+    )
+    graph = Graph(
         _sorting(memory, "sorted nodes", NodeInstance.sort_key)(nodes),
         _sorting(memory, "sorted endpoints", Endpoint.sort_key)(endpoints),
         index.companions(),
@@ -184,6 +225,7 @@ def build(
         },
         parameter_declarations=parameters.declarations(),
     )
+    return graph, parts
 
 
 _T = TypeVar("_T")
@@ -365,11 +407,18 @@ class _TestFiles:
 def _mentions(index: WorkspaceIndex, nodes: Iterable[NodeInstance]) -> dict[str, frozenset[str]]:
     """The string literals of every code file (headers too) of each package whose node
     has remaps of its own."""
-    packages = {node.package for node in nodes if node.package and any(r.own for r in node.remaps)}
     return {
         package: package_literals(index.facts[path] for path in index.files_of(package))
-        for package in sorted(packages)
+        for package in mentioned_packages(nodes)
     }
+
+
+def mentioned_packages(nodes: Iterable[NodeInstance]) -> list[str]:
+    """The packages whose literals ``Graph.mentions`` keeps: those of nodes with remaps
+    of their own, sorted."""
+    return sorted(
+        {node.package for node in nodes if node.package and any(r.own for r in node.remaps)}
+    )
 
 
 def package_literals(code: Iterable[FileFacts]) -> frozenset[str]:

@@ -9,7 +9,7 @@ from __future__ import annotations
 import copy
 import posixpath
 from collections import Counter
-from collections.abc import Collection, Iterable, Sequence
+from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 
 from roslint_names.model import ExecutableKind, FileFacts, Generation, Language
@@ -38,6 +38,15 @@ def join(directory: str, relative: str) -> str:
     joined = posixpath.normpath(posixpath.join(directory, relative)) if directory else relative
     joined = posixpath.normpath(joined)
     return "" if joined == "." else joined
+
+
+@dataclass(frozen=True)
+class Executables:
+    """What the build files make: each program's sources by (package, executable), each
+    component plugin's by class name (``WorkspaceIndex.sources_of``)."""
+
+    programs: tuple[tuple[tuple[str, str], tuple[str, ...]], ...]
+    plugins: tuple[tuple[str, tuple[str, ...]], ...]
 
 
 class PackageFiles:
@@ -85,7 +94,13 @@ class WorkspaceIndex(PackageFiles):
     """Packages, files and executables of one run."""
 
     def __init__(self, facts: Iterable[FileFacts], packages: Sequence[Package]) -> None:
-        self.facts: dict[str, FileFacts] = {f.path: f for f in facts}
+        self._placed({f.path: f for f in facts}, packages)
+        self._programs: dict[tuple[str, str], list[str]] = {}
+        self._plugins: dict[str, list[str]] = {}
+        self._index_executables()
+
+    def _placed(self, facts: Mapping[str, FileFacts], packages: Sequence[Package]) -> None:
+        self.facts: Mapping[str, FileFacts] = facts
         # A name two directories claim (a ROS 1 and a ROS 2 copy) is no package we can
         # find things in: colcon and catkin refuse such a workspace, and which copy a
         # launch file means is unknown.
@@ -93,12 +108,32 @@ class WorkspaceIndex(PackageFiles):
         self.packages: dict[str, Package] = {
             package.name: package for package in packages if claims[package.name] == 1
         }
-        super().__init__(self.facts, packages)
-        self._programs: dict[tuple[str, str], list[str]] = {}
-        self._plugins: dict[str, list[str]] = {}
-        self._index_executables()
+        PackageFiles.__init__(self, facts.keys(), packages)
 
-    def with_facts(self, facts: dict[str, FileFacts]) -> WorkspaceIndex:
+    @classmethod
+    def restored(
+        cls,
+        facts: Mapping[str, FileFacts],
+        packages: Sequence[Package],
+        executables: Executables,
+    ) -> WorkspaceIndex:
+        """The index of a build whose executables (``executables``) are known, over
+        ``facts`` (every file of the run, each looked at only when asked for: a launch
+        patch reads a few files of 77,000, ``workspace.launch_patch``)."""
+        index = cls.__new__(cls)
+        index._placed(facts, packages)
+        index._programs = {key: list(sources) for key, sources in executables.programs}
+        index._plugins = {name: list(sources) for name, sources in executables.plugins}
+        return index
+
+    def executables(self) -> Executables:
+        """The programs and plugins the build files make, as ``restored`` takes them."""
+        return Executables(
+            tuple((key, tuple(sources)) for key, sources in sorted(self._programs.items())),
+            tuple((name, tuple(sources)) for name, sources in sorted(self._plugins.items())),
+        )
+
+    def with_facts(self, facts: Mapping[str, FileFacts]) -> WorkspaceIndex:
         """This index over new facts of the same files, whose executables and languages
         are unchanged (``memory.GraphMemory``): where things are stays as it was."""
         updated = copy.copy(self)

@@ -105,21 +105,28 @@ class LaunchTrees:
         specialise: Specialise,
         prepare: Prepare | None = None,
         memory: GraphMemory | None = None,
+        *,
+        roots: Sequence[str] | None = None,
     ) -> None:
         """``memory``: what the last build left (``memory.GraphMemory``): a tree whose
         files did not change is not walked again, and the launch files and the roots are
-        the last build's where no changed file differs in what they are made from."""
+        the last build's where no changed file differs in what they are made from.
+        ``roots``: the trees to walk, where they are known (``workspace.launch_patch``
+        walks those an edit reaches); else every root of the workspace."""
         memory = GraphMemory(keeps=False) if memory is None else memory
         self.index = index
         self.specialise = specialise
         self.prepare = prepare
         self._trees = memory.reads("launch trees")
-        self.launch_files: list[str] = memory.piece(
-            "launch files", _LAUNCH_FILE_FIELDS, self._launch_files
-        )
-        self._roots: list[str] = memory.piece(
-            "launch roots", (*_LAUNCH_FILE_FIELDS, _include_targets), self._find_roots
-        )
+        self.launch_files: list[str] = []  # those a walk of every root starts from
+        if roots is None:
+            self.launch_files = memory.piece(
+                "launch files", _LAUNCH_FILE_FIELDS, self._launch_files
+            )
+            roots = memory.piece(
+                "launch roots", (*_LAUNCH_FILE_FIELDS, _include_targets), self._find_roots
+            )
+        self._roots: list[str] = list(roots)
 
     def _launch_files(self) -> list[str]:
         return sorted(
@@ -185,6 +192,12 @@ class LaunchTrees:
             kept = self._trees[root] = (tree, Reads(tuple(read.paths)))
         found: _Tree = kept[0]
         return found
+
+    def visited(self, root: str) -> tuple[str, ...]:
+        """The files the tree of ``root`` read (its own, those it includes, whether they
+        run or not), sorted: the trees an edit of one of them reaches."""
+        self._tree(root)
+        return tuple(sorted(self._trees[root][1].paths))
 
     def _same_specialised(self, tree: _Tree) -> bool:
         """Whether ``Specialise`` gives what it gave ``tree``'s walk (the same object while

@@ -177,6 +177,10 @@ class NodeParameters:
         )
 
 
+# The parameters of a node whose code the workspace does not hold
+NO_CODE = NodeParameters(incomplete=(Incomplete.NO_CODE,))
+
+
 def declared_by(name: str, names: Iterable[str], suffixes: Iterable[str]) -> bool:
     """``name`` among ``names``, or ending with a suffix (an empty run-time prefix may
     leave the suffix alone), or one the client library declares."""
@@ -314,7 +318,7 @@ class ParameterSets:
     def _compute(self, sources: tuple[str, ...]) -> tuple[NodeParameters, Reads]:
         """The node's parameters, and the files and packages they are made from."""
         if not sources:
-            return NodeParameters(incomplete=(Incomplete.NO_CODE,)), self._memory.read()
+            return NO_CODE, self._memory.read()
         causes: set[Incomplete] = set()
         if not any(self._is_program(path) for path in sources):
             causes.add(Incomplete.LIBRARY)

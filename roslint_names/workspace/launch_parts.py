@@ -1,0 +1,46 @@
+"""What a graph build leaves for a launch patch: each launch tree's part of the graph.
+
+A build walks every root launch file's tree (``launch_tree``); ``workspace.launch_patch``
+walks again only the trees an edited launch file is in, and needs, for every other tree,
+what the build took from it besides its nodes and endpoints (which carry their root):
+the code its nodes run, the parameter files handed to nodes of unknown name, the ROS 1
+group-level loads. ``build.build_parts`` makes these beside the graph; the CLI keeps
+them with the graph it keeps (``same_facts.KeptLaunch``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+from roslint_names.model import Compact, Generation
+from roslint_names.workspace.graph import ParameterFileUse
+from roslint_names.workspace.index import Executables
+from roslint_names.workspace.parameters import NodeParameters
+
+# A parameter file handed to a node of unknown name: (file, the node's generation, code)
+Unnamed = tuple[str, tuple[Generation, tuple[str, ...]]]
+
+
+@dataclass(frozen=True, slots=True)
+class TreePart(Compact):
+    """What one root's tree gave the build besides its nodes and endpoints."""
+
+    visited: tuple[str, ...]  # the files its walk read, sorted (``LaunchTrees.visited``)
+    sources: tuple[str, ...]  # the code of every node it starts, named or not, sorted
+    unnamed: tuple[Unnamed, ...]  # in the order the walk met them
+    loads: tuple[ParameterFileUse, ...]  # group-level ``<rosparam load>``, in order
+
+
+@dataclass(frozen=True, slots=True)
+class LaunchParts(Compact):
+    """Every tree's part, with what the build knew of the workspace's code and
+    programs: the sources no build compiles (they join no node), the executables, and
+    the parameters of each node's code (``ParameterSets.of``, by its sources: what a
+    launch file starts changes none of them)."""
+
+    roots: tuple[str, ...]  # in the build's order
+    trees: Mapping[str, TreePart]
+    unbuilt: frozenset[str]
+    executables: Executables
+    parameters: Mapping[tuple[str, ...], NodeParameters]
