@@ -1,0 +1,191 @@
+"""A graph patched after an edit of launch files is the graph a build gives
+(``workspace.launch_patch``, issue 30): each step edits the example workspace's launch
+files as a developer would, and the last build's graph with the trees that read the
+edited files walked again must equal the graph built from every file's facts; an edit
+the patch cannot follow is refused, never patched wrong."""
+
+from __future__ import annotations
+
+import shutil
+from functools import partial
+from pathlib import Path
+
+import pytest
+
+from roslint_names.config import load_settings
+from roslint_names.discover import discover
+from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
+from roslint_names.gather import DEFAULT_GENERATION, Specialiser, extract_batch
+from roslint_names.generation import PackageGenerations
+from roslint_names.model import FileFacts
+from roslint_names.registry import load_registry
+from roslint_names.workers import Dispatcher
+from roslint_names.workspace.build import build_parts
+from roslint_names.workspace.graph import Graph
+from roslint_names.workspace.index import Package
+from roslint_names.workspace.launch_parts import LaunchParts
+from roslint_names.workspace.launch_patch import LazyFacts, launch_edit, launch_patched
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+BASE = "src/turtle_bringup/launch/base.launch"  # ROS 1, included four times by robots.launch
+MULTI = "src/turtle_bringup/launch/multi_robot.launch"  # ROS 1, a root with groups
+LOCALIZATION = "src/fleet_bringup/launch/localization.launch.xml"  # ROS 2 XML
+FLEET = "src/fleet_bringup/launch/fleet.launch.py"  # ROS 2 Python
+
+# (file, text before, text after); each step's graph is patched from the step before's.
+PATCHED = [
+    # A node whose package the workspace does not hold, added to an included file: four
+    # trees start it, in four namespaces.
+    (BASE, "</launch>", '  <node name="bench_node" pkg="bench" type="bench_node"/>\n</launch>'),
+    # A second instance of launched code, under a name of its own.
+    (
+        BASE,
+        '  <node name="battery_monitor"',
+        '  <node name="spare_smoother" pkg="turtle_bringup" type="velocity_smoother"/>\n'
+        '  <node name="battery_monitor"',
+    ),
+    # A node renamed: RN301's duplicate pair and every endpoint follow it.
+    (BASE, 'name="battery_monitor"', 'name="battery_watch"'),
+    # A remap added: the node's endpoint renamed in every namespace.
+    (
+        BASE,
+        '<remap from="cmd_vel_raw"',
+        '<remap from="cmd_vel" to="smooth/cmd_vel"/>\n    <remap from="cmd_vel_raw"',
+    ),
+    # A node in a group's namespace with parameters of its own.
+    (
+        MULTI,
+        '    <node name="odometry_filter"',
+        '    <node name="imu_filter" pkg="imu_filter_madgwick" type="imu_filter_node">\n'
+        '      <param name="use_mag" value="false"/>\n'
+        "    </node>\n"
+        '    <node name="odometry_filter"',
+    ),
+    # ROS 2 XML: a parameter set on a node, and the node moved out of its group.
+    (
+        LOCALIZATION,
+        '<param name="odom_frame_id" value="odom"/>',
+        '<param name="odom_frame_id" value="odom_combined"/>\n'
+        '      <param name="scan_topic" value="scan"/>',
+    ),
+    (
+        LOCALIZATION,
+        '  <node pkg="rviz2" exec="rviz2" name="rviz" namespace="fleet/robot3"/>',
+        '  <node pkg="rviz2" exec="rviz2" name="rviz" namespace="fleet/robot4"/>',
+    ),
+    # ROS 2 Python: a remap changed.
+    (FLEET, '("/tf", "tf")', '("/tf", "tf2")'),
+    # A node taken out (its code still runs in the other), and every line moved.
+    (
+        BASE,
+        '  <node name="spare_smoother" pkg="turtle_bringup" type="velocity_smoother"/>\n',
+        "",
+    ),
+    (BASE, "<launch>", "<!-- The base. -->\n<launch>"),
+]
+
+# Edits a patch cannot follow: the graph is built.
+REFUSED = [
+    # An include added: the roots and the trees' files change.
+    (
+        MULTI,
+        "</launch>",
+        '  <include file="$(find turtle_bringup)/launch/base.launch" ns="robot9"/>\n</launch>',
+    ),
+    # The last node that starts some code taken out: a program of its own again.
+    (BASE, '  <node name="battery_monitor" pkg="turtle_bringup" type="battery_monitor"/>\n', ""),
+    # Code that no launch file started is started now: a program of its own no more.
+    (BASE, "</launch>", '  <node name="relay" pkg="turtle_bringup" type="odom_relay"/>\n</launch>'),
+]
+
+
+class _Workspace:
+    def __init__(self, root: Path) -> None:
+        shutil.copytree(EXAMPLES, root)
+        self.root = root
+        self.registry = load_registry()
+        self.settings = load_settings(None, root, self.registry)
+        self.packages: list[Package] = []
+        self.specialiser: Specialiser | None = None
+
+    def edit(self, relative: str, old: str, new: str) -> None:
+        path = self.root / relative
+        text = path.read_text(encoding="utf-8")
+        assert old in text, f"{old!r} is not in {relative}"
+        path.write_text(text.replace(old, new, 1), encoding="utf-8")
+
+    def built(self) -> tuple[Graph, LaunchParts, dict[str, FileFacts]]:
+        root = self.root
+        sources = lintable(discover([root], (), root, root))
+        result = lint(sources, self.settings, self.registry, RunOptions(), want_graph=True)
+        packages = PackageGenerations()
+        self.packages = workspace_packages(sources, packages)
+        self.specialiser = Specialiser(
+            sources,
+            packages,
+            DEFAULT_GENERATION,
+            None,
+            self.settings.max_file_size,
+            dispatcher=Dispatcher(partial(extract_batch, None), 1),
+            ros1_python2=False,
+        )
+        graph, parts = build_parts(
+            result.facts, self.packages, self.specialiser, self.specialiser.prepare
+        )
+        assert graph == result.graph
+        return graph, parts, {facts.path: facts for facts in result.facts}
+
+    def patched(
+        self,
+        graph: Graph,
+        parts: LaunchParts,
+        before: dict[str, FileFacts],
+        now: dict[str, FileFacts],
+    ) -> Graph | None:
+        changed = [path for path in now if before.get(path) != now[path]]
+        assert changed and before.keys() == now.keys()
+        if not all(launch_edit(before[path], now[path]) for path in changed):
+            return None
+        assert self.specialiser is not None
+        return launch_patched(
+            graph,
+            parts,
+            changed,
+            facts=LazyFacts(now.keys(), now.get),
+            packages=self.packages,
+            specialise=self.specialiser,
+            prepare=self.specialiser.prepare,
+        )
+
+
+@pytest.fixture(scope="module")
+def steps(tmp_path_factory: pytest.TempPathFactory) -> list[tuple[str, Graph, Graph | None]]:
+    """Each step: the file edited, the graph built after it, and the graph patched."""
+    workspace = _Workspace(tmp_path_factory.mktemp("launch_patch") / "ws")
+    graph, parts, facts = workspace.built()
+    found: list[tuple[str, Graph, Graph | None]] = []
+    for relative, old, new in PATCHED:
+        workspace.edit(relative, old, new)
+        built, built_parts, now = workspace.built()
+        found.append((relative, built, workspace.patched(graph, parts, facts, now)))
+        graph, parts, facts = built, built_parts, now
+    return found
+
+
+@pytest.mark.parametrize("step", range(len(PATCHED)))
+def test_a_patched_graph_is_the_built_graph(
+    steps: list[tuple[str, Graph, Graph | None]], step: int
+) -> None:
+    relative, built, patch = steps[step]
+    assert patch is not None, f"step {step} ({relative}) was not patched"
+    assert patch == built, f"step {step} ({relative})"
+
+
+@pytest.mark.parametrize("step", range(len(REFUSED)))
+def test_an_edit_the_patch_cannot_follow_is_refused(tmp_path: Path, step: int) -> None:
+    workspace = _Workspace(tmp_path / "ws")
+    graph, parts, facts = workspace.built()
+    workspace.edit(*REFUSED[step])
+    built, _, now = workspace.built()
+    assert built != graph
+    assert workspace.patched(graph, parts, facts, now) is None
