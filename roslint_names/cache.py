@@ -103,6 +103,8 @@ CHECKS_KEPT = 8  # one per recent (settings, rules, packages) of each checkout
 _REPLAYS = "replays"  # what a run whose facts are the last run's takes (``same_facts``)
 REPLAYS_KEPT = 8  # one per recent (file set, settings) of each checkout
 _GRAPHS = "graphs"  # a built graph, kept by its replay's key, to patch (``workspace.patch``)
+# The same build's whole graph and its launch trees' parts (``workspace.launch_patch``)
+_LAUNCH_PARTS = "launch-parts"
 GRAPHS_KEPT = 2  # tens of MB each in a large workspace: the last file sets only
 _LOG_BATCH = 512  # lines buffered before an append; and every batch of extraction ends one
 _TAG_NAME = "CACHEDIR.TAG"
@@ -329,6 +331,16 @@ class FactsCache:
         """Keep a built graph (``same_facts.KeptGraph``); forget all but the
         ``GRAPHS_KEPT`` most recently used."""
         self.write_newest(self.directory / _GRAPHS / key, _encoded(value), GRAPHS_KEPT)
+
+    def load_launch_parts(self, key: str) -> object | None:
+        """The value ``store_launch_parts`` kept under ``key``, or None."""
+        return self._load_entry(_LAUNCH_PARTS, key, _GraphUnpickler)
+
+    def store_launch_parts(self, key: str, value: object) -> None:
+        """Keep a build's whole graph and its launch trees' parts
+        (``same_facts.KeptLaunch``), loaded only by a run that walks some trees again:
+        apart from the graph a code edit patches, which loads a third of the bytes."""
+        self.write_newest(self.directory / _LAUNCH_PARTS / key, _encoded(value), GRAPHS_KEPT)
 
     def _load_entry(
         self, kind: str, key: str, unpickler: type[pickle.Unpickler] | None = None
@@ -734,6 +746,7 @@ _GRAPH_MODULES = frozenset(
         "roslint_names.workspace.parameters",
         "roslint_names.workspace.interfaces",
         "roslint_names.workspace.index",  # the packages a kept graph was built with
+        "roslint_names.workspace.launch_parts",
     }
 )
 

@@ -54,7 +54,7 @@ from .reading import decode_for_display, read_file
 from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
 from .run_inputs import RunInputs, is_facts_key
-from .same_facts import KeptGraph, Replay, RunWide
+from .same_facts import KeptGraph, KeptLaunch, Replay, RunWide
 from .suppress import Suppression, find_suppressions, is_our_code
 from .symbols import PackageConstants, uses_constants
 from .templates import holds_placeholder, is_template
@@ -62,11 +62,13 @@ from .test_code import is_example_code, is_test_code
 from .types import parse_type
 from .wiring import WIRING_SOURCES, awaits_wiring, wired_by
 from .workers import Dispatcher
-from .workspace.build import build
+from .workspace.build import build_parts
 from .workspace.built import BuiltSources
 from .workspace.graph import Graph
 from .workspace.index import Package, PackageFiles
 from .workspace.interfaces import service_definitions
+from .workspace.launch_parts import LaunchParts
+from .workspace.launch_patch import LazyFacts, launch_edit, launch_patched
 from .workspace.patch import Moved, edits_of, for_patching
 from .workspace.patch import patched as patch_graph
 
@@ -274,6 +276,7 @@ def _lint(
         entry_of=entry_of,
     )
     graph: Graph | None = None
+    launch_parts: LaunchParts | None = None  # each launch tree's part of it
     built_with: list[Package] = []  # the packages the graph was built with
 
     # A run over the files of a run that built the graph, whose facts are the same, takes
@@ -294,6 +297,18 @@ def _lint(
     # A file whose worker is killed past its time budget is one RN001 (``gave_up``).
     give_up = partial(gave_up, cache)
     with Dispatcher(extract, run.jobs, expected_items=len(files), give_up=give_up) as dispatcher:
+        # Launch files extracted again under their includers' arguments (a build's, a
+        # launch patch's) go through the same workers, a depth of the trees at a time.
+        specialiser = partial(
+            Specialiser,
+            files,
+            packages,
+            fallback,
+            cache,
+            settings.max_file_size,
+            dispatcher=dispatcher,
+            ros1_python2=python2,
+        )
         # (2) and (3)
         gathered = Gatherer(
             files=files,
@@ -316,6 +331,7 @@ def _lint(
                 kept_at,
                 graph_rules,
                 settings,
+                specialiser,
             )
         replayed = _take_facts(gathered, checks, last_replay, inputs, rules=rule_of, patch=patch)
         workers = dispatcher.workers  # that extracted the files (specialisations may start some)
@@ -334,21 +350,14 @@ def _lint(
                 settings=settings,
                 registry=registry,
             )
-        # (4) Launch files extracted again under their includers' arguments go through the
-        # same workers, a depth of the launch trees at a time.
+        # (4)
         elif graph_rules or want_graph:
             known_facts = checks.facts()
-            specialise = Specialiser(
-                files,
-                packages,
-                fallback,
-                cache,
-                settings.max_file_size,
-                dispatcher=dispatcher,
-                ros1_python2=python2,
-            )
+            specialise = specialiser()
             built_with = workspace_packages(workspace, packages)
-            graph = build(known_facts, built_with, specialise, specialise.prepare)
+            graph, launch_parts = build_parts(
+                known_facts, built_with, specialise, specialise.prepare
+            )
             reported_graph = report_graph(
                 graph,
                 graph_rules,
@@ -421,6 +430,9 @@ def _lint(
                         inputs.tags, for_patching(graph), graph_found, tuple(built_with)
                     )
                     cache.store_graph(kept_at, kept_graph.stored())
+                    if launch_parts is not None:
+                        kept_launch = KeptLaunch(inputs.tags, graph, launch_parts)
+                        cache.store_launch_parts(kept_at, kept_launch.stored())
         if clean_key is not None and not inputs.changed:
             assert cache is not None
             # A run over some files (pre-commit's), or one that checked only its edited
@@ -787,12 +799,13 @@ _Arrived = tuple[int, FileFacts, "bytes | None", "Verdict | None"]
 
 @dataclass
 class _GraphPatch:
-    """A run whose edits change only what some nodes' code declares (``workspace.patch``):
-    the graph the last build kept, patched with every edit since (the facts it was built
-    from are loaded, so kept in the pack), and the graph rules run over it; the files
-    whose graph findings that changed are taken and reported again with the edited ones,
-    every other file's findings are the replay's. Only a build keeps a graph: pickling it
-    (0.36 s at 77,000 files) would cost each patched run more than patching it again."""
+    """A run whose edits change only what some nodes' code declares (``workspace.patch``)
+    or what some launch trees start (``workspace.launch_patch``): the graph the last
+    build kept, patched with every edit since (the facts it was built from are loaded,
+    so kept in the pack), and the graph rules run over it; the files whose graph findings
+    that changed are taken and reported again with the edited ones, every other file's
+    findings are the replay's. Only a build keeps a graph: pickling it (0.36 s at 77,000
+    files) would cost each patched run more than patching it again."""
 
     gathered: Gatherer
     checks: _FileChecks
@@ -801,6 +814,8 @@ class _GraphPatch:
     stored_at: str  # the replay's key: its graph is kept under it
     rules: Sequence[Rule]
     settings: Settings
+    # Launch files under their includers' arguments, for the trees walked again
+    specialiser: Callable[[], Specialiser]
 
     def __call__(self, replay: Replay, arrived: Sequence[_Arrived]) -> _Replayed | None:
         files = self.gathered.files
@@ -824,6 +839,7 @@ class _GraphPatch:
             return loaded[index]
 
         changed: list[tuple[str, FileFacts, FileFacts]] = []
+        launch_edited: list[str] = []
         pairs = zip(self.inputs.tags, built_from, strict=True)
         for index, (now, then) in enumerate(pairs):
             if now == then:
@@ -833,25 +849,47 @@ class _GraphPatch:
                 return None  # the graph read its bytes under an includer's arguments
             before = self.cache.load(then, display) if is_facts_key(then) else None
             facts = facts_at(index) if is_facts_key(now) else None
-            if before is None or facts is None or not _patchable(before, facts):
+            if before is None or facts is None:
                 return None
-            changed.append((display, before, facts))
+            if launch_edit(before, facts):
+                if not _patchable(before, facts, wiring_kept=True):
+                    return None
+                launch_edited.append(display)
+            elif _patchable(before, facts):
+                changed.append((display, before, facts))
+            else:
+                return None
         edits = edits_of(changed)
         if edits is None:
             return None
         slots = {source.display: index for index, source in enumerate(files)}
+
+        def facts_of(display: str) -> FileFacts | None:
+            at = slots.get(display)
+            return None if at is None else facts_at(at)
+
+        if launch_edited:
+            walked = self._walked(stored, launch_edited, facts_of)
+            if walked is None:
+                return None
+            graph = walked
         patched = patch_graph(
             graph,
             edits,
-            lambda display: None if (at := slots.get(display)) is None else facts_at(at),
+            facts_of,
             lambda: PackageFiles([source.display for source in files], stored.packages),
         )
         if patched is None:
             return None
         reported = {display: index for display, index in slots.items() if index < replay.reported}
         # A rule that reads no name the patch changed has the built graph's findings, the
-        # places of the edited files moved (only places can have: its parameter uses').
-        kept, kept_found = _kept_findings(stored.found, edits, self.rules, files)
+        # places of the edited files moved (only places can have: its parameter uses');
+        # none where launch trees were walked again.
+        kept, kept_found = (
+            (frozenset(), {})
+            if launch_edited
+            else _kept_findings(stored.found, edits, self.rules, files)
+        )
         fresh = [rule for rule in self.rules if rule.code not in kept]
         by_rule: dict[int, dict[str, list[Finding]]] = {}
         for path, items in graph_findings(patched, fresh, self.settings).items():
@@ -878,6 +916,32 @@ class _GraphPatch:
             self.checks.take(index, facts, data, verdict)
         return _Replayed(sorted(again), replace(replay, graph=found))
 
+    def _walked(
+        self,
+        stored: KeptGraph,
+        edited: Sequence[str],
+        facts_of: Callable[[str], FileFacts | None],
+    ) -> Graph | None:
+        """The build's whole graph (kept apart, ``same_facts.KeptLaunch``) with the trees
+        that read an ``edited`` launch file walked again (``workspace.launch_patch``) over
+        every file the build had facts of; None where it cannot be."""
+        kept = same_facts.loaded_launch(self.cache.load_launch_parts(self.stored_at), stored.tags)
+        if kept is None:
+            return None
+        files = self.gathered.files
+        # The files the build had facts of (a skipped one has none)
+        known = [files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)]
+        specialise = self.specialiser()
+        return launch_patched(
+            kept.graph,
+            kept.parts,
+            edited,
+            facts=LazyFacts(known, facts_of),
+            packages=stored.packages,
+            specialise=specialise,
+            prepare=specialise.prepare,
+        )
+
 
 def _kept_findings(
     found: same_facts.GraphFound,
@@ -903,13 +967,19 @@ def _kept_findings(
         return frozenset(), {}
 
 
-def _patchable(before: FileFacts, now: FileFacts) -> bool:
+def _patchable(before: FileFacts, now: FileFacts, *, wiring_kept: bool = False) -> bool:
     """Whether what the run gathers from every file's facts (``RunWide``) and the checks
     of other files read is the same before and after an edit, and the file's facts are
-    its own (no constant of another file in them)."""
+    its own (no constant of another file in them). ``wiring_kept``: a launch file may
+    wire names (RN202's), the same before and after; code may wire none."""
+    wiring = (
+        wired_by(before) == wired_by(now)
+        if wiring_kept
+        else not (wired_by(before) or wired_by(now))
+    )
     return (
         typed_services(before) == typed_services(now)
-        and not (wired_by(before) or wired_by(now))
+        and wiring
         and not (uses_constants(before) or uses_constants(now))
     )
 

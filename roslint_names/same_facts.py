@@ -52,6 +52,7 @@ from .symbols import uses_constants
 from .wiring import wired_by
 from .workspace.graph import Graph
 from .workspace.index import Package
+from .workspace.launch_parts import LaunchParts
 
 Built = tuple[tuple[FileFacts, "str | None"], ...]  # ``BuiltSources.given``
 
@@ -276,6 +277,36 @@ def loaded_graph(value: object, files: int, reported: int) -> KeptGraph | None:
     ):
         return None
     return KeptGraph(tags, graph, found_map, packages)
+
+
+_LAUNCH_FORMAT = "launch parts 1"
+
+
+@dataclass(frozen=True)
+class KeptLaunch:
+    """The whole graph a run built (its parameters too, which ``KeptGraph``'s leaves out)
+    with the facts keys it was built from and each launch tree's part of it
+    (``workspace.launch_patch``)."""
+
+    tags: tuple[str, ...]
+    graph: Graph
+    parts: LaunchParts
+
+    def stored(self) -> tuple[object, ...]:
+        return (_LAUNCH_FORMAT, self.tags, self.graph, self.parts)
+
+
+def loaded_launch(value: object, tags: tuple[str, ...]) -> KeptLaunch | None:
+    """A kept launch part built from the facts keys ``tags`` (the kept graph's); None for
+    anything else."""
+    if not isinstance(value, tuple) or len(value) != 4:
+        return None
+    form, kept_tags, graph, parts = value
+    if form != _LAUNCH_FORMAT or kept_tags != tags:
+        return None
+    if not (isinstance(graph, Graph) and isinstance(parts, LaunchParts)):
+        return None
+    return KeptLaunch(tags, graph, parts)
 
 
 def _by_text(service_type: tuple[Generation | None, str]) -> tuple[str, str]:

@@ -90,13 +90,13 @@ def test_the_graph_is_built_without_collections_and_what_the_run_made_is_old_aft
     the collector is on again, and nothing stays frozen."""
     shutil.copytree(EXAMPLES / "src" / "turtle_bringup", tmp_path / "ws")
     during: list[bool] = []
-    real = engine.build
+    real = engine.build_parts
 
     def observing(*arguments: Any, **keywords: Any) -> Any:
         during.append(gc.isenabled())
         return real(*arguments, **keywords)
 
-    monkeypatch.setattr(engine, "build", observing)
+    monkeypatch.setattr(engine, "build_parts", observing)
     gc.unfreeze()  # what an earlier test's language server session froze
     gc.collect()
     run_cli(["check", "--no-cache", "--jobs", "1", "."], tmp_path / "ws")

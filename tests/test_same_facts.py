@@ -31,6 +31,7 @@ LOCALIZATION = f"{FLEET}/launch/localization.launch.xml"
 TURTLE_BUILD = "src/turtle_bringup/CMakeLists.txt"
 TURTLE_LAUNCH = "src/turtle_bringup/launch"
 TELEOP = f"{TURTLE_LAUNCH}/teleop.launch"
+BASE = f"{TURTLE_LAUNCH}/base.launch"  # included four times by robots.launch
 ROBOT7 = """<launch>
   <include file="$(find turtle_bringup)/launch/teleop.launch">
     <arg name="robot" value="robot7"/>
@@ -165,6 +166,32 @@ STEPS: list[tuple[str, str, str, str]] = [
     (MONITOR, '"map_frame"', '"map_frame_id"', "build"),
     # A launch file nothing includes, which wires no absolute name.
     (LOCALIZATION, "</launch>", "</launch>\n<!-- localization -->", "replay"),
+    # Nodes added, renamed and remapped in launch files: the trees that read the file
+    # walked again (``workspace.launch_patch``), here four trees of robots.launch.
+    (
+        BASE,
+        "</launch>",
+        '  <node name="spare" pkg="turtle_bringup" type="velocity_smoother"/>\n</launch>',
+        "patch",
+    ),
+    (BASE, 'name="spare"', 'name="spare_smoother"', "patch"),
+    (
+        LOCALIZATION,
+        '<remap from="scan" to="~scan"/>',
+        '<remap from="scan" to="~/scan_filtered"/>',
+        "patch",
+    ),
+    # Code edited since: both patches, the launch trees' and the code's.
+    (RELAY, '<nav_msgs::Odometry>("odometry"', '<nav_msgs::Odometry>("odom"', "patch"),
+    # The node named as the other robot's base: a duplicate node name (RN301) in one tree.
+    (BASE, 'name="spare_smoother"', 'name="velocity_smoother"', "patch"),
+    # An include added: the roots change, the graph is built.
+    (
+        TELEOP,
+        "</launch>",
+        '  <include file="$(find turtle_bringup)/launch/base.launch" ns="teleop"/>\n</launch>',
+        "build",
+    ),
 ]
 
 
