@@ -69,7 +69,7 @@ from .workspace.index import Package, PackageFiles
 from .workspace.interfaces import service_definitions
 from .workspace.launch_parts import LaunchParts
 from .workspace.launch_patch import LazyFacts, launch_edit, launch_patched
-from .workspace.patch import Moved, edits_of, for_patching
+from .workspace.patch import Moved, edits_of, for_patching, parameter_part, with_parameters
 from .workspace.patch import patched as patch_graph
 
 if TYPE_CHECKING:
@@ -431,7 +431,7 @@ def _lint(
                     )
                     cache.store_graph(kept_at, kept_graph.stored())
                     if launch_parts is not None:
-                        kept_launch = KeptLaunch(inputs.tags, graph, launch_parts)
+                        kept_launch = KeptLaunch(inputs.tags, parameter_part(graph), launch_parts)
                         cache.store_launch_parts(kept_at, kept_launch.stored())
         if clean_key is not None and not inputs.changed:
             assert cache is not None
@@ -926,14 +926,15 @@ class _GraphPatch:
         that read an ``edited`` launch file walked again (``workspace.launch_patch``) over
         every file the build had facts of; None where it cannot be."""
         kept = same_facts.loaded_launch(self.cache.load_launch_parts(self.stored_at), stored.tags)
-        if kept is None:
+        whole = None if kept is None else with_parameters(stored.graph, kept.parameters)
+        if kept is None or whole is None:
             return None
         files = self.gathered.files
         # The files the build had facts of (a skipped one has none)
-        known = [files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)]
+        known = {files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)}
         specialise = self.specialiser()
         return launch_patched(
-            kept.graph,
+            whole,
             kept.parts,
             edited,
             facts=LazyFacts(known, facts_of),

@@ -52,7 +52,7 @@ from .symbols import uses_constants
 from .wiring import wired_by
 from .workspace.graph import Graph
 from .workspace.index import Package
-from .workspace.launch_parts import LaunchParts
+from .workspace.launch_parts import LaunchParts, ParameterPart
 
 Built = tuple[tuple[FileFacts, "str | None"], ...]  # ``BuiltSources.given``
 
@@ -279,21 +279,21 @@ def loaded_graph(value: object, files: int, reported: int) -> KeptGraph | None:
     return KeptGraph(tags, graph, found_map, packages)
 
 
-_LAUNCH_FORMAT = "launch parts 1"
+_LAUNCH_FORMAT = "launch parts 2"
 
 
 @dataclass(frozen=True)
 class KeptLaunch:
-    """The whole graph a run built (its parameters too, which ``KeptGraph``'s leaves out)
-    with the facts keys it was built from and each launch tree's part of it
-    (``workspace.launch_patch``)."""
+    """What ``KeptGraph``'s graph leaves out (``patch.parameter_part``), with the facts
+    keys the graph was built from and each launch tree's part of it
+    (``workspace.launch_patch``): with the kept graph, the whole graph of the build."""
 
     tags: tuple[str, ...]
-    graph: Graph
+    parameters: ParameterPart
     parts: LaunchParts
 
     def stored(self) -> tuple[object, ...]:
-        return (_LAUNCH_FORMAT, self.tags, self.graph, self.parts)
+        return (_LAUNCH_FORMAT, _tags_digest(self.tags), self.parameters, self.parts)
 
 
 def loaded_launch(value: object, tags: tuple[str, ...]) -> KeptLaunch | None:
@@ -301,12 +301,18 @@ def loaded_launch(value: object, tags: tuple[str, ...]) -> KeptLaunch | None:
     anything else."""
     if not isinstance(value, tuple) or len(value) != 4:
         return None
-    form, kept_tags, graph, parts = value
-    if form != _LAUNCH_FORMAT or kept_tags != tags:
+    form, digest, parameters, parts = value
+    if form != _LAUNCH_FORMAT or digest != _tags_digest(tags):
         return None
-    if not (isinstance(graph, Graph) and isinstance(parts, LaunchParts)):
+    if not (isinstance(parameters, ParameterPart) and isinstance(parts, LaunchParts)):
         return None
-    return KeptLaunch(tags, graph, parts)
+    return KeptLaunch(tags, parameters, parts)
+
+
+def _tags_digest(tags: Sequence[str]) -> str:
+    """The facts keys of a build, as a launch part names them (the kept graph holds them
+    whole: 3.5 MB at 77,000 files)."""
+    return hashlib.blake2b("\0".join(tags).encode(), digest_size=16).hexdigest()
 
 
 def _by_text(service_type: tuple[Generation | None, str]) -> tuple[str, str]:

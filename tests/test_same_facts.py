@@ -477,6 +477,36 @@ def test_a_damaged_kept_graph_is_a_build(
     assert taken[2:] == ["patch", "build"]  # the build above kept a graph again
 
 
+@pytest.mark.parametrize("damage", ["torn", "another build's"])
+def test_a_launch_edit_without_its_launch_parts_is_a_build(
+    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str], damage: str
+) -> None:
+    """A launch edit walks the trees again from the parts the last build kept beside its
+    graph (``same_facts.KeptLaunch``); torn, or kept by another build (a copy of the
+    cache's, say), they are none: the run builds, and says what a fresh run says."""
+    cache = tmp_path / "cache"
+    outputs(run_cli, workspace, cache)
+    (parts,) = cache.glob("*/launch-parts/*")
+    blob = parts.read_bytes()
+    edit(workspace / BASE, 'name="battery_monitor"', 'name="battery_watch"')
+    taken.clear()
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    assert taken == ["patch", "build"]
+    if damage == "torn":
+        parts.write_bytes(blob[:-40])
+    else:  # the parts of the first build, under the key of the second's graph
+        edit(workspace / MONITOR, '"map_frame"', '"map_frame_id"')  # a build
+        outputs(run_cli, workspace, cache)
+        (now,) = cache.glob("*/launch-parts/*")
+        now.write_bytes(blob)
+    edit(workspace / BASE, 'name="battery_watch"', 'name="battery_guard"')
+    taken.clear()
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    assert taken == ["build", "build"]
+
+
 def test_the_language_server_patches_a_graph_whose_findings_moved_since(
     workspace: Path, builds: list[int]
 ) -> None:

@@ -13,10 +13,14 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-from roslint_names.model import Compact, Generation
-from roslint_names.workspace.graph import ParameterFileUse
+from roslint_names.model import Compact, Generation, ParameterBlock
+from roslint_names.workspace.graph import (
+    ParameterFileUse,
+    ParameterSetting,
+    UnnamedReceiver,
+)
 from roslint_names.workspace.index import Executables
-from roslint_names.workspace.parameters import NodeParameters
+from roslint_names.workspace.parameters import NodeParameters, WorkspaceDeclarations
 
 # A parameter file handed to a node of unknown name: (file, the node's generation, code)
 Unnamed = tuple[str, tuple[Generation, tuple[str, ...]]]
@@ -44,3 +48,21 @@ class LaunchParts(Compact):
     unbuilt: frozenset[str]
     executables: Executables
     parameters: Mapping[tuple[str, ...], NodeParameters]
+
+
+# What a node holds of parameters: its code's, the settings and files its launch hands it
+NodeParameterPart = tuple[
+    NodeParameters | None, tuple[ParameterSetting, ...], tuple[ParameterFileUse, ...]
+]
+
+
+@dataclass(frozen=True, slots=True)
+class ParameterPart(Compact):
+    """What ``patch.for_patching`` leaves out of a graph (``patch.parameter_part``): each
+    node's parameters in the graph's order of nodes, and the graph's own."""
+
+    nodes: tuple[NodeParameterPart, ...]
+    parameter_files: Mapping[str, tuple[ParameterBlock, ...]]
+    parameter_loads: tuple[ParameterFileUse, ...]
+    unnamed_parameter_files: Mapping[str, tuple[UnnamedReceiver, ...]]
+    parameter_declarations: WorkspaceDeclarations | None

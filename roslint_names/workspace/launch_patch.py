@@ -69,8 +69,7 @@ class LazyFacts(Mapping[str, FileFacts]):
     for (``load``: None where it cannot be, which raises ``UnknownFactsError``)."""
 
     def __init__(self, paths: Collection[str], load: Callable[[str], FileFacts | None]) -> None:
-        self._paths = frozenset(paths)
-        self._order = sorted(self._paths)
+        self._paths = paths  # a set: asked whether it holds a path, seldom walked
         self._load = load
         self._loaded: dict[str, FileFacts] = {}
 
@@ -89,7 +88,7 @@ class LazyFacts(Mapping[str, FileFacts]):
         return path in self._paths
 
     def __iter__(self) -> Iterator[str]:
-        return iter(self._order)
+        return iter(sorted(self._paths))
 
     def __len__(self) -> int:
         return len(self._paths)

@@ -37,6 +37,7 @@ from roslint_names.workspace.build import (
 )
 from roslint_names.workspace.graph import Endpoint, Graph, Location, NodeInstance
 from roslint_names.workspace.index import CODE_LANGUAGES, PackageFiles
+from roslint_names.workspace.launch_parts import ParameterPart
 from roslint_names.workspace.parameters import NodeParameters, ParameterUse
 
 # What a file holds that the graph takes from launch files, build files, parameter files
@@ -107,6 +108,40 @@ def for_patching(graph: Graph) -> Graph:
         parameter_loads=(),
         unnamed_parameter_files={},
         parameter_declarations=None,
+    )
+
+
+def parameter_part(graph: Graph) -> ParameterPart:
+    """What ``for_patching`` leaves out of ``graph``: with ``with_parameters``, the whole
+    graph again (``same_facts.KeptLaunch``: a launch patch runs every rule)."""
+    return ParameterPart(
+        tuple(
+            (node.code_parameters, node.parameter_settings, node.parameter_files)
+            for node in graph.nodes
+        ),
+        graph.parameter_files,
+        graph.parameter_loads,
+        graph.unnamed_parameter_files,
+        graph.parameter_declarations,
+    )
+
+
+def with_parameters(graph: Graph, part: ParameterPart) -> Graph | None:
+    """``graph`` (``for_patching``'s) with what ``parameter_part`` took from it; None
+    where the part is of another graph (another count of nodes)."""
+    if len(part.nodes) != len(graph.nodes):
+        return None
+    nodes = tuple(
+        replace(node, code_parameters=code, parameter_settings=settings, parameter_files=files)
+        for node, (code, settings, files) in zip(graph.nodes, part.nodes, strict=True)
+    )
+    return replace(
+        graph,
+        nodes=nodes,
+        parameter_files=part.parameter_files,
+        parameter_loads=part.parameter_loads,
+        unnamed_parameter_files=part.unnamed_parameter_files,
+        parameter_declarations=part.parameter_declarations,
     )
 
 
