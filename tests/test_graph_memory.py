@@ -285,7 +285,7 @@ def _never() -> object:
 _LAUNCH_PIECES = (
     "launch files",
     "launch roots",
-    "unlaunched programs",
+    "programs",
     "workspace declarations",
     "sorted nodes",
     "sorted endpoints",

@@ -82,6 +82,10 @@ PATCHED = [
         "",
     ),
     (BASE, "<launch>", "<!-- The base. -->\n<launch>"),
+    # Code that no launch file started is started now: a program of its own no more.
+    (BASE, "</launch>", '  <node name="relay" pkg="turtle_bringup" type="odom_relay"/>\n</launch>'),
+    # The last node that starts some code taken out: a program of its own again.
+    (BASE, '  <node name="battery_watch" pkg="turtle_bringup" type="battery_monitor"/>\n', ""),
 ]
 
 # Edits a patch cannot follow: the graph is built.
@@ -92,10 +96,6 @@ REFUSED = [
         "</launch>",
         '  <include file="$(find turtle_bringup)/launch/base.launch" ns="robot9"/>\n</launch>',
     ),
-    # The last node that starts some code taken out: a program of its own again.
-    (BASE, '  <node name="battery_monitor" pkg="turtle_bringup" type="battery_monitor"/>\n', ""),
-    # Code that no launch file started is started now: a program of its own no more.
-    (BASE, "</launch>", '  <node name="relay" pkg="turtle_bringup" type="odom_relay"/>\n</launch>'),
 ]
 
 

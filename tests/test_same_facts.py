@@ -192,6 +192,20 @@ STEPS: list[tuple[str, str, str, str]] = [
         '  <include file="$(find turtle_bringup)/launch/base.launch" ns="teleop"/>\n</launch>',
         "build",
     ),
+    # Code no launch file started, started in four trees: a program of its own no more;
+    # and the only node of another's taken out: a program of its own again.
+    (
+        BASE,
+        "</launch>",
+        '  <node name="relay" pkg="turtle_bringup" type="odom_relay"/>\n</launch>',
+        "patch",
+    ),
+    (
+        BASE,
+        '  <node name="battery_monitor" pkg="turtle_bringup" type="battery_monitor"/>\n',
+        "",
+        "patch",
+    ),
 ]
 
 

@@ -44,7 +44,7 @@ from roslint_names.workspace.graph import (
     UnnamedReceiver,
 )
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
-from roslint_names.workspace.launch_parts import LaunchParts, TreePart, Unnamed
+from roslint_names.workspace.launch_parts import LaunchParts, Programs, TreePart, Unnamed
 from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Prepare, Specialise
 from roslint_names.workspace.memory import Field, GraphMemory, Reads
 from roslint_names.workspace.parameter_files import ros1_names, ros2_names
@@ -146,15 +146,10 @@ def build_parts(
             unnamed.setdefault(path, set()).add(receiver)
         tree_unnamed.setdefault(launched.root, []).extend(instance.unnamed)
     unlaunched = memory.reads("unlaunched")
-    code = memory.piece("code files", ("language",), lambda: _code_files(index))
-    programs: dict[frozenset[str], list[tuple[str, ...]]] = memory.piece(
-        "unlaunched programs", _PROGRAM_FIELDS, dict
+    programs = memory.piece(
+        "programs", _PROGRAM_FIELDS, lambda: _programs(index, tests, _code_files(index))
     )
-    launched_key = frozenset(launched_sources)
-    if launched_key not in programs:  # the last build's, where the same code was launched
-        programs.clear()
-        programs[launched_key] = _unlaunched_programs(index, tests, code, launched_sources)
-    for sources in programs[launched_key]:
+    for sources in programs.unlaunched(launched_sources):
         if sources not in unlaunched:
             unlaunched[sources] = (_unlaunched_instance(index, sources), Reads(sources))
         node, found_endpoints = unlaunched[sources][0]
@@ -200,6 +195,7 @@ def build_parts(
         },
         frozenset(unbuilt),
         index.executables(),
+        programs,
         {
             sources: parameters.of(sources)
             for sources in sorted(
@@ -615,23 +611,17 @@ def _code_files(index: WorkspaceIndex) -> list[str]:
     return sorted(path for path, facts in index.facts.items() if facts.language in CODE_LANGUAGES)
 
 
-def _unlaunched_programs(
-    index: WorkspaceIndex, tests: _TestFiles, code: Sequence[str], launched: set[str]
-) -> list[tuple[str, ...]]:
-    """Code no launch file starts, one program per executable (else per file); tests are
-    left out: they build throwaway graphs on purpose. ``code``: the index's code files,
-    sorted (``_code_files``)."""
-    grouped: list[tuple[str, ...]] = []
-    seen: set[str] = set(launched)
-    for _, sources in sorted(index.built_sources().items()):
-        fresh = tuple(path for path in sources if path not in seen and not tests(path))
-        seen.update(sources)
-        if fresh and any(_has_endpoints(index.facts[path]) for path in fresh):
-            grouped.append(fresh)
-    for path in code:
-        if path not in seen and _has_endpoints(index.facts[path]) and not tests(path):
-            grouped.append((path,))
-    return grouped
+def _programs(index: WorkspaceIndex, tests: _TestFiles, code: Sequence[str]) -> Programs:
+    """What the code no launch file starts is made of (``Programs.unlaunched``), whatever
+    is launched. ``code``: the index's code files, sorted (``_code_files``)."""
+    built = tuple(sources for _, sources in sorted(index.built_sources().items()))
+    built_files = {path for sources in built for path in sources}
+    return Programs(
+        tuple(tuple(sources) for sources in built),
+        frozenset(path for path in built_files if tests(path)),
+        frozenset(path for path in built_files if _has_endpoints(index.facts[path])),
+        tuple(path for path in code if _has_endpoints(index.facts[path]) and not tests(path)),
+    )
 
 
 def _unlaunched_instance(
@@ -741,8 +731,8 @@ def _has_endpoints(facts: FileFacts) -> bool:
     return any(use.role in ENDPOINT_ROLES for use in facts.names)
 
 
-# What ``_unlaunched_programs`` reads of each file besides where it is: the build's
-# programs, which files are code, and which of those declare endpoints.
+# What ``_programs`` reads of each file besides where it is: the build's programs, which
+# files are code, and which of those declare endpoints.
 _PROGRAM_FIELDS: tuple[Field, ...] = ("executables", "language", _has_endpoints)
 
 

@@ -10,7 +10,7 @@ them with the graph it keeps (``same_facts.KeptLaunch``).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 
 from roslint_names.model import Compact, Generation, ParameterBlock
@@ -37,16 +37,46 @@ class TreePart(Compact):
 
 
 @dataclass(frozen=True, slots=True)
+class Programs(Compact):
+    """The code a build groups into programs of their own where no launch file starts it
+    (``unlaunched``): every built program's sources (by package and executable, sorted),
+    those of them that are test code and those that declare endpoints; and, sorted, the
+    code files that declare endpoints and are no test code (a program of each, where no
+    built program holds it)."""
+
+    built: tuple[tuple[str, ...], ...]
+    tests: frozenset[str]
+    with_endpoints: frozenset[str]
+    single: tuple[str, ...]
+
+    def unlaunched(self, launched: Collection[str]) -> list[tuple[str, ...]]:
+        """Code no launch file starts (``launched``: what some tree starts, and the
+        sources no build compiles), one program per executable, else per file; tests are
+        left out: they build throwaway graphs on purpose."""
+        grouped: list[tuple[str, ...]] = []
+        seen = set(launched)
+        for sources in self.built:
+            fresh = tuple(path for path in sources if path not in seen and path not in self.tests)
+            seen.update(sources)
+            if fresh and any(path in self.with_endpoints for path in fresh):
+                grouped.append(fresh)
+        grouped.extend((path,) for path in self.single if path not in seen)
+        return grouped
+
+
+@dataclass(frozen=True, slots=True)
 class LaunchParts(Compact):
     """Every tree's part, with what the build knew of the workspace's code and
-    programs: the sources no build compiles (they join no node), the executables, and
-    the parameters of each node's code (``ParameterSets.of``, by its sources: what a
-    launch file starts changes none of them)."""
+    programs: the sources no build compiles (they join no node), the executables, what
+    the code no launch file starts is made of, and the parameters of each node's code
+    (``ParameterSets.of``, by its sources: what a launch file starts changes none of
+    them)."""
 
     roots: tuple[str, ...]  # in the build's order
     trees: Mapping[str, TreePart]
     unbuilt: frozenset[str]
     executables: Executables
+    programs: Programs
     parameters: Mapping[tuple[str, ...], NodeParameters]
 
 

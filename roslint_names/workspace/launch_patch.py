@@ -13,10 +13,11 @@ and parameter files in place of the old.
 ``launch_edit`` says whether an edit is of that kind: a launch file that keeps its
 language and generation, whose includes name the same files with the same arguments
 (the roots and the files extracted under an includer's arguments stay), and which holds
-nothing else the graph reads (build, parameter or code facts, literals). A patch is
-refused (None, the caller builds) where what no launch file starts would change (a node
-that starts code that ran nowhere, or the last one starting some), where a node runs code
-whose parameters the build did not make, or where a file it needs has no facts to load.
+nothing else the graph reads (build, parameter or code facts, literals). Code a tree
+starts now is no program of its own any more, and code no tree starts any more is one
+again (``Programs.unlaunched``). A patch is refused (None, the caller builds) where a
+node runs code whose parameters the build did not make (code that ran as no node, or
+as a program of other sources), or where a file it needs has no facts to load.
 ``tests/test_launch_patch.py`` compares patched graphs with built ones.
 """
 
@@ -33,6 +34,7 @@ from roslint_names.workspace.build import (
     _launched_instance,
     _TestFiles,
     _unique,
+    _unlaunched_instance,
     _with_group_loads,
     mentioned_packages,
     package_literals,
@@ -154,8 +156,16 @@ def _patched(
             nodes.append(started.node)
             endpoints.extend(started.endpoints)
         unnamed_of[launched.root].extend(started.unnamed)
-    if _launched(parts, {}) != _launched(parts, sources_of):
-        return None  # the code no launch file starts is not what it was
+    # Code a launch file starts no more is a program of its own again, and code started
+    # now is one no more.
+    was = parts.programs.unlaunched(_launched(parts, {}))
+    now = parts.programs.unlaunched(_launched(parts, sources_of))
+    stopped = set(was) - set(now)
+    for sources in now:
+        if sources not in stopped and sources not in was:
+            node, own_endpoints = _unlaunched_instance(index, sources)
+            nodes.append(node)
+            endpoints.extend(own_endpoints)
     loads_of: dict[str, list[ParameterFileUse]] = {root: [] for root in walked}
     for root, use in _group_loads(index, trees):
         loads_of[root].append(use)
@@ -166,7 +176,18 @@ def _patched(
     ]
     loads = tuple(sorted({use for _, use in rooted}))
     gone = set(walked)
-    kept = [node for node in graph.nodes if node.root not in gone]
+    kept = [
+        node
+        for node in graph.nodes
+        if node.root not in gone and not (not node.root and node.sources in stopped)
+    ]
+    # A program's endpoints are in its own code, its sources no other program's.
+    stopped_at = {
+        (node.name, path)
+        for node in graph.nodes
+        if not node.root and node.sources in stopped
+        for path in node.sources
+    }
     linked = {use.path for node in (*kept, *nodes) for use in node.parameter_files}
     linked.update(use.path for use in loads)
     blocks = {
@@ -202,7 +223,16 @@ def _patched(
         graph,
         nodes=all_nodes,
         endpoints=_unique(
-            [*(e for e in graph.endpoints if e.root not in gone), *endpoints], Endpoint.sort_key
+            [
+                *(
+                    e
+                    for e in graph.endpoints
+                    if e.root not in gone
+                    and (e.root or (e.node, e.location.path) not in stopped_at)
+                ),
+                *endpoints,
+            ],
+            Endpoint.sort_key,
         ),
         mentions=_kept_mentions(graph, index, all_nodes),
         parameter_files=blocks,
