@@ -69,7 +69,14 @@ from .workspace.index import Package, PackageFiles
 from .workspace.interfaces import service_definitions
 from .workspace.launch_parts import LaunchParts
 from .workspace.launch_patch import LazyFacts, launch_edit, launch_patched
-from .workspace.patch import Moved, edits_of, for_patching, parameter_part, with_parameters
+from .workspace.patch import (
+    Moved,
+    edits_of,
+    for_patching,
+    parameter_part,
+    same_places,
+    with_parameters,
+)
 from .workspace.patch import patched as patch_graph
 
 if TYPE_CHECKING:
@@ -851,11 +858,13 @@ class _GraphPatch:
             facts = facts_at(index) if is_facts_key(now) else None
             if before is None or facts is None:
                 return None
-            if launch_edit(before, facts):
+            # A launch file whose facts only moved (a comment) changes no tree.
+            moved_only = same_places(before, facts)
+            if launch_edit(before, facts) and not moved_only:
                 if not _patchable(before, facts, wiring_kept=True):
                     return None
                 launch_edited.append(display)
-            elif _patchable(before, facts):
+            elif _patchable(before, facts, wiring_kept=moved_only):
                 changed.append((display, before, facts))
             else:
                 return None

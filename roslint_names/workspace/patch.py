@@ -80,12 +80,12 @@ def edits_of(changed: Iterable[tuple[str, FileFacts, FileFacts]]) -> dict[str, M
         moves = code_edit(then, now)
         if moves is not None:
             edits[display] = moves
-        elif not _same_places(then, now):
+        elif not same_places(then, now):
             return None  # a launch, build or parameter file changed: the graph is built
     return edits
 
 
-def _same_places(before: FileFacts, now: FileFacts) -> bool:
+def same_places(before: FileFacts, now: FileFacts) -> bool:
     """The same facts, every one where it was (``moves``: but for what no graph reads)."""
     spans = moved_spans(before, now)
     return spans is not None and all(old == new for old, new in spans.items())
