@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import shutil
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
@@ -185,3 +186,27 @@ def code_units(text: str, encoding: str) -> int:
     if encoding == "utf-16":
         return len(text.encode("utf-16-le")) // 2
     return len(text.encode("utf-8"))
+
+
+class ExampleCopy:
+    """The example workspace copied to ``root``, with its settings: what the tests that
+    edit it step by step and compare the graph a patch gives with a build's start from."""
+
+    EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
+
+    def __init__(self, root: Path) -> None:
+        from roslint_names.config import load_settings
+        from roslint_names.registry import load_registry
+
+        shutil.copytree(self.EXAMPLES, root)
+        self.root = root
+        self.registry = load_registry()
+        self.settings = load_settings(None, root, self.registry)
+
+    def edit(self, relative: str, old: str, new: str) -> None:
+        """``old`` replaced by ``new`` once in the file; ``new`` appended where ``old`` is
+        empty."""
+        path = self.root / relative
+        text = path.read_text(encoding="utf-8")
+        assert old in text, f"{old!r} is not in {relative}"
+        path.write_text(text.replace(old, new, 1) if old else text + new, encoding="utf-8")

@@ -7,24 +7,21 @@ refused, never patched wrong."""
 from __future__ import annotations
 
 import itertools
-import shutil
 from dataclasses import replace
 from pathlib import Path
 
 import pytest
+from conftest import ExampleCopy
 
-from roslint_names.config import load_settings
 from roslint_names.discover import discover
 from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
 from roslint_names.generation import PackageGenerations
 from roslint_names.model import FileFacts
-from roslint_names.registry import load_registry
 from roslint_names.rule import Rule, RuleContext
 from roslint_names.workspace.graph import Graph
 from roslint_names.workspace.index import PackageFiles
 from roslint_names.workspace.patch import Moved, code_edit, for_patching, patched
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 MONITOR = "src/fleet_bringup/src/fleet_monitor.cpp"  # ROS 2, launched by fleet.launch.py
 RECORDER = "src/fleet_bringup/fleet_bringup/pose_recorder.py"
 RELAY = "src/turtle_bringup/src/odom_relay.cpp"  # ROS 1, launched in robot namespaces
@@ -66,19 +63,7 @@ REFUSED = [
 ]
 
 
-class _Workspace:
-    def __init__(self, root: Path) -> None:
-        shutil.copytree(EXAMPLES, root)
-        self.root = root
-        self.registry = load_registry()
-        self.settings = load_settings(None, root, self.registry)
-
-    def edit(self, relative: str, old: str, new: str) -> None:
-        path = self.root / relative
-        text = path.read_text(encoding="utf-8")
-        assert old in text, f"{old!r} is not in {relative}"
-        path.write_text(text.replace(old, new, 1) if old else text + new, encoding="utf-8")
-
+class _Workspace(ExampleCopy):
     def built(self) -> tuple[Graph, dict[str, FileFacts]]:
         root = self.root
         sources = lintable(discover([root], (), root, root))

@@ -6,19 +6,17 @@ the patch cannot follow is refused, never patched wrong."""
 
 from __future__ import annotations
 
-import shutil
 from functools import partial
 from pathlib import Path
 
 import pytest
+from conftest import ExampleCopy
 
-from roslint_names.config import load_settings
 from roslint_names.discover import discover
 from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
 from roslint_names.gather import DEFAULT_GENERATION, Specialiser, extract_batch
 from roslint_names.generation import PackageGenerations
 from roslint_names.model import FileFacts
-from roslint_names.registry import load_registry
 from roslint_names.workers import Dispatcher
 from roslint_names.workspace.build import build_parts
 from roslint_names.workspace.graph import Graph
@@ -26,7 +24,6 @@ from roslint_names.workspace.index import Package
 from roslint_names.workspace.launch_parts import LaunchParts
 from roslint_names.workspace.launch_patch import LazyFacts, launch_edit, launch_patched
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 BASE = "src/turtle_bringup/launch/base.launch"  # ROS 1, included four times by robots.launch
 MULTI = "src/turtle_bringup/launch/multi_robot.launch"  # ROS 1, a root with groups
 LOCALIZATION = "src/fleet_bringup/launch/localization.launch.xml"  # ROS 2 XML
@@ -99,20 +96,11 @@ REFUSED = [
 ]
 
 
-class _Workspace:
+class _Workspace(ExampleCopy):
     def __init__(self, root: Path) -> None:
-        shutil.copytree(EXAMPLES, root)
-        self.root = root
-        self.registry = load_registry()
-        self.settings = load_settings(None, root, self.registry)
+        super().__init__(root)
         self.packages: list[Package] = []
         self.specialiser: Specialiser | None = None
-
-    def edit(self, relative: str, old: str, new: str) -> None:
-        path = self.root / relative
-        text = path.read_text(encoding="utf-8")
-        assert old in text, f"{old!r} is not in {relative}"
-        path.write_text(text.replace(old, new, 1), encoding="utf-8")
 
     def built(self) -> tuple[Graph, LaunchParts, dict[str, FileFacts]]:
         root = self.root
