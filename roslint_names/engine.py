@@ -357,7 +357,7 @@ def _lint(
                 settings=settings,
                 registry=registry,
             )
-        # (4)
+        # (4) The graph, and what each launch tree gave it (kept for a launch patch).
         elif graph_rules or want_graph:
             known_facts = checks.facts()
             specialise = specialiser()
