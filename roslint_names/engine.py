@@ -877,11 +877,15 @@ class _GraphPatch:
             at = slots.get(display)
             return None if at is None else facts_at(at)
 
+        specialised = replay.specialised
         if launch_edited:
             walked = self._walked(stored, launch_edited, facts_of)
             if walked is None:
                 return None
-            graph = walked
+            # A file an edited include hands arguments to now is read under them: an
+            # edit of it is never replayed nor patched (the check above). One no longer
+            # read so stays in the set: its edits build, as they would have.
+            graph, specialised = walked[0], specialised | walked[1]
         patched = patch_graph(
             graph,
             edits,
@@ -923,17 +927,18 @@ class _GraphPatch:
         rest = sorted(again - arrived_facts.keys())
         for index, facts, data, verdict in self.gathered.facts(rest):
             self.checks.take(index, facts, data, verdict)
-        return _Replayed(sorted(again), replace(replay, graph=found))
+        return _Replayed(sorted(again), replace(replay, graph=found, specialised=specialised))
 
     def _walked(
         self,
         stored: KeptGraph,
         edited: Sequence[str],
         facts_of: Callable[[str], FileFacts | None],
-    ) -> Graph | None:
+    ) -> tuple[Graph, frozenset[str]] | None:
         """The build's whole graph (kept apart, ``same_facts.KeptLaunch``) with the trees
         that read an ``edited`` launch file walked again (``workspace.launch_patch``) over
-        every file the build had facts of; None where it cannot be."""
+        every file the build had facts of, and the files the walk extracted again under
+        an includer's arguments; None where it cannot be."""
         kept = same_facts.loaded_launch(self.cache.load_launch_parts(self.stored_at), stored.tags)
         whole = None if kept is None else with_parameters(stored.graph, kept.parameters)
         if kept is None or whole is None:
@@ -942,7 +947,7 @@ class _GraphPatch:
         # The files the build had facts of (a skipped one has none)
         known = {files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)}
         specialise = self.specialiser()
-        return launch_patched(
+        graph = launch_patched(
             whole,
             kept.parts,
             edited,
@@ -951,6 +956,7 @@ class _GraphPatch:
             specialise=specialise,
             prepare=specialise.prepare,
         )
+        return None if graph is None else (graph, specialise.specialised)
 
 
 def _kept_findings(

@@ -284,7 +284,7 @@ def _never() -> object:
 
 _LAUNCH_PIECES = (
     "launch files",
-    "launch roots",
+    "launch includers",
     "programs",
     "workspace declarations",
     "sorted nodes",

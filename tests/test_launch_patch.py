@@ -25,6 +25,8 @@ from roslint_names.workspace.launch_parts import LaunchParts
 from roslint_names.workspace.launch_patch import LazyFacts, launch_edit, launch_patched
 
 BASE = "src/turtle_bringup/launch/base.launch"  # ROS 1, included four times by robots.launch
+ROBOTS = "src/turtle_bringup/launch/robots.launch"  # ROS 1, includes base.launch four times
+TELEOP = "src/turtle_bringup/launch/teleop.launch"  # ROS 1, a root with an argument
 MULTI = "src/turtle_bringup/launch/multi_robot.launch"  # ROS 1, a root with groups
 LOCALIZATION = "src/fleet_bringup/launch/localization.launch.xml"  # ROS 2 XML
 FLEET = "src/fleet_bringup/launch/fleet.launch.py"  # ROS 2 Python
@@ -83,16 +85,46 @@ PATCHED = [
     (BASE, "</launch>", '  <node name="relay" pkg="turtle_bringup" type="odom_relay"/>\n</launch>'),
     # The last node that starts some code taken out: a program of its own again.
     (BASE, '  <node name="battery_watch" pkg="turtle_bringup" type="battery_monitor"/>\n', ""),
-]
-
-# Edits a patch cannot follow: the graph is built.
-REFUSED = [
-    # An include added: the roots and the trees' files change.
+    # An include's namespace changed: one tree's nodes move.
+    (ROBOTS, 'ns="site_a/warehouse/robot3"', 'ns="site_b/robot3"'),
+    # An include of a file three trees include already: one more tree reads it.
     (
         MULTI,
         "</launch>",
         '  <include file="$(find turtle_bringup)/launch/base.launch" ns="robot9"/>\n</launch>',
     ),
+    # An include of a root, with an argument: teleop.launch is a root no more, its node
+    # started by multi_robot.launch's tree, and teleop.launch read under the argument.
+    (
+        MULTI,
+        "</launch>",
+        '  <include file="$(find turtle_bringup)/launch/teleop.launch">\n'
+        '    <arg name="robot" value="robot9"/>\n'
+        "  </include>\n</launch>",
+    ),
+    # Every include of base.launch taken out of robots.launch: base.launch is still
+    # included (by multi_robot.launch), robots.launch starts nothing.
+    (
+        ROBOTS,
+        '  <include file="$(find turtle_bringup)/launch/base.launch" ns="robot1"/>\n',
+        "",
+    ),
+    # The include of the root taken out again: teleop.launch is a root again.
+    (
+        MULTI,
+        '  <include file="$(find turtle_bringup)/launch/teleop.launch">\n'
+        '    <arg name="robot" value="robot9"/>\n'
+        "  </include>\n",
+        "",
+    ),
+    # An include of a file the workspace does not hold.
+    (MULTI, "</launch>", '  <include file="$(dirname)/absent.launch"/>\n</launch>'),
+]
+
+# Edits a patch cannot follow: the graph is built.
+REFUSED = [
+    # A parameter file changed: which keys reach which node changes.
+    ("src/fleet_bringup/config/waypoint_follower.yaml", "waypoint_follower:", "/**:"),
 ]
 
 

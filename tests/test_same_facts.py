@@ -185,20 +185,23 @@ STEPS: list[tuple[str, str, str, str]] = [
     (RELAY, '<nav_msgs::Odometry>("odometry"', '<nav_msgs::Odometry>("odom"', "patch"),
     # The node named as the other robot's base: a duplicate node name (RN301) in one tree.
     (BASE, 'name="spare_smoother"', 'name="velocity_smoother"', "patch"),
-    # An include added: the roots change, the graph is built.
+    # An include added: one more tree reads base.launch.
     (
         TELEOP,
         "</launch>",
         '  <include file="$(find turtle_bringup)/launch/base.launch" ns="teleop"/>\n</launch>',
-        "build",
+        "patch",
     ),
-    # Code no launch file started, started in four trees: a program of its own no more;
-    # and the only node of another's taken out: a program of its own again.
+    # Code no launch file started, started in five trees: a program of its own no more;
+    # its code was edited since the last build, and it runs twice under one name in
+    # robots.launch's tree (robot2 is included twice): the code patch cannot tell the
+    # two apart, the graph is built. Then the only node of other code taken out: a
+    # program of its own again.
     (
         BASE,
         "</launch>",
         '  <node name="relay" pkg="turtle_bringup" type="odom_relay"/>\n</launch>',
-        "patch",
+        "build",
     ),
     (
         BASE,
@@ -206,6 +209,24 @@ STEPS: list[tuple[str, str, str, str]] = [
         "",
         "patch",
     ),
+    # A script no launch file started, started by one: a program of its own no more.
+    (
+        TELEOP,
+        "</launch>",
+        '  <node name="pose_logger" pkg="turtle_bringup" type="pose_logger.py"/>\n</launch>',
+        "patch",
+    ),
+    # teleop.launch included with an argument: a root no more, and read under it; an
+    # edit of it then builds the graph (it is never patched from its own facts).
+    (
+        f"{TURTLE_LAUNCH}/multi_robot.launch",
+        "</launch>",
+        '  <include file="$(find turtle_bringup)/launch/teleop.launch">\n'
+        '    <arg name="robot" value="robot9"/>\n'
+        "  </include>\n</launch>",
+        "patch",
+    ),
+    (TELEOP, 'name="teleop"', 'name="teleop_keyboard"', "build"),
 ]
 
 

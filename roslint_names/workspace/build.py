@@ -193,6 +193,7 @@ def build_parts(
             )
             for root in trees.roots()
         },
+        trees.includers(),
         frozenset(unbuilt),
         index.executables(),
         programs,

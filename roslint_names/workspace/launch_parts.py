@@ -74,6 +74,8 @@ class LaunchParts(Compact):
 
     roots: tuple[str, ...]  # in the build's order
     trees: Mapping[str, TreePart]
+    # Each file a launch file's include names -> those launch files (``LaunchTrees``)
+    includers: Mapping[str, tuple[str, ...]]
     unbuilt: frozenset[str]
     executables: Executables
     programs: Programs

@@ -27,7 +27,6 @@ from collections.abc import Callable, Collection, Iterator, Mapping, Sequence
 from dataclasses import replace
 
 from roslint_names.model import FileFacts, Generation
-from roslint_names.moves import moved_spans
 from roslint_names.workspace.build import (
     _group_loads,
     _has_endpoints,
@@ -103,13 +102,7 @@ def launch_edit(before: FileFacts, now: FileFacts) -> bool:
         return False
     if now.generation is not before.generation or _has_endpoints(before) != _has_endpoints(now):
         return False
-    if any(getattr(before, field) != getattr(now, field) for field in _OTHER_FIELDS):
-        return False
-    return moved_spans(_includes(before), _includes(now)) is not None
-
-
-def _includes(facts: FileFacts) -> FileFacts:
-    return FileFacts(facts.path, facts.language, facts.generation, includes=facts.includes)
+    return all(getattr(before, field) == getattr(now, field) for field in _OTHER_FIELDS)
 
 
 def launch_patched(
@@ -127,21 +120,56 @@ def launch_patched(
     of the run: a ``LazyFacts``); None where that cannot be done exactly (module
     docstring)."""
     edited = frozenset(edited)
-    walked = [root for root in parts.roots if not edited.isdisjoint(parts.trees[root].visited)]
-    if not walked:
-        return graph
     index = WorkspaceIndex.restored(facts, packages, parts.executables)
-    trees = LaunchTrees(index, specialise, prepare, roots=walked)
     try:
-        return _patched(graph, parts, walked, trees)
+        roots = _roots(parts, edited, LaunchTrees(index, specialise, roots=[]))
+        gone = set(parts.roots) - set(roots)
+        walked = [
+            root
+            for root in roots
+            if root not in parts.trees or not edited.isdisjoint(parts.trees[root].visited)
+        ]
+        if not walked and not gone:
+            return graph
+        trees = LaunchTrees(index, specialise, prepare, roots=walked)
+        return _patched(graph, parts, roots, gone, trees)
     except UnknownFactsError:
         return None
 
 
+def _roots(parts: LaunchParts, edited: frozenset[str], trees: LaunchTrees) -> list[str]:
+    """The roots after the edits: a file an edited include names now, or named before,
+    is a root where it is a launch file no launch file includes (``LaunchTrees``)."""
+    includers = {target: set(paths) - edited for target, paths in parts.includers.items()}
+    for path in sorted(edited):
+        facts = trees.index.facts[path]
+        if not trees.is_launch_file(path):
+            continue
+        for include in facts.includes:
+            target = trees.target(path, include)
+            if target is not None:
+                includers.setdefault(target, set()).add(path)
+    changed = {
+        target
+        for target in includers.keys() | parts.includers.keys()
+        if includers.get(target, set()) != set(parts.includers.get(target, ()))
+    }
+    roots = set(parts.roots) - changed
+    roots.update(
+        target for target in changed if not includers.get(target) and trees.is_launch_file(target)
+    )
+    return sorted(roots)
+
+
 def _patched(
-    graph: Graph, parts: LaunchParts, walked: list[str], trees: LaunchTrees
+    graph: Graph,
+    parts: LaunchParts,
+    roots: list[str],
+    gone_roots: set[str],
+    trees: LaunchTrees,
 ) -> Graph | None:
     index = trees.index
+    walked = trees.roots()
     tests = _TestFiles(index, {})
     nodes: list[NodeInstance] = []
     endpoints: list[Endpoint] = []
@@ -158,8 +186,8 @@ def _patched(
         unnamed_of[launched.root].extend(started.unnamed)
     # Code a launch file starts no more is a program of its own again, and code started
     # now is one no more.
-    was = parts.programs.unlaunched(_launched(parts, {}))
-    now = parts.programs.unlaunched(_launched(parts, sources_of))
+    was = parts.programs.unlaunched(_launched(parts, parts.roots, {}))
+    now = parts.programs.unlaunched(_launched(parts, roots, sources_of))
     stopped = set(was) - set(now)
     for sources in now:
         if sources not in stopped and sources not in was:
@@ -171,11 +199,11 @@ def _patched(
         loads_of[root].append(use)
     rooted = [
         (root, use)
-        for root in parts.roots
+        for root in roots
         for use in (loads_of[root] if root in loads_of else parts.trees[root].loads)
     ]
     loads = tuple(sorted({use for _, use in rooted}))
-    gone = set(walked)
+    gone = set(walked) | gone_roots
     kept = [
         node
         for node in graph.nodes
@@ -206,7 +234,7 @@ def _patched(
         for node in nodes
     ]
     receivers: dict[str, set[tuple[Generation, tuple[str, ...]]]] = {}
-    for root in parts.roots:
+    for root in roots:
         for path, receiver in unnamed_of[root] if root in unnamed_of else parts.trees[root].unnamed:
             receivers.setdefault(path, set()).add(receiver)
     unnamed = {
@@ -241,11 +269,11 @@ def _patched(
     )
 
 
-def _launched(parts: LaunchParts, walked: Mapping[str, set[str]]) -> set[str]:
-    """The code some tree starts, and the sources no build compiles (``build``'s
-    ``launched_sources``), the trees in ``walked`` starting what it says."""
+def _launched(parts: LaunchParts, roots: Sequence[str], walked: Mapping[str, set[str]]) -> set[str]:
+    """The code the trees of ``roots`` start, and the sources no build compiles
+    (``build``'s ``launched_sources``), the trees in ``walked`` starting what it says."""
     found = set(parts.unbuilt)
-    for root in parts.roots:
+    for root in roots:
         found.update(walked[root] if root in walked else parts.trees[root].sources)
     return found
 

@@ -119,13 +119,16 @@ class LaunchTrees:
         self.prepare = prepare
         self._trees = memory.reads("launch trees")
         self.launch_files: list[str] = []  # those a walk of every root starts from
+        # Each launch file some launch file's include names -> those launch files, sorted
+        self._includers: dict[str, tuple[str, ...]] = {}
         if roots is None:
             self.launch_files = memory.piece(
                 "launch files", _LAUNCH_FILE_FIELDS, self._launch_files
             )
-            roots = memory.piece(
-                "launch roots", (*_LAUNCH_FILE_FIELDS, _include_targets), self._find_roots
+            self._includers = memory.piece(
+                "launch includers", (*_LAUNCH_FILE_FIELDS, _include_targets), self._find_includers
             )
+            roots = [path for path in self.launch_files if path not in self._includers]
         self._roots: list[str] = list(roots)
 
     def _launch_files(self) -> list[str]:
@@ -154,13 +157,24 @@ class LaunchTrees:
     def roots(self) -> list[str]:
         return self._roots
 
-    def _find_roots(self) -> list[str]:
-        included = {
-            self.target(path, include)
-            for path in self.launch_files
-            for include in self.index.facts[path].includes
-        }
-        return [path for path in self.launch_files if path not in included]
+    def includers(self) -> dict[str, tuple[str, ...]]:
+        """Each file an include of a launch file names, and those launch files: a root
+        is a launch file no other includes (``launch_patch`` follows an edited include)."""
+        return self._includers
+
+    def _find_includers(self) -> dict[str, tuple[str, ...]]:
+        found: dict[str, set[str]] = {}
+        for path in self.launch_files:
+            for include in self.index.facts[path].includes:
+                target = self.target(path, include)
+                if target is not None:
+                    found.setdefault(target, set()).add(path)
+        return {target: tuple(sorted(paths)) for target, paths in sorted(found.items())}
+
+    def is_launch_file(self, path: str) -> bool:
+        """Whether ``path`` is a launch file a tool runs: a root where nothing includes it."""
+        facts = self.index.facts.get(path)
+        return facts is not None and facts.language in LAUNCH_LANGUAGES and runs(self.index, facts)
 
     def launched(self) -> Iterator[Launched]:
         roots = self.roots()
