@@ -18,8 +18,9 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
   resolved again), the graph rules over it;
 - ``edit_graph``: a node added to that launch file: the graph the last build kept, with
   the launch trees that read the file walked again (``workspace.launch_patch``);
-- ``edit_include``: an include added to that launch file: what an edit the graph must be
-  built again for costs (the launch files' roots may change);
+- ``edit_parameter``: a parameter declared in that C++ source: what an edit the graph
+  must be built again for costs (what a node's code declares changes the parameter
+  rules' findings, and no patch follows it);
 - ``identical_after_edits``: whether the last edited run printed what a run with an
   empty cache prints over the same tree (a stale cache must never change a result);
 - ``lsp`` (with ``--lsp-edits``): the language server's latencies on the grown workspace
@@ -57,9 +58,12 @@ void bench_probe(rclcpp::Node & node)
 # file starts (put before the end of its root element).
 _NEW_NODE = b"""  <node pkg="bench" exec="bench_node" name="bench_node"/>
 """
-# An edit the graph is built again for: an include (of a file the workspace does not
-# hold: what the includes name changes, and with it which launch files are roots).
-_NEW_INCLUDE = b"""  <include file="$(dirname)/bench_included.launch"/>
+# An edit the graph is built again for: a parameter the code declares.
+_NEW_PARAMETER = b"""
+void bench_parameter(rclcpp::Node & node)
+{
+  node.declare_parameter("bench_parameter", 1);
+}
 """
 # One edit each, a comment but the last two: at the end, where it moves no name, or at the
 # start, where it moves every name of the file; so that the run measures what an edit
@@ -77,7 +81,7 @@ _EDITS = {
     "edit_moves": ((".cpp",), "create_publisher", b"// bench edit: every name moves\n", "start"),
     "edit_names": ((".cpp",), "create_publisher", _NEW_TOPIC, "end"),
     "edit_graph": ((".launch.xml", ".launch"), "<node", _NEW_NODE, "inside"),
-    "edit_include": ((".launch.xml", ".launch"), "<node", _NEW_INCLUDE, "inside"),
+    "edit_parameter": ((".cpp",), "create_publisher", _NEW_PARAMETER, "end"),
 }
 
 
@@ -109,7 +113,7 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
             runs[name] = bench.cli(root, arguments, cache)
             results.setdefault("edited", {})[name] = edited.relative_to(root).as_posix()
         fresh = bench.cli(root, arguments, scratch / "fresh-cache")
-        results["identical_after_edits"] = fresh.stdout == runs["edit_include"].stdout
+        results["identical_after_edits"] = fresh.stdout == runs["edit_parameter"].stdout
         results["runs"] = {name: run.summary() for name, run in runs.items()}
         if lsp_edits:
             results["lsp"] = latency(root, lsp_edits, cache)
