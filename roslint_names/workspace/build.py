@@ -12,7 +12,7 @@ from __future__ import annotations
 import posixpath
 import re
 from bisect import bisect_left
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from itertools import pairwise
 from typing import Any, Generic, TypeVar
@@ -98,7 +98,7 @@ def build(
     """The workspace graph; ``prepare`` is told each depth's specialisations first.
     ``memory``: what the last build of this workspace left (``memory.GraphMemory``): the
     pieces nothing changed under are taken from it, and this build's are left in it."""
-    return build_parts(facts, packages, specialise, prepare, memory)[0]
+    return _build(facts, packages, specialise, prepare, memory)[0]
 
 
 def build_parts(
@@ -106,9 +106,21 @@ def build_parts(
     packages: Sequence[Package],
     specialise: Specialise,
     prepare: Prepare | None = None,
-    memory: GraphMemory | None = None,
 ) -> tuple[Graph, LaunchParts]:
-    """``build``'s graph, and each launch tree's part of it (``launch_parts``)."""
+    """``build``'s graph, and each launch tree's part of it (``launch_parts``): what the
+    CLI keeps for a launch patch. The language server, which keeps a memory instead,
+    builds without them."""
+    graph, parts = _build(facts, packages, specialise, prepare, None)
+    return graph, parts()
+
+
+def _build(
+    facts: Iterable[FileFacts],
+    packages: Sequence[Package],
+    specialise: Specialise,
+    prepare: Prepare | None,
+    memory: GraphMemory | None,
+) -> tuple[Graph, Callable[[], LaunchParts]]:
     memory = GraphMemory(keeps=False) if memory is None else memory
     index = memory.begin({f.path: f for f in facts}, packages)
     tests = _TestFiles(index, memory.piece("test files", (), dict))
@@ -130,8 +142,7 @@ def build_parts(
     tree_unnamed: dict[str, list[Unnamed]] = {}
     for launched in trees.launched():
         place = (launched.root, place[1] + 1 if place[0] == launched.root else 0)
-        found = index.sources_of(launched.node.package, launched.node.executable)
-        sources = tuple(path for path in found if path not in unbuilt)
+        sources = launched_sources_of(index, launched, unbuilt)
         launched_sources.update(sources)
         tree_sources.setdefault(launched.root, set()).update(sources)
         kept = started.get(place)
@@ -157,9 +168,7 @@ def build_parts(
         endpoints.extend(found_endpoints)
     rooted_loads = _group_loads(index, trees)
     loads = [use for _, use in rooted_loads]
-    linked = {use.path for node in nodes for use in node.parameter_files}
-    linked.update(use.path for use in loads)
-    blocks = {path: index.facts[path].parameter_blocks for path in sorted(linked)}
+    blocks = {path: index.facts[path].parameter_blocks for path in linked_files(nodes, loads)}
     parameters = ParameterSets(
         index,
         memory.piece(
@@ -179,47 +188,44 @@ def build_parts(
         for node in nodes
     ]
     finished.forget_the_rest()
-    tree_loads: dict[str, list[ParameterFileUse]] = {}
-    for root, use in rooted_loads:
-        tree_loads.setdefault(root, []).append(use)
-    parts = LaunchParts(
-        tuple(trees.roots()),
-        {
-            root: TreePart(
-                trees.visited(root),
-                tuple(sorted(tree_sources.get(root, ()))),
-                tuple(tree_unnamed.get(root, ())),
-                tuple(tree_loads.get(root, ())),
-            )
-            for root in trees.roots()
-        },
-        trees.includers(),
-        frozenset(unbuilt),
-        index.executables(),
-        programs,
-        {
-            sources: parameters.of(sources)
-            for sources in sorted(
-                {node.sources for node in nodes}
-                | {sources for receivers in unnamed.values() for _, sources in receivers}
-            )
-        },
-    )
+
+    def parts() -> LaunchParts:
+        tree_loads: dict[str, list[ParameterFileUse]] = {}
+        for root, use in rooted_loads:
+            tree_loads.setdefault(root, []).append(use)
+        return LaunchParts(
+            tuple(trees.roots()),
+            {
+                root: TreePart(
+                    trees.visited(root),
+                    tuple(sorted(tree_sources.get(root, ()))),
+                    tuple(tree_unnamed.get(root, ())),
+                    tuple(tree_loads.get(root, ())),
+                )
+                for root in trees.roots()
+            },
+            trees.includers(),
+            frozenset(unbuilt),
+            index.executables(),
+            programs,
+            {
+                sources: parameters.of(sources)
+                for sources in sorted(
+                    {node.sources for node in nodes}
+                    | {sources for receivers in unnamed.values() for _, sources in receivers}
+                )
+            },
+        )
+
     graph = Graph(
         _sorting(memory, "sorted nodes", NodeInstance.sort_key)(nodes),
         _sorting(memory, "sorted endpoints", Endpoint.sort_key)(endpoints),
         index.companions(),
-        _mentions(index, nodes),
+        mentions(index, nodes),
         index.service_definitions(),
         blocks,
         tuple(sorted(set(loads))),
-        {
-            path: tuple(
-                UnnamedReceiver(generation, parameters.of(sources))
-                for generation, sources in sorted(receivers)
-            )
-            for path, receivers in sorted(unnamed.items())
-        },
+        unnamed_receivers(unnamed, parameters.of),
         parameter_declarations=parameters.declarations(),
     )
     return graph, parts
@@ -401,31 +407,65 @@ class _TestFiles:
         return found
 
 
-def _mentions(index: WorkspaceIndex, nodes: Iterable[NodeInstance]) -> dict[str, frozenset[str]]:
+def mentions(
+    index: WorkspaceIndex,
+    nodes: Iterable[NodeInstance],
+    known: Mapping[str, frozenset[str]] | None = None,
+) -> dict[str, frozenset[str]]:
     """The string literals of every code file (headers too) of each package whose node
-    has remaps of its own."""
+    has remaps of its own; ``known``'s where it has them (``launch_patch``: no code
+    changed since the build that made them)."""
+    packages = {node.package for node in nodes if node.package and any(r.own for r in node.remaps)}
+    known = known or {}
     return {
-        package: package_literals(index.facts[path] for path in index.files_of(package))
-        for package in mentioned_packages(nodes)
+        package: known[package]
+        if package in known
+        else package_literals(index.facts[path] for path in index.files_of(package))
+        for package in sorted(packages)
     }
 
 
-def mentioned_packages(nodes: Iterable[NodeInstance]) -> list[str]:
-    """The packages whose literals ``Graph.mentions`` keeps: those of nodes with remaps
-    of their own, sorted."""
-    return sorted(
-        {node.package for node in nodes if node.package and any(r.own for r in node.remaps)}
-    )
+def linked_files(nodes: Iterable[NodeInstance], loads: Iterable[ParameterFileUse]) -> list[str]:
+    """The parameter files handed to ``nodes`` or loaded by ``loads``, sorted: those whose
+    blocks ``Graph.parameter_files`` holds."""
+    linked = {use.path for node in nodes for use in node.parameter_files}
+    linked.update(use.path for use in loads)
+    return sorted(linked)
+
+
+def unnamed_receivers(
+    unnamed: Mapping[str, Iterable[tuple[Generation, tuple[str, ...]]]],
+    parameters_of: Callable[[tuple[str, ...]], NodeParameters],
+) -> dict[str, tuple[UnnamedReceiver, ...]]:
+    """``Graph.unnamed_parameter_files``: for each parameter file (``unnamed``) the
+    generation and code of each node of unknown name it is handed to, with that code's
+    parameters."""
+    return {
+        path: tuple(
+            UnnamedReceiver(generation, parameters_of(sources))
+            for generation, sources in sorted(set(receivers))
+        )
+        for path, receivers in sorted(unnamed.items())
+    }
 
 
 def package_literals(code: Iterable[FileFacts]) -> frozenset[str]:
-    """The literals of a package's files, as ``Graph.mentions`` keeps them (``_mentions``,
+    """The literals of a package's files, as ``Graph.mentions`` keeps them (``mentions``,
     and ``patch`` for an edited package)."""
     return frozenset(literal for facts in code for literal in facts.literals)
 
 
 # ---------------------------------------------------------------------------------------
 # Instances
+
+
+def launched_sources_of(
+    index: WorkspaceIndex, launched: Launched, unbuilt: Collection[str]
+) -> tuple[str, ...]:
+    """The code a launched node runs: its executable's sources that some build compiles
+    (code no build file compiles never runs: ``built``)."""
+    found = index.sources_of(launched.node.package, launched.node.executable)
+    return tuple(path for path in found if path not in unbuilt)
 
 
 def _code(index: WorkspaceIndex, sources: Iterable[str]) -> list[FileFacts]:

@@ -1,9 +1,10 @@
 """The last graph with the launch trees an edited launch file is in walked again (issue 30).
 
-A node added to a launch file, renamed, remapped, moved into a group or taken out
-changes what the trees that read that file start, and nothing else the graph is made
-of: the code each node runs and what it declares come from code and build files, the
-other trees from their own files. Building the whole graph again for it loads every
+A node added to a launch file, renamed, remapped, moved into a group or taken out, or
+an include added, changed or taken out, changes what the trees that read that file
+start (and which launch files are roots), and nothing else the graph is made of: the
+code each node runs and what it declares come from code and build files, the other
+trees from their own files. Building the whole graph again for it loads every
 file's facts (1.5 s at 77,000 files) and walks every tree (3 s); ``launch_patched``
 walks only the trees that read an edited file (``LaunchParts``: what each tree of the
 last build read and gave), by the build's own functions, over an index that loads a
@@ -11,9 +12,9 @@ file's facts only when the walk asks for them, and puts their nodes, endpoints, 
 and parameter files in place of the old.
 
 ``launch_edit`` says whether an edit is of that kind: a launch file that keeps its
-language and generation, whose includes name the same files with the same arguments
-(the roots and the files extracted under an includer's arguments stay), and which holds
-nothing else the graph reads (build, parameter or code facts, literals). Code a tree
+language and generation and holds nothing else the graph reads (build, parameter or
+code facts, literals). A file an edited include names now, or named before, is a root
+where nothing includes it any more (``LaunchParts.includers``). Code a tree
 starts now is no program of its own any more, and code no tree starts any more is one
 again (``Programs.unlaunched``). A patch is refused (None, the caller builds) where a
 node runs code whose parameters the build did not make (code that ran as no node, or
@@ -35,15 +36,16 @@ from roslint_names.workspace.build import (
     _unique,
     _unlaunched_instance,
     _with_group_loads,
-    mentioned_packages,
-    package_literals,
+    launched_sources_of,
+    linked_files,
+    mentions,
+    unnamed_receivers,
 )
 from roslint_names.workspace.graph import (
     Endpoint,
     Graph,
     NodeInstance,
     ParameterFileUse,
-    UnnamedReceiver,
 )
 from roslint_names.workspace.index import Package, WorkspaceIndex
 from roslint_names.workspace.launch_parts import LaunchParts, Unnamed
@@ -176,8 +178,7 @@ def _patched(
     sources_of: dict[str, set[str]] = {root: set() for root in walked}
     unnamed_of: dict[str, list[Unnamed]] = {root: [] for root in walked}
     for launched in trees.launched():
-        found = index.sources_of(launched.node.package, launched.node.executable)
-        sources = tuple(path for path in found if path not in parts.unbuilt)
+        sources = launched_sources_of(index, launched, parts.unbuilt)
         sources_of[launched.root].update(sources)
         started, _ = _launched_instance(index, tests, launched, sources, trees)
         if started.node is not None:
@@ -216,13 +217,11 @@ def _patched(
         if not node.root and node.sources in stopped
         for path in node.sources
     }
-    linked = {use.path for node in (*kept, *nodes) for use in node.parameter_files}
-    linked.update(use.path for use in loads)
     blocks = {
         path: graph.parameter_files[path]
         if path in graph.parameter_files
         else index.facts[path].parameter_blocks
-        for path in sorted(linked)
+        for path in linked_files((*kept, *nodes), loads)
     }
     parameters = _Parameters(parts.parameters)
     finished = [
@@ -237,13 +236,7 @@ def _patched(
     for root in roots:
         for path, receiver in unnamed_of[root] if root in unnamed_of else parts.trees[root].unnamed:
             receivers.setdefault(path, set()).add(receiver)
-    unnamed = {
-        path: tuple(
-            UnnamedReceiver(generation, parameters.of(sources))
-            for generation, sources in sorted(found)
-        )
-        for path, found in sorted(receivers.items())
-    }
+    unnamed = unnamed_receivers(receivers, parameters.of)
     if parameters.missing:
         return None
     all_nodes = _unique([*kept, *finished], NodeInstance.sort_key)
@@ -262,7 +255,7 @@ def _patched(
             ],
             Endpoint.sort_key,
         ),
-        mentions=_kept_mentions(graph, index, all_nodes),
+        mentions=mentions(index, all_nodes, graph.mentions),
         parameter_files=blocks,
         parameter_loads=loads,
         unnamed_parameter_files=unnamed,
@@ -293,16 +286,3 @@ class _Parameters:
             self.missing = True
             return NO_CODE
         return found
-
-
-def _kept_mentions(
-    graph: Graph, index: WorkspaceIndex, nodes: Sequence[NodeInstance]
-) -> dict[str, frozenset[str]]:
-    """``build._mentions`` of the patched nodes, the last build's literals of each package
-    it had (no code changed)."""
-    return {
-        package: graph.mentions[package]
-        if package in graph.mentions
-        else package_literals(index.facts[path] for path in index.files_of(package))
-        for package in mentioned_packages(nodes)
-    }

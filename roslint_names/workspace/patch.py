@@ -177,7 +177,7 @@ def _mentions(
     facts_of: Callable[[str], FileFacts | None],
     packages: Callable[[], PackageFiles],
 ) -> Mapping[str, frozenset[str]] | None:
-    """The graph's literals of each package (``build._mentions``), those of the packages
+    """The graph's literals of each package (``build.mentions``), those of the packages
     holding an edited file gathered again."""
     if not graph.mentions:
         return graph.mentions
