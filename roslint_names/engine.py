@@ -68,7 +68,7 @@ from .workspace.graph import Graph
 from .workspace.index import Package, PackageFiles
 from .workspace.interfaces import service_definitions
 from .workspace.launch_parts import LaunchParts
-from .workspace.launch_patch import LazyFacts, launch_edit, launch_patched
+from .workspace.launch_patch import LazyFacts, launch_edit, launch_patched, parameter_edit
 from .workspace.patch import (
     Moved,
     edits_of,
@@ -807,12 +807,13 @@ _Arrived = tuple[int, FileFacts, "bytes | None", "Verdict | None"]
 @dataclass
 class _GraphPatch:
     """A run whose edits change only what some nodes' code declares (``workspace.patch``)
-    or what some launch trees start (``workspace.launch_patch``): the graph the last
-    build kept, patched with every edit since (the facts it was built from are loaded,
-    so kept in the pack), and the graph rules run over it; the files whose graph findings
-    that changed are taken and reported again with the edited ones, every other file's
-    findings are the replay's. Only a build keeps a graph: pickling it (0.36 s at 77,000
-    files) would cost each patched run more than patching it again."""
+    or what some launch trees start or hand their nodes (``workspace.launch_patch``: launch
+    and parameter files): the graph the last build kept, patched with every edit since
+    (the facts it was built from are loaded, so kept in the pack), and the graph rules
+    run over it; the files whose graph findings that changed are taken and reported again
+    with the edited ones, every other file's findings are the replay's. Only a build
+    keeps a graph: pickling it (0.36 s at 77,000 files) would cost each patched run more
+    than patching it again."""
 
     gathered: Gatherer
     checks: _FileChecks
@@ -846,7 +847,7 @@ class _GraphPatch:
             return loaded[index]
 
         changed: list[tuple[str, FileFacts, FileFacts]] = []
-        launch_edited: list[str] = []
+        tree_edits: list[str] = []
         pairs = zip(self.inputs.tags, built_from, strict=True)
         for index, (now, then) in enumerate(pairs):
             if now == then:
@@ -858,12 +859,13 @@ class _GraphPatch:
             facts = facts_at(index) if is_facts_key(now) else None
             if before is None or facts is None:
                 return None
-            # A launch file whose facts only moved (a comment) changes no tree.
+            # A launch or parameter file whose facts are where they were (a comment at the
+            # end) changes no tree; else the trees that read it are walked again.
             moved_only = same_places(before, facts)
-            if launch_edit(before, facts) and not moved_only:
+            if (launch_edit(before, facts) or parameter_edit(before, facts)) and not moved_only:
                 if not _patchable(before, facts, wiring_kept=True):
                     return None
-                launch_edited.append(display)
+                tree_edits.append(display)
             elif _patchable(before, facts, wiring_kept=moved_only):
                 changed.append((display, before, facts))
             else:
@@ -878,8 +880,8 @@ class _GraphPatch:
             return None if at is None else facts_at(at)
 
         specialised = replay.specialised
-        if launch_edited:
-            walked = self._walked(stored, launch_edited, facts_of)
+        if tree_edits:
+            walked = self._walked(stored, tree_edits, facts_of)
             if walked is None:
                 return None
             # A file an edited include hands arguments to now is read under them: an
@@ -900,7 +902,7 @@ class _GraphPatch:
         # none where launch trees were walked again.
         kept, kept_found = (
             (frozenset(), {})
-            if launch_edited
+            if tree_edits
             else _kept_findings(stored.found, edits, self.rules, files)
         )
         fresh = [rule for rule in self.rules if rule.code not in kept]
@@ -936,7 +938,8 @@ class _GraphPatch:
         facts_of: Callable[[str], FileFacts | None],
     ) -> tuple[Graph, frozenset[str]] | None:
         """The build's whole graph (kept apart, ``same_facts.KeptLaunch``) with the trees
-        that read an ``edited`` launch file walked again (``workspace.launch_patch``) over
+        that read an ``edited`` launch or parameter file walked again
+        (``workspace.launch_patch``) over
         every file the build had facts of, and the files the walk extracted again under
         an includer's arguments; None where it cannot be."""
         kept = same_facts.loaded_launch(self.cache.load_launch_parts(self.stored_at), stored.tags)

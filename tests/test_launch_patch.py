@@ -22,7 +22,12 @@ from roslint_names.workspace.build import build_parts
 from roslint_names.workspace.graph import Graph
 from roslint_names.workspace.index import Package
 from roslint_names.workspace.launch_parts import LaunchParts
-from roslint_names.workspace.launch_patch import LazyFacts, launch_edit, launch_patched
+from roslint_names.workspace.launch_patch import (
+    LazyFacts,
+    launch_edit,
+    launch_patched,
+    parameter_edit,
+)
 
 BASE = "src/turtle_bringup/launch/base.launch"  # ROS 1, included four times by robots.launch
 ROBOTS = "src/turtle_bringup/launch/robots.launch"  # ROS 1, includes base.launch four times
@@ -30,6 +35,16 @@ TELEOP = "src/turtle_bringup/launch/teleop.launch"  # ROS 1, a root with an argu
 MULTI = "src/turtle_bringup/launch/multi_robot.launch"  # ROS 1, a root with groups
 LOCALIZATION = "src/fleet_bringup/launch/localization.launch.xml"  # ROS 2 XML
 FLEET = "src/fleet_bringup/launch/fleet.launch.py"  # ROS 2 Python
+WAYPOINTS = "src/fleet_bringup/config/waypoint_follower.yaml"  # ROS 2, fleet.launch.py's
+# ROS 1 parameter files the steps' workspace holds besides the examples' (``_Workspace``)
+SMOOTHER = "config/smoother.yaml"
+SMOOTHER_PATH = f"src/turtle_bringup/{SMOOTHER}"
+UNLOADED = "src/turtle_bringup/config/unloaded.yaml"
+EXTRA_FILES = {
+    SMOOTHER_PATH: "# The velocity smoother's limits.\nspeed_lim_v: 0.8\nspeed_lim_w: 5.4\n"
+    "decel_factor: 1.0\n",
+    UNLOADED: "max_speed: 1.0\n",
+}
 
 # (file, text before, text after); each step's graph is patched from the step before's.
 PATCHED = [
@@ -119,12 +134,37 @@ PATCHED = [
     ),
     # An include of a file the workspace does not hold.
     (MULTI, "</launch>", '  <include file="$(dirname)/absent.launch"/>\n</launch>'),
+    # ROS 2 parameter files (``parameter_edit``): the key that misses the namespaced node
+    # made one every node matches; a setting changed and one added; every line moved.
+    (WAYPOINTS, "waypoint_follower:", "/**:"),
+    (WAYPOINTS, "loop_rate: 10.0", "loop_rate: 20.0\n    max_robot_pose_search_dist: 10.0"),
+    (WAYPOINTS, "# Written before", "# Tuned on the warehouse floor.\n# Written before"),
+    # ROS 1: a file loaded inside a node of the file four trees include, and at group
+    # level into that node's private namespace in one of them; then the file edited.
+    (
+        BASE,
+        '    <remap from="cmd_vel_raw"',
+        f'    <rosparam command="load" file="$(find turtle_bringup)/{SMOOTHER}"/>\n'
+        '    <remap from="cmd_vel_raw"',
+    ),
+    (
+        MULTI,
+        "</launch>",
+        f'  <rosparam command="load" file="$(find turtle_bringup)/{SMOOTHER}"'
+        ' ns="robot9/velocity_smoother"/>\n</launch>',
+    ),
+    (SMOOTHER_PATH, "decel_factor: 1.0", "decel_factor: 1.5\naccel_lim_v: 0.3"),
+    (SMOOTHER_PATH, "speed_lim_w: 5.4\n", ""),
+    (SMOOTHER_PATH, "# The velocity", "# Limits measured on the robot.\n# The velocity"),
+    # A parameter file no launch file loads: no tree reads it. (A value changed changes
+    # no fact: a file's facts are the names it sets and where.)
+    (UNLOADED, "max_speed: 1.0", "max_speed: 1.0\nmin_speed: 0.1"),
 ]
 
 # Edits a patch cannot follow: the graph is built.
 REFUSED = [
-    # A parameter file changed: which keys reach which node changes.
-    ("src/fleet_bringup/config/waypoint_follower.yaml", "waypoint_follower:", "/**:"),
+    # A parameter file made a launch file: which files are parameter files changes.
+    (WAYPOINTS, "# Written before", "launch: []\n# Written before"),
 ]
 
 
@@ -164,7 +204,10 @@ class _Workspace(ExampleCopy):
     ) -> Graph | None:
         changed = [path for path in now if before.get(path) != now[path]]
         assert changed and before.keys() == now.keys()
-        if not all(launch_edit(before[path], now[path]) for path in changed):
+        if not all(
+            launch_edit(before[path], now[path]) or parameter_edit(before[path], now[path])
+            for path in changed
+        ):
             return None
         assert self.specialiser is not None
         return launch_patched(
@@ -182,6 +225,9 @@ class _Workspace(ExampleCopy):
 def steps(tmp_path_factory: pytest.TempPathFactory) -> list[tuple[str, Graph, Graph | None]]:
     """Each step: the file edited, the graph built after it, and the graph patched."""
     workspace = _Workspace(tmp_path_factory.mktemp("launch_patch") / "ws")
+    for relative, text in EXTRA_FILES.items():
+        (workspace.root / relative).parent.mkdir(parents=True, exist_ok=True)
+        (workspace.root / relative).write_text(text, encoding="utf-8")
     graph, parts, facts = workspace.built()
     found: list[tuple[str, Graph, Graph | None]] = []
     for relative, old, new in PATCHED:

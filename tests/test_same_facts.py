@@ -137,9 +137,9 @@ STEPS: list[tuple[str, str, str, str]] = [
     (MONITOR, "", "\n// A bare NOLINT is cpplint's, not ours.\n", "replay"),
     (PARAMETERS, "", "\n# Tuned on the warehouse floor.\n", "replay"),
     (TURTLE_BUILD, "", "\n# Nodes of the turtle robot.\n", "replay"),
-    # A name changed: the RN401 pair is gone. The graph is built: a parameter file moved
-    # since the last build, and the kept graph holds its places (``workspace.patch``).
-    (MONITOR, '"robot_pose"', '"robot_pose_estimate"', "build"),
+    # A name changed: the RN401 pair is gone. A parameter file moved since the last
+    # build: the tree that hands it to its node is walked again (its settings' places).
+    (MONITOR, '"robot_pose"', '"robot_pose_estimate"', "patch"),
     # Since, code alone: the last graph, the monitor's node resolved again.
     (MONITOR, '"robot_pose_estimate", 10);', '"robot_pose", 10);  // as it was', "patch"),
     (MONITOR, "", "\n// Back as it was.\n", "replay"),
@@ -227,6 +227,15 @@ STEPS: list[tuple[str, str, str, str]] = [
         "patch",
     ),
     (TELEOP, 'name="teleop"', 'name="teleop_keyboard"', "build"),
+    # The parameter file's key made to match the node in any namespace (RN405 fixed),
+    # then a setting added: the tree that hands it to the node is walked again.
+    (PARAMETERS, "waypoint_follower:\n", "/**/waypoint_follower:\n", "patch"),
+    (
+        PARAMETERS,
+        "    loop_rate: 10.0\n",
+        "    loop_rate: 10.0\n    stop_on_arrival: true\n",
+        "patch",
+    ),
 ]
 
 

@@ -13,7 +13,9 @@ and parameter files in place of the old.
 
 ``launch_edit`` says whether an edit is of that kind: a launch file that keeps its
 language and generation and holds nothing else the graph reads (build, parameter or
-code facts, literals). A file an edited include names now, or named before, is a root
+code facts, literals). An edit of a parameter file that changes only the names it sets
+and where (``parameter_edit``) is one too: the trees whose nodes or group-level loads
+are handed it are walked again, and its blocks are the graph's from its new facts. A file an edited include names now, or named before, is a root
 where nothing includes it any more (``LaunchParts.includers``). Code a tree
 starts now is no program of its own any more, and code no tree starts any more is one
 again (``Programs.unlaunched``). A patch is refused (None, the caller builds) where a
@@ -27,7 +29,7 @@ from __future__ import annotations
 from collections.abc import Callable, Collection, Iterator, Mapping, Sequence
 from dataclasses import replace
 
-from roslint_names.model import FileFacts, Generation
+from roslint_names.model import FileFacts, Generation, Language
 from roslint_names.workspace.build import (
     _group_loads,
     _has_endpoints,
@@ -107,6 +109,19 @@ def launch_edit(before: FileFacts, now: FileFacts) -> bool:
     return all(getattr(before, field) == getattr(now, field) for field in _OTHER_FIELDS)
 
 
+def parameter_edit(before: FileFacts, now: FileFacts) -> bool:
+    """Whether an edit of a parameter file changes only what it sets (its blocks, the
+    names of its ROS 2 keys, whether it parses): the graph then changes only through the
+    trees whose nodes or group loads are handed it, walked again as for a launch edit."""
+    if before.language is not Language.PARAMETERS or now.language is not Language.PARAMETERS:
+        return False
+    return _without_settings(before) == _without_settings(now)
+
+
+def _without_settings(facts: FileFacts) -> FileFacts:
+    return replace(facts, names=(), parameter_blocks=(), parse_errors=())
+
+
 def launch_patched(
     graph: Graph,
     parts: LaunchParts,
@@ -118,23 +133,26 @@ def launch_patched(
     prepare: Prepare | None = None,
 ) -> Graph | None:
     """``graph`` (a build's, whole: ``parts`` is what the same build left) with the trees
-    that read one of the ``edited`` launch files walked again over ``facts`` (every file
-    of the run: a ``LazyFacts``); None where that cannot be done exactly (module
-    docstring)."""
+    that read one of the ``edited`` files (launch files, ``launch_edit``; parameter files,
+    ``parameter_edit``) walked again over ``facts`` (every file of the run: a
+    ``LazyFacts``); None where that cannot be done exactly (module docstring)."""
     edited = frozenset(edited)
     index = WorkspaceIndex.restored(facts, packages, parts.executables)
     try:
         roots = _roots(parts, edited, LaunchTrees(index, specialise, roots=[]))
         gone = set(parts.roots) - set(roots)
+        handed = _handed(graph, parts, edited)
         walked = [
             root
             for root in roots
-            if root not in parts.trees or not edited.isdisjoint(parts.trees[root].visited)
+            if root not in parts.trees
+            or root in handed
+            or not edited.isdisjoint(parts.trees[root].visited)
         ]
         if not walked and not gone:
             return graph
         trees = LaunchTrees(index, specialise, prepare, roots=walked)
-        return _patched(graph, parts, roots, gone, trees)
+        return _patched(graph, parts, roots, gone, trees, edited=edited)
     except UnknownFactsError:
         return None
 
@@ -163,12 +181,31 @@ def _roots(parts: LaunchParts, edited: frozenset[str], trees: LaunchTrees) -> li
     return sorted(roots)
 
 
+def _handed(graph: Graph, parts: LaunchParts, edited: frozenset[str]) -> set[str]:
+    """The roots of the trees that hand one of the ``edited`` files to a node (named or
+    not) or load it at group level: where a parameter file's edit reaches."""
+    found = {
+        node.root
+        for node in graph.nodes
+        if node.root and any(use.path in edited for use in node.parameter_files)
+    }
+    found.update(
+        root
+        for root, part in parts.trees.items()
+        if any(use.path in edited for use in part.loads)
+        or any(path in edited for path, _ in part.unnamed)
+    )
+    return found
+
+
 def _patched(
     graph: Graph,
     parts: LaunchParts,
     roots: list[str],
     gone_roots: set[str],
     trees: LaunchTrees,
+    *,
+    edited: frozenset[str],
 ) -> Graph | None:
     index = trees.index
     walked = trees.roots()
@@ -219,7 +256,7 @@ def _patched(
     }
     blocks = {
         path: graph.parameter_files[path]
-        if path in graph.parameter_files
+        if path in graph.parameter_files and path not in edited
         else index.facts[path].parameter_blocks
         for path in linked_files((*kept, *nodes), loads)
     }
