@@ -105,6 +105,9 @@ REPLAYS_KEPT = 8  # one per recent (file set, settings) of each checkout
 _GRAPHS = "graphs"  # a built graph, kept by its replay's key, to patch (``workspace.patch``)
 # The same build's whole graph and its launch trees' parts (``workspace.launch_patch``)
 _LAUNCH_PARTS = "launch-parts"
+# What a built graph's nodes' parameters were gathered from, to patch what code declares
+# (``workspace.parameter_patch``)
+_CODE_PARAMETERS = "code-parameters"
 GRAPHS_KEPT = 2  # tens of MB each in a large workspace: the last file sets only
 _LOG_BATCH = 512  # lines buffered before an append; and every batch of extraction ends one
 _TAG_NAME = "CACHEDIR.TAG"
@@ -341,6 +344,15 @@ class FactsCache:
         (``same_facts.KeptLaunch``), loaded only by a run that walks some trees again:
         apart from the graph a code edit patches, which loads a third of the bytes."""
         self.write_newest(self.directory / _LAUNCH_PARTS / key, _encoded(value), GRAPHS_KEPT)
+
+    def load_code_parameters(self, key: str) -> object | None:
+        """The value ``store_code_parameters`` kept under ``key``, or None."""
+        return self._load_entry(_CODE_PARAMETERS, key, _GraphUnpickler)
+
+    def store_code_parameters(self, key: str, value: object) -> None:
+        """Keep what a build's nodes' parameters were gathered from
+        (``same_facts.KeptCode``), loaded only by a run that patches what code declares."""
+        self.write_newest(self.directory / _CODE_PARAMETERS / key, _encoded(value), GRAPHS_KEPT)
 
     def _load_entry(
         self, kind: str, key: str, unpickler: type[pickle.Unpickler] | None = None

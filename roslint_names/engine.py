@@ -67,8 +67,9 @@ from .workspace.built import BuiltSources
 from .workspace.graph import Graph
 from .workspace.index import Package, PackageFiles
 from .workspace.interfaces import service_definitions
-from .workspace.launch_parts import LaunchParts
+from .workspace.launch_parts import CodeParameterParts, LaunchParts
 from .workspace.launch_patch import LazyFacts, launch_edit, launch_patched, parameter_edit
+from .workspace.parameter_patch import parameters_patched
 from .workspace.patch import (
     Moved,
     edits_of,
@@ -284,6 +285,7 @@ def _lint(
     )
     graph: Graph | None = None
     launch_parts: LaunchParts | None = None  # each launch tree's part of it
+    code_parts: CodeParameterParts | None = None  # what its nodes' parameters came from
     built_with: list[Package] = []  # the packages the graph was built with
 
     # A run over the files of a run that built the graph, whose facts are the same, takes
@@ -362,7 +364,7 @@ def _lint(
             known_facts = checks.facts()
             specialise = specialiser()
             built_with = workspace_packages(workspace, packages)
-            graph, launch_parts = build_parts(
+            graph, launch_parts, code_parts = build_parts(
                 known_facts, built_with, specialise, specialise.prepare
             )
             reported_graph = report_graph(
@@ -440,6 +442,9 @@ def _lint(
                     if launch_parts is not None:
                         kept_launch = KeptLaunch(inputs.tags, parameter_part(graph), launch_parts)
                         cache.store_launch_parts(kept_at, kept_launch.stored())
+                    if code_parts is not None:
+                        kept_code = same_facts.KeptCode(inputs.tags, code_parts)
+                        cache.store_code_parameters(kept_at, kept_code.stored())
         if clean_key is not None and not inputs.changed:
             assert cache is not None
             # A run over some files (pre-commit's), or one that checked only its edited
@@ -870,7 +875,8 @@ class _GraphPatch:
                 changed.append((display, before, facts))
             else:
                 return None
-        edits = edits_of(changed)
+        declaring: set[str] = set()  # code files whose parameters changed
+        edits = edits_of(changed, declaring)
         if edits is None:
             return None
         slots = {source.display: index for index, source in enumerate(files)}
@@ -879,9 +885,30 @@ class _GraphPatch:
             at = slots.get(display)
             return None if at is None else facts_at(at)
 
+        # The build's whole graph (its parameters kept apart, ``same_facts.KeptLaunch``)
+        # for a patch that walks trees or gathers parameters again.
+        kept: KeptLaunch | None = None
+        if tree_edits or declaring:
+            kept = same_facts.loaded_launch(
+                self.cache.load_launch_parts(self.stored_at), stored.tags
+            )
+            whole = None if kept is None else with_parameters(graph, kept.parameters)
+            if kept is None or whole is None:
+                return None
+            graph = whole
+        # The files the build had facts of (a skipped one has none)
+        known = {files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)}
         specialised = replay.specialised
         if tree_edits:
-            walked = self._walked(stored, tree_edits, facts_of)
+            assert kept is not None
+            walked = self._walked(
+                graph,
+                parts=kept.parts,
+                packages=stored.packages,
+                edited=tree_edits,
+                known=known,
+                facts_of=facts_of,
+            )
             if walked is None:
                 return None
             # A file an edited include hands arguments to now is read under them: an
@@ -893,19 +920,41 @@ class _GraphPatch:
             edits,
             facts_of,
             lambda: PackageFiles([source.display for source in files], stored.packages),
+            declaring=bool(declaring),
         )
+        if patched is not None and declaring:
+            assert kept is not None
+            kept_code = same_facts.loaded_code(
+                self.cache.load_code_parameters(self.stored_at), stored.tags
+            )
+            patched = (
+                None
+                if kept_code is None
+                else parameters_patched(
+                    patched,
+                    kept.parts,
+                    kept_code.parts,
+                    {
+                        display: (before, now)
+                        for display, before, now in changed
+                        if display in edits
+                    },
+                    facts=LazyFacts(known, facts_of),
+                    packages=stored.packages,
+                )
+            )
         if patched is None:
             return None
         reported = {display: index for display, index in slots.items() if index < replay.reported}
         # A rule that reads no name the patch changed has the built graph's findings, the
         # places of the edited files moved (only places can have: its parameter uses');
         # none where launch trees were walked again.
-        kept, kept_found = (
+        kept_codes, kept_found = (
             (frozenset(), {})
-            if tree_edits
+            if tree_edits or declaring
             else _kept_findings(stored.found, edits, self.rules, files)
         )
-        fresh = [rule for rule in self.rules if rule.code not in kept]
+        fresh = [rule for rule in self.rules if rule.code not in kept_codes]
         by_rule: dict[int, dict[str, list[Finding]]] = {}
         for path, items in graph_findings(patched, fresh, self.settings).items():
             if path in reported:
@@ -933,29 +982,25 @@ class _GraphPatch:
 
     def _walked(
         self,
-        stored: KeptGraph,
+        whole: Graph,
+        *,
+        parts: LaunchParts,
+        packages: Sequence[Package],
         edited: Sequence[str],
+        known: set[str],
         facts_of: Callable[[str], FileFacts | None],
     ) -> tuple[Graph, frozenset[str]] | None:
-        """The build's whole graph (kept apart, ``same_facts.KeptLaunch``) with the trees
-        that read an ``edited`` launch or parameter file walked again
-        (``workspace.launch_patch``) over
-        every file the build had facts of, and the files the walk extracted again under
-        an includer's arguments; None where it cannot be."""
-        kept = same_facts.loaded_launch(self.cache.load_launch_parts(self.stored_at), stored.tags)
-        whole = None if kept is None else with_parameters(stored.graph, kept.parameters)
-        if kept is None or whole is None:
-            return None
-        files = self.gathered.files
-        # The files the build had facts of (a skipped one has none)
-        known = {files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)}
+        """The build's whole graph with the trees that read an ``edited`` launch or
+        parameter file walked again (``workspace.launch_patch``) over every file the
+        build had facts of (``known``), and the files the walk extracted again under an
+        includer's arguments; None where it cannot be."""
         specialise = self.specialiser()
         graph = launch_patched(
             whole,
-            kept.parts,
+            parts,
             edited,
             facts=LazyFacts(known, facts_of),
-            packages=stored.packages,
+            packages=packages,
             specialise=specialise,
             prepare=specialise.prepare,
         )

@@ -52,7 +52,7 @@ from .symbols import uses_constants
 from .wiring import wired_by
 from .workspace.graph import Graph
 from .workspace.index import Package
-from .workspace.launch_parts import LaunchParts, ParameterPart
+from .workspace.launch_parts import CodeParameterParts, LaunchParts, ParameterPart
 
 Built = tuple[tuple[FileFacts, "str | None"], ...]  # ``BuiltSources.given``
 
@@ -307,6 +307,32 @@ def loaded_launch(value: object, tags: tuple[str, ...]) -> KeptLaunch | None:
     if not (isinstance(parameters, ParameterPart) and isinstance(parts, LaunchParts)):
         return None
     return KeptLaunch(tags, parameters, parts)
+
+
+_CODE_FORMAT = "code parameters 1"
+
+
+@dataclass(frozen=True)
+class KeptCode:
+    """What the kept graph's nodes' parameters were gathered from
+    (``launch_parts.CodeParameterParts``), with the facts keys the graph was built from."""
+
+    tags: tuple[str, ...]
+    parts: CodeParameterParts
+
+    def stored(self) -> tuple[object, ...]:
+        return (_CODE_FORMAT, _tags_digest(self.tags), self.parts)
+
+
+def loaded_code(value: object, tags: tuple[str, ...]) -> KeptCode | None:
+    """A kept ``KeptCode`` of the build from the facts keys ``tags``; None for anything
+    else."""
+    if not isinstance(value, tuple) or len(value) != 3:
+        return None
+    form, digest, parts = value
+    if form != _CODE_FORMAT or digest != _tags_digest(tags):
+        return None
+    return KeptCode(tags, parts) if isinstance(parts, CodeParameterParts) else None
 
 
 def _tags_digest(tags: Sequence[str]) -> str:

@@ -189,7 +189,7 @@ class _Workspace(ExampleCopy):
             dispatcher=Dispatcher(partial(extract_batch, None), 1),
             ros1_python2=False,
         )
-        graph, parts = build_parts(
+        graph, parts, _ = build_parts(
             result.facts, self.packages, self.specialiser, self.specialiser.prepare
         )
         assert graph == result.graph

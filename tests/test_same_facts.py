@@ -163,7 +163,9 @@ STEPS: list[tuple[str, str, str, str]] = [
         "create_service<std_srvs::srv::Empty>",
         "build",
     ),
-    (MONITOR, '"map_frame"', '"map_frame_id"', "build"),
+    # A parameter renamed: the parameters of the code spanning its package gathered
+    # again (``workspace.parameter_patch``).
+    (MONITOR, '"map_frame"', '"map_frame_id"', "patch"),
     # A launch file nothing includes, which wires no absolute name.
     (LOCALIZATION, "</launch>", "</launch>\n<!-- localization -->", "replay"),
     # Nodes added, renamed and remapped in launch files: the trees that read the file
@@ -234,6 +236,14 @@ STEPS: list[tuple[str, str, str, str]] = [
         PARAMETERS,
         "    loop_rate: 10.0\n",
         "    loop_rate: 10.0\n    stop_on_arrival: true\n",
+        "patch",
+    ),
+    # The node's code declares one of the settings now: its RN406 is gone.
+    (
+        f"{FLEET}/fleet_bringup/waypoint_follower.py",
+        '        self.declare_parameter("map_frame", "map")\n',
+        '        self.declare_parameter("map_frame", "map")\n'
+        '        self.declare_parameter("loop_rate", 10.0)\n',
         "patch",
     ),
 ]
@@ -573,7 +583,12 @@ def test_a_launch_edit_without_its_launch_parts_is_a_build(
     if damage == "torn":
         parts.write_bytes(blob[:-40])
     else:  # the parts of the first build, under the key of the second's graph
-        edit(workspace / MONITOR, '"map_frame"', '"map_frame_id"')  # a build
+        # A service of another type: a build (``test_a_sequence_of_edits...``).
+        edit(
+            workspace / MONITOR,
+            "create_service<std_srvs::srv::SetBool>",
+            "create_service<std_srvs::srv::Empty>",
+        )
         outputs(run_cli, workspace, cache)
         (now,) = cache.glob("*/launch-parts/*")
         now.write_bytes(blob)

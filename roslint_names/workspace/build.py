@@ -44,7 +44,13 @@ from roslint_names.workspace.graph import (
     UnnamedReceiver,
 )
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
-from roslint_names.workspace.launch_parts import LaunchParts, Programs, TreePart, Unnamed
+from roslint_names.workspace.launch_parts import (
+    CodeParameterParts,
+    LaunchParts,
+    Programs,
+    TreePart,
+    Unnamed,
+)
 from roslint_names.workspace.launch_tree import Launched, LaunchTrees, Prepare, Specialise
 from roslint_names.workspace.memory import Field, GraphMemory, Reads
 from roslint_names.workspace.parameter_files import ros1_names, ros2_names
@@ -106,12 +112,13 @@ def build_parts(
     packages: Sequence[Package],
     specialise: Specialise,
     prepare: Prepare | None = None,
-) -> tuple[Graph, LaunchParts]:
-    """``build``'s graph, and each launch tree's part of it (``launch_parts``): what the
-    CLI keeps for a launch patch. The language server, which keeps a memory instead,
-    builds without them."""
+) -> tuple[Graph, LaunchParts, CodeParameterParts]:
+    """``build``'s graph, each launch tree's part of it and what its nodes' parameters
+    were gathered from (``launch_parts``): what the CLI keeps for a launch or parameter
+    patch. The language server, which keeps a memory instead, builds without them."""
     graph, parts = _build(facts, packages, specialise, prepare, None)
-    return graph, parts()
+    launch, code = parts()
+    return graph, launch, code
 
 
 def _build(
@@ -120,7 +127,7 @@ def _build(
     specialise: Specialise,
     prepare: Prepare | None,
     memory: GraphMemory | None,
-) -> tuple[Graph, Callable[[], LaunchParts]]:
+) -> tuple[Graph, Callable[[], tuple[LaunchParts, CodeParameterParts]]]:
     memory = GraphMemory(keeps=False) if memory is None else memory
     index = memory.begin({f.path: f for f in facts}, packages)
     tests = _TestFiles(index, memory.piece("test files", (), dict))
@@ -174,7 +181,7 @@ def _build(
         memory.piece(
             "parameter tables",
             ParameterTables.FIELDS,
-            lambda: ParameterTables(index, lambda path: path in unbuilt or tests(path)),
+            lambda: ParameterTables.of(index, lambda path: path in unbuilt or tests(path)),
         ),
         memory,
     )
@@ -189,11 +196,16 @@ def _build(
     ]
     finished.forget_the_rest()
 
-    def parts() -> LaunchParts:
+    def parts() -> tuple[LaunchParts, CodeParameterParts]:
         tree_loads: dict[str, list[ParameterFileUse]] = {}
         for root, use in rooted_loads:
             tree_loads.setdefault(root, []).append(use)
-        return LaunchParts(
+        code = sorted(
+            {node.sources for node in nodes}
+            | {sources for receivers in unnamed.values() for _, sources in receivers}
+        )
+        assert parameters.counts is not None  # the graph's declarations were made
+        launch = LaunchParts(
             tuple(trees.roots()),
             {
                 root: TreePart(
@@ -208,14 +220,10 @@ def _build(
             frozenset(unbuilt),
             index.executables(),
             programs,
-            {
-                sources: parameters.of(sources)
-                for sources in sorted(
-                    {node.sources for node in nodes}
-                    | {sources for receivers in unnamed.values() for _, sources in receivers}
-                )
-            },
+            {sources: parameters.of(sources) for sources in code},
         )
+        spans = {sources: parameters.spans.get(sources, frozenset()) for sources in code}
+        return launch, CodeParameterParts(parameters.lookups, spans, parameters.counts)
 
     graph = Graph(
         _sorting(memory, "sorted nodes", NodeInstance.sort_key)(nodes),

@@ -1,4 +1,5 @@
-"""What a graph build leaves for a launch patch: each launch tree's part of the graph.
+"""What a graph build leaves for a launch patch: each launch tree's part of the graph;
+and for a parameter patch: what the parameters of nodes' code were gathered from.
 
 A build walks every root launch file's tree (``launch_tree``); ``workspace.launch_patch``
 walks again only the trees an edited launch file is in, and needs, for every other tree,
@@ -20,7 +21,12 @@ from roslint_names.workspace.graph import (
     UnnamedReceiver,
 )
 from roslint_names.workspace.index import Executables
-from roslint_names.workspace.parameters import NodeParameters, WorkspaceDeclarations
+from roslint_names.workspace.parameters import (
+    DeclarationCounts,
+    NodeParameters,
+    TableLookups,
+    WorkspaceDeclarations,
+)
 
 # A parameter file handed to a node of unknown name: (file, the node's generation, code)
 Unnamed = tuple[str, tuple[Generation, tuple[str, ...]]]
@@ -98,3 +104,17 @@ class ParameterPart(Compact):
     parameter_loads: tuple[ParameterFileUse, ...]
     unnamed_parameter_files: Mapping[str, tuple[UnnamedReceiver, ...]]
     parameter_declarations: WorkspaceDeclarations | None
+
+
+@dataclass(frozen=True, slots=True)
+class CodeParameterParts(Compact):
+    """What a build leaves for a patch of what code declares (``workspace.parameter_patch``):
+    the parameter tables' lookups (made from every file's facts; no such edit changes
+    them), the packages each node's code (by its sources, as ``LaunchParts.parameters``)
+    was gathered from, and how many code files declare each name of the workspace's
+    declarations. Kept apart from the launch parts (``same_facts.KeptLaunch``): 8 MB at
+    8 copies of the benchmark's workspace, which a launch patch need not load."""
+
+    lookups: TableLookups
+    spans: Mapping[tuple[str, ...], frozenset[str]]
+    counts: DeclarationCounts

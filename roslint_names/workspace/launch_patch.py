@@ -15,12 +15,13 @@ and parameter files in place of the old.
 language and generation and holds nothing else the graph reads (build, parameter or
 code facts, literals). An edit of a parameter file that changes only the names it sets
 and where (``parameter_edit``) is one too: the trees whose nodes or group-level loads
-are handed it are walked again, and its blocks are the graph's from its new facts. A file an edited include names now, or named before, is a root
-where nothing includes it any more (``LaunchParts.includers``). Code a tree
-starts now is no program of its own any more, and code no tree starts any more is one
-again (``Programs.unlaunched``). A patch is refused (None, the caller builds) where a
-node runs code whose parameters the build did not make (code that ran as no node, or
-as a program of other sources), or where a file it needs has no facts to load.
+are handed it are walked again, and its blocks are the graph's from its new facts.
+A file an edited include names now, or named before, is a root where nothing includes
+it any more (``LaunchParts.includers``). Code a tree starts now is no program of its
+own any more, and code no tree starts any more is one again (``Programs.unlaunched``).
+A patch is refused (None, the caller builds) where a node runs code whose parameters
+the build did not make (code that ran as no node, or as a program of other sources),
+or where a file it needs has no facts to load.
 ``tests/test_launch_patch.py`` compares patched graphs with built ones.
 """
 

@@ -40,7 +40,7 @@ from __future__ import annotations
 import posixpath
 import re
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import Enum
 from functools import cache
 
@@ -210,6 +210,49 @@ class WorkspaceDeclarations:
         return self.declares(name) or name in self.mentioned
 
 
+@dataclass(frozen=True)
+class TableLookups:
+    """What ``ParameterTables`` looks up, made from every file's facts: what a parameter
+    patch keeps of a build (``workspace.parameter_patch``), whose edits change none of it."""
+
+    classes: dict[str, list[str]]  # class name -> files defining it
+    # base class name -> (file, base as written) of each class derived from it
+    derived: dict[str, list[tuple[str, str]]]
+    # (package directory, C++ file name) -> its paths in that package
+    by_name: dict[tuple[str, str], list[str]]
+    programs: set[str]  # sources of every program and component
+    # ``NameConfig`` -> (package, path) of each .cfg generating it
+    configs: dict[str, list[tuple[str | None, str]]]
+
+
+@dataclass
+class DeclarationCounts:
+    """How many code files add each name, suffix and mention to ``WorkspaceDeclarations``
+    (``_declarations``' three sets): the workspace's declarations follow an edit of one
+    file without the others' facts (``workspace.parameter_patch``)."""
+
+    # Dicts, not ``Counter``s: a kept graph's unpickler builds no other class.
+    names: dict[str, int] = field(default_factory=dict)
+    suffixes: dict[str, int] = field(default_factory=dict)
+    mentioned: dict[str, int] = field(default_factory=dict)
+
+    def add(self, declared: tuple[frozenset[str], ...], times: int = 1) -> None:
+        """One file's declarations (``_declarations``) added; taken away for -1."""
+        for counts, found in zip(
+            (self.names, self.suffixes, self.mentioned), declared, strict=True
+        ):
+            for name in found:
+                counts[name] = counts.get(name, 0) + times
+
+    def declarations(self) -> WorkspaceDeclarations:
+        return WorkspaceDeclarations(
+            *(
+                frozenset(name for name, count in counter.items() if count > 0)
+                for counter in (self.names, self.suffixes, self.mentioned)
+            )
+        )
+
+
 class ParameterTables:
     """Where the parameter sets look classes, headers, programs and configs up: made from
     ``FIELDS`` of every file's facts, where files are and which are ``excluded`` (tests,
@@ -217,39 +260,43 @@ class ParameterTables:
 
     FIELDS = ("language", "reconfigure", "class_bases", "executables", *BUILD_FIELDS)
 
-    def __init__(self, index: WorkspaceIndex, excluded: Callable[[str], bool]) -> None:
+    def __init__(self, lookups: TableLookups, excluded: Callable[[str], bool]) -> None:
+        self.lookups = lookups
         # Asked about the same files for every node: each answer once.
         self.excluded = cache(excluded)
-        self.classes: dict[str, list[str]] = {}  # class name -> files defining it
-        # base class name -> (file, base as written) of each class derived from it
-        self.derived: dict[str, list[tuple[str, str]]] = {}
-        # (package directory, C++ file name) -> its paths in that package
-        self.by_name: dict[tuple[str, str], list[str]] = {}
-        self.programs: set[str] = set()  # sources of every program and component
-        # ``NameConfig`` -> (package, path) of each .cfg generating it
-        self.configs: dict[str, list[tuple[str | None, str]]] = {}
+        self.classes = lookups.classes
+        self.derived = lookups.derived
+        self.by_name = lookups.by_name
+        self.programs = lookups.programs
+        self.configs = lookups.configs
         # What is looked up in these alone, each once.
         self.included: dict[tuple[str, str], list[str]] = {}
         self.implementations: dict[str, list[str]] = {}
         self.defined: dict[tuple[str, str], list[str]] = {}
+
+    @classmethod
+    def of(cls, index: WorkspaceIndex, excluded: Callable[[str], bool]) -> ParameterTables:
+        """The tables of every file of ``index``."""
+        tables = cls(TableLookups({}, {}, {}, set(), {}), excluded)
         for path, facts in sorted(index.facts.items()):
             if facts.reconfigure is not None and facts.reconfigure.name is not None:
                 package = facts.reconfigure.package or _package_name(index, path)
-                self.configs.setdefault(f"{facts.reconfigure.name}Config", []).append(
+                tables.configs.setdefault(f"{facts.reconfigure.name}Config", []).append(
                     (package, path)
                 )
-            if facts.language not in CODE_LANGUAGES or self.excluded(path):
+            if facts.language not in CODE_LANGUAGES or tables.excluded(path):
                 continue
             for name, bases in facts.class_bases:
-                self.classes.setdefault(name, []).append(path)
+                tables.classes.setdefault(name, []).append(path)
                 for base in bases:
-                    self.derived.setdefault(_class_name(base), []).append((path, base))
+                    tables.derived.setdefault(_class_name(base), []).append((path, base))
             if facts.language is Language.CPP:
                 key = (_directory(index, path), posixpath.basename(path))
-                self.by_name.setdefault(key, []).append(path)
+                tables.by_name.setdefault(key, []).append(path)
         for sources in index.built_sources().values():
-            self.programs.update(sources)
-        self.programs.update(index.plugin_sources())
+            tables.programs.update(sources)
+        tables.programs.update(index.plugin_sources())
+        return tables
 
 
 class ParameterSets:
@@ -281,6 +328,17 @@ class ParameterSets:
         self._implementations_memo = tables.implementations
         self._names_memo: dict[str, tuple[_Names, frozenset[Incomplete]] | None] = {}
         self._defined_memo = tables.defined
+        # The packages each node's code (sources -> parameters, ``of``) was gathered from,
+        # "" for a file of none: an edit of another package's code changes none of it
+        # (``workspace.parameter_patch``). Those this set computed, not a memory's.
+        self.spans: dict[tuple[str, ...], frozenset[str]] = {}
+        # How many code files declare each name, suffix and mention of the workspace's
+        # declarations (``declarations``), made with them.
+        self.counts: DeclarationCounts | None = None
+
+    @property
+    def lookups(self) -> TableLookups:
+        return self._tables.lookups
 
     def declarations(self) -> WorkspaceDeclarations:
         """What the workspace's code declares; the last build's where no changed file's
@@ -290,22 +348,18 @@ class ParameterSets:
         )
 
     def _declarations(self) -> WorkspaceDeclarations:
-        names: set[str] = set()
-        suffixes: set[str] = set()
-        mentioned: set[str] = set()
+        counts = DeclarationCounts()
         for path, facts in self._index.facts.items():
             if facts.language not in CODE_LANGUAGES:
                 continue
             kept = self._declared_memo.get(path)
             if kept is None:
-                kept = (_declarations(facts), self._memory.read((path,)))
+                kept = (file_declarations(facts), self._memory.read((path,)))
                 if self._memory.keeps:  # else asked once a build: no memo
                     self._declared_memo[path] = kept
-            declared, declared_suffixes, named = kept[0]
-            names.update(declared)
-            suffixes.update(declared_suffixes)
-            mentioned.update(named)
-        return WorkspaceDeclarations(frozenset(names), frozenset(suffixes), frozenset(mentioned))
+            counts.add(kept[0])
+        self.counts = counts
+        return counts.declarations()
 
     def of(self, sources: Sequence[str]) -> NodeParameters:
         key = tuple(sources)
@@ -322,7 +376,7 @@ class ParameterSets:
         causes: set[Incomplete] = set()
         if not any(self._is_program(path) for path in sources):
             causes.add(Incomplete.LIBRARY)
-        own, unknown_base = self._own_code(sources)
+        own, unknown_base, bases = self._own_code(sources)
         if unknown_base:
             causes.add(Incomplete.BASE_CLASS)
         names = _Names()
@@ -344,6 +398,9 @@ class ParameterSets:
         # declarations may be the node's too. Only declarations: what it reads, or leaves
         # open, is another node's business.
         packages = sorted({p.name for path in sources if (p := self._index.package_of(path))})
+        self.spans[sources] = frozenset(
+            (p.name if (p := self._index.package_of(path)) else "") for path in (*sources, *bases)
+        ) | frozenset(packages)
         for package in packages:
             declared, suffixes = self._package_declarations(package)
             names.declared |= declared
@@ -486,19 +543,22 @@ class ParameterSets:
     def _is_program(self, path: str) -> bool:
         return path in self._programs or _starts_runtime(self._index, path)
 
-    def _own_code(self, sources: tuple[str, ...]) -> tuple[list[str], bool]:
+    def _own_code(self, sources: tuple[str, ...]) -> tuple[list[str], bool, set[str]]:
         """The node's code: its sources, what they include of their own package (with the
         file of the same stem that implements an included header), and the files of the
-        base classes their classes derive from, followed alike; and whether one of those
-        classes, or of their bases, derives from a class the workspace does not define.
-        In a base class's files only that class's bases are followed: the other classes
-        there (a QoS helper beside nav2's LifecycleNode) are not the node's."""
+        base classes their classes derive from, followed alike; whether one of those
+        classes, or of their bases, derives from a class the workspace does not define;
+        and the files of those base classes (what a file includes is of its package: the
+        node's code is of its sources' packages and theirs). In a base class's files only
+        that class's bases are followed: the other classes there (a QoS helper beside
+        nav2's LifecycleNode) are not the node's."""
         index = self._index
         excluded = self._excluded
         # path -> the classes of it whose bases are followed; None: all of them
         files: dict[str, set[str] | None] = dict.fromkeys(sources)
         pending: list[tuple[str, set[str] | None]] = [(path, None) for path in sources]
         unknown = False
+        defining: set[str] = set()  # the files of the base classes followed
 
         def add(path: str, classes: set[str] | None) -> None:
             # Known first: a node's code is reached again and again (a million times for
@@ -536,9 +596,10 @@ class ParameterSets:
                         unknown = unknown or not _harmless(base)
                         continue
                     base_name = _class_name(base)
+                    defining.update(defined)
                     for found in defined:
                         add(found, {base_name})
-        return list(files), unknown
+        return list(files), unknown, defining
 
     def _reached(self, path: str) -> list[str]:
         """The headers ``path`` includes of its package, each followed by the files that
@@ -711,10 +772,10 @@ _SEARCHES = frozenset({"ros::NodeHandle::searchParam", "ros::param::search", "ro
 
 def _code_declarations(facts: FileFacts) -> tuple[frozenset[str], ...] | None:
     """What a file adds to ``WorkspaceDeclarations``: None for a file of no code."""
-    return _declarations(facts) if facts.language in CODE_LANGUAGES else None
+    return file_declarations(facts) if facts.language in CODE_LANGUAGES else None
 
 
-def _declarations(facts: FileFacts) -> tuple[frozenset[str], ...]:
+def file_declarations(facts: FileFacts) -> tuple[frozenset[str], ...]:
     """What one code file adds to ``WorkspaceDeclarations``: names, suffixes, mentions.
     Frozen: a memory keeps one for every code file, and most are the one empty set."""
     names: set[str] = set()

@@ -26,7 +26,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import replace
 
-from roslint_names.model import ENDPOINT_ROLES, FileFacts, Span
+from roslint_names.model import ENDPOINT_ROLES, FileFacts, Role, Span
 from roslint_names.moves import UnplacedError, moved_spans
 from roslint_names.workspace.build import (
     _has_endpoints,
@@ -71,13 +71,32 @@ def code_edit(before: FileFacts, now: FileFacts) -> Moved | None:
     return moved_spans(_without_endpoints(before), _without_endpoints(now))
 
 
-def edits_of(changed: Iterable[tuple[str, FileFacts, FileFacts]]) -> dict[str, Moved] | None:
+def declaration_edit(before: FileFacts, now: FileFacts) -> Moved | None:
+    """``code_edit``'s moves for an edit that may also change the parameters the code
+    declares and reads (its parameter uses, the parameter-shaped strings it holds), which
+    ``workspace.parameter_patch`` follows; None where something else changed."""
+    return code_edit(_without_uses(before), _without_uses(now))
+
+
+def _without_uses(facts: FileFacts) -> FileFacts:
+    kept = tuple(use for use in facts.names if use.role is not Role.PARAMETER)
+    return replace(facts, names=kept, unexplained_literals=())
+
+
+def edits_of(
+    changed: Iterable[tuple[str, FileFacts, FileFacts]], declaring: set[str] | None = None
+) -> dict[str, Moved] | None:
     """``patched``'s edits for the files whose facts changed since the graph was made
     (display path, facts then and now): each a ``code_edit``, or the same facts in the same
-    places (nothing of the graph to patch); None where one is neither."""
+    places (nothing of the graph to patch); None where one is neither. With ``declaring``,
+    a ``declaration_edit`` is one too, its file added to ``declaring``."""
     edits: dict[str, Moved] = {}
     for display, then, now in changed:
         moves = code_edit(then, now)
+        if moves is None and declaring is not None:
+            moves = declaration_edit(then, now)
+            if moves is not None:
+                declaring.add(display)
         if moves is not None:
             edits[display] = moves
         elif not same_places(then, now):
@@ -155,6 +174,8 @@ def patched(
     edits: Mapping[str, Moved],
     facts_of: Callable[[str], FileFacts | None],
     packages: Callable[[], PackageFiles],
+    *,
+    declaring: bool = False,
 ) -> Graph | None:
     """``graph`` with every node whose code holds an edited file (``edits``: display
     path -> ``code_edit``'s moves) resolved again from its code as it is now, and the
@@ -162,10 +183,13 @@ def patched(
     (``Graph.mentions``); None where that cannot be done exactly (module docstring).
     ``facts_of``: a file's facts by display path, the edited files' new ones, None where
     unknown; ``packages``: which package holds each file of the run, asked only where
-    the graph keeps some package's literals."""
+    the graph keeps some package's literals. ``declaring``: some edit changed what code
+    declares (``declaration_edit``): the nodes' static parameter names follow it, and
+    their code's parameters are left as they were, for ``workspace.parameter_patch``
+    to make again."""
     try:
         mentions = _mentions(graph, edits, facts_of, packages)
-        found = _patched(graph, edits, facts_of)
+        found = _patched(graph, edits, facts_of, declaring=declaring)
     except UnplacedError:
         return None
     return None if found is None or mentions is None else replace(found, mentions=mentions)
@@ -194,7 +218,11 @@ def _mentions(
 
 
 def _patched(
-    graph: Graph, edits: Mapping[str, Moved], facts_of: Callable[[str], FileFacts | None]
+    graph: Graph,
+    edits: Mapping[str, Moved],
+    facts_of: Callable[[str], FileFacts | None],
+    *,
+    declaring: bool,
 ) -> Graph | None:
     touched = [node for node in graph.nodes if not edits.keys().isdisjoint(node.sources)]
     if not touched:
@@ -216,27 +244,32 @@ def _patched(
         if shared or instance is None or len(code) != len(node.sources):
             return None
         names = _resolve_code(code, instance, node.remaps, node.root, node.reach)
-        if names.parameters != node.parameters:
+        if names.parameters != node.parameters and not declaring:
             return None
         renewed[id(node)] = replace(
             node,
             uses=names.uses,
             uses_complete=names.complete,
             uses_relative=names.relative,
-            code_parameters=None
-            if node.code_parameters is None
+            parameters=names.parameters,
+            code_parameters=node.code_parameters
+            if node.code_parameters is None or declaring
             else _moved_parameters(node.code_parameters, edits),
         )
         fresh.extend(names.endpoints)
     gone = {(node.name, node.root, path) for node in touched for path in node.sources}
     endpoints = [e for e in graph.endpoints if (e.node, e.root, e.location.path) not in gone]
-    receivers = {
-        path: tuple(
-            replace(receiver, parameters=_moved_parameters(receiver.parameters, edits))
-            for receiver in kept
-        )
-        for path, kept in graph.unnamed_parameter_files.items()
-    }
+    receivers = (
+        graph.unnamed_parameter_files
+        if declaring
+        else {
+            path: tuple(
+                replace(receiver, parameters=_moved_parameters(receiver.parameters, edits))
+                for receiver in kept
+            )
+            for path, kept in graph.unnamed_parameter_files.items()
+        }
+    )
     return replace(
         graph,
         nodes=_unique((renewed.get(id(node), node) for node in graph.nodes), NodeInstance.sort_key),

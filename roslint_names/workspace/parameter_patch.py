@@ -1,0 +1,94 @@
+"""The last graph with the parameters of edited code gathered again (issue 30).
+
+A parameter declared, read, renamed or taken out in a node's code changes what that
+code declares and reads (``NodeParameters``, ``ParameterSets``), what the workspace's code
+declares (``WorkspaceDeclarations``) and, ROS 2, the node's static parameter names; where
+nodes run and what their endpoints are is the code patch's (``workspace.patch``, which
+re-resolves the nodes running an edited file, their parameter names with them). Building
+the whole graph again for it loads every file's facts and walks every tree (9-11 s at 8
+copies of the benchmark's workspace); the parameters of a node's code are gathered from
+its sources' packages and those of the base classes it derives from
+(``ParameterSets._own_code``: what a file includes is of its own package), so only the
+nodes whose code spans an edited file's package are gathered again, by the build's own
+``ParameterSets``, over the lookups the build made from every file's facts
+(``CodeParameterParts``: an edit whose class bases, includes and build facts are the
+same changes none of them) and an index that loads a file's facts when asked.
+
+``parameters_patched`` gives the graph a build would; None (the caller builds) where a
+node of unknown name is handed a parameter file and its code's parameters change (the
+graph keeps those without the code they are of). ``tests/test_parameter_patch.py``
+compares patched graphs with built ones.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import replace
+
+from roslint_names.model import FileFacts
+from roslint_names.workspace.build import _TestFiles
+from roslint_names.workspace.graph import Graph
+from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
+from roslint_names.workspace.launch_parts import CodeParameterParts, LaunchParts
+from roslint_names.workspace.parameters import (
+    DeclarationCounts,
+    ParameterSets,
+    ParameterTables,
+    file_declarations,
+)
+
+
+def parameters_patched(
+    graph: Graph,
+    parts: LaunchParts,
+    code: CodeParameterParts,
+    edited: Mapping[str, tuple[FileFacts, FileFacts]],
+    *,
+    facts: Mapping[str, FileFacts],
+    packages: Sequence[Package],
+) -> Graph | None:
+    """``graph`` (a build's, whole, patched since: ``parts`` and ``code`` are what the
+    same build left) with the parameters of every node's code that spans the package of
+    an ``edited`` code file (display path -> its facts then and now) gathered again over
+    ``facts`` (every file of the run: a ``launch_patch.LazyFacts``), and the workspace's
+    declarations with the edited files' own; None where that cannot be done exactly
+    (module docstring)."""
+    index = WorkspaceIndex.restored(facts, packages, parts.executables)
+    tests = _TestFiles(index, {})
+    tables = ParameterTables(code.lookups, lambda path: path in parts.unbuilt or tests(path))
+    sets = ParameterSets(index, tables)
+    reached = {(package.name if (package := index.package_of(path)) else "") for path in edited}
+    spanning = [sources for sources, spans in code.spans.items() if not spans.isdisjoint(reached)]
+    if not spanning:
+        fresh = {}
+    else:
+        fresh = {sources: sets.of(sources) for sources in spanning}
+        # A receiver of a parameter file keeps its code's parameters without the code.
+        stale = [parts.parameters[sources] for sources in spanning]
+        if any(
+            receiver.parameters in stale
+            for receivers in graph.unnamed_parameter_files.values()
+            for receiver in receivers
+        ):
+            return None
+    nodes = tuple(
+        replace(node, code_parameters=fresh[node.sources])
+        if node.sources in fresh and node.code_parameters is not None
+        else node
+        for node in graph.nodes
+    )
+    return replace(
+        graph, nodes=nodes, parameter_declarations=_declarations(code.counts, edited).declarations()
+    )
+
+
+def _declarations(
+    counts: DeclarationCounts, edited: Mapping[str, tuple[FileFacts, FileFacts]]
+) -> DeclarationCounts:
+    """``counts`` (the build's) with each edited code file's declarations as they are now."""
+    found = DeclarationCounts(dict(counts.names), dict(counts.suffixes), dict(counts.mentioned))
+    for before, now in edited.values():
+        for facts, times in ((before, -1), (now, 1)):
+            if facts.language in CODE_LANGUAGES:
+                found.add(file_declarations(facts), times)
+    return found

@@ -1,0 +1,239 @@
+"""A graph patched after an edit of what code declares is the graph a build gives
+(``workspace.parameter_patch``, issue 30): each step edits the example workspace's code
+as a developer would (a parameter declared, read, renamed or taken out, with or without
+an endpoint beside it), and the last build's graph with the code patched
+(``workspace.patch``) and the parameters of the code spanning the edited packages
+gathered again must equal the graph built from every file's facts; an edit the patches
+cannot follow is refused, never patched wrong."""
+
+from __future__ import annotations
+
+from functools import partial
+from itertools import pairwise
+from pathlib import Path
+
+import pytest
+from conftest import ExampleCopy
+
+from roslint_names.discover import discover
+from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
+from roslint_names.gather import DEFAULT_GENERATION, Specialiser, extract_batch
+from roslint_names.generation import PackageGenerations
+from roslint_names.model import FileFacts
+from roslint_names.workers import Dispatcher
+from roslint_names.workspace.build import build_parts
+from roslint_names.workspace.graph import Graph
+from roslint_names.workspace.index import Package, PackageFiles
+from roslint_names.workspace.launch_parts import CodeParameterParts, LaunchParts
+from roslint_names.workspace.launch_patch import LazyFacts
+from roslint_names.workspace.parameter_patch import parameters_patched
+from roslint_names.workspace.patch import edits_of, patched
+
+FOLLOWER = "src/fleet_bringup/fleet_bringup/waypoint_follower.py"  # ROS 2 Python
+REPORTER = "src/fleet_bringup/fleet_bringup/battery_reporter.py"  # ROS 2 Python, RN406
+DOCK = "src/fleet_bringup/src/dock_manager.cpp"  # ROS 2 C++, reads an undeclared name
+MONITOR = "src/fleet_bringup/src/fleet_monitor.cpp"  # ROS 2 C++
+RELAY = "src/turtle_bringup/src/odom_relay.cpp"  # ROS 1 C++, no launch file starts it
+SQUARE = "src/turtle_bringup/scripts/draw_square.py"  # ROS 1 Python script
+# A package of the steps' workspace besides the examples' (``_Workspace``): the base class
+# the dock manager derives from, which declares a parameter of its own.
+MANAGED = "src/fleet_core/include/fleet_core/managed_node.hpp"
+EXTRA_FILES = {
+    "src/fleet_core/package.xml": """<?xml version="1.0"?>
+<package format="3">
+  <name>fleet_core</name>
+  <version>0.1.0</version>
+  <description>What every node of the fleet is</description>
+  <maintainer email="dev@example.com">Example Maintainer</maintainer>
+  <license>Apache-2.0</license>
+  <buildtool_depend>ament_cmake</buildtool_depend>
+  <export>
+    <build_type>ament_cmake</build_type>
+  </export>
+</package>
+""",
+    MANAGED: """#pragma once
+#include <string>
+
+#include <rclcpp/rclcpp.hpp>
+
+namespace fleet_core
+{
+class ManagedNode : public rclcpp::Node
+{
+public:
+  explicit ManagedNode(const std::string & name) : rclcpp::Node(name)
+  {
+    declare_parameter("heartbeat_period", 1.0);
+  }
+};
+}  // namespace fleet_core
+""",
+}
+# The edits that make the dock manager one (before the first build: a base class changed
+# is no edit the patches follow).
+SETUP = [
+    (DOCK, "#include <rclcpp/rclcpp.hpp>", "#include <fleet_core/managed_node.hpp>"),
+    (DOCK, "public rclcpp::Node", "public fleet_core::ManagedNode"),
+    (DOCK, ': Node("dock_manager")', ': fleet_core::ManagedNode("dock_manager")'),
+]
+
+# (file, text before, text after); each step's graph is patched from the step before's.
+PATCHED = [
+    # The parameter file's settings the node dropped: one declared now (RN406 gone).
+    (
+        FOLLOWER,
+        '        self.declare_parameter("map_frame", "map")\n',
+        '        self.declare_parameter("map_frame", "map")\n'
+        '        self.declare_parameter("loop_rate", 10.0)\n',
+    ),
+    # The declaration renamed to the name the launch file sets.
+    (REPORTER, '"low_threshold"', '"low_treshold"'),
+    # A read of an undeclared name fixed.
+    (DOCK, 'get_parameter("dockframe")', 'get_parameter("dock_frame")'),
+    # A declaration added above the others: every name below it moves.
+    (
+        MONITOR,
+        "    map_frame_ = declare_parameter",
+        '    declare_parameter<double>("publish_rate", 1.0);\n    map_frame_ = declare_parameter',
+    ),
+    # ROS 1: a private parameter read added and one renamed in code no launch file
+    # starts (code four trees start runs twice under one name in one of them: the code
+    # patch cannot tell the two apart, ``workspace.patch``); a script's read renamed.
+    (
+        RELAY,
+        '    private_nh.param<std::string>("odom_topic", odom_topic_, "wheel/odom");\n',
+        '    private_nh.param<std::string>("odom_topic", odom_topic_, "wheel/odom");\n'
+        '    private_nh.param("rate", rate_, 10.0);\n',
+    ),
+    (RELAY, '"odom_topic"', '"input_topic"'),
+    (SQUARE, "'~side'", "'~side_length'"),
+    # A parameter and a service renamed in one edit: both patches.
+    (
+        DOCK,
+        '"dock_frame", "charging_dock");\n'
+        "    // Named after what it carries, not after what it does.\n"
+        "    dock_service_ = create_service<std_srvs::srv::Trigger>(\n"
+        '      "StartDocking"',
+        '"dock_frame_id", "charging_dock");\n'
+        "    // Named after what it carries, not after what it does.\n"
+        "    dock_service_ = create_service<std_srvs::srv::Trigger>(\n"
+        '      "start_docking"',
+    ),
+    # A declaration taken out.
+    (FOLLOWER, '        self.declare_parameter("loop_rate", 10.0)\n', ""),
+    # A declaration of the base class, another package's, renamed: the dock manager's.
+    (MANAGED, '"heartbeat_period"', '"heartbeat_interval"'),
+]
+
+# Edits the patches cannot follow: the graph is built.
+REFUSED = [
+    # A base class added: where the node's declarations may hide changes.
+    (DOCK, "class DockManager : public rclcpp::Node", "class DockManager : public nav2::Node"),
+]
+
+
+class _Workspace(ExampleCopy):
+    def built(self) -> tuple[Graph, LaunchParts, CodeParameterParts, dict[str, FileFacts]]:
+        root = self.root
+        sources = lintable(discover([root], (), root, root))
+        result = lint(sources, self.settings, self.registry, RunOptions(), want_graph=True)
+        self.packages: list[Package] = workspace_packages(sources, PackageGenerations())
+        specialiser = Specialiser(
+            sources,
+            PackageGenerations(),
+            DEFAULT_GENERATION,
+            None,
+            self.settings.max_file_size,
+            dispatcher=Dispatcher(partial(extract_batch, None), 1),
+            ros1_python2=False,
+        )
+        graph, parts, code = build_parts(
+            result.facts, self.packages, specialiser, specialiser.prepare
+        )
+        assert graph == result.graph
+        return graph, parts, code, {facts.path: facts for facts in result.facts}
+
+    def patched(
+        self,
+        built: tuple[Graph, LaunchParts, CodeParameterParts, dict[str, FileFacts]],
+        now: dict[str, FileFacts],
+    ) -> Graph | None:
+        graph, parts, code, before = built
+        changed = [path for path in now if before.get(path) != now[path]]
+        assert changed and before.keys() == now.keys()
+        declaring: set[str] = set()
+        edits = edits_of([(path, before[path], now[path]) for path in changed], declaring)
+        if edits is None:
+            return None
+        assert declaring, "no step here is the code patch's alone"
+        found = patched(
+            graph,
+            edits,
+            now.get,
+            lambda: PackageFiles(list(now), self.packages),
+            declaring=True,
+        )
+        if found is None:
+            return None
+        return parameters_patched(
+            found,
+            parts,
+            code,
+            {path: (before[path], now[path]) for path in changed},
+            facts=LazyFacts(now.keys(), now.get),
+            packages=self.packages,
+        )
+
+
+@pytest.fixture(scope="module")
+def steps(tmp_path_factory: pytest.TempPathFactory) -> list[tuple[str, Graph, Graph | None]]:
+    """Each step: the file edited, the graph built after it, and the graph patched."""
+    workspace = _Workspace(tmp_path_factory.mktemp("parameter_patch") / "ws")
+    for relative, text in EXTRA_FILES.items():
+        (workspace.root / relative).parent.mkdir(parents=True, exist_ok=True)
+        (workspace.root / relative).write_text(text, encoding="utf-8")
+    for edit in SETUP:
+        workspace.edit(*edit)
+    last = workspace.built()
+    found: list[tuple[str, Graph, Graph | None]] = []
+    for relative, old, new in PATCHED:
+        workspace.edit(relative, old, new)
+        now = workspace.built()
+        found.append((relative, now[0], workspace.patched(last, now[3])))
+        last = now
+    return found
+
+
+@pytest.mark.parametrize("step", range(len(PATCHED)))
+def test_a_patched_graph_is_the_built_graph(
+    steps: list[tuple[str, Graph, Graph | None]], step: int
+) -> None:
+    relative, built, patch = steps[step]
+    assert patch is not None, f"step {step} ({relative}) was not patched"
+    assert patch == built, f"step {step} ({relative})"
+
+
+def test_the_steps_change_what_code_declares(
+    steps: list[tuple[str, Graph, Graph | None]],
+) -> None:
+    """Each step's graph differs from the one before in its parameters: a step whose edit
+    changed nothing there would test nothing."""
+    graphs = [graph for _, graph, _ in steps]
+    for step, (before, now) in enumerate(pairwise(graphs), start=1):
+        assert _parameters(before) != _parameters(now), f"step {step}"
+
+
+def _parameters(graph: Graph) -> tuple[object, ...]:
+    nodes = [(node.name, node.code_parameters, node.parameters) for node in graph.nodes]
+    return tuple(nodes), graph.parameter_declarations
+
+
+@pytest.mark.parametrize("step", range(len(REFUSED)))
+def test_an_edit_the_patches_cannot_follow_is_refused(tmp_path: Path, step: int) -> None:
+    workspace = _Workspace(tmp_path / "ws")
+    last = workspace.built()
+    workspace.edit(*REFUSED[step])
+    now = workspace.built()
+    assert now[0] != last[0]
+    assert workspace.patched(last, now[3]) is None
