@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import copy
 import posixpath
+from bisect import bisect_left
 from collections import Counter
 from collections.abc import Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass
@@ -58,7 +59,11 @@ class PackageFiles:
         self._package_by_directory = {p.directory: p for p in packages}
         self._package_of: dict[str, Package | None] = {}
         self._package_of_path: dict[str, Package | None] = {}
-        self._files_by_package: dict[str, list[str]] | None = None  # made when first asked
+        self._files_by_package: dict[str, list[str]] = {}  # each made when first asked
+        self._sorted_paths: list[str] | None = None
+        self._directories: dict[str, list[str]] = {}  # name -> directories of that name
+        for package in packages:
+            self._directories.setdefault(package.name, []).append(package.directory)
 
     def package_of(self, path: str) -> Package | None:
         # Memoised by path too: the graph asks about the same files hundreds of thousands
@@ -81,13 +86,25 @@ class PackageFiles:
         return package
 
     def files_of(self, package: str) -> list[str]:
-        if self._files_by_package is None:
-            self._files_by_package = {}
-            for path in sorted(self._paths):
-                owner = self.package_of(path)
-                if owner is not None:
-                    self._files_by_package.setdefault(owner.name, []).append(path)
-        return self._files_by_package.get(package, [])
+        """The files, sorted, of every package of that name. Only the paths below its
+        directories are asked about: a patch asks for a few packages of 80,000 files
+        (``workspace.parameter_patch``), and asking about every file costs 0.2 s."""
+        found = self._files_by_package.get(package)
+        if found is None:
+            if self._sorted_paths is None:
+                self._sorted_paths = sorted(self._paths)
+            paths = self._sorted_paths
+            held: set[str] = set()
+            for directory in self._directories.get(package, []):
+                prefix = directory.rstrip("/") + "/" if directory else ""
+                for path in paths[bisect_left(paths, prefix) :]:
+                    if not path.startswith(prefix):
+                        break
+                    owner = self.package_of(path)
+                    if owner is not None and owner.name == package:
+                        held.add(path)
+            found = self._files_by_package[package] = sorted(held)
+        return found
 
 
 class WorkspaceIndex(PackageFiles):
