@@ -18,9 +18,14 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
   resolved again), the graph rules over it;
 - ``edit_graph``: a node added to that launch file: the graph the last build kept, with
   the launch trees that read the file walked again (``workspace.launch_patch``);
-- ``edit_parameter``: a parameter declared in that C++ source: what an edit the graph
-  must be built again for costs (what a node's code declares changes the parameter
-  rules' findings, and no patch follows it);
+- ``edit_settings``: a setting added to the parameter file launch files name most often
+  (a ROS 2 one): the trees whose nodes are handed it walked again
+  (``workspace.launch_patch``);
+- ``edit_parameter``: a parameter declared in that C++ source: the parameters of the
+  code spanning its package gathered again (``workspace.parameter_patch``);
+- ``edit_build``: a class deriving from ``rclcpp::Node`` added to that source: what an
+  edit the graph must be built again for costs (where a node's declarations may hide
+  changes, and no patch follows it);
 - ``identical_after_edits``: whether the last edited run printed what a run with an
   empty cache prints over the same tree (a stale cache must never change a result);
 - ``lsp`` (with ``--lsp-edits``): the language server's latencies on the grown workspace
@@ -58,12 +63,21 @@ void bench_probe(rclcpp::Node & node)
 # file starts (put before the end of its root element).
 _NEW_NODE = b"""  <node pkg="bench" exec="bench_node" name="bench_node"/>
 """
-# An edit the graph is built again for: a parameter the code declares.
+# An edit of what the code declares: a parameter.
 _NEW_PARAMETER = b"""
 void bench_parameter(rclcpp::Node & node)
 {
   node.declare_parameter("bench_parameter", 1);
 }
+"""
+# A setting of a ROS 2 parameter file (put below its ``ros__parameters:``, indented as
+# the settings there are).
+_NEW_SETTING = b"bench_setting: 1\n"
+# An edit the graph is built again for: a class of the code derives from another.
+_NEW_CLASS = b"""
+class BenchProbe : public rclcpp::Node
+{
+};
 """
 # One edit each, a comment but the last two: at the end, where it moves no name, or at the
 # start, where it moves every name of the file; so that the run measures what an edit
@@ -81,7 +95,9 @@ _EDITS = {
     "edit_moves": ((".cpp",), "create_publisher", b"// bench edit: every name moves\n", "start"),
     "edit_names": ((".cpp",), "create_publisher", _NEW_TOPIC, "end"),
     "edit_graph": ((".launch.xml", ".launch"), "<node", _NEW_NODE, "inside"),
+    "edit_settings": ((".yaml",), "ros__parameters:", _NEW_SETTING, "below"),
     "edit_parameter": ((".cpp",), "create_publisher", _NEW_PARAMETER, "end"),
+    "edit_build": ((".cpp",), "create_publisher", _NEW_CLASS, "end"),
 }
 
 
@@ -108,12 +124,16 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
         runs = {"cold": bench.cli(root, arguments, cache)}
         runs["unchanged"] = bench.cli(root, arguments, cache)
         for name, (suffixes, marker, text, where) in _EDITS.items():
-            edited = pick(root / "src", suffixes, marker)
-            _add(edited, text, where)
+            if where == "below":
+                edited = named_most(root / "src", suffixes, marker)
+                _add_below(edited, marker.encode(), text)
+            else:
+                edited = pick(root / "src", suffixes, marker)
+                _add(edited, text, where)
             runs[name] = bench.cli(root, arguments, cache)
             results.setdefault("edited", {})[name] = edited.relative_to(root).as_posix()
         fresh = bench.cli(root, arguments, scratch / "fresh-cache")
-        results["identical_after_edits"] = fresh.stdout == runs["edit_parameter"].stdout
+        results["identical_after_edits"] = fresh.stdout == runs["edit_build"].stdout
         results["runs"] = {name: run.summary() for name, run in runs.items()}
         if lsp_edits:
             results["lsp"] = latency(root, lsp_edits, cache)
@@ -137,13 +157,56 @@ def grown(workspace: Path, copies: int, root: Path) -> Path:
     return root
 
 
+def named_most(workspace: Path, suffixes: tuple[str, ...], marker: str) -> Path:
+    """The file with ``marker`` in it whose directory and name (``config/x.yaml``) the
+    launch files of the workspace hold most often (the first by path of those): a
+    parameter file launch files hand their nodes, where a file of the same suffix picked
+    by size is often one no tree reads (and a name alone, ``params.yaml``, is many
+    files')."""
+    launch = [
+        _text(path)
+        for suffix in (".launch", ".launch.xml", ".launch.py")
+        for path in workspace.rglob(f"*{suffix}")
+        if path.is_file()
+    ]
+    named = sorted(
+        (-sum(f"{path.parent.name}/{path.name}" in text for text in launch), path)
+        for suffix in suffixes
+        for path in workspace.rglob(f"*{suffix}")
+        if path.is_file() and marker in _text(path)
+    )
+    if not named:
+        raise SystemExit(f"no {suffixes} file with {marker!r} in {workspace}")
+    return named[0][1]
+
+
+def _text(path: Path) -> str:
+    try:
+        return path.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return ""
+
+
+def _add_below(path: Path, marker: bytes, text: bytes) -> None:
+    """``text`` put on a line of its own below the first line holding ``marker``,
+    indented two more spaces than that line (``_add``)."""
+    data = path.read_bytes()
+    start = data.rfind(b"\n", 0, data.index(marker)) + 1
+    end = data.index(b"\n", start) + 1
+    indent = len(data[start:end]) - len(data[start:end].lstrip(b" ")) + 2
+    _replace(path, data[:end] + b" " * indent + text + data[end:])
+
+
 def _add(path: Path, text: bytes, where: str) -> None:
     """``text`` put at the "end", the "start", or "inside" the root element (before the
     last end tag), as a new file renamed over the old: the copies that share the old
     file's bytes through a hard link keep them."""
     data = path.read_bytes()
     at = {"end": len(data), "start": 0, "inside": data.rfind(b"</")}[where]
-    data = data[:at] + text + data[at:]
+    _replace(path, data[:at] + text + data[at:])
+
+
+def _replace(path: Path, data: bytes) -> None:
     replacement = path.with_name(f".{path.name}.bench")
     replacement.write_bytes(data)
     os.replace(replacement, path)
