@@ -458,9 +458,10 @@ def fresh(scratch: Path) -> Path:
 
 
 def forget_results(cache: Path) -> Path:
-    """``cache`` without its whole-run results: the next run builds one from the facts."""
-    for results in cache.glob("facts-v*/runs"):
-        shutil.rmtree(results)
+    """``cache`` without its whole-run results and replays (a run over the same facts
+    takes the last one's): the next run builds one from the facts."""
+    for kept in (*cache.glob("facts-v*/runs"), *cache.glob("facts-v*/replays")):
+        shutil.rmtree(kept)
     return cache
 
 

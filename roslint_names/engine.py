@@ -7,6 +7,7 @@ the workspace graph and the graph rules. Diagnostics never depend on how facts c
 
 from __future__ import annotations
 
+import hashlib
 import os
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
@@ -157,6 +158,19 @@ def lint(
     # What a run keeps (the files found, their statuses, their facts, the graph) holds no
     # cycle: the collector does not walk it again and again (``collection``).
     with kept_for_the_run():
+        whole = None if want_graph or want_facts else _whole_workspace(sources, context, run)
+        if whole is not None and _graph_rules_on(settings, registry):
+            focus = frozenset(source.display for source in lintable(sources))
+            return _lint(
+                whole,
+                settings,
+                registry,
+                run,
+                context=(),
+                want_graph=False,
+                want_facts=False,
+                focus=focus,
+            )
         return _lint(
             sources,
             settings,
@@ -168,6 +182,30 @@ def lint(
         )
 
 
+def _graph_rules_on(settings: Settings, registry: Registry) -> bool:
+    enabled = enabled_codes(settings, registry)
+    return any(rule.check_workspace and rule.code in enabled for rule in registry.rules)
+
+
+def _whole_workspace(
+    sources: Sequence[SourceFile], context: Sequence[SourceFile], run: RunOptions
+) -> Sequence[SourceFile] | None:
+    """The workspace of a run over some of its files (pre-commit's, which names the files
+    staged) that is run whole and reported in those files only, where a cache keeps what
+    it finds: its graph, its replay and its keys are then the whole workspace's, which the
+    next such run takes up (``same_facts``, ``workspace.patch``) whatever files it names,
+    as a run over the workspace does; run over the files named, each new set of them
+    built the graph again (13 s at 8 copies of the benchmark's workspace). None where a
+    file named is not one of the workspace's as its walk found it (ignored by git, say,
+    or under another path): that run keeps its own way."""
+    if run.cache is None or not context:
+        return None
+    found = {(source.location, source.display) for source in context}
+    if all((source.location, source.display) in found for source in lintable(sources)):
+        return context
+    return None
+
+
 def _lint(
     sources: Sequence[SourceFile],
     settings: Settings,
@@ -177,7 +215,12 @@ def _lint(
     context: Sequence[SourceFile],
     want_graph: bool,
     want_facts: bool,
+    focus: frozenset[str] | None = None,
 ) -> LintResult:
+    """``lint``; with ``focus``, the run over the whole workspace reported in the files of
+    those display paths alone, as a run over them with the rest as context reports
+    (``_whole_workspace``): the decisions are made among their findings, their stored
+    result kept under a key of its own."""
     enabled = enabled_codes(settings, registry)
     graph_rules = [r for r in registry.rules if r.check_workspace and r.code in enabled]
     rule_of = {rule.code: rule for rule in graph_rules}
@@ -218,9 +261,10 @@ def _lint(
             ros1_python2=python2,
             named=named,
         )
-        # Nothing changed since a run that kept its key: its result, no file keyed.
+        # Nothing changed since a run that kept its key: its result, no file keyed. (A
+        # focused run keeps no such key: it is the whole run's.)
         remembered = None if fresh else inputs.unchanged_key()
-        if remembered is not None:
+        if remembered is not None and focus is None:
             stored = _stored_result(cache.load_run(remembered), len(files))
             if stored is not None:
                 return stored
@@ -236,9 +280,12 @@ def _lint(
     if inputs is not None:
         assert cache is not None
         run_key = None if fresh else inputs.key_first()
-        stored = None if run_key is None else _stored_result(cache.load_run(run_key), len(files))
+        stored_at = None if run_key is None else _focused(run_key, focus)
+        stored = (
+            None if stored_at is None else _stored_result(cache.load_run(stored_at), len(files))
+        )
         if stored is not None:
-            inputs.finish(kept_key=run_key)
+            inputs.finish(kept_key=run_key if focus is None else None)
             return stored
     if cache is not None:
         cache.writable()  # create the directory now, not racing in every worker
@@ -392,8 +439,9 @@ def _lint(
         named_at = _with_edited(replayed.replay.rostest_named, named_at, replayed.edited)
     else:
         skipped = tuple(gathered.skipped)
-    unbuilt = [displays[index] for index in unbuilt_at]
-    rostest_named = [displays[index] for index in named_at]
+    shown = [focus is None or display in focus for display in displays]  # reported in
+    unbuilt = [displays[index] for index in unbuilt_at if shown[index]]
+    rostest_named = [displays[index] for index in named_at if shown[index]]
     # What a run whose facts are these takes (``same_facts``).
     kept_replay = None
     kept_at = replay_key()
@@ -409,19 +457,25 @@ def _lint(
             tuple(unbuilt_at),
             tuple(named_at),
         )
-    per_file = one_per_decision(checks.per_file)
+    per_file = one_per_decision(
+        [found if shown[index] else [] for index, found in enumerate(checks.per_file)]
+    )
     diagnostics = sorted(
         (diagnostic for found in per_file for diagnostic in found), key=Diagnostic.sort_key
     )
     skipped_paths = {path for path, _ in skipped}
-    checked_count = sum(1 for source in files[:reported] if source.display not in skipped_paths)
+    checked_count = sum(
+        1
+        for index, source in enumerate(files[:reported])
+        if shown[index] and source.display not in skipped_paths
+    )
     if cache is not None:
         cache.finish()  # the graph's specialised facts are still buffered
     kept_key = None
     if inputs is not None:
         if run_key is not None and not inputs.changed:
             assert cache is not None
-            kept_key = run_key
+            kept_key = run_key if focus is None else None
             kept = (
                 tuple(diagnostics),
                 checked_count,
@@ -429,11 +483,12 @@ def _lint(
                 tuple(unbuilt),
                 tuple(rostest_named),
             )
-            cache.store_run(run_key, kept)
+            cache.store_run(_focused(run_key, focus), kept)
             if kept_replay is not None and kept_at is not None:
                 cache.store_replay(kept_at, kept_replay.stored())
                 # What a later run over the workspace patches (``workspace.patch``); not
-                # a run over some files (pre-commit's), whose set is seldom run again.
+                # a run over some files with the rest as context (one that names a file
+                # its workspace's walk does not find), whose set is seldom run again.
                 if graph is not None and not context:
                     kept_graph = KeptGraph(
                         inputs.tags, for_patching(graph), graph_found, tuple(built_with)
@@ -1203,6 +1258,16 @@ def rostest_replaces(diagnostic: Diagnostic) -> bool:
         and decision.api == _ROS_INIT_API
         and decision.generation is Generation.ROS1
     )
+
+
+def _focused(run_key: str, focus: frozenset[str] | None) -> str:
+    """Where the result of a run whose key is ``run_key`` is kept: for a run reported in
+    the files of ``focus`` only (``_lint``), a key of its own."""
+    if focus is None:
+        return run_key
+    digest = hashlib.blake2b(f"{run_key}\0focus\0".encode(), digest_size=20)
+    digest.update("\0".join(sorted(focus)).encode("utf-8", errors="surrogatepass"))
+    return digest.hexdigest()
 
 
 def _stored_result(value: object, files: int) -> LintResult | None:

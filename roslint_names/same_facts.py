@@ -87,14 +87,14 @@ class Replay:
     rostest_named: tuple[int, ...] = ()
 
     def edited(self, tags: Sequence[str]) -> list[int] | None:
-        """The checked files whose facts keys differ from the replay's; None where the
-        run is not over the same files (its place key tells that: a guard) or nothing
-        differs (the run's own stored result would have served)."""
+        """The checked files whose facts keys differ from the replay's, none where nothing
+        differs (a run reported in other files than the replay's: ``engine._lint``'s
+        ``focus``); None where the run is not over the same files (its place key tells
+        that: a guard)."""
         if len(tags) != len(self.tags):
             return None
         pairs = enumerate(zip(tags, self.tags, strict=True))
-        edited = [index for index, (now, then) in pairs if now != then]
-        return edited or None
+        return [index for index, (now, then) in pairs if now != then]
 
     def moves(self, display: str, before: FileFacts | None, now: FileFacts) -> Moves | None:
         """How an edited file's places moved, where it leaves the replay true (module

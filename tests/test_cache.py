@@ -79,9 +79,10 @@ def records(root: Path) -> list[str]:
 
 
 def forget_runs(root: Path) -> None:
-    """Delete the whole-run results, so that the next run goes to the facts entries."""
-    for runs in root.glob("facts-v*/runs"):
-        shutil.rmtree(runs)
+    """Delete the whole-run results and the replays (a run over the same facts takes
+    the last one's), so that the next run goes to the facts entries."""
+    for kept in (*root.glob("facts-v*/runs"), *root.glob("facts-v*/replays")):
+        shutil.rmtree(kept)
 
 
 def log_lines(root: Path) -> list[str]:

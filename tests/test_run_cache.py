@@ -331,15 +331,17 @@ def test_settings_fingerprint_is_the_same_for_equal_settings(tmp_path: Path) -> 
     assert settings_fingerprint(one) != settings_fingerprint(moved)
 
 
-def test_forgetting_results_falls_back_to_the_facts(
+def test_forgetting_results_falls_back_to_the_replay_then_to_the_facts(
     check: Callable[..., Any], extractions: list[str], private_cache: Path
 ) -> None:
     cold = check()
-    for runs in private_cache.glob("facts-v*/runs"):
-        shutil.rmtree(runs)
-    extractions.clear()
-    warm = check()
-    assert not reused(warm) and extractions == [] and warm.stdout == cold.stdout
+    # The stored result, then with it the replay of the same facts.
+    for forgotten in (("runs",), ("runs", "replays")):
+        for kept in (path for kind in forgotten for path in private_cache.glob(f"facts-v*/{kind}")):
+            shutil.rmtree(kept)
+        extractions.clear()
+        warm = check()
+        assert not reused(warm) and extractions == [] and warm.stdout == cold.stdout
 
 
 def counting_reads(monkeypatch: pytest.MonkeyPatch, module: Any) -> list[str]:
@@ -530,8 +532,9 @@ def test_a_rerun_from_the_facts_reads_only_the_files_with_findings_or_suppressio
     )
     cold = check("--extend-select", "RN002")
     assert "RN002" in cold.codes()
-    for runs in private_cache.glob("facts-v*/runs"):
-        shutil.rmtree(runs)  # the next run starts from the facts
+    # The next run starts from the facts: no stored result, no replay of the same facts.
+    for kept in (*private_cache.glob("facts-v*/runs"), *private_cache.glob("facts-v*/replays")):
+        shutil.rmtree(kept)
     read: list[str] = []
 
     def recording(real: Callable[..., Any]) -> Callable[..., Any]:

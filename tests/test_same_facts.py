@@ -5,6 +5,7 @@ edits of the example workspace that do and do not move names."""
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 from collections.abc import Iterator
@@ -631,27 +632,60 @@ def test_the_language_server_patches_a_graph_whose_findings_moved_since(
     assert found == expected
 
 
-def test_only_a_run_over_the_workspace_keeps_its_graph(
-    run_cli: Any, workspace: Path, tmp_path: Path
+# pre-commit's runs, each naming the files staged: (files named, the edit before the
+# run or None, what the run with the cache does: ``taken``).
+FOCUSED_STEPS: list[tuple[tuple[str, ...], tuple[str, str, str] | None, str]] = [
+    # The whole workspace's run, taken up whatever files are named.
+    ((MONITOR, RECORDER), None, "replay"),
+    ((DOCK,), None, "replay"),
+    # A topic renamed in a node's code: the graph the workspace's run kept, patched.
+    ((MONITOR, DOCK), (MONITOR, '"robot_pose"', '"robot_pose_estimate"'), "patch"),
+    # A node renamed in a launch file four trees include: those trees walked again.
+    ((BASE, RELAY), (BASE, 'name="battery_monitor"', 'name="battery_watch"'), "patch"),
+    # The same files again, nothing changed: their own stored result.
+    ((BASE, RELAY), None, "stored"),
+    # A parameter file's key fixed (RN405), then the node's code declaring a setting.
+    ((PARAMETERS,), (PARAMETERS, "waypoint_follower:\n", "/**/waypoint_follower:\n"), "patch"),
+    (
+        (f"{FLEET}/fleet_bringup/waypoint_follower.py", PARAMETERS),
+        (
+            f"{FLEET}/fleet_bringup/waypoint_follower.py",
+            '        self.declare_parameter("map_frame", "map")\n',
+            '        self.declare_parameter("map_frame", "map")\n'
+            '        self.declare_parameter("loop_rate", 10.0)\n',
+        ),
+        "patch",
+    ),
+    # A comment in a file not named: the edited file checked, nothing reported in it.
+    ((DOCK,), (RECORDER, "import rclpy", "# Records poses.\nimport rclpy"), "replay"),
+]
+
+
+def test_runs_over_some_files_are_the_workspace_s_run(
+    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str]
 ) -> None:
-    """A pre-commit run names some files: its replay serves that set again, and keeping
-    the workspace's graph for it too would cost every such run the graph's pickling."""
+    """pre-commit names the files staged, a new set each commit: each such run is the run
+    over the whole workspace reported in those files (``engine._whole_workspace``), so it
+    takes up what the last run over the workspace, or over any files of it, kept (its
+    replay, its graph to patch) instead of building the graph for each new set; and says
+    exactly what a run over the same files without a cache says."""
     cache = tmp_path / "cache"
-    arguments = [
-        "check",
-        "--format",
-        "json",
-        "--jobs",
-        "1",
-        "--exit-zero",
-        "--cache-dir",
-        str(cache),
-    ]
-    run_cli([*arguments, MONITOR, RECORDER], workspace)
-    assert list(cache.glob("*/replays/*"))
-    assert not list(cache.glob("*/graphs/*"))
-    run_cli([*arguments, "."], workspace)
-    assert len(list(cache.glob("*/graphs/*"))) == 1
+    outputs(run_cli, workspace, cache)  # the workspace's run: the graph built and kept
+    arguments = ["check", "--format", "json", "--jobs", "1", "--exit-zero"]
+    for named, change, how in FOCUSED_STEPS:
+        if change is not None:
+            edit(workspace / change[0], change[1], change[2])
+        taken.clear()
+        cached = run_cli([*arguments, "--cache-dir", str(cache), *named], workspace)
+        fresh = run_cli([*arguments, "--no-cache", *named], workspace)
+        assert (cached.stdout, cached.stderr) == (fresh.stdout, fresh.stderr), named
+        assert json.loads(cached.stdout)["findings"], named  # findings to compare
+        assert taken == [*([] if how == "stored" else [how]), "build"], (named, taken)
+    # And the workspace's run takes up what the last of them left.
+    taken.clear()
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    assert taken == ["replay", "build"]
 
 
 def test_edits_of_two_nodes_in_one_run_patch_the_graph_once(
