@@ -10,6 +10,7 @@ import json
 import os
 import sys
 from collections.abc import Callable, Sequence
+from dataclasses import replace
 from pathlib import Path
 from typing import NoReturn, TextIO
 
@@ -528,6 +529,11 @@ def _prepare(
     cwd = Path.cwd()
     start = config_search_start(options.paths, cwd)
     settings = apply_overrides(load_settings(options.config, start, registry), overrides, registry)
+    if settings.source is None and _files_below(options.paths, cwd):
+        # No config file: a run over files here (pre-commit's) judges them from where
+        # `roslint-names check .` here does (``test_code.is_example_code`` looks up the
+        # folders to the root), not from their own folder.
+        settings = replace(settings, root=cwd.resolve())
     warnings: list[str] = []  # what the walks passed over: said, never skipped in silence
     without_manifest: set[str] = set()
 
@@ -664,6 +670,12 @@ def _print_run_details(
         )
     for problem in cache.problems if cache is not None else []:
         print(f"roslint-names: warning: {problem}", file=sys.stderr)
+
+
+def _files_below(paths: Sequence[Path], cwd: Path) -> bool:
+    """Whether every path names a file below ``cwd``."""
+    named = [(cwd / path).absolute() for path in paths]
+    return bool(named) and all(path.is_relative_to(cwd) and os.path.isfile(path) for path in named)
 
 
 def config_search_start(paths: Sequence[Path], cwd: Path) -> Path:

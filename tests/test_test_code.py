@@ -618,3 +618,27 @@ def test_a_service_before_init_in_a_test_is_judged_only_where_it_breaks_the_test
         ("order_services/nodes/service_order.py", 18),
         ("test_rospy/test/rostest/test_service_order.py", 20),
     ]
+
+
+def test_a_run_over_a_file_judges_it_as_the_run_over_the_workspace_does(
+    run_cli: Any, tmp_path: Path
+) -> None:
+    """pre-commit names the files staged. Without a config file, their run took their own
+    folder as its root, above which no folder was looked at: ros2/demos' client, named
+    alone, was no example code, and its absolute action (RN202) and node name (RN203)
+    were reported where the run over the workspace reports neither."""
+    write_package(tmp_path / "src" / "demos" / "composition", 2, "composition")
+    write(tmp_path, "src/demos/composition/src/client_component.cpp", DEMO_COMPONENT)
+    workspace = run_cli(["check", "--format", "json", "--no-cache", "."], tmp_path)
+    named = run_cli(
+        [
+            "check",
+            "--format",
+            "json",
+            "--no-cache",
+            "src/demos/composition/src/client_component.cpp",
+        ],
+        tmp_path,
+    )
+    assert [f["code"] for f in named.findings()] == [f["code"] for f in workspace.findings()]
+    assert [f["code"] for f in named.findings()] == ["RN101"]
