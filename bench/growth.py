@@ -28,6 +28,10 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
   changes, and no patch follows it);
 - ``identical_after_edits``: whether the last edited run printed what a run with an
   empty cache prints over the same tree (a stale cache must never change a result);
+- ``commit``: pre-commit's run, naming the edited C++ source and launch file, the
+  source given another topic first (``engine._whole_workspace``: the run over the
+  workspace reported in those files, its graph patched); ``commit_identical``: whether
+  it printed what a run over those files without a cache prints;
 - ``lsp`` (with ``--lsp-edits``): the language server's latencies on the grown workspace
   (``bench/lsp.py``), the graph findings' refresh after an edit among them.
 
@@ -134,6 +138,13 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
             results.setdefault("edited", {})[name] = edited.relative_to(root).as_posix()
         fresh = bench.cli(root, arguments, scratch / "fresh-cache")
         results["identical_after_edits"] = fresh.stdout == runs["edit_build"].stdout
+        # pre-commit's run: the files of a commit named, the C++ source among them given
+        # another topic (the run over the workspace underneath, its graph patched).
+        named = [results["edited"]["edit_names"], results["edited"]["edit_graph"]]
+        _add(root / named[0], _NEW_TOPIC.replace(b"bench_probe", b"bench_commit"), "end")
+        runs["commit"] = bench.cli(root, ["--format", "json", *named], cache)
+        alone = bench.cli(root, ["--format", "json", "--no-cache", *named], cache)
+        results["commit_identical"] = alone.stdout == runs["commit"].stdout
         results["runs"] = {name: run.summary() for name, run in runs.items()}
         if lsp_edits:
             results["lsp"] = latency(root, lsp_edits, cache)
@@ -228,7 +239,8 @@ def table(results: dict[str, Any]) -> str:
         )
     lines.append(
         f"identical to a run with an empty cache after the edits: "
-        f"{results['identical_after_edits']}"
+        f"{results['identical_after_edits']}; the commit's run to one without a cache: "
+        f"{results.get('commit_identical')}"
     )
     lsp = results.get("lsp")
     if lsp:
