@@ -5,9 +5,10 @@ from __future__ import annotations
 import json
 import os
 import shutil
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -15,7 +16,14 @@ import pytest
 
 from roslint_names import gather, reading
 from roslint_names.cli import main
+from roslint_names.discover import discover
+from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
+from roslint_names.gather import DEFAULT_GENERATION, Specialiser, extract_batch
+from roslint_names.generation import PackageGenerations
 from roslint_names.model import Generation, Language
+from roslint_names.workers import Dispatcher
+from roslint_names.workspace.build import build_parts
+from roslint_names.workspace.index import Package
 
 CATKIN_PACKAGE = """<?xml version="1.0"?>
 <package format="2">
@@ -202,6 +210,9 @@ class ExampleCopy:
         self.root = root
         self.registry = load_registry()
         self.settings = load_settings(None, root, self.registry)
+        # Of the last ``built_parts``: what a patch of that build is handed.
+        self.packages: list[Package] = []
+        self.specialiser: Specialiser | None = None
 
     def edit(self, relative: str, old: str, new: str) -> None:
         """``old`` replaced by ``new`` once in the file; ``new`` appended where ``old`` is
@@ -210,3 +221,41 @@ class ExampleCopy:
         text = path.read_text(encoding="utf-8")
         assert old in text, f"{old!r} is not in {relative}"
         path.write_text(text.replace(old, new, 1) if old else text + new, encoding="utf-8")
+
+    def add(self, files: Mapping[str, str]) -> None:
+        """Files the examples do not hold, by path below the root."""
+        for relative, text in files.items():
+            (self.root / relative).parent.mkdir(parents=True, exist_ok=True)
+            (self.root / relative).write_text(text, encoding="utf-8")
+
+    def built_parts(self) -> Any:
+        """The workspace as it is now, built as the CLI builds it (``build_parts``): the
+        graph (asserted equal to ``lint``'s), the launch parts, the code parameter parts,
+        every file's facts by display path; and, kept on the copy for a patch of that
+        build, its packages and the specialiser of its launch files."""
+        root = self.root
+        sources = lintable(discover([root], (), root, root))
+        result = lint(sources, self.settings, self.registry, RunOptions(), want_graph=True)
+        self.packages = workspace_packages(sources, PackageGenerations())
+        self.specialiser = Specialiser(
+            sources,
+            PackageGenerations(),
+            DEFAULT_GENERATION,
+            None,
+            self.settings.max_file_size,
+            dispatcher=Dispatcher(partial(extract_batch, None), 1),
+            ros1_python2=False,
+        )
+        graph, parts, code = build_parts(
+            result.facts, self.packages, self.specialiser, self.specialiser.prepare
+        )
+        assert graph == result.graph
+        return graph, parts, code, {facts.path: facts for facts in result.facts}
+
+
+def assert_patched(steps: Sequence[tuple[str, Any, Any]], step: int) -> None:
+    """A step of an edit sequence (the file edited, the graph built after it, the graph
+    patched) was patched, into the built graph."""
+    relative, built, patch = steps[step]
+    assert patch is not None, f"step {step} ({relative}) was not patched"
+    assert patch == built, f"step {step} ({relative})"

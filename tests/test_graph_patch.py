@@ -11,7 +11,7 @@ from dataclasses import replace
 from pathlib import Path
 
 import pytest
-from conftest import ExampleCopy
+from conftest import ExampleCopy, assert_patched
 
 from roslint_names.discover import discover
 from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
@@ -101,9 +101,7 @@ def steps(tmp_path_factory: pytest.TempPathFactory) -> list[tuple[str, Graph, Gr
 def test_a_patched_graph_is_the_built_graph(
     steps: list[tuple[str, Graph, Graph | None]], step: int
 ) -> None:
-    relative, built, patch = steps[step]
-    assert patch is not None, f"step {step} ({relative}) was not patched"
-    assert patch == built
+    assert_patched(steps, step)
 
 
 def test_the_steps_change_what_the_graph_rules_read(

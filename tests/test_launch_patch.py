@@ -6,21 +6,13 @@ the patch cannot follow is refused, never patched wrong."""
 
 from __future__ import annotations
 
-from functools import partial
 from pathlib import Path
 
 import pytest
-from conftest import ExampleCopy
+from conftest import ExampleCopy, assert_patched
 
-from roslint_names.discover import discover
-from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
-from roslint_names.gather import DEFAULT_GENERATION, Specialiser, extract_batch
-from roslint_names.generation import PackageGenerations
 from roslint_names.model import FileFacts
-from roslint_names.workers import Dispatcher
-from roslint_names.workspace.build import build_parts
 from roslint_names.workspace.graph import Graph
-from roslint_names.workspace.index import Package
 from roslint_names.workspace.launch_parts import LaunchParts
 from roslint_names.workspace.launch_patch import (
     LazyFacts,
@@ -169,31 +161,9 @@ REFUSED = [
 
 
 class _Workspace(ExampleCopy):
-    def __init__(self, root: Path) -> None:
-        super().__init__(root)
-        self.packages: list[Package] = []
-        self.specialiser: Specialiser | None = None
-
     def built(self) -> tuple[Graph, LaunchParts, dict[str, FileFacts]]:
-        root = self.root
-        sources = lintable(discover([root], (), root, root))
-        result = lint(sources, self.settings, self.registry, RunOptions(), want_graph=True)
-        packages = PackageGenerations()
-        self.packages = workspace_packages(sources, packages)
-        self.specialiser = Specialiser(
-            sources,
-            packages,
-            DEFAULT_GENERATION,
-            None,
-            self.settings.max_file_size,
-            dispatcher=Dispatcher(partial(extract_batch, None), 1),
-            ros1_python2=False,
-        )
-        graph, parts, _ = build_parts(
-            result.facts, self.packages, self.specialiser, self.specialiser.prepare
-        )
-        assert graph == result.graph
-        return graph, parts, {facts.path: facts for facts in result.facts}
+        graph, parts, _, facts = self.built_parts()
+        return graph, parts, facts
 
     def patched(
         self,
@@ -225,9 +195,7 @@ class _Workspace(ExampleCopy):
 def steps(tmp_path_factory: pytest.TempPathFactory) -> list[tuple[str, Graph, Graph | None]]:
     """Each step: the file edited, the graph built after it, and the graph patched."""
     workspace = _Workspace(tmp_path_factory.mktemp("launch_patch") / "ws")
-    for relative, text in EXTRA_FILES.items():
-        (workspace.root / relative).parent.mkdir(parents=True, exist_ok=True)
-        (workspace.root / relative).write_text(text, encoding="utf-8")
+    workspace.add(EXTRA_FILES)
     graph, parts, facts = workspace.built()
     found: list[tuple[str, Graph, Graph | None]] = []
     for relative, old, new in PATCHED:
@@ -242,9 +210,7 @@ def steps(tmp_path_factory: pytest.TempPathFactory) -> list[tuple[str, Graph, Gr
 def test_a_patched_graph_is_the_built_graph(
     steps: list[tuple[str, Graph, Graph | None]], step: int
 ) -> None:
-    relative, built, patch = steps[step]
-    assert patch is not None, f"step {step} ({relative}) was not patched"
-    assert patch == built, f"step {step} ({relative})"
+    assert_patched(steps, step)
 
 
 @pytest.mark.parametrize("step", range(len(REFUSED)))

@@ -8,22 +8,15 @@ cannot follow is refused, never patched wrong."""
 
 from __future__ import annotations
 
-from functools import partial
 from itertools import pairwise
 from pathlib import Path
 
 import pytest
-from conftest import ExampleCopy
+from conftest import ExampleCopy, assert_patched
 
-from roslint_names.discover import discover
-from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
-from roslint_names.gather import DEFAULT_GENERATION, Specialiser, extract_batch
-from roslint_names.generation import PackageGenerations
 from roslint_names.model import FileFacts
-from roslint_names.workers import Dispatcher
-from roslint_names.workspace.build import build_parts
 from roslint_names.workspace.graph import Graph
-from roslint_names.workspace.index import Package, PackageFiles
+from roslint_names.workspace.index import PackageFiles
 from roslint_names.workspace.launch_parts import CodeParameterParts, LaunchParts
 from roslint_names.workspace.launch_patch import LazyFacts
 from roslint_names.workspace.parameter_patch import parameters_patched
@@ -135,24 +128,9 @@ REFUSED = [
 
 class _Workspace(ExampleCopy):
     def built(self) -> tuple[Graph, LaunchParts, CodeParameterParts, dict[str, FileFacts]]:
-        root = self.root
-        sources = lintable(discover([root], (), root, root))
-        result = lint(sources, self.settings, self.registry, RunOptions(), want_graph=True)
-        self.packages: list[Package] = workspace_packages(sources, PackageGenerations())
-        specialiser = Specialiser(
-            sources,
-            PackageGenerations(),
-            DEFAULT_GENERATION,
-            None,
-            self.settings.max_file_size,
-            dispatcher=Dispatcher(partial(extract_batch, None), 1),
-            ros1_python2=False,
-        )
-        graph, parts, code = build_parts(
-            result.facts, self.packages, specialiser, specialiser.prepare
-        )
-        assert graph == result.graph
-        return graph, parts, code, {facts.path: facts for facts in result.facts}
+        built: tuple[Graph, LaunchParts, CodeParameterParts, dict[str, FileFacts]]
+        built = self.built_parts()
+        return built
 
     def patched(
         self,
@@ -190,9 +168,7 @@ class _Workspace(ExampleCopy):
 def steps(tmp_path_factory: pytest.TempPathFactory) -> list[tuple[str, Graph, Graph | None]]:
     """Each step: the file edited, the graph built after it, and the graph patched."""
     workspace = _Workspace(tmp_path_factory.mktemp("parameter_patch") / "ws")
-    for relative, text in EXTRA_FILES.items():
-        (workspace.root / relative).parent.mkdir(parents=True, exist_ok=True)
-        (workspace.root / relative).write_text(text, encoding="utf-8")
+    workspace.add(EXTRA_FILES)
     for edit in SETUP:
         workspace.edit(*edit)
     last = workspace.built()
@@ -209,9 +185,7 @@ def steps(tmp_path_factory: pytest.TempPathFactory) -> list[tuple[str, Graph, Gr
 def test_a_patched_graph_is_the_built_graph(
     steps: list[tuple[str, Graph, Graph | None]], step: int
 ) -> None:
-    relative, built, patch = steps[step]
-    assert patch is not None, f"step {step} ({relative}) was not patched"
-    assert patch == built, f"step {step} ({relative})"
+    assert_patched(steps, step)
 
 
 def test_the_steps_change_what_code_declares(
