@@ -97,12 +97,13 @@ class PackageFiles:
             held: set[str] = set()
             for directory in self._directories.get(package, []):
                 prefix = directory.rstrip("/") + "/" if directory else ""
-                for path in paths[bisect_left(paths, prefix) :]:
-                    if not path.startswith(prefix):
-                        break
-                    owner = self.package_of(path)
+                # By position, not over a slice: a slice copies the rest of the list.
+                at = bisect_left(paths, prefix)
+                while at < len(paths) and paths[at].startswith(prefix):
+                    owner = self.package_of(paths[at])
                     if owner is not None and owner.name == package:
-                        held.add(path)
+                        held.add(paths[at])
+                    at += 1
             found = self._files_by_package[package] = sorted(held)
         return found
 
