@@ -112,7 +112,7 @@ class CodeParameterParts(Compact):
     the parameter tables' lookups (made from every file's facts; no such edit changes
     them), the packages each node's code (by its sources, as ``LaunchParts.parameters``)
     was gathered from, and how many code files declare each name of the workspace's
-    declarations. Kept apart from the launch parts (``same_facts.KeptLaunch``): 8 MB at
+    declarations. Kept apart from the launch parts (``same_facts.KeptLaunch``): 6 MB at
     8 copies of the benchmark's workspace, which a launch patch need not load."""
 
     lookups: TableLookups

@@ -228,8 +228,8 @@ class TableLookups:
 @dataclass
 class DeclarationCounts:
     """How many code files add each name, suffix and mention to ``WorkspaceDeclarations``
-    (``_declarations``' three sets): the workspace's declarations follow an edit of one
-    file without the others' facts (``workspace.parameter_patch``)."""
+    (``file_declarations``' three sets): the workspace's declarations follow an edit of
+    one file without the others' facts (``workspace.parameter_patch``)."""
 
     # Dicts, not ``Counter``s: a kept graph's unpickler builds no other class.
     names: dict[str, int] = field(default_factory=dict)
@@ -237,7 +237,7 @@ class DeclarationCounts:
     mentioned: dict[str, int] = field(default_factory=dict)
 
     def add(self, declared: tuple[frozenset[str], ...], times: int = 1) -> None:
-        """One file's declarations (``_declarations``) added; taken away for -1."""
+        """One file's declarations (``file_declarations``) added; taken away for -1."""
         for counts, found in zip(
             (self.names, self.suffixes, self.mentioned), declared, strict=True
         ):
