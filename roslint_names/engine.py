@@ -160,9 +160,9 @@ def lint(
     with kept_for_the_run():
         whole = None if want_graph or want_facts else _whole_workspace(sources, context, run)
         if whole is not None and _graph_rules_on(settings, registry):
-            focus = frozenset(source.display for source in lintable(sources))
+            workspace, focus = whole
             return _lint(
-                whole,
+                workspace,
                 settings,
                 registry,
                 run,
@@ -189,7 +189,7 @@ def _graph_rules_on(settings: Settings, registry: Registry) -> bool:
 
 def _whole_workspace(
     sources: Sequence[SourceFile], context: Sequence[SourceFile], run: RunOptions
-) -> Sequence[SourceFile] | None:
+) -> tuple[Sequence[SourceFile], frozenset[str]] | None:
     """The workspace of a run over some of its files (pre-commit's, which names the files
     staged) that is run whole and reported in those files only, where a cache keeps what
     it finds: its graph, its replay and its keys are then the whole workspace's, which the
@@ -197,12 +197,14 @@ def _whole_workspace(
     as a run over the workspace does; run over the files named, each new set of them
     built the graph again (13 s at 8 copies of the benchmark's workspace). None where a
     file named is not one of the workspace's as its walk found it (ignored by git, say,
-    or under another path): that run keeps its own way."""
+    or under another path): that run keeps its own way. With the display paths of the
+    files it reports in."""
     if run.cache is None or not context:
         return None
     found = {(source.location, source.display) for source in context}
-    if all((source.location, source.display) in found for source in lintable(sources)):
-        return context
+    named = lintable(sources)
+    if all((source.location, source.display) in found for source in named):
+        return context, frozenset(source.display for source in named)
     return None
 
 
@@ -943,6 +945,7 @@ class _GraphPatch:
         # The build's whole graph (its parameters kept apart, ``same_facts.KeptLaunch``)
         # for a patch that walks trees or gathers parameters again.
         kept: KeptLaunch | None = None
+        known: set[str] = set()  # the files the build had facts of (a skipped one has none)
         if tree_edits or declaring:
             kept = same_facts.loaded_launch(
                 self.cache.load_launch_parts(self.stored_at), stored.tags
@@ -951,8 +954,9 @@ class _GraphPatch:
             if kept is None or whole is None:
                 return None
             graph = whole
-        # The files the build had facts of (a skipped one has none)
-        known = {files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)}
+            known = {
+                files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)
+            }
         specialised = replay.specialised
         if tree_edits:
             assert kept is not None
