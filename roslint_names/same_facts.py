@@ -299,11 +299,10 @@ class KeptLaunch:
 def loaded_launch(value: object, tags: tuple[str, ...]) -> KeptLaunch | None:
     """A kept launch part built from the facts keys ``tags`` (the kept graph's); None for
     anything else."""
-    if not isinstance(value, tuple) or len(value) != 4:
+    found = _of_build(value, _LAUNCH_FORMAT, tags, 2)
+    if found is None:
         return None
-    form, digest, parameters, parts = value
-    if form != _LAUNCH_FORMAT or digest != _tags_digest(tags):
-        return None
+    parameters, parts = found
     if not (isinstance(parameters, ParameterPart) and isinstance(parts, LaunchParts)):
         return None
     return KeptLaunch(tags, parameters, parts)
@@ -327,12 +326,23 @@ class KeptCode:
 def loaded_code(value: object, tags: tuple[str, ...]) -> KeptCode | None:
     """A kept ``KeptCode`` of the build from the facts keys ``tags``; None for anything
     else."""
-    if not isinstance(value, tuple) or len(value) != 3:
+    found = _of_build(value, _CODE_FORMAT, tags, 1)
+    if found is None or not isinstance(found[0], CodeParameterParts):
         return None
-    form, digest, parts = value
-    if form != _CODE_FORMAT or digest != _tags_digest(tags):
+    return KeptCode(tags, found[0])
+
+
+def _of_build(
+    value: object, form: str, tags: tuple[str, ...], items: int
+) -> tuple[object, ...] | None:
+    """The ``items`` values a kept entry of ``form`` holds after its format and the digest
+    of the facts keys it was built from (``KeptLaunch.stored``, ``KeptCode.stored``),
+    where those are ``form``'s and ``tags``'; else None."""
+    if not isinstance(value, tuple) or len(value) != 2 + items:
         return None
-    return KeptCode(tags, parts) if isinstance(parts, CodeParameterParts) else None
+    if value[0] != form or value[1] != _tags_digest(tags):
+        return None
+    return value[2:]
 
 
 def _tags_digest(tags: Sequence[str]) -> str:
