@@ -13,9 +13,6 @@ from pathlib import Path
 import pytest
 from conftest import ExampleCopy, assert_patched
 
-from roslint_names.discover import discover
-from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
-from roslint_names.generation import PackageGenerations
 from roslint_names.model import FileFacts
 from roslint_names.rule import Rule, RuleContext
 from roslint_names.workspace.graph import Graph
@@ -65,20 +62,13 @@ REFUSED = [
 
 class _Workspace(ExampleCopy):
     def built(self) -> tuple[Graph, dict[str, FileFacts]]:
-        root = self.root
-        sources = lintable(discover([root], (), root, root))
-        result = lint(sources, self.settings, self.registry, RunOptions(), want_graph=True)
-        assert result.graph is not None
-        self.packages = PackageFiles(
-            [facts.path for facts in result.facts],
-            workspace_packages(sources, PackageGenerations()),
-        )
-        return result.graph, {facts.path: facts for facts in result.facts}
+        graph, _, _, facts = self.built_parts()
+        return graph, facts
 
     def patched(
         self, graph: Graph, edits: dict[str, Moved], now: dict[str, FileFacts]
     ) -> Graph | None:
-        return patched(graph, edits, now.get, lambda: self.packages)
+        return patched(graph, edits, now.get, lambda: PackageFiles(list(now), self.packages))
 
 
 @pytest.fixture(scope="module")
