@@ -23,7 +23,8 @@ when each of those files (``moves``):
   then every place the replay keeps in the file is put where it is now, and a place no
   fact gives refuses the replay) and for whether its bytes hold a suppression marker
   (which files a run reads, never what the graph is made of; the edited file is read and
-  checked anew); a build file's spans may not move (``RunWide.built`` keeps its facts);
+  checked anew); a build file's places may move too: ``RunWide.built`` keeps what it
+  compiles, no place;
 - takes no value from another file's constant (``symbols.uses_constants``): those are
   not kept;
 - wires no name (``wiring.wired_by``): whether its wiring counts depends on its text
@@ -108,9 +109,7 @@ class Replay:
             or (spans := moved_spans(before, now)) is None
         ):
             return None
-        moves = Moves(display, spans)
-        # Build files' facts are kept (``RunWide.built``) as they were: none of them moved.
-        return moves if moves.still or now.compiled is None else None
+        return Moves(display, spans)
 
     def moved(self, moves: Sequence[Moves], displays: Sequence[str]) -> Replay | None:
         """The replay with every place it keeps in the edited files where it is now;

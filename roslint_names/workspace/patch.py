@@ -26,7 +26,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import replace
 
-from roslint_names.model import ENDPOINT_ROLES, FileFacts, Role, Span
+from roslint_names.model import ENDPOINT_ROLES, FileFacts, Language, Role, Span
 from roslint_names.moves import UnplacedError, moved_spans
 from roslint_names.workspace.build import (
     _has_endpoints,
@@ -55,6 +55,11 @@ _NOT_CODE_FIELDS = (
 
 Moved = dict[Span, Span]  # a file's old spans, each where it is now
 
+# Build files: the graph takes from them which programs a package builds of which
+# sources, and which sources are compiled (``WorkspaceIndex``, ``built``), none of their
+# places.
+_BUILD_LANGUAGES = frozenset({Language.CMAKE, Language.SETUP_PY, Language.SETUP_CFG})
+
 
 def code_edit(before: FileFacts, now: FileFacts) -> Moved | None:
     """Where an edit of a code file moved what the graph keeps of it besides its
@@ -78,6 +83,16 @@ def declaration_edit(before: FileFacts, now: FileFacts) -> Moved | None:
     return code_edit(_without_uses(before), _without_uses(now))
 
 
+def build_moves(before: FileFacts, now: FileFacts) -> Moved | None:
+    """Where an edit of a build file moved its facts, when it changed nothing else (a
+    dependency found above its targets): the graph keeps no place of a build file, so
+    no node changes; None where the file builds something else now, or is no build
+    file."""
+    if before.language not in _BUILD_LANGUAGES or now.language is not before.language:
+        return None
+    return moved_spans(before, now)
+
+
 def _without_uses(facts: FileFacts) -> FileFacts:
     kept = tuple(use for use in facts.names if use.role is not Role.PARAMETER)
     return replace(facts, names=kept, unexplained_literals=())
@@ -88,11 +103,14 @@ def edits_of(
 ) -> dict[str, Moved] | None:
     """``patched``'s edits for the files whose facts changed since the graph was made
     (display path, facts then and now): each a ``code_edit``, or the same facts in the same
-    places (nothing of the graph to patch); None where one is neither. With ``declaring``,
-    a ``declaration_edit`` is one too, its file added to ``declaring``."""
+    places (nothing of the graph to patch) or a build file's moved (``build_moves``);
+    None where one is neither. With ``declaring``, a ``declaration_edit`` is one too,
+    its file added to ``declaring``."""
     edits: dict[str, Moved] = {}
     for display, then, now in changed:
         moves = code_edit(then, now)
+        if moves is None:
+            moves = build_moves(then, now)
         if moves is None and declaring is not None:
             moves = declaration_edit(then, now)
             if moves is not None:
