@@ -720,6 +720,12 @@ _MODEL_CLASSES = frozenset(
 )
 
 
+def _built_by(value: type) -> Any:
+    """What the unpicklers build a class's instances with: a ``model.Compact`` pickles as
+    its class and its fields' values, which ``model.rebuilder`` makes into one faster."""
+    return model.rebuilder(value) if issubclass(value, model.Compact) else value
+
+
 class BuiltinsUnpickler(pickle.Unpickler):
     """Builtins only (dicts, lists, tuples, strings, numbers): what the cache's own
     bookkeeping files hold (digests, kept keys, listings); any global is refused, so
@@ -734,7 +740,7 @@ class _FactsUnpickler(pickle.Unpickler):
 
     def find_class(self, module: str, name: str) -> Any:
         if module == model.__name__ and name in _MODEL_CLASSES:
-            return getattr(model, name)
+            return _built_by(getattr(model, name))
         if (module, name) == ("builtins", "getattr"):
             # How Python 3.11.0 to 3.11.4 (Debian 12's 3.11.2) pickle an enum member:
             # ``getattr(Language, "CPP")``. Only that: a member of a model enum.
@@ -754,7 +760,7 @@ class _GraphUnpickler(pickle.Unpickler):
                 and value.__module__ == module
                 and (dataclasses.is_dataclass(value) or issubclass(value, enum.Enum))
             ):
-                return value
+                return _built_by(value)
         if (module, name) == ("builtins", "getattr"):
             return _graph_enum_member
         raise pickle.UnpicklingError(f"{module}.{name} is not a graph class")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 import hashlib
 import io
@@ -19,6 +20,7 @@ import pytest
 from roslint_names import cache as cache_module
 from roslint_names.cache import FactsCache, default_directory
 from roslint_names.model import (
+    Compact,
     FileFacts,
     Generation,
     Kind,
@@ -27,6 +29,7 @@ from roslint_names.model import (
     ParameterAccess,
     Role,
     Span,
+    rebuilder,
 )
 from roslint_names.workspace.graph import (
     EdgeKind,
@@ -668,3 +671,41 @@ def test_a_kept_graph_naming_anything_but_graph_classes_is_never_unpickled(
     cache = FactsCache(tmp_path)
     cache.store_graph("k", ("graph 1", (), value))
     assert FactsCache(tmp_path).load_graph("k") is None
+
+
+def _compact_classes() -> list[Any]:
+    import roslint_names.workspace.graph
+    import roslint_names.workspace.launch_parts
+    import roslint_names.workspace.parameters  # noqa: F401 - their classes are found below
+
+    found: list[Any] = []
+    pending = list(Compact.__subclasses__())
+    while pending:
+        cls = pending.pop()
+        pending.extend(cls.__subclasses__())
+        if dataclasses.is_dataclass(cls):
+            found.append(cls)
+    return sorted(found, key=lambda cls: (cls.__module__, cls.__qualname__))
+
+
+@pytest.mark.parametrize("cls", _compact_classes(), ids=lambda cls: cls.__qualname__)
+def test_a_compact_class_is_rebuilt_as_its_init_builds_it(cls: Any) -> None:
+    """The unpicklers build a ``Compact`` with ``model.rebuilder``, which sets its slots
+    without the frozen ``__init__``: the same object, each field's value in its place."""
+    values = [object() for _ in dataclasses.fields(cls)]
+    rebuilt, made = rebuilder(cls)(*values), cls(*values)
+    assert type(rebuilt) is cls
+    assert rebuilt == made
+    assert [getattr(rebuilt, item.name) for item in dataclasses.fields(cls)] == values
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        rebuilt.__setattr__(dataclasses.fields(cls)[0].name, None)
+
+
+def test_the_unpicklers_build_compact_values_through_their_rebuilder() -> None:
+    """Where a class pickles as itself and its fields' values, ``find_class`` hands the
+    unpickler the rebuilder; an enum stays its class."""
+    stream = io.BytesIO()
+    for unpickler in (cache_module._FactsUnpickler, cache_module._GraphUnpickler):
+        found = unpickler(stream).find_class("roslint_names.model", "Span")
+        assert found is rebuilder(Span) and found is not Span
+        assert unpickler(stream).find_class("roslint_names.model", "Language") is Language
