@@ -33,6 +33,7 @@ from __future__ import annotations
 import contextlib
 import gc
 import os
+import pickle
 import signal
 import sys
 import threading
@@ -127,11 +128,15 @@ def time_limit(seconds: float) -> Iterator[None]:
 @dataclass(frozen=True)
 class Stopped:
     """Why an item's work was stopped: it ran past ``budget`` seconds, or (``budget``
-    None) the worker process died on it twice."""
+    None) the worker process died on it twice, or (``unreceived``) its result, sent
+    alone, could not be unpickled here."""
 
     budget: float | None
+    unreceived: bool = False
 
     def __str__(self) -> str:
+        if self.unreceived:
+            return "its facts could not be received from the worker process"
         if self.budget is None:
             return "the worker process extracting it died, twice"
         return f"gave up after {self.budget:g} s"
@@ -169,7 +174,7 @@ class Dispatcher(Generic[Item, Result]):
         self._numbered = 0
         self._executor: ProcessPoolExecutor | None = None
         self._slots: SynchronizedArray[float] | None = None
-        self._inflight: dict[Future[list[Result]], list[tuple[int, Item]]] = {}
+        self._inflight: dict[Future[bytes], list[tuple[int, Item]]] = {}
         self._stopped: dict[int, Stopped] = {}  # items killed past their budget: why
         self._strikes: dict[int, int] = {}  # items busy when a worker died unexplained
         self._started = False  # since the last close
@@ -286,7 +291,7 @@ class Dispatcher(Generic[Item, Result]):
                 chunk = self._inflight.pop(future)
                 if error is not None:
                     raise error  # a worker's exception, as in-process work would raise it
-                results.extend(future.result())
+                results.extend(self._received(future.result(), chunk))
                 for number, _ in chunk:
                     self._strikes.pop(number, None)
             if broken:
@@ -335,7 +340,7 @@ class Dispatcher(Generic[Item, Result]):
         again: list[tuple[int, Item]] = []
         for future, chunk in list(self._inflight.items()):
             if future.exception() is None:
-                results.extend(future.result())
+                results.extend(self._received(future.result(), chunk))
             else:
                 again.extend(chunk)
         self._inflight.clear()
@@ -367,6 +372,24 @@ class Dispatcher(Generic[Item, Result]):
             for start in range(0, len(rest), self._chunk_items):
                 self._send(rest[start : start + self._chunk_items])
         return results
+
+    def _received(self, blob: bytes, chunk: list[tuple[int, Item]]) -> list[Result]:
+        """A chunk's results, as its worker pickled them (``_run``). Where they cannot be
+        unpickled here, each item is sent again alone (to a fresh pool, if this one is
+        gone), and an item alone given up: left to the pool's own unpickling, the pool
+        broke with no worker busy, and every chunk it held was sent again, for ever."""
+        try:
+            return list(pickle.loads(blob))
+        except Exception:
+            if len(chunk) > 1:
+                if self._executor is None:
+                    self._start()
+                for entry in chunk:
+                    self._send([entry])
+                return []
+            if self._give_up is None:
+                raise
+            return [self._give_up(chunk[0][1], Stopped(None, unreceived=True))]
 
     def _kill_workers(self) -> None:
         for pid, _, _ in self._busy():
@@ -440,9 +463,11 @@ def _parent_death_signal(signum: int) -> bool:
         return False
 
 
-def _run(chunk: list[tuple[int, Any]]) -> list[Any]:
+def _run(chunk: list[tuple[int, Any]]) -> bytes:
+    """The chunk's results, pickled here: the main process unpickles them itself
+    (``Dispatcher._received``), where a failure names the chunk."""
     assert _WORK is not None, "worker used before its initializer ran"
-    return _WORK(_marked(chunk))
+    return pickle.dumps(_WORK(_marked(chunk)), protocol=pickle.HIGHEST_PROTOCOL)
 
 
 def _marked(chunk: list[tuple[int, Any]]) -> Iterator[Any]:

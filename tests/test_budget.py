@@ -407,3 +407,33 @@ for finding in session.check(path, {generated_table(10_000)!r}) or []:
     assert done.stdout.startswith(
         "RN001 4 gave up before parsing: one expression chains 9999 '+' operators"
     )
+
+
+class _ReceivedNowhere:
+    """A result the main process cannot unpickle: its pool breaks with no worker busy."""
+
+    def __reduce__(self) -> tuple[Any, tuple[()]]:
+        return (_refuse, ())
+
+
+def _refuse() -> None:
+    raise RuntimeError("not here")
+
+
+def _square_but_unreceivable_seven(items: Iterable[int]) -> list[tuple[int, object]]:
+    return [(item, _ReceivedNowhere() if item == 7 else item * item) for item in items]
+
+
+def test_a_result_that_cannot_be_received_is_given_up_not_sent_again_for_ever() -> None:
+    """A chunk's results that cannot be unpickled broke the pool with no worker busy:
+    the chunk was sent again to a fresh pool, which broke again, without end (a Compact
+    value's rebuilder the main process did not know yet did that). Now its items are
+    sent again alone, and the one whose result cannot be received is given up."""
+    results = dispatch_in_thread(_square_but_unreceivable_seven, range(30))
+    assert sorted(results, key=lambda result: result[0]) == [
+        (
+            item,
+            "its facts could not be received from the worker process" if item == 7 else item * item,
+        )
+        for item in range(30)
+    ]
