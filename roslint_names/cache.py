@@ -720,10 +720,15 @@ _MODEL_CLASSES = frozenset(
 )
 
 
-def _built_by(value: type) -> Any:
-    """What the unpicklers build a class's instances with: a ``model.Compact`` pickles as
-    its class and its fields' values, which ``model.rebuilder`` makes into one faster."""
-    return model.rebuilder(value) if issubclass(value, model.Compact) else value
+def _built_by(value: type, attribute: str) -> Any:
+    """What the unpicklers build a class's instances with, by the name the pickle gives
+    (``attribute`` of the class, else the class): a ``model.Compact`` is pickled as its
+    fields' values and its rebuilder (``model.rebuilder``; as its class before); None
+    for any other attribute."""
+    compact = issubclass(value, model.Compact)
+    if attribute and not (compact and attribute == model.REBUILT):
+        return None
+    return model.rebuilder(value) if compact else value
 
 
 class BuiltinsUnpickler(pickle.Unpickler):
@@ -739,8 +744,11 @@ class _FactsUnpickler(pickle.Unpickler):
     """Builds fact values and nothing else (see the module docstring)."""
 
     def find_class(self, module: str, name: str) -> Any:
-        if module == model.__name__ and name in _MODEL_CLASSES:
-            return _built_by(getattr(model, name))
+        owner, _, attribute = name.partition(".")
+        if module == model.__name__ and owner in _MODEL_CLASSES:
+            found = _built_by(getattr(model, owner), attribute)
+            if found is not None:
+                return found
         if (module, name) == ("builtins", "getattr"):
             # How Python 3.11.0 to 3.11.4 (Debian 12's 3.11.2) pickle an enum member:
             # ``getattr(Language, "CPP")``. Only that: a member of a model enum.
@@ -753,14 +761,16 @@ class _GraphUnpickler(pickle.Unpickler):
     service definitions): the data classes and enums those modules define, nothing else."""
 
     def find_class(self, module: str, name: str) -> Any:
+        owner, _, attribute = name.partition(".")
         if module in _GRAPH_MODULES:
-            value = getattr(sys.modules.get(module), name, None)
+            value = getattr(sys.modules.get(module), owner, None)
             if (
                 isinstance(value, type)
                 and value.__module__ == module
                 and (dataclasses.is_dataclass(value) or issubclass(value, enum.Enum))
+                and (found := _built_by(value, attribute)) is not None
             ):
-                return _built_by(value)
+                return found
         if (module, name) == ("builtins", "getattr"):
             return _graph_enum_member
         raise pickle.UnpicklingError(f"{module}.{name} is not a graph class")

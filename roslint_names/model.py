@@ -124,17 +124,32 @@ class Severity(str, Enum):
     WARNING = "warning"
 
 
-class Compact:
+REBUILT = "_rebuilt"  # the class attribute a Compact class's rebuilder is pickled by
+
+
+class _CompactClass(type):
+    """Gives each Compact class its ``_rebuilt`` on first asking, in any process: the
+    one that pickles a value, and a worker or the main process that unpickles it."""
+
+    def __getattr__(cls, name: str) -> Any:
+        if name == REBUILT:
+            return rebuilder(cls)
+        raise AttributeError(f"type object {cls.__name__!r} has no attribute {name!r}")
+
+
+class Compact(metaclass=_CompactClass):
     """A base of frozen dataclasses with slots that a run holds by the hundred thousand
     (the graph's nodes, endpoints and places): no ``__dict__`` per object, and pickled as
-    the class and its fields' values, built again by its ``__init__``. Pickled as a
-    state dict, each object's dict stays in the unpickler's memo to the end of a load:
-    50 MB of the kept graph's 14 MB at 77,000 files, the peak of a run that patches it."""
+    its fields' values and what builds the object again from them (``rebuilder``, named
+    as the class's ``_rebuilt``: a worker's facts are unpickled by the main process's
+    plain unpickler). Pickled as a state dict, each object's dict stays in the
+    unpickler's memo to the end of a load: 50 MB of the kept graph's 14 MB at 77,000
+    files, the peak of a run that patches it."""
 
     __slots__ = ()
 
-    def __reduce__(self) -> tuple[type[Compact], tuple[object, ...]]:
-        return (type(self), _values(self))
+    def __reduce__(self) -> tuple[Callable[..., Any], tuple[object, ...]]:
+        return (rebuilder(type(self)), _values(self))
 
 
 _GETTERS: dict[type, Callable[[Any], tuple[object, ...]]] = {}
@@ -145,8 +160,8 @@ def rebuilder(cls: type[Any]) -> Callable[..., Any]:
     """What makes an instance of ``cls`` from its fields' values, in order, as
     ``cls(*values)`` does, but setting each slot directly: a frozen dataclass's
     ``__init__`` sets each field through ``object.__setattr__``, two thirds of the time
-    unpickling a build's facts spends making them (the cache's unpicklers build with this).
-    ``cls`` itself where it has a ``__post_init__`` or a field that is no slot."""
+    unpickling a build's facts spends making them. ``cls`` itself where it has a
+    ``__post_init__`` or a field that is no slot."""
     known = _REBUILDERS.get(cls)
     if known is not None:
         return known
@@ -162,6 +177,9 @@ def rebuilder(cls: type[Any]) -> Callable[..., Any]:
     scope.update((f"s{at}", setter) for at, setter in enumerate(setters))
     exec(f"def rebuilt({values}):\n    made = new(cls)\n{sets}    return made\n", scope)
     rebuilt: Callable[..., Any] = scope["rebuilt"]
+    # Where pickle finds it again: the class's attribute, of its module.
+    rebuilt.__module__, rebuilt.__qualname__ = cls.__module__, f"{cls.__qualname__}.{REBUILT}"
+    setattr(cls, REBUILT, rebuilt)
     _REBUILDERS[cls] = rebuilt
     return rebuilt
 

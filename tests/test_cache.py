@@ -11,6 +11,8 @@ import multiprocessing
 import os
 import pickle
 import shutil
+import subprocess
+import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -701,11 +703,42 @@ def test_a_compact_class_is_rebuilt_as_its_init_builds_it(cls: Any) -> None:
         rebuilt.__setattr__(dataclasses.fields(cls)[0].name, None)
 
 
+def test_compact_values_pickle_as_their_rebuilder_and_values(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """What a worker sends the main process, which unpickles it with pickle's own
+    unpickler: the values and ``Span._rebuilt``, built again without ``__init__``."""
+    use = NameUse(Kind.TOPIC, "chatter", Span(3, 5, 3, 12), Role.PUBLISH, "create_publisher")
+    facts = FileFacts("src/a/talker.cpp", Language.CPP, Generation.ROS2, names=(use,))
+    blob = pickle.dumps(facts, protocol=5)
+    assert b"Span._rebuilt" in blob and b"NameUse._rebuilt" in blob
+
+    def refused(*_: object) -> None:
+        raise AssertionError("built through __init__")
+
+    monkeypatch.setattr(Span, "__init__", refused)
+    assert pickle.loads(blob) == facts
+    # A process that never pickled one finds ``_rebuilt`` too (a worker's facts, read by
+    # the main process: before, each pool broke and was started again, without end).
+    fresh = subprocess.run(
+        [sys.executable, "-c", "import pickle, sys; print(pickle.load(sys.stdin.buffer))"],
+        input=blob,
+        capture_output=True,
+        check=True,
+    )
+    assert fresh.stdout.decode().startswith("FileFacts(path='src/a/talker.cpp'")
+
+
 def test_the_unpicklers_build_compact_values_through_their_rebuilder() -> None:
-    """Where a class pickles as itself and its fields' values, ``find_class`` hands the
-    unpickler the rebuilder; an enum stays its class."""
+    """``find_class`` hands the unpickler a Compact class's rebuilder, by the class's
+    name (what older pickles give) or its ``_rebuilt``; an enum stays its class; any
+    other attribute is refused."""
     stream = io.BytesIO()
     for unpickler in (cache_module._FactsUnpickler, cache_module._GraphUnpickler):
-        found = unpickler(stream).find_class("roslint_names.model", "Span")
-        assert found is rebuilder(Span) and found is not Span
+        for name in ("Span", "Span._rebuilt"):
+            found = unpickler(stream).find_class("roslint_names.model", name)
+            assert found is rebuilder(Span) and found is not Span
         assert unpickler(stream).find_class("roslint_names.model", "Language") is Language
+        for name in ("Language._rebuilt", "Span.__init__", "Span._values", "Span.x._rebuilt"):
+            with pytest.raises(pickle.UnpicklingError):
+                unpickler(stream).find_class("roslint_names.model", name)
