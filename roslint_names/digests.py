@@ -53,6 +53,7 @@ class ContentDigests:
     statuses: dict[str, Status | None] = field(default_factory=dict)
     _loaded: bool = False
     _present: bool = False  # the file exists (damaged or not)
+    _carried: bool = False  # ``carry``
     _kept: Journaled = field(init=False)
 
     def __post_init__(self) -> None:
@@ -70,6 +71,13 @@ class ContentDigests:
         self._remembered()
         return self._present
 
+    def carry(self) -> None:
+        """This run's files are the last run's, and those whose status is as it was then
+        are keyed as they were (``unchanged.Keying``): their digests stand unread, and
+        the others changed. So nothing remembered is loaded: ``summary`` reads each file
+        it is asked about, and ``save`` journals what it learned over what was kept."""
+        self._carried = True
+
     def summary(
         self, path: str | Path, max_size: int, status: Status | Untaken | None = UNTAKEN
     ) -> tuple[str | None, str, str | None]:
@@ -82,7 +90,7 @@ class ContentDigests:
         if signature is not None:
             if signature[0] > max_size:
                 return None, "", too_large(signature[0], max_size)
-            known = self._remembered().get(name)
+            known = None if self._carried else self._remembered().get(name)
             if known is not None and known[0] == signature:
                 self._seen[name] = known
                 return (None, "", BINARY) if known[2] else (known[1], "", None)
@@ -137,7 +145,13 @@ class ContentDigests:
 
     def save(self) -> None:
         """Keep the digests of the files this run saw (only those: deleted files go): those
-        that changed, as a journal (``journal``)."""
+        that changed, as a journal (``journal``); where the run carried the rest
+        (``carry``), those it learned, over the rest as kept."""
+        if self._carried:
+            if self._kept.extend((self._seen,)):
+                return
+            self._kept.save(({**self._remembered(), **self._seen},))
+            return
         self._remembered()
         self._kept.save((self._seen,))
 

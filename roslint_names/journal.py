@@ -10,7 +10,10 @@ which its journals name), a base or a journal evicted alone loses entries, never
 one, and a crash between writing a new base and removing the old journal leaves a journal
 that names another base. A removed entry is journaled as None. The journal grows until it
 holds a quarter as many entries as the whole, then the whole is written as a new base.
-Both files are written atomically through the facts cache and read with the caller's
+Each file starts with a head that gives the base's token and its count of entries, so
+that a run which knows every entry it did not learn stands journals what it learned
+without loading the base (``extend``: 0.2 s of a run after an edit at 8 copies). Both
+files are written atomically through the facts cache and read with the caller's
 unpickler; one that cannot be read is none.
 """
 
@@ -19,8 +22,8 @@ from __future__ import annotations
 import contextlib
 import os
 import pickle
+import struct
 from collections.abc import Callable
-from functools import partial
 from pathlib import Path
 from typing import IO, Any
 
@@ -33,6 +36,11 @@ Sections = tuple[dict[Any, Any], ...]
 _ABSENT = object()
 _PROTOCOL = pickle.HIGHEST_PROTOCOL
 _JOURNAL_SHARE = 4  # the whole is written again once the journal holds 1/4 of its entries
+# Each file's head, before the pickled sections: a mark, the caller's version, the base's
+# token, and the count of entries the file holds: what ``extend`` reads of the base.
+_HEAD = struct.Struct("<8sH16sQ")
+_MARK = b"rnjourna"
+_TOKEN_BYTES = 16
 
 
 class Journaled:
@@ -92,32 +100,79 @@ class Journaled:
         if sum(map(len, journal)) * _JOURNAL_SHARE > sum(map(len, sections)):
             self._write_base(sections)
             return
-        blob = pickle.dumps((self._version, self._token, journal), _PROTOCOL)
+        self._write_journal(self._token, journal)
+
+    def extend(self, additions: Sections) -> bool:
+        """Journal ``additions`` (entries added or changed, none removed) over the base as
+        it was last saved, without loading it: what a run that knows every other entry
+        stands saves (``digests``: the files of the last run whose status is as kept).
+        False, writing nothing, where there is no base, or the journal would grow past
+        its share: the caller loads and saves."""
+        if not any(additions):
+            return True
+        head = self._head(self._path)
+        if head is None:
+            return False
+        token, entries = head
+        journal = self._read(self._journal_path, len(additions))
+        before = journal[1] if journal is not None and journal[0] == token else None
+        merged = tuple(
+            {**earlier, **now}
+            for earlier, now in zip(before or [{}] * len(additions), additions, strict=True)
+        )
+        if sum(map(len, merged)) * _JOURNAL_SHARE > entries:
+            return False
+        self._write_journal(token, merged)
+        return True
+
+    def _write_journal(self, token: str, journal: Sections) -> None:
+        head = _HEAD.pack(_MARK, self._version, token.encode("ascii"), sum(map(len, journal)))
+        blob = head + pickle.dumps(journal, _PROTOCOL)
         self._cache.write_newest(self._journal_path, blob, self._kept)
 
     def _write_base(self, sections: Sections) -> None:
-        token = os.urandom(8).hex()
-        whole = (self._version, token, sections)  # pickled into the file, not held first
-        self._cache.write_newest(
-            self._path, partial(pickle.dump, whole, protocol=_PROTOCOL), self._kept
-        )
+        token = os.urandom(_TOKEN_BYTES // 2).hex()
+        head = _HEAD.pack(_MARK, self._version, token.encode("ascii"), sum(map(len, sections)))
+
+        def write(stream: IO[bytes]) -> None:
+            stream.write(head)
+            pickle.dump(sections, stream, protocol=_PROTOCOL)  # into the file, not held first
+
+        self._cache.write_newest(self._path, write, self._kept)
         with contextlib.suppress(OSError):  # none; else left naming a base that is gone
             self._journal_path.unlink()
+
+    def _head(self, path: Path) -> tuple[str, int] | None:
+        """The token of the file at ``path`` and the count of entries it holds, if it is
+        one of this version."""
+        try:
+            with open_regular(path) as stream:
+                return self._token_of(stream.read(_HEAD.size))
+        except OSError:
+            return None
+
+    def _token_of(self, head: bytes) -> tuple[str, int] | None:
+        if len(head) != _HEAD.size:
+            return None
+        mark, version, token, entries = _HEAD.unpack(head)
+        if mark != _MARK or version != self._version or not token.isascii():
+            return None
+        return token.decode("ascii"), entries
 
     def _read(self, path: Path, count: int) -> tuple[str, Sections] | None:
         try:
             with open_regular(path) as stream:
-                loaded = self._unpickler(stream).load()
+                head = self._token_of(stream.read(_HEAD.size))
+                if head is None:
+                    return None
+                sections = self._unpickler(stream).load()
         except Exception:  # absent, unreadable or damaged
             return None
-        if not (isinstance(loaded, tuple) and len(loaded) == 3 and loaded[0] == self._version):
-            return None
-        _, token, sections = loaded
-        if not (isinstance(token, str) and isinstance(sections, tuple) and len(sections) == count):
+        if not (isinstance(sections, tuple) and len(sections) == count):
             return None
         if not all(isinstance(section, dict) for section in sections):
             return None
-        return token, sections
+        return head[0], sections
 
 
 def _changes(old: dict[Any, Any], new: dict[Any, Any]) -> dict[Any, Any]:

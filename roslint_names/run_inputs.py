@@ -100,6 +100,7 @@ class RunInputs:
         self.changed = False  # a file read differs from what the run was keyed by
         self.place_key: str | None = None  # once keyed: ``_place``
         self._keying: Keying | None = None  # an earlier run's, taken up (``unchanged``)
+        self._carried = False  # keyed from it (``_carry``)
 
     def unchanged_key(self) -> str | None:
         """The key an earlier run kept, when nothing it was made from changed since
@@ -123,33 +124,50 @@ class RunInputs:
     def key_first(self) -> str | None:
         """The run's key before anything is extracted, when an earlier run of this
         workspace left its digests (only then can a stored result match)."""
-        if not self._digests.remembered():
-            return None
-        maximum = self._settings.max_file_size
-        taken: Sequence[Status | Untaken | None] = self._statuses or [UNTAKEN] * len(self._checked)
-        paths = [source.location for source in self._checked]
-        summaries = self._digests.summaries(paths, maximum, taken[: len(paths)])
         keying = self._keying
-        if keying is None:
+        if keying is not None:
+            self._carry(keying)
+        elif not self._digests.remembered():
+            return None
+        else:
+            maximum = self._settings.max_file_size
+            taken: Sequence[Status | Untaken | None] = self._statuses or [UNTAKEN] * len(
+                self._checked
+            )
+            paths = [source.location for source in self._checked]
+            summaries = self._digests.summaries(paths, maximum, taken[: len(paths)])
             self._tags = [
                 self._tag(source, *summary)
                 for source, summary in zip(self._checked, summaries, strict=True)
             ]
-        else:  # a file whose status is as kept has the facts key it had
-            kept_statuses, kept_tags = keying.file_statuses, keying.tags
-            self._tags = [
-                kept_tags[index]
-                if status is not None and status == kept_statuses[index]
-                else self._tag(source, *summary)
-                for index, (source, summary, status) in enumerate(
-                    zip(self._checked, summaries, self._statuses, strict=False)
-                )
-            ]
-        self._contents = [content for content, _, _ in summaries]
+            self._contents = [content for content, _, _ in summaries]
         self._keyed_first = True
         key = self._key()
         self._keying = None  # in the tags and the place now: its statuses (17 MB) go
         return key
+
+    def _carry(self, keying: Keying) -> None:
+        """Key the run from what the last run of the same files was keyed by: a file whose
+        status is as kept has the facts key it had, unread; the others are read
+        (``ContentDigests.carry``: no digest of the others is loaded)."""
+        self._digests.carry()
+        self._carried = True
+        kept_statuses, maximum = keying.file_statuses, self._settings.max_file_size
+        self._tags = list(keying.tags)
+        self._contents = [None] * len(self._checked)
+        statuses = self._statuses
+        changed = [
+            index
+            for index, (status, kept) in enumerate(zip(statuses, kept_statuses, strict=False))
+            if status is None or status != kept
+        ]
+        for index in changed:
+            if index >= len(self._checked):
+                break  # the ``.srv`` files' statuses follow the checked files'
+            source = self._checked[index]
+            summary = self._digests.summary(source.location, maximum, statuses[index])
+            self._tags[index] = self._tag(source, *summary)
+            self._contents[index] = summary[0]
 
     def known_key(self, index: int) -> str | None:
         """The facts key of checked file ``index`` as ``key_first`` found it, if any."""
@@ -208,6 +226,8 @@ class RunInputs:
             return
         statuses = self._digests.statuses
         files = self._status_files
+        if self._carried:  # the statuses the run was keyed by, less those taken again
+            statuses = dict(zip(files, self._statuses, strict=True)) | statuses
         if all(path in statuses for path in files) and self.place_key is not None:
             file_statuses = [statuses[path] for path in files]
             keying = (self._tags, self.place_key, self._packages.lookups())

@@ -6,7 +6,7 @@ import pickle
 from pathlib import Path
 
 from roslint_names.cache import BuiltinsUnpickler, FactsCache
-from roslint_names.journal import Journaled
+from roslint_names.journal import _HEAD, Journaled
 
 # Shaped as the digests are: path -> (status, digest, binary).
 ENTRIES = {
@@ -22,6 +22,18 @@ def journal_of(cache: FactsCache) -> Path:
     return cache.directory / "digests" / "workspace-journal"
 
 
+def base_of(cache: FactsCache) -> Path:
+    return cache.directory / "digests" / "workspace"
+
+
+def journaled_entries(cache: FactsCache) -> tuple[dict[str, object], ...]:
+    """The sections the journal holds, past its head."""
+    sections: tuple[dict[str, object], ...] = pickle.loads(
+        journal_of(cache).read_bytes()[_HEAD.size :]
+    )
+    return sections
+
+
 def test_a_few_changes_are_journaled_and_read_back_over_the_base(tmp_path: Path) -> None:
     cache = FactsCache(tmp_path)
     kept(cache).save((dict(ENTRIES),))
@@ -34,8 +46,7 @@ def test_a_few_changes_are_journaled_and_read_back_over_the_base(tmp_path: Path)
     assert journaled.load(1) == (ENTRIES,)
     journaled.save((changed,))
     assert (cache.directory / "digests" / "workspace").read_bytes() == base  # not rewritten
-    _, _, journal = pickle.loads(journal_of(cache).read_bytes())
-    assert journal == (
+    assert journaled_entries(cache) == (
         {
             "/ws/src/pkg/src/file3.cpp": ((7, 7, 7, 3), "f" * 40, False),
             "/ws/src/pkg/src/new.cpp": ((1, 1, 1, 99), "e" * 40, False),
@@ -49,7 +60,7 @@ def test_a_few_changes_are_journaled_and_read_back_over_the_base(tmp_path: Path)
     later["/ws/src/pkg/src/file9.cpp"] = ((9, 9, 9, 9), "d" * 40, True)
     again.save((later,))
     assert kept(cache).load(1) == (later,)
-    assert len(pickle.loads(journal_of(cache).read_bytes())[2][0]) == 4
+    assert len(journaled_entries(cache)[0]) == 4
 
 
 def test_nothing_changed_writes_nothing(tmp_path: Path) -> None:
@@ -108,3 +119,50 @@ def test_a_damaged_base_or_journal_is_none(tmp_path: Path) -> None:
     assert kept(cache).load(2) is None  # another shape
     (cache.directory / "digests" / "workspace").write_bytes(pickle.dumps(("1", "t", ({},))))
     assert kept(cache).load(1) is None
+    assert not kept(cache).extend(({"/ws/x.cpp": ((1, 1, 1, 1), "b" * 40, False)},))
+    head = base_of(cache).read_bytes()
+    base_of(cache).write_bytes(head[: _HEAD.size - 1])  # a head torn short
+    assert kept(cache).load(1) is None
+
+
+def test_additions_are_journaled_over_a_base_never_loaded(tmp_path: Path) -> None:
+    """What a run that carried every other entry saves (``digests``): the base is read
+    no further than its head, and left as it was."""
+    cache = FactsCache(tmp_path)
+    kept(cache).save((dict(ENTRIES),))
+    base = base_of(cache).read_bytes()
+    first = {"/ws/src/pkg/src/file3.cpp": ((7, 7, 7, 3), "f" * 40, False)}
+    assert kept(cache).extend((first,))
+    second = {"/ws/src/pkg/src/file4.cpp": ((8, 8, 8, 4), "e" * 40, False)}
+    assert kept(cache).extend((second,))  # onto the journal the first left
+    assert base_of(cache).read_bytes() == base
+    assert journaled_entries(cache) == ({**first, **second},)
+    assert kept(cache).load(1) == ({**ENTRIES, **first, **second},)
+    assert kept(cache).extend(({},))  # nothing learned: nothing written
+    assert journaled_entries(cache) == ({**first, **second},)
+
+
+def test_additions_past_the_journal_s_share_or_without_a_base_are_left_to_the_caller(
+    tmp_path: Path,
+) -> None:
+    cache = FactsCache(tmp_path)
+    first = {"/ws/src/pkg/src/file3.cpp": ((7, 7, 7, 3), "f" * 40, False)}
+    assert not kept(cache).extend((first,))  # no base
+    assert not journal_of(cache).exists()
+    kept(cache).save((dict(ENTRIES),))
+    many = {f"/ws/new{i}.cpp": ((i, i, i, i), "c" * 40, False) for i in range(11)}
+    assert not kept(cache).extend((many,))  # 11 of 40: past a quarter
+    assert not journal_of(cache).exists()
+
+
+def test_additions_over_a_journal_of_another_base_drop_that_journal(tmp_path: Path) -> None:
+    cache = FactsCache(tmp_path)
+    kept(cache).save((dict(ENTRIES),))
+    stale = {"/ws/src/pkg/src/file1.cpp": ((5, 5, 5, 1), "a" * 40, False)}
+    assert kept(cache).extend((stale,))
+    left = journal_of(cache).read_bytes()
+    kept(cache).save((dict(ENTRIES),))  # a new base, nothing loaded first
+    journal_of(cache).write_bytes(left)
+    fresh = {"/ws/src/pkg/src/file2.cpp": ((6, 6, 6, 2), "b" * 40, False)}
+    assert kept(cache).extend((fresh,))
+    assert kept(cache).load(1) == ({**ENTRIES, **fresh},)

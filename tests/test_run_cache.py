@@ -19,6 +19,7 @@ from roslint_names import cache as cache_module
 from roslint_names import digests as digests_module
 from roslint_names import engine, reading, run_inputs
 from roslint_names.config import Settings, settings_fingerprint
+from roslint_names.digests import ContentDigests
 from roslint_names.discover import SourceFile
 from roslint_names.generation import PackageGenerations
 from roslint_names.model import Severity
@@ -711,6 +712,59 @@ def test_the_run_after_an_edit_keys_the_edited_file_alone(
     assert after.stdout == check("--no-cache").stdout
     keyed.clear()
     assert reused(check()) and keyed == []  # and it kept its own key
+
+
+@pytest.mark.usefixtures("old_tree")
+def test_runs_after_edits_load_no_digest_and_journal_those_they_read(
+    check: Callable[..., Any],
+    workspace: Path,
+    rekeyed: tuple[list[str], list[str]],
+    reads: list[str],
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A run keyed from the last run's keying (the same files) loads no file's digest
+    (0.2 s of it at 8 copies of the benchmark's workspace) and journals the digests of
+    the files it read over those kept; a run keyed from the digests after them (a file
+    added: the identity changed, no keying) finds every other file's digest as it is,
+    and reads only the new file."""
+    loads: list[int] = []
+    load = ContentDigests._load
+
+    def counted(self: ContentDigests) -> Any:
+        loads.append(1)
+        return load(self)
+
+    monkeypatch.setattr(ContentDigests, "_load", counted)
+
+    def after(change: Callable[[Path], object]) -> Any:
+        loads.clear()
+        reads.clear()
+        rekeyed[0].clear()
+        before = time.time_ns()
+        time.sleep(0.05)  # change times tick with the kernel's coarse clock
+        change(workspace)
+        age_all(workspace, before)
+        return check()
+
+    for module in range(12):  # more files than the edits change 1/4 of (``journal``)
+        for name in ("util.cpp", "util.hpp"):
+            write(workspace, f"src/robot_base/src/module{module}/{name}", "int helper();\n")
+    age_all(workspace)
+    check()
+    first = after(_edit_code)
+    assert loads == [] and rekeyed[0] == ["driver.cpp"]
+    assert first.stdout == check("--no-cache").stdout
+    second = after(_edit_launch)
+    assert loads == [] and rekeyed[0] == ["base.launch"]
+    assert second.stdout == check("--no-cache").stdout
+    added = after(_add_file)
+    assert loads == [1] and reads == ["two.launch"]
+    assert added.stdout == check("--no-cache").stdout
+
+
+def _edit_launch(workspace: Path) -> None:
+    launch = workspace / "src/robot_base/launch/base.launch"
+    launch.write_text(launch.read_text().replace("</launch>", "<!-- tuned -->\n</launch>"))
 
 
 @pytest.mark.parametrize("change", [_package_depends, _service_edited])
