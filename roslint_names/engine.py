@@ -903,8 +903,9 @@ class _GraphPatch:
             if index in arrived_facts:
                 return arrived_facts[index]
             if index not in loaded:
-                tag = self.inputs.tags[index]
-                known = self.cache.load(tag, files[index].display) if is_facts_key(tag) else None
+                # By index: ``RunInputs.tags`` copies every file's key (0.08 s a patch).
+                tag = self.inputs.facts_key(index)
+                known = None if tag is None else self.cache.load(tag, files[index].display)
                 loaded[index] = None if known is None or uses_constants(known) else known
             return loaded[index]
 
