@@ -32,6 +32,7 @@ from roslint_names.model import (
     Role,
     Span,
     rebuilder,
+    replaced,
 )
 from roslint_names.workspace.graph import (
     EdgeKind,
@@ -701,6 +702,18 @@ def test_a_compact_class_is_rebuilt_as_its_init_builds_it(cls: Any) -> None:
     assert [getattr(rebuilt, item.name) for item in dataclasses.fields(cls)] == values
     with pytest.raises(dataclasses.FrozenInstanceError):
         rebuilt.__setattr__(dataclasses.fields(cls)[0].name, None)
+
+
+@pytest.mark.parametrize("cls", _compact_classes(), ids=lambda cls: cls.__qualname__)
+def test_a_compact_value_replaced_is_what_dataclasses_replace_gives(cls: Any) -> None:
+    names = [item.name for item in dataclasses.fields(cls)]
+    value = cls(*(object() for _ in names))
+    for name in (names[0], names[-1]):
+        changed = object()
+        assert replaced(value, **{name: changed}) == dataclasses.replace(value, **{name: changed})
+        assert getattr(replaced(value, **{name: changed}), name) is changed
+    with pytest.raises(TypeError, match="no field 'nonexistent'"):
+        replaced(value, nonexistent=1)
 
 
 def test_compact_values_pickle_as_their_rebuilder_and_values(

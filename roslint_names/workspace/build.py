@@ -13,7 +13,7 @@ import posixpath
 import re
 from bisect import bisect_left
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from itertools import pairwise
 from typing import Any, Generic, TypeVar
 
@@ -26,6 +26,7 @@ from roslint_names.model import (
     NameUse,
     ParameterBlock,
     Role,
+    replaced,
 )
 from roslint_names.names import NameResolutionError, resolve
 from roslint_names.test_code import is_test_directory
@@ -390,7 +391,7 @@ class _Finished:
             and kept[1].parameter_settings == settings
         ):
             return kept[1]
-        finished = replace(node, code_parameters=parameters, parameter_settings=settings)
+        finished = replaced(node, code_parameters=parameters, parameter_settings=settings)
         self._known[id(node)] = (node, finished)
         return finished
 

@@ -30,7 +30,7 @@ from __future__ import annotations
 from collections.abc import Callable, Collection, Iterator, Mapping, Sequence
 from dataclasses import replace
 
-from roslint_names.model import FileFacts, Generation, Language
+from roslint_names.model import FileFacts, Generation, Language, replaced
 from roslint_names.workspace.build import (
     _group_loads,
     _has_endpoints,
@@ -263,7 +263,7 @@ def _patched(
     }
     parameters = _Parameters(parts.parameters)
     finished = [
-        replace(
+        replaced(
             node,
             code_parameters=parameters.of(node.sources),
             parameter_settings=_with_group_loads(node, rooted, blocks),

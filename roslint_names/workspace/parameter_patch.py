@@ -25,7 +25,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import replace
 
-from roslint_names.model import FileFacts
+from roslint_names.model import FileFacts, replaced
 from roslint_names.workspace.build import _TestFiles
 from roslint_names.workspace.graph import Graph
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
@@ -72,7 +72,7 @@ def parameters_patched(
         ):
             return None
     nodes = tuple(
-        replace(node, code_parameters=fresh[node.sources])
+        replaced(node, code_parameters=fresh[node.sources])
         if node.sources in fresh and node.code_parameters is not None
         else node
         for node in graph.nodes

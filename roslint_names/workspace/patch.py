@@ -26,7 +26,7 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import replace
 
-from roslint_names.model import ENDPOINT_ROLES, FileFacts, Language, Role, Span
+from roslint_names.model import ENDPOINT_ROLES, FileFacts, Language, Role, Span, replaced
 from roslint_names.moves import UnplacedError, moved_spans
 from roslint_names.workspace.build import (
     _has_endpoints,
@@ -135,7 +135,7 @@ def for_patching(graph: Graph) -> Graph:
     read. What the CLI keeps of a build (``same_facts.KeptGraph``): a third of its bytes,
     loaded by every run that patches it."""
     nodes = tuple(
-        replace(node, code_parameters=None, parameter_settings=(), parameter_files=())
+        replaced(node, code_parameters=None, parameter_settings=(), parameter_files=())
         for node in graph.nodes
     )
     return replace(
@@ -169,7 +169,7 @@ def with_parameters(graph: Graph, part: ParameterPart) -> Graph | None:
     if len(part.nodes) != len(graph.nodes):
         return None
     nodes = tuple(
-        replace(node, code_parameters=code, parameter_settings=settings, parameter_files=files)
+        replaced(node, code_parameters=code, parameter_settings=settings, parameter_files=files)
         for node, (code, settings, files) in zip(graph.nodes, part.nodes, strict=True)
     )
     return replace(
@@ -264,7 +264,7 @@ def _patched(
         names = _resolve_code(code, instance, node.remaps, node.root, node.reach)
         if names.parameters != node.parameters and not declaring:
             return None
-        renewed[id(node)] = replace(
+        renewed[id(node)] = replaced(
             node,
             uses=names.uses,
             uses_complete=names.complete,
