@@ -225,11 +225,11 @@ def _patched(
         unnamed_of[launched.root].extend(started.unnamed)
     # Code a launch file starts no more is a program of its own again, and code started
     # now is one no more.
-    was = parts.programs.unlaunched(_launched(parts, parts.roots, {}))
+    was = set(parts.programs.unlaunched(_launched(parts, parts.roots, {})))
     now = parts.programs.unlaunched(_launched(parts, roots, sources_of))
-    stopped = set(was) - set(now)
+    stopped = was - set(now)
     for sources in now:
-        if sources not in stopped and sources not in was:
+        if sources not in was:  # a set: every program of its own is looked up in it
             node, own_endpoints = _unlaunched_instance(index, sources)
             nodes.append(node)
             endpoints.extend(own_endpoints)
