@@ -1005,7 +1005,6 @@ class _GraphPatch:
             )
         if patched is None:
             return None
-        reported = {display: index for display, index in slots.items() if index < replay.reported}
         # A rule that reads no name the patch changed has the built graph's findings, the
         # places of the edited files moved (only places can have: its parameter uses');
         # none where launch trees were walked again.
@@ -1017,11 +1016,10 @@ class _GraphPatch:
         fresh = [rule for rule in self.rules if rule.code not in kept_codes]
         by_rule: dict[int, dict[str, list[Finding]]] = {}
         for path, items in graph_findings(patched, fresh, self.settings).items():
-            if path in reported:
+            at = slots.get(path)
+            if at is not None and at < replay.reported:
                 for rule, item in items:
-                    by_rule.setdefault(reported[path], {}).setdefault(rule.code, []).append(
-                        item.finding
-                    )
+                    by_rule.setdefault(at, {}).setdefault(rule.code, []).append(item.finding)
         for index, built in kept_found.items():
             for code, finding in built:
                 by_rule.setdefault(index, {}).setdefault(code, []).append(finding)
