@@ -77,15 +77,16 @@ void bench_parameter(rclcpp::Node & node)
 # A setting of a ROS 2 parameter file (put below its ``ros__parameters:``, indented as
 # the settings there are).
 _NEW_SETTING = b"bench_setting: 1\n"
+_NEW_DEPENDENCY = b"find_package(bench_probe REQUIRED)\n"
 # An edit the graph is built again for: a class of the code derives from another.
 _NEW_CLASS = b"""
 class BenchProbe : public rclcpp::Node
 {
 };
 """
-# One edit each, a comment but the last two: at the end, where it moves no name, or at the
-# start, where it moves every name of the file; so that the run measures what an edit
-# costs, not what a new finding does. No word of a suppression in them
+# One edit each, in this order. The first three are comments: at the end, where they move
+# no name, or at the start, where it moves every name of the file; so that the run
+# measures what an edit costs, not what a new finding does. No word of a suppression in them
 # (``suppress``'s markers: the tool's name, NOLINT, noqa): a file holding one is read by
 # every run, a fact of its own.
 _EDITS = {
@@ -101,6 +102,9 @@ _EDITS = {
     "edit_graph": ((".launch.xml", ".launch"), "<node", _NEW_NODE, "inside"),
     "edit_settings": ((".yaml",), "ros__parameters:", _NEW_SETTING, "below"),
     "edit_parameter": ((".cpp",), "create_publisher", _NEW_PARAMETER, "end"),
+    # A dependency found at the top of a package's build: every target moves, what it
+    # compiles does not.
+    "edit_cmake": (("CMakeLists.txt",), "add_executable(", _NEW_DEPENDENCY, "start"),
     "edit_build": ((".cpp",), "create_publisher", _NEW_CLASS, "end"),
 }
 
