@@ -291,7 +291,8 @@ class Dispatcher(Generic[Item, Result]):
                 chunk = self._inflight.pop(future)
                 if error is not None:
                     raise error  # a worker's exception, as in-process work would raise it
-                results.extend(self._received(future.result(), chunk))
+                received = _unpickled(future.result())
+                results.extend(self._unreceived(chunk) if received is None else received)
                 for number, _ in chunk:
                     self._strikes.pop(number, None)
             if broken:
@@ -339,10 +340,11 @@ class Dispatcher(Generic[Item, Result]):
         results: list[Result] = []
         again: list[tuple[int, Item]] = []
         for future, chunk in list(self._inflight.items()):
-            if future.exception() is None:
-                results.extend(self._received(future.result(), chunk))
-            else:
+            received = None if future.exception() is not None else _unpickled(future.result())
+            if received is None:
                 again.extend(chunk)
+            else:
+                results.extend(received)
         self._inflight.clear()
         if not any(number in self._stopped for number in busy):
             for number in busy:  # no kill of ours: one of them crashed its worker
@@ -373,23 +375,18 @@ class Dispatcher(Generic[Item, Result]):
                 self._send(rest[start : start + self._chunk_items])
         return results
 
-    def _received(self, blob: bytes, chunk: list[tuple[int, Item]]) -> list[Result]:
-        """A chunk's results, as its worker pickled them (``_run``). Where they cannot be
-        unpickled here, each item is sent again alone (to a fresh pool, if this one is
-        gone), and an item alone given up: left to the pool's own unpickling, the pool
-        broke with no worker busy, and every chunk it held was sent again, for ever."""
-        try:
-            return list(pickle.loads(blob))
-        except Exception:
-            if len(chunk) > 1:
-                if self._executor is None:
-                    self._start()
-                for entry in chunk:
-                    self._send([entry])
-                return []
-            if self._give_up is None:
-                raise
-            return [self._give_up(chunk[0][1], Stopped(None, unreceived=True))]
+    def _unreceived(self, chunk: list[tuple[int, Item]]) -> list[Result]:
+        """A chunk whose results could not be unpickled here (``_unpickled``): each item
+        sent again alone, and an item alone given up. Left to the pool's own unpickling,
+        such a result broke the pool with no worker busy, and every chunk it held was
+        sent again, for ever."""
+        if len(chunk) > 1:
+            for entry in chunk:
+                self._send([entry])
+            return []
+        if self._give_up is None:
+            raise RuntimeError("a worker's results could not be received")
+        return [self._give_up(chunk[0][1], Stopped(None, unreceived=True))]
 
     def _kill_workers(self) -> None:
         for pid, _, _ in self._busy():
@@ -461,6 +458,15 @@ def _parent_death_signal(signum: int) -> bool:
         return int(libc.prctl(pr_set_pdeathsig, signum, 0, 0, 0)) == 0
     except (OSError, AttributeError):
         return False
+
+
+def _unpickled(blob: bytes) -> list[Any] | None:
+    """A chunk's results as its worker pickled them (``_run``); None where they cannot
+    be unpickled here."""
+    try:
+        return list(pickle.loads(blob))
+    except Exception:
+        return None
 
 
 def _run(chunk: list[tuple[int, Any]]) -> bytes:
