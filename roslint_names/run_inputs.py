@@ -123,19 +123,18 @@ class RunInputs:
 
     def key_first(self) -> str | None:
         """The run's key before anything is extracted, when an earlier run of this
-        workspace left its digests (only then can a stored result match)."""
+        workspace left its keying or its digests (only then can a stored result match)."""
         keying = self._keying
         if keying is not None:
             self._carry(keying)
         elif not self._digests.remembered():
             return None
         else:
-            maximum = self._settings.max_file_size
-            taken: Sequence[Status | Untaken | None] = self._statuses or [UNTAKEN] * len(
-                self._checked
-            )
+            checked = len(self._checked)
+            taken: Sequence[Status | Untaken | None] = self._statuses or [UNTAKEN] * checked
             paths = [source.location for source in self._checked]
-            summaries = self._digests.summaries(paths, maximum, taken[: len(paths)])
+            maximum = self._settings.max_file_size
+            summaries = self._digests.summaries(paths, maximum, taken[:checked])
             self._tags = [
                 self._tag(source, *summary)
                 for source, summary in zip(self._checked, summaries, strict=True)
@@ -152,22 +151,17 @@ class RunInputs:
         (``ContentDigests.carry``: no digest of the others is loaded)."""
         self._digests.carry()
         self._carried = True
-        kept_statuses, maximum = keying.file_statuses, self._settings.max_file_size
+        checked, maximum = len(self._checked), self._settings.max_file_size
         self._tags = list(keying.tags)
-        self._contents = [None] * len(self._checked)
-        statuses = self._statuses
-        changed = [
-            index
-            for index, (status, kept) in enumerate(zip(statuses, kept_statuses, strict=False))
-            if status is None or status != kept
-        ]
-        for index in changed:
-            if index >= len(self._checked):
-                break  # the ``.srv`` files' statuses follow the checked files'
-            source = self._checked[index]
-            summary = self._digests.summary(source.location, maximum, statuses[index])
-            self._tags[index] = self._tag(source, *summary)
-            self._contents[index] = summary[0]
+        self._contents = [None] * checked
+        # The ``.srv`` files' statuses follow the checked files' (``_kept_place``).
+        pairs = zip(self._statuses[:checked], keying.file_statuses, strict=False)
+        for index, (status, kept) in enumerate(pairs):
+            if status is None or status != kept:
+                source = self._checked[index]
+                summary = self._digests.summary(source.location, maximum, status)
+                self._tags[index] = self._tag(source, *summary)
+                self._contents[index] = summary[0]
 
     def known_key(self, index: int) -> str | None:
         """The facts key of checked file ``index`` as ``key_first`` found it, if any."""
