@@ -298,7 +298,7 @@ def _lint(
     verdicts: dict[bytes, clean_files.Verdict] = {}
     if cache is not None and inputs is not None:
         clean_key = clean_files.memo_key(
-            settings, registry, enabled, plugin_names, packages.manifests
+            settings, registry, enabled, plugin_names, packages.manifests.keys()
         )
         clean, verdicts = clean_files.loaded(cache.load_checks(clean_key))
     known_inputs = inputs
