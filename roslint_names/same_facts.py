@@ -13,8 +13,8 @@ so judged), the graph rules' own findings per file, and what the run gathered fr
 file's facts (``RunWide``: the service types, the names the launch files wire, the build
 files' compiled sources, the fixtures tests load expecting them refused). It is keyed by
 all the run's key holds but the facts keys (``RunInputs``'s place key) and by the
-per-file checks' key (``clean_files.memo_key``: settings, rules, plugin names,
-manifests).
+per-file checks' key (``clean_files.memo_key``: settings, rules, plugin names, where
+the manifests are; the place key holds what they say).
 
 A later run with that key whose facts keys differ for some files (``edited``) takes it
 when each of those files (``moves``):
