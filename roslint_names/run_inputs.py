@@ -302,14 +302,11 @@ class RunInputs:
 
     def _kept_place(self) -> str | None:
         """The kept place, when no ``.srv`` file changed since (the packages did not, or
-        their keying would not have been taken up)."""
+        their keying would not have been taken up). The run is carried (``_carry``): the
+        ``.srv`` files' digests stand as kept, none is read (1,024 files at 8 copies)."""
         keying, checked = self._keying, len(self._checked)
         if keying is None or self._statuses[checked:] != keying.file_statuses[checked:]:
             return None
-        # Noted as keyed by the statuses taken, their digests kept for the next run.
-        services = zip(self._status_files[checked:], self._statuses[checked:], strict=True)
-        for path, status in services:
-            self._digests.summary(path, MAX_DEFINITION_BYTES, status)
         return keying.place_key
 
     def _place(self) -> str:

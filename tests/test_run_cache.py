@@ -749,10 +749,12 @@ def test_runs_after_edits_load_no_digest_and_journal_those_they_read(
     for module in range(12):  # more files than the edits change 1/4 of (``journal``)
         for name in ("util.cpp", "util.hpp"):
             write(workspace, f"src/robot_base/src/module{module}/{name}", "int helper();\n")
+    # A ``.srv`` file's digest is carried as the checked files' are, not read again.
+    write(workspace, "src/robot_base/srv/CmdVel.srv", "---\nbool ok\n")
     age_all(workspace)
     check()
     first = after(_edit_code)
-    assert loads == [] and rekeyed[0] == ["driver.cpp"]
+    assert loads == [] and rekeyed[0] == ["driver.cpp"] and reads == ["driver.cpp"]
     assert first.stdout == check("--no-cache").stdout
     second = after(_edit_launch)
     assert loads == [] and rekeyed[0] == ["base.launch"]
