@@ -12,9 +12,9 @@ that names another base. A removed entry is journaled as None. The journal grows
 holds a quarter as many entries as the whole, then the whole is written as a new base.
 Each file starts with a head that gives the base's token and its count of entries, so
 that a run which knows every entry it did not learn stands journals what it learned
-without loading the base (``extend``: 0.2 s of a run after an edit at 8 copies). Both
-files are written atomically through the facts cache and read with the caller's
-unpickler; one that cannot be read is none.
+without loading the base (``extend``: ``digests`` after an edit, 81,000 entries not
+loaded nor compared at 8 copies). Both files are written atomically through the facts
+cache and read with the caller's unpickler; one that cannot be read is none.
 """
 
 from __future__ import annotations

@@ -471,7 +471,7 @@ def _unpickled(blob: bytes) -> list[Any] | None:
 
 def _run(chunk: list[tuple[int, Any]]) -> bytes:
     """The chunk's results, pickled here: the main process unpickles them itself
-    (``Dispatcher._received``), where a failure names the chunk."""
+    (``_unpickled``), where a failure names the chunk (``Dispatcher._unreceived``)."""
     assert _WORK is not None, "worker used before its initializer ran"
     return pickle.dumps(_WORK(_marked(chunk)), protocol=pickle.HIGHEST_PROTOCOL)
 
