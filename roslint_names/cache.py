@@ -110,6 +110,10 @@ _LAUNCH_PARTS = "launch-parts"
 # (``workspace.parameter_patch``)
 _CODE_PARAMETERS = "code-parameters"
 GRAPHS_KEPT = 2  # tens of MB each in a large workspace: the last file sets only
+# The last run of each shape that kept a replay, and where a renumbered run's graph is
+# (``shifts``): one per recent (file set, settings) of each checkout, as replays.
+_BASES = "bases"
+_GRAPH_MOVES = "graph-moves"
 _LOG_BATCH = 512  # lines buffered before an append; and every batch of extraction ends one
 _TAG_NAME = "CACHEDIR.TAG"
 _CACHEDIR_TAG = (
@@ -331,10 +335,32 @@ class FactsCache:
         """The value ``store_graph`` kept under ``key``, or None (absent or corrupt)."""
         return self._load_entry(_GRAPHS, key, _GraphUnpickler)
 
+    def holds_graph(self, key: str) -> bool:
+        """Whether a graph is kept under ``key`` (whether it reads back is ``load_graph``'s)."""
+        return os.path.isfile(os.path.join(self.directory, _GRAPHS, key))
+
     def store_graph(self, key: str, value: object) -> None:
         """Keep a built graph (``same_facts.KeptGraph``); forget all but the
         ``GRAPHS_KEPT`` most recently used."""
         self.write_newest(self.directory / _GRAPHS / key, _encoded(value), GRAPHS_KEPT)
+
+    def load_base(self, key: str) -> object | None:
+        """The value ``store_base`` kept under ``key``, or None."""
+        return self._load_entry(_BASES, key)
+
+    def store_base(self, key: str, value: object) -> None:
+        """Keep the last run of a shape (``shifts.Base``); forget the least recently used
+        beyond ``REPLAYS_KEPT``."""
+        self.write_newest(self.directory / _BASES / key, _encoded(value), REPLAYS_KEPT)
+
+    def load_graph_move(self, key: str) -> object | None:
+        """The value ``store_graph_move`` kept under ``key``, or None."""
+        return self._load_entry(_GRAPH_MOVES, key)
+
+    def store_graph_move(self, key: str, value: object) -> None:
+        """Keep where a renumbered run's graph is (``shifts.GraphMove``); forget the
+        least recently used beyond ``REPLAYS_KEPT``."""
+        self.write_newest(self.directory / _GRAPH_MOVES / key, _encoded(value), REPLAYS_KEPT)
 
     def load_launch_parts(self, key: str) -> object | None:
         """The value ``store_launch_parts`` kept under ``key``, or None."""

@@ -15,7 +15,7 @@ from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, NamedTuple
 
-from . import clean_files, same_facts
+from . import clean_files, same_facts, shifts
 from .collection import kept_for_the_run
 from .config import Settings, enabled_codes, ignored_for_path, ros1_python2, test_code_codes
 from .decisions import one_per_decision
@@ -54,7 +54,7 @@ from .moves import Moves, UnplacedError, moved_finding
 from .reading import decode_for_display, read_file
 from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
-from .run_inputs import RunInputs, is_facts_key
+from .run_inputs import ADDED, RunInputs, is_facts_key
 from .same_facts import KeptGraph, KeptLaunch, Replay, RunWide
 from .suppress import Suppression, find_suppressions, is_our_code
 from .symbols import PackageConstants, uses_constants
@@ -349,6 +349,16 @@ def _lint(
     kept_at = replay_key()
     raw_replay = None if kept_at is None or cache is None else cache.load_replay(kept_at)
     last_replay = same_facts.loaded(raw_replay, len(files), reported)
+    # Where the graph a patch starts from is kept: under the replay's key, or the key of
+    # the run whose replay this one's files were renumbered from (``shifts``).
+    graph_place: _GraphPlace | None = None if kept_at is None else _GraphPlace(kept_at)
+    shifted: _Shift | None = None
+    if last_replay is None and kept_at is not None and not context and focus is None:
+        assert cache is not None and inputs is not None and clean_key is not None
+        shifted = _shifted(cache, inputs, clean_key, files)
+        if shifted is not None:
+            last_replay = shifted.replay
+            graph_place = _GraphPlace(shifted.replay_at, shifted.renumbering)
     graph_found: Mapping[int, tuple[tuple[str, Finding], ...]] = {}
     specialised: frozenset[str] = frozenset()
     extract = partial(extract_batch, cache, checker=judge)
@@ -380,13 +390,13 @@ def _lint(
             max_file_size=settings.max_file_size,
         )
         patch = None
-        if cache is not None and inputs is not None and kept_at is not None:
+        if cache is not None and inputs is not None and graph_place is not None:
             patch = _GraphPatch(
                 gathered,
                 checks,
                 inputs,
                 cache,
-                kept_at,
+                graph_place,
                 graph_rules,
                 settings,
                 specialiser,
@@ -488,6 +498,16 @@ def _lint(
             cache.store_run(_focused(run_key, focus), kept)
             if kept_replay is not None and kept_at is not None:
                 cache.store_replay(kept_at, kept_replay.stored())
+                _keep_base(cache, inputs, clean_key, kept_at, files=files, reported=reported)
+                # A graph this run's files were renumbered to, not built: where it is.
+                moved = (
+                    None
+                    if graph is not None or shifted is None or graph_place is None
+                    else graph_place.resolved(cache)
+                )
+                if moved is not None and moved.renumbering is not None:
+                    move = shifts.GraphMove(moved.key, moved.renumbering)
+                    cache.store_graph_move(kept_at, move.stored())
                 # What a later run over the workspace patches (``workspace.patch``); not
                 # a run over some files with the rest as context (one that names a file
                 # its workspace's walk does not find), whose set is seldom run again.
@@ -567,6 +587,8 @@ class _FileChecks:
     _wired: set[str] = field(default_factory=set)  # absolute names launch files remap to
     _rejected: dict[str, set[str]] = field(default_factory=dict)  # package: fixture names
     _built: BuiltSources = field(default_factory=BuiltSources)
+    _looked_up: set[str] = field(default_factory=set)  # ``RunWide``'s
+    _named_sources: set[str] = field(default_factory=set)
     _done: int = 0
 
     def __post_init__(self) -> None:
@@ -591,6 +613,10 @@ class _FileChecks:
             self._rejected.setdefault(package, set()).update(facts.rejected_fixtures)
         if facts.compiled is not None or facts.included_sources:
             self._built.add(facts, self.package_of(index))
+        if facts.launch_nodes or facts.includes or facts.parameter_loads or facts.executables:
+            looked_up, named = shifts.lookups(facts)
+            self._looked_up |= looked_up
+            self._named_sources |= named
         symbols = uses_constants(facts)
         if index < self.reported:
             if waits_for_the_run(facts, self.judge.wiring):
@@ -753,6 +779,8 @@ class _FileChecks:
             frozenset(self._wired),
             self._built.given(),
             {package: frozenset(names) for package, names in self._rejected.items()},
+            frozenset(self._looked_up),
+            frozenset(self._named_sources),
         )
 
     def resume(self, replay: Replay, edited: Sequence[int]) -> None:
@@ -771,6 +799,8 @@ class _FileChecks:
         for facts, package in run_wide.built:
             self._built.add(facts, package)
         self._rejected = {package: set(names) for package, names in run_wide.rejected.items()}
+        self._looked_up |= run_wide.looked_up
+        self._named_sources |= run_wide.named_sources
 
     def facts_of(self, index: int) -> FileFacts | None:
         """File ``index``'s facts, when they were kept and it arrived."""
@@ -812,6 +842,102 @@ class _FileChecks:
 
     def _check_text(self, facts: FileFacts, text: str, contexts: _Contexts) -> Verdict:
         return self.judge.check_text(facts, text, contexts)
+
+
+class _Shift(NamedTuple):
+    """A run over the files of an earlier run, some added or removed (``shifts``): where
+    that run's replay is kept, how the files map, and the replay renumbered."""
+
+    replay_at: str
+    renumbering: shifts.Renumbering
+    replay: Replay
+
+
+def _shifted(
+    cache: FactsCache, inputs: RunInputs, clean_key: str, files: Sequence[SourceFile]
+) -> _Shift | None:
+    """The replay of the last run of this run's shape (``shifts.Base``), renumbered to its
+    files, where each file it had and this run has not says nothing and is found by no
+    name (its findings go with it); each added file is asked the same once its facts are
+    known (``_replay_moved``)."""
+    shape = inputs.shape_key
+    if shape is None:
+        return None
+    base = shifts.loaded_base(cache.load_base(same_facts.key(shape, clean_key)))
+    if base is None:
+        return None
+    renumbering = shifts.renumbering(
+        base.displays, base.reported, [source.display for source in files]
+    )
+    if renumbering is None:
+        return None
+    earlier = same_facts.loaded(
+        cache.load_replay(base.replay_at), len(base.displays), base.reported
+    )
+    if earlier is None:
+        return None
+    wide = earlier.run_wide
+    for index, display in renumbering.removed:
+        tag = earlier.tags[index]
+        facts = cache.load(tag, display) if is_facts_key(tag) else None
+        if facts is None or not shifts.adds_nothing(facts, wide.looked_up, wide.named_sources):
+            return None
+    replay = earlier.renumbered(renumbering, len(files))
+    return None if replay is None else _Shift(base.replay_at, renumbering, replay)
+
+
+def _keep_base(
+    cache: FactsCache,
+    inputs: RunInputs,
+    clean_key: str | None,
+    kept_at: str,
+    *,
+    files: Sequence[SourceFile],
+    reported: int,
+) -> None:
+    """Keep the run that kept its replay at ``kept_at`` as the last of its shape, where
+    the run was keyed by its place (a run that took up the last run's keying is over the
+    same files: its base stands)."""
+    if inputs.shape_key is None or clean_key is None:
+        return
+    displays = tuple(source.display for source in files)
+    base = shifts.Base(kept_at, displays, reported)
+    cache.store_base(same_facts.key(inputs.shape_key, clean_key), base.stored())
+
+
+@dataclass(frozen=True)
+class _GraphPlace:
+    """Where the graph a patch starts from is kept (``key``), and how this run's files
+    map to that run's (None: they are its files)."""
+
+    key: str
+    renumbering: shifts.Renumbering | None = None
+
+    def resolved(self, cache: FactsCache) -> _GraphPlace | None:
+        """Where a build kept the graph: ``key``, or where the run kept under it says
+        (``shifts.GraphMove``), the renumberings joined; None where neither is."""
+        if cache.holds_graph(self.key):
+            return self
+        move = shifts.loaded_move(cache.load_graph_move(self.key))
+        if move is None:
+            return None
+        renumbering = move.renumbering
+        if self.renumbering is not None:
+            renumbering = self.renumbering.after(renumbering)
+        return _GraphPlace(move.graph_at, renumbering)
+
+    def graph(self, cache: FactsCache, files: int, reported: int) -> KeptGraph | None:
+        """The kept graph over ``files`` checked files, ``reported`` of them reported
+        (renumbered to them); None where it is not kept or does not read back."""
+        if self.renumbering is None:
+            return same_facts.loaded_graph(cache.load_graph(self.key), files, reported)
+        renumbering = self.renumbering
+        if len(renumbering.previous) != files:
+            return None
+        built = same_facts.loaded_graph(
+            cache.load_graph(self.key), renumbering.before, renumbering.reported_before
+        )
+        return None if built is None else built.renumbered(renumbering, reported)
 
 
 class _Replayed(NamedTuple):
@@ -881,7 +1007,7 @@ class _GraphPatch:
     checks: _FileChecks
     inputs: RunInputs
     cache: FactsCache
-    stored_at: str  # the replay's key: its graph is kept under it
+    place: _GraphPlace  # where the last build's graph is kept, by the replay's
     rules: Sequence[Rule]
     settings: Settings
     # Launch files under their includers' arguments, for the trees walked again
@@ -889,15 +1015,32 @@ class _GraphPatch:
 
     def __call__(self, replay: Replay, arrived: Sequence[_Arrived]) -> _Replayed | None:
         files = self.gathered.files
-        stored = same_facts.loaded_graph(
-            self.cache.load_graph(self.stored_at), len(files), replay.reported
-        )
+        place = self.place.resolved(self.cache)
+        stored = None if place is None else place.graph(self.cache, len(files), replay.reported)
         codes = {rule.code for rule in self.rules}
-        if stored is None or not same_facts.codes_of(replay.graph, stored.found) <= codes:
+        if (
+            place is None
+            or stored is None
+            or not same_facts.codes_of(replay.graph, stored.found) <= codes
+        ):
             return None
         built_from, graph = stored.tags, stored.graph
         arrived_facts = {index: facts for index, facts, _, _ in arrived}
         loaded: dict[int, FileFacts | None] = {}
+        # Files the build did not have, or had and the run has not, say nothing and are
+        # found by no name, the edited files' names too (``shifts``): then the build's
+        # graph is theirs.
+        wide = replay.run_wide
+        looked_up, named = set(wide.looked_up), set(wide.named_sources)
+        for edited in arrived_facts.values():
+            more = shifts.lookups(edited)
+            looked_up |= more[0]
+            named |= more[1]
+        found_by = (frozenset(looked_up), frozenset(named))
+        for display, tag in stored.gone:
+            gone = self.cache.load(tag, display) if is_facts_key(tag) else None
+            if gone is None or not shifts.adds_nothing(gone, *found_by):
+                return None
 
         def facts_at(index: int) -> FileFacts | None:
             if index in arrived_facts:
@@ -918,6 +1061,11 @@ class _GraphPatch:
             display = files[index].display
             if display in replay.specialised:
                 return None  # the graph read its bytes under an includer's arguments
+            if then == ADDED:
+                added = facts_at(index) if is_facts_key(now) else None
+                if added is None or not shifts.adds_nothing(added, *found_by):
+                    return None
+                continue
             before = self.cache.load(then, display) if is_facts_key(then) else None
             facts = facts_at(index) if is_facts_key(now) else None
             if before is None or facts is None:
@@ -949,7 +1097,7 @@ class _GraphPatch:
         known: set[str] = set()  # the files the build had facts of (a skipped one has none)
         if tree_edits or declaring:
             kept = same_facts.loaded_launch(
-                self.cache.load_launch_parts(self.stored_at), stored.tags
+                self.cache.load_launch_parts(place.key), stored.built_from
             )
             whole = None if kept is None else with_parameters(graph, kept.parameters)
             if kept is None or whole is None:
@@ -985,7 +1133,7 @@ class _GraphPatch:
         if patched is not None and declaring:
             assert kept is not None
             kept_code = same_facts.loaded_code(
-                self.cache.load_code_parameters(self.stored_at), stored.tags
+                self.cache.load_code_parameters(place.key), stored.built_from
             )
             patched = (
                 None
@@ -1130,9 +1278,16 @@ def _replay_moved(
     if not same_facts.codes_of(replay.graph) <= rules.keys():
         return None
     moves: list[Moves] = []
+    wide = replay.run_wide
     for index, facts, _, _ in arrived:
         old = replay.tags[index]
-        if inputs.facts_key(index) is None or not is_facts_key(old):
+        if inputs.facts_key(index) is None:
+            return None
+        if old == ADDED:  # a file the replay's run did not have (``shifts``)
+            if not shifts.adds_nothing(facts, wide.looked_up, wide.named_sources):
+                return None
+            continue
+        if not is_facts_key(old):
             return None
         display = files[index].display
         move = replay.moves(display, cache.load(old, display), facts)

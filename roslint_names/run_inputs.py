@@ -53,11 +53,13 @@ if TYPE_CHECKING:
     from .cache import FactsCache
 
 _SKIPPED, _UNREADABLE = "skipped: ", "unreadable: "  # tags of files that have no facts key
+# The tag of a file an earlier run did not have, in its replay renumbered (``shifts``)
+ADDED = "added: not in the earlier run"
 
 
 def is_facts_key(tag: str) -> bool:
     """Whether a checked file's tag (``RunInputs.tags``) is a facts key, not why it has none."""
-    return not tag.startswith((_SKIPPED, _UNREADABLE))
+    return not tag.startswith((_SKIPPED, _UNREADABLE, ADDED))
 
 
 class RunInputs:
@@ -99,6 +101,10 @@ class RunInputs:
         self._statuses: list[Status | None] = []  # of ``_status_files``, as first taken
         self.changed = False  # a file read differs from what the run was keyed by
         self.place_key: str | None = None  # once keyed: ``_place``
+        # A run that reports every file it checks, keyed by ``_place``: its place but for
+        # which files it checks (``shifts``: an earlier run of that shape is this one but
+        # for some files added or removed).
+        self.shape_key: str | None = None
         self._keying: Keying | None = None  # an earlier run's, taken up (``unchanged``)
         self._carried = False  # keyed from it (``_carry``)
 
@@ -314,7 +320,8 @@ class RunInputs:
         reported how, under which tool and settings, and what the packages and the
         service definitions say (``same_facts`` keys a run by it and the facts apart)."""
         digest = hashlib.blake2b(digest_size=20)
-        digest.update(_text_bytes(f"{self._fingerprints()}\0{self._reported}\0"))
+        fingerprints = self._fingerprints()
+        digest.update(_text_bytes(f"{fingerprints}\0{self._reported}\0"))
         # The bytes of one line per file, hashed in one update: the same digest as an
         # update per line, without 77,000 calls.
         lines = [f"{_where(source)}\n" for source in self._checked]
@@ -328,9 +335,21 @@ class RunInputs:
             if source.language is Language.SERVICE_DEFINITION:  # RN403 reads its text too
                 content = self._digests.summary(source.location, MAX_DEFINITION_BYTES)[0]
                 lines.append(f"{content}\n")
-        digest.update(_text_bytes("".join(lines)))
-        for manifest, content in sorted(self._packages.manifests.items()):  # path, digest
-            digest.update(_text_bytes(f"{manifest}\0{content}\n"))
+        rest = _text_bytes("".join(lines))
+        manifests = _text_bytes(
+            "".join(
+                f"{manifest}\0{content}\n"  # path, digest
+                for manifest, content in sorted(self._packages.manifests.items())
+            )
+        )
+        digest.update(rest)
+        digest.update(manifests)
+        if self._reported == len(self._checked):
+            shape = hashlib.blake2b(digest_size=20)
+            shape.update(_text_bytes(f"{fingerprints}\0shape\0"))
+            shape.update(rest)
+            shape.update(manifests)
+            self.shape_key = shape.hexdigest()
         return digest.hexdigest()
 
 

@@ -49,6 +49,8 @@ from dataclasses import dataclass, replace
 
 from .model import CompiledSources, Diagnostic, FileFacts, Finding, Generation
 from .moves import Moves, UnplacedError, moved_diagnostic, moved_finding, moved_spans
+from .run_inputs import ADDED
+from .shifts import Renumbering
 from .symbols import uses_constants
 from .wiring import wired_by
 from .workspace.graph import Graph
@@ -67,6 +69,11 @@ class RunWide:
     wired: frozenset[str]  # absolute names the launch files wire
     built: Built  # the build files' compiled sources, and the sources C++ files include
     rejected: Mapping[str, frozenset[str]]  # package: the fixture names its tests refuse
+    # Where the run finds a file by its name (``shifts``): the executables launch files
+    # run and the names of the files they include and hand nodes; the display paths of
+    # the sources build files' executables name.
+    looked_up: frozenset[str] = frozenset()
+    named_sources: frozenset[str] = frozenset()
 
 
 @dataclass(frozen=True)
@@ -158,11 +165,33 @@ class Replay:
             self.skipped,
             self.unbuilt,
             self.rostest_named,
+            tuple(sorted(self.run_wide.looked_up)),
+            tuple(sorted(self.run_wide.named_sources)),
+        )
+
+    def renumbered(self, renumbering: Renumbering, reported: int) -> Replay | None:
+        """This replay of an earlier run over the files of a run renumbered from it
+        (``shifts``), ``reported`` of them reported: an added file's tag is ``ADDED``,
+        a removed file's findings go with it. None where one held a graph finding."""
+        then_of = renumbering.then_of(reported)
+        gone = {index for index, _ in renumbering.removed}
+        if gone & self.graph.keys():
+            return None
+        return Replay(
+            tuple(ADDED if then < 0 else self.tags[then] for then in renumbering.previous),
+            reported,
+            {then_of[index]: found for index, found in self.found.items() if index in then_of},
+            {then_of[index]: found for index, found in self.graph.items() if index in then_of},
+            self.specialised,
+            self.run_wide,
+            self.skipped,
+            tuple(sorted(then_of[index] for index in self.unbuilt if index in then_of)),
+            tuple(sorted(then_of[index] for index in self.rostest_named if index in then_of)),
         )
 
 
-_FORMAT = "replay 3"
-_FIELDS = 13  # of ``stored``
+_FORMAT = "replay 4"
+_FIELDS = 15  # of ``stored``
 
 
 def key(place_key: str, checks_key: str) -> str:
@@ -176,7 +205,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
     if not isinstance(value, tuple) or len(value) != _FIELDS:
         return None
     form, tags, kept_reported, found, graph, specialised, types, wired = value[:8]
-    built, rejected, skipped, unbuilt, rostest_named = value[8:]
+    built, rejected, skipped, unbuilt, rostest_named, looked_up, named_sources = value[8:]
     if form != _FORMAT or kept_reported != reported or not _strings(tags) or len(tags) != files:
         return None
     try:
@@ -205,6 +234,8 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         )
         and _strings(specialised)
         and _strings(wired)
+        and _strings(looked_up)
+        and _strings(named_sources)
         and _indices(unbuilt, reported)
         and _indices(rostest_named, reported)
         and all(isinstance(generation, Generation | None) for generation, _ in type_pairs)
@@ -216,7 +247,14 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         found_map,
         graph_map,
         frozenset(specialised),
-        RunWide(type_pairs, frozenset(wired), built_pairs, rejected_map),
+        RunWide(
+            type_pairs,
+            frozenset(wired),
+            built_pairs,
+            rejected_map,
+            frozenset(looked_up),
+            frozenset(named_sources),
+        ),
         skipped_pairs,
         unbuilt,
         rostest_named,
@@ -246,10 +284,34 @@ class KeptGraph:
     # The workspace's packages as the build had them: the same where the graph can be
     # patched (no manifest or ``.srv`` file changed), and gathered from every file else.
     packages: tuple[Package, ...]
+    # A graph built over an earlier file list, renumbered (``shifts.GraphMove``): the
+    # facts keys as the build had them (what its launch and code parts are named by), and
+    # the files it had that the run has not, (display path, facts key).
+    built_tags: tuple[str, ...] | None = None
+    gone: tuple[tuple[str, str], ...] = ()
+
+    @property
+    def built_from(self) -> tuple[str, ...]:
+        """The facts keys the graph was built from, in the build's file order."""
+        return self.tags if self.built_tags is None else self.built_tags
 
     def stored(self) -> tuple[object, ...]:
+        assert self.built_tags is None, "a renumbered graph is kept where it was built"
         found = tuple(sorted(self.found.items()))
         return (_GRAPH_FORMAT, self.tags, self.graph, found, self.packages)
+
+    def renumbered(self, renumbering: Renumbering, reported: int) -> KeptGraph:
+        """This graph over the files of a run renumbered from its build's (``shifts``),
+        ``reported`` of them reported: an added file's tag is ``ADDED``."""
+        then_of = renumbering.then_of(reported)
+        return KeptGraph(
+            tuple(ADDED if then < 0 else self.tags[then] for then in renumbering.previous),
+            self.graph,
+            {then_of[index]: found for index, found in self.found.items() if index in then_of},
+            self.packages,
+            self.tags,
+            tuple((display, self.tags[index]) for index, display in renumbering.removed),
+        )
 
 
 def loaded_graph(value: object, files: int, reported: int) -> KeptGraph | None:

@@ -109,13 +109,66 @@ def append(path: Path, text: str) -> None:
     edit(path, path.read_text(encoding="utf-8"), path.read_text(encoding="utf-8") + text)
 
 
+def change(path: Path, old: str | None, new: str | None) -> None:
+    """A step's change: ``old`` None, the file made with ``new``; ``new`` None, the file
+    removed; ``old`` "", ``new`` appended; else ``old`` edited into ``new``."""
+    if old is None:
+        assert new is not None and not path.exists(), path
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(new, encoding="utf-8")
+    elif new is None:
+        path.unlink()
+    elif old:
+        edit(path, old, new)
+    else:
+        append(path, new)
+
+
 LINE_18 = 'get_parameter("dockframe").as_string().c_str());'
 STATUS = 'auto status = create_publisher<std_msgs::msg::String>("fleet_status", 1);'
 RELAY = "src/turtle_bringup/src/odom_relay.cpp"  # ROS 1, launched in robot namespaces
 
-# (file, text before, text after, what the run after it does: ``taken``); "" before:
-# appended.
-STEPS: list[tuple[str, str, str, str]] = [
+# Files added and removed (``shifts``)
+HEADER = f"{FLEET}/include/fleet_bringup/angles.hpp"
+ANGLES = """#pragma once
+
+namespace fleet_bringup
+{
+// An angle in (-pi, pi].
+inline double wrapped(double angle)
+{
+  while (angle > 3.14159265358979) angle -= 6.28318530717959;
+  while (angle <= -3.14159265358979) angle += 6.28318530717959;
+  return angle;
+}
+}  // namespace fleet_bringup
+"""
+MODULE = f"{FLEET}/fleet_bringup/geometry.py"
+GEOMETRY = """\"\"\"Plane geometry for the fleet's poses.\"\"\"
+
+import math
+
+
+def heading(dx: float, dy: float) -> float:
+    return math.atan2(dy, dx)
+"""
+BEACON = f"{FLEET}/fleet_bringup/beacon.py"
+BEACON_NODE = """import rclpy
+from rclpy.node import Node
+from std_msgs.msg import String
+
+
+def main() -> None:
+    rclpy.init()
+    node = Node("beacon")
+    node.create_publisher(String, "fleet_beacon", 10)
+    rclpy.spin(node)
+"""
+# A script named after an executable a launch file runs, which no build file makes
+SMOOTHER_SCRIPT = "src/turtle_bringup/scripts/velocity_smoother.py"
+
+# (file, text before, text after, what the run after it does: ``taken``): ``change``.
+STEPS: list[tuple[str, str | None, str | None, str]] = [
     # A comment below everything: the facts are the same.
     (MONITOR, "", "\n// Reviewed: the pose is republished as is.\n", "replay"),
     # A line above the names moves them, and the other side of the RN401 says where.
@@ -141,12 +194,20 @@ STEPS: list[tuple[str, str, str, str]] = [
     # A dependency found above the executables: their places move, what they compile and
     # what the graph is made of do not (``RunWide.built`` keeps no place).
     (TURTLE_BUILD, "catkin_package()", "find_package(Boost REQUIRED)\ncatkin_package()", "replay"),
+    # A header and a Python module that say nothing the graph reads: the last run's
+    # replay, its files renumbered; the next patch patches the last build's graph.
+    (HEADER, None, ANGLES, "replay"),
+    (MODULE, None, GEOMETRY, "replay"),
+    (MODULE, "import math\n", "import math\n\nTURN = math.pi\n", "replay"),
     # A name changed: the RN401 pair is gone. A parameter file moved since the last
     # build: the tree that hands it to its node is walked again (its settings' places).
     (MONITOR, '"robot_pose"', '"robot_pose_estimate"', "patch"),
     # Since, code alone: the last graph, the monitor's node resolved again.
     (MONITOR, '"robot_pose_estimate", 10);', '"robot_pose", 10);  // as it was', "patch"),
     (MONITOR, "", "\n// Back as it was.\n", "replay"),
+    # Gone again: its files renumbered once more, from the last run's.
+    (MODULE, "", None, "replay"),
+    (HEADER, "", None, "replay"),
     # A publisher added in the middle of the node (the names below it move), and the
     # recorder's subscription renamed to it: a new RN401 pair, the old one gone.
     (MONITOR, "    odom_sub_ =", f"    {STATUS}\n    odom_sub_ =", "patch"),
@@ -159,6 +220,13 @@ STEPS: list[tuple[str, str, str, str]] = [
     # kept graph's, moved (a rule that reads no code name: ``Rule.reads_code_names``).
     (DOCK, "what it does.\n", "what it does.\n    // Renamed.\n", "replay"),
     (DOCK, '"StartDocking"', '"start_docking"', "patch"),
+    # A file that holds a node is a program of its own; one a launch file runs by name
+    # is that node's code (``WorkspaceIndex.sources_of``): each builds.
+    (BEACON, None, BEACON_NODE, "build"),
+    (SMOOTHER_SCRIPT, None, GEOMETRY, "build"),
+    (BEACON, "", None, "build"),
+    # The files of three runs ago, as they were: that run's stored result.
+    (SMOOTHER_SCRIPT, "", None, "stored"),
     # A service of another type: the service types every file is compared with (RN204)
     # change, and the graph is built.
     (
@@ -261,10 +329,7 @@ def test_a_sequence_of_edits_gives_what_a_fresh_run_gives(
     assert cached == fresh
     for relative, old, new, how in STEPS:
         taken.clear()
-        if old:
-            edit(workspace / relative, old, new)
-        else:
-            append(workspace / relative, new)
+        change(workspace / relative, old, new)
         cached, fresh = outputs(run_cli, workspace, cache)
         assert cached == fresh, (relative, old, new)
         # The cached run, then the fresh one (which builds).
@@ -380,7 +445,8 @@ def test_a_damaged_replay_is_a_run_like_any(
     assert replayed
 
 
-EMPTY = ("replay 3", ("k1",), 1, (), (), (), (), (), (), (), (), (), ())  # one file, nothing found
+# One file, nothing found
+EMPTY = ("replay 4", ("k1",), 1, (), (), (), (), (), (), (), (), (), (), (), ())
 
 
 def test_an_empty_stored_replay_reads_back() -> None:
@@ -399,8 +465,9 @@ def test_an_empty_stored_replay_reads_back() -> None:
         ((*EMPTY[:4], ((0, (("RN401", "x"),)),), *EMPTY[5:]), 1),
         ((*EMPTY[:6], ((7, "srv"),), *EMPTY[7:]), 1),  # a generation that is not one
         ((*EMPTY[:8], (("x", None),), *EMPTY[9:]), 1),  # built sources that are not facts
-        ((*EMPTY[:11], (3,), ()), 1),  # an unbuilt file that is not reported
-        ((*EMPTY[:11], ("src/a.cpp",), ()), 1),  # one that is not an index
+        ((*EMPTY[:11], (3,), *EMPTY[12:]), 1),  # an unbuilt file that is not reported
+        ((*EMPTY[:11], ("src/a.cpp",), *EMPTY[12:]), 1),  # one that is not an index
+        ((*EMPTY[:13], (7,), ()), 1),  # a name looked up that is not one
     ],
 )
 def test_a_stored_replay_of_another_shape_is_none(value: object, files: int) -> None:
@@ -420,6 +487,8 @@ def test_a_stored_replay_reads_back_as_it_was() -> None:
             frozenset({"/cmd_vel"}),
             ((built, "src/a"),),
             {"src/a": frozenset({"bad.launch"})},
+            frozenset({"talker", "params.yaml"}),
+            frozenset({"src/a/src/talker.cpp"}),
         ),
         skipped=(("src/a/big.cpp", "too large"),),
         unbuilt=(1,),

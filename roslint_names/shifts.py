@@ -1,0 +1,229 @@
+"""A run over the files of an earlier run, some added or removed: that run's replay and
+kept graph, their files renumbered.
+
+A file added or removed (a header, a Python module) changes the run's file list, so its
+place key (``RunInputs.place_key``): no replay or graph is kept under it, and every such
+run built the graph (8 s at 81,000 files, issue 30). Yet most files' facts are empty for
+the graph: code with no name, no class, no include the build reads. Such a file changes
+nothing the graph or the run's end is made of, but where it is, and that matters in a
+few known ways only (``WorkspaceIndex``):
+
+- a build file's executable may name it as a source (``_existing`` keeps only sources
+  the run holds): ``RunWide.named_sources``;
+- a launch file's node runs it by its name or stem where no build file makes that
+  executable, and an include or a parameter file is found by its name where the path
+  does not hold it (``sources_of``, ``find_in_package``): ``RunWide.looked_up``.
+
+A file that says nothing (``adds_nothing``) and is found by none of those can come or go
+without a graph of its own: the last replay of the same run but for the file list (its
+``Base``, kept by the run's shape: ``RunInputs.shape_key``) stands, its files renumbered
+(``Renumbering``): an added file is an edited one whose facts before were nothing
+(``run_inputs.ADDED``), a removed one is gone with its findings. A graph kept by a build is found
+through the same renumbering (``GraphMove``: the run that shifted keeps where the graph
+is and how its files map), and a patch over it takes an added file that still says
+nothing as unchanged, and asks the same of every file the build had and the run has not.
+"""
+
+from __future__ import annotations
+
+import posixpath
+from array import array
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from .model import FileFacts, InPackage, Language, replaced
+from .workspace.index import join
+
+_SAYING_NOTHING = (Language.CPP, Language.PYTHON)
+
+
+def says_nothing(facts: FileFacts) -> bool:
+    """Whether a file's facts give the graph and the run's end nothing: code whose facts
+    are those of an empty file but for its parse errors and suppression marker (which
+    only its own checks read)."""
+    if facts.language not in _SAYING_NOTHING:
+        return False
+    bare = replaced(facts, parse_errors=(), suppression_marker=False)
+    return bare == FileFacts(facts.path, facts.language, facts.generation)
+
+
+def found_by_name(display: str, looked_up: frozenset[str], named: frozenset[str]) -> bool:
+    """Whether the run finds a file by where it is (module docstring): ``looked_up``, the
+    names the launch files run and include by; ``named``, what the build files'
+    executables name (display paths)."""
+    name = posixpath.basename(display)
+    if name in looked_up or name.rpartition(".")[0] in looked_up or display in named:
+        return True
+    # A console_scripts module ``a/b.py`` may be the package ``a/b/__init__.py``.
+    return name == "__init__.py" and f"{posixpath.dirname(display)}.py" in named
+
+
+def adds_nothing(facts: FileFacts, looked_up: frozenset[str], named: frozenset[str]) -> bool:
+    """Whether a file may come or go without a graph of its own (module docstring)."""
+    return says_nothing(facts) and not found_by_name(facts.path, looked_up, named)
+
+
+def lookups(facts: FileFacts) -> tuple[set[str], set[str]]:
+    """What a file's facts add to ``RunWide.looked_up`` and ``RunWide.named_sources``:
+    a launch file's executables and the names of the files it includes, loads and hands
+    on (an argument's value may be a file the included one loads); a build file's
+    executables' sources, as display paths."""
+    looked_up: set[str] = set()
+    named: set[str] = set()
+    paths: list[str | None] = [load.path for load in facts.parameter_loads]
+    for node in facts.launch_nodes:
+        looked_up.add(node.executable or "")
+        paths += [load.path for load in node.parameter_files]
+    for include in facts.includes:
+        paths.append(include.path)
+        for _, value in include.arguments:
+            paths.append(value.path if isinstance(value, InPackage) else value)
+    looked_up.update(posixpath.basename(path) for path in paths if path)
+    looked_up.discard("")
+    directory = posixpath.dirname(facts.path)
+    for executable in facts.executables:
+        named.update(join(directory, source) for source in executable.sources)
+    return looked_up, named
+
+
+@dataclass(frozen=True)
+class Renumbering:
+    """How the files of a run map to those of an earlier run over nearly the same list:
+    per file of the run, its index in the earlier run (-1: added); the earlier run's
+    file and reported counts; and the earlier run's files the run has not, (index,
+    display path)."""
+
+    previous: tuple[int, ...]
+    before: int
+    reported_before: int
+    removed: tuple[tuple[int, str], ...]
+
+    def then_of(self, reported: int) -> dict[int, int]:
+        """Earlier reported index -> reported index now, for the files of both."""
+        return {
+            then: now
+            for now, then in enumerate(self.previous[:reported])
+            if 0 <= then < self.reported_before
+        }
+
+    def after(self, earlier: Renumbering) -> Renumbering:
+        """This renumbering of the files ``earlier`` renumbered: from its earlier run to
+        this one's run. A file removed since ``earlier``'s run and added again is both
+        added and removed: each side must say nothing."""
+        previous = tuple(earlier.previous[then] if then >= 0 else -1 for then in self.previous)
+        removed = dict(earlier.removed)
+        for then, display in self.removed:
+            first = earlier.previous[then]
+            if first >= 0:
+                removed[first] = display
+        return Renumbering(
+            previous, earlier.before, earlier.reported_before, tuple(sorted(removed.items()))
+        )
+
+    def stored(self) -> tuple[object, ...]:
+        return (
+            array("i", self.previous).tobytes(),
+            self.before,
+            self.reported_before,
+            self.removed,
+        )
+
+
+MOST_CHANGED = 64  # files added and removed in one renumbering: past it, a build pays
+
+
+def renumbering(
+    before: Sequence[str], reported_before: int, now: Sequence[str]
+) -> Renumbering | None:
+    """How the files ``now`` (display paths, in the run's order) map to ``before``; None
+    where a path is twice in either, or more than ``MOST_CHANGED`` files differ."""
+    at = {display: index for index, display in enumerate(before)}
+    if len(at) != len(before) or len(set(now)) != len(now):
+        return None
+    previous = tuple(at.get(display, -1) for display in now)
+    kept = {index for index in previous if index >= 0}
+    removed = tuple((index, display) for index, display in enumerate(before) if index not in kept)
+    if previous.count(-1) + len(removed) > MOST_CHANGED:
+        return None
+    return Renumbering(previous, len(before), reported_before, removed)
+
+
+def loaded_renumbering(value: object) -> Renumbering | None:
+    if not isinstance(value, tuple) or len(value) != 4:
+        return None
+    previous_bytes, before, reported_before, removed = value
+    if not (
+        isinstance(previous_bytes, bytes)
+        and len(previous_bytes) % array("i").itemsize == 0
+        and isinstance(before, int)
+        and isinstance(reported_before, int)
+        and 0 <= reported_before <= before
+        and isinstance(removed, tuple)
+    ):
+        return None
+    previous = tuple(array("i", previous_bytes))
+    if not all(-1 <= index < before for index in previous):
+        return None
+    try:
+        gone = tuple((int(index), str(display)) for index, display in removed)
+    except (TypeError, ValueError):
+        return None
+    if not all(0 <= index < before for index, _ in gone):
+        return None
+    return Renumbering(previous, before, reported_before, gone)
+
+
+_BASE_FORMAT = "base 1"
+
+
+@dataclass(frozen=True)
+class Base:
+    """The last run of a shape (``RunInputs.shape_key``) that kept a replay: where (its
+    replay's key), and its files (display paths) with how many it reported."""
+
+    replay_at: str
+    displays: tuple[str, ...]
+    reported: int
+
+    def stored(self) -> tuple[object, ...]:
+        return (_BASE_FORMAT, self.replay_at, self.displays, self.reported)
+
+
+def loaded_base(value: object) -> Base | None:
+    if not isinstance(value, tuple) or len(value) != 4 or value[0] != _BASE_FORMAT:
+        return None
+    _, replay_at, displays, reported = value
+    if not (
+        isinstance(replay_at, str)
+        and isinstance(displays, tuple)
+        and all(isinstance(display, str) for display in displays)
+        and isinstance(reported, int)
+        and 0 <= reported <= len(displays)
+    ):
+        return None
+    return Base(replay_at, displays, reported)
+
+
+_MOVE_FORMAT = "graph move 1"
+
+
+@dataclass(frozen=True)
+class GraphMove:
+    """Where the graph a run patches is kept (a build's replay key), and how the run's
+    files map to that build's: kept by a run that renumbered, under its own key."""
+
+    graph_at: str
+    renumbering: Renumbering
+
+    def stored(self) -> tuple[object, ...]:
+        return (_MOVE_FORMAT, self.graph_at, self.renumbering.stored())
+
+
+def loaded_move(value: object) -> GraphMove | None:
+    if not isinstance(value, tuple) or len(value) != 3 or value[0] != _MOVE_FORMAT:
+        return None
+    _, graph_at, stored = value
+    found = loaded_renumbering(stored)
+    if not isinstance(graph_at, str) or found is None:
+        return None
+    return GraphMove(graph_at, found)
