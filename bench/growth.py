@@ -23,6 +23,8 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
   (``workspace.launch_patch``);
 - ``edit_parameter``: a parameter declared in that C++ source: the parameters of the
   code spanning its package gathered again (``workspace.parameter_patch``);
+- ``add_file``, ``remove_file``: a header that names nothing put beside that source,
+  then removed: the last run's findings stand, its files renumbered (``shifts``);
 - ``edit_build``: a class deriving from ``rclcpp::Node`` added to that source: what an
   edit the graph must be built again for costs (where a node's declarations may hide
   changes, and no patch follows it);
@@ -78,6 +80,15 @@ void bench_parameter(rclcpp::Node & node)
 # the settings there are).
 _NEW_SETTING = b"bench_setting: 1\n"
 _NEW_DEPENDENCY = b"find_package(bench_probe REQUIRED)\n"
+# A file added that names nothing (a header), as a new file and then removed
+_NEW_HEADER = b"""#pragma once
+
+namespace bench
+{
+inline int twice(int value) { return 2 * value; }
+}  // namespace bench
+"""
+_ADDED_NAME = "bench_added.hpp"
 # An edit the graph is built again for: a class of the code derives from another.
 _NEW_CLASS = b"""
 class BenchProbe : public rclcpp::Node
@@ -105,6 +116,8 @@ _EDITS = {
     # A dependency found at the top of a package's build: every target moves, what it
     # compiles does not.
     "edit_cmake": (("CMakeLists.txt",), "add_executable(", _NEW_DEPENDENCY, "start"),
+    "add_file": ((".cpp",), "create_publisher", _NEW_HEADER, "beside"),
+    "remove_file": ((".cpp",), "create_publisher", b"", "removed"),
     "edit_build": ((".cpp",), "create_publisher", _NEW_CLASS, "end"),
 }
 
@@ -135,6 +148,12 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
             if where == "below":
                 edited = named_most(root / "src", suffixes, marker)
                 _add_below(edited, marker.encode(), text)
+            elif where in ("beside", "removed"):
+                edited = pick(root / "src", suffixes, marker).with_name(_ADDED_NAME)
+                if where == "beside":
+                    edited.write_bytes(text)
+                else:
+                    edited.unlink()
             else:
                 edited = pick(root / "src", suffixes, marker)
                 _add(edited, text, where)
