@@ -401,7 +401,15 @@ def _lint(
                 settings,
                 specialiser,
             )
-        replayed = _take_facts(gathered, checks, last_replay, inputs, rules=rule_of, patch=patch)
+        replayed = _take_facts(
+            gathered,
+            checks,
+            last_replay,
+            inputs,
+            rules=rule_of,
+            patch=patch,
+            stands=shifted is None or shifted.stands,
+        )
         workers = dispatcher.workers  # that extracted the files (specialisations may start some)
         if inputs is not None and not fresh and run_key is None:
             run_key = inputs.key_last()
@@ -846,20 +854,23 @@ class _FileChecks:
 
 class _Shift(NamedTuple):
     """A run over the files of an earlier run, some added or removed (``shifts``): where
-    that run's replay is kept, how the files map, and the replay renumbered."""
+    that run's replay is kept, how the files map, and the replay renumbered; whether it
+    may stand as it is (each removed file said nothing), else only a patch of the
+    graph may take it (a launch file removed: ``_GraphPatch``)."""
 
     replay_at: str
     renumbering: shifts.Renumbering
     replay: Replay
+    stands: bool
 
 
 def _shifted(
     cache: FactsCache, inputs: RunInputs, clean_key: str, files: Sequence[SourceFile]
 ) -> _Shift | None:
     """The replay of the last run of this run's shape (``shifts.Base``), renumbered to its
-    files, where each file it had and this run has not says nothing and is found by no
-    name (its findings go with it); each added file is asked the same once its facts are
-    known (``_replay_moved``)."""
+    files; it stands where each file it had and this run has not says nothing and is
+    found by no name (its findings go with it), each added file asked the same once its
+    facts are known (``_replay_moved``)."""
     shape = inputs.shape_key
     if shape is None:
         return None
@@ -877,13 +888,15 @@ def _shifted(
     if earlier is None:
         return None
     wide = earlier.run_wide
+    stands = True
     for index, display in renumbering.removed:
         tag = earlier.tags[index]
         facts = cache.load(tag, display) if is_facts_key(tag) else None
         if facts is None or not shifts.adds_nothing(facts, wide.looked_up, wide.named_sources):
-            return None
+            stands = False
+            break
     replay = earlier.renumbered(renumbering, len(files))
-    return None if replay is None else _Shift(base.replay_at, renumbering, replay)
+    return _Shift(base.replay_at, renumbering, replay, stands)
 
 
 def _keep_base(
@@ -957,12 +970,14 @@ def _take_facts(
     *,
     rules: Mapping[str, Rule],
     patch: Callable[[Replay, Sequence[_Arrived]], _Replayed | None] | None = None,
+    stands: bool = True,
 ) -> _Replayed | None:
     """Hand every file's facts to ``checks``, as they arrive; or, where the run can take
     ``replay`` (``same_facts``), only those of the files edited since: then those files,
     and the replay with their places where they are now; or, where ``patch`` patches the
     replay's graph (``workspace.patch``), what it gives. The edited files come first
-    either way: whether the replay stands is their facts' question."""
+    either way: whether the replay stands is their facts' question (and ``stands``:
+    False where only a patch may take it, ``_Shift``)."""
     edited = None if replay is None or inputs is None else replay.edited(inputs.tags)
     if replay is None or edited is None or inputs is None or gathered.cache is None:
         for index, facts, data, verdict in gathered.facts():
@@ -972,7 +987,11 @@ def _take_facts(
     for index, facts, data, verdict in arrived:
         checks.take(index, facts, data, verdict)
     cache = gathered.cache
-    moved = _replay_moved(replay, arrived, inputs, files=gathered.files, cache=cache, rules=rules)
+    moved = (
+        _replay_moved(replay, arrived, inputs, files=gathered.files, cache=cache, rules=rules)
+        if stands
+        else None
+    )
     if moved is not None:
         # Every file's facts are what the result stands on, loaded or not: kept by the
         # pack's rewrite (``FactsCache.stand_on``).
@@ -1037,10 +1056,17 @@ class _GraphPatch:
             looked_up |= more[0]
             named |= more[1]
         found_by = (frozenset(looked_up), frozenset(named))
+        # Launch files added or removed that nothing includes: trees that come or go.
+        new_trees: set[str] = set()
+        removed_trees: list[str] = []
         for display, tag in stored.gone:
             gone = self.cache.load(tag, display) if is_facts_key(tag) else None
-            if gone is None or not shifts.adds_nothing(gone, *found_by):
+            if gone is None:
                 return None
+            if not shifts.adds_nothing(gone, *found_by):
+                if not _a_tree_alone(gone, found_by):
+                    return None
+                removed_trees.append(display)
 
         def facts_at(index: int) -> FileFacts | None:
             if index in arrived_facts:
@@ -1063,8 +1089,13 @@ class _GraphPatch:
                 return None  # the graph read its bytes under an includer's arguments
             if then == ADDED:
                 added = facts_at(index) if is_facts_key(now) else None
-                if added is None or not shifts.adds_nothing(added, *found_by):
+                if added is None:
                     return None
+                if not shifts.adds_nothing(added, *found_by):
+                    if not _a_tree_alone(added, found_by):
+                        return None
+                    new_trees.add(display)
+                    tree_edits.append(display)
                 continue
             before = self.cache.load(then, display) if is_facts_key(then) else None
             facts = facts_at(index) if is_facts_key(now) else None
@@ -1095,7 +1126,7 @@ class _GraphPatch:
         # for a patch that walks trees or gathers parameters again.
         kept: KeptLaunch | None = None
         known: set[str] = set()  # the files the build had facts of (a skipped one has none)
-        if tree_edits or declaring:
+        if tree_edits or removed_trees or declaring:
             kept = same_facts.loaded_launch(
                 self.cache.load_launch_parts(place.key), stored.built_from
             )
@@ -1106,14 +1137,16 @@ class _GraphPatch:
             known = {
                 files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)
             }
+            known |= new_trees
         specialised = replay.specialised
-        if tree_edits:
+        if tree_edits or removed_trees:
             assert kept is not None
             walked = self._walked(
                 graph,
                 parts=kept.parts,
                 packages=stored.packages,
                 edited=tree_edits,
+                removed=removed_trees,
                 known=known,
                 facts_of=facts_of,
             )
@@ -1158,7 +1191,7 @@ class _GraphPatch:
         # none where launch trees were walked again.
         kept_codes, kept_found = (
             (frozenset(), {})
-            if tree_edits or declaring
+            if tree_edits or removed_trees or declaring
             else _kept_findings(stored.found, edits, self.rules, files)
         )
         fresh = [rule for rule in self.rules if rule.code not in kept_codes]
@@ -1193,12 +1226,14 @@ class _GraphPatch:
         parts: LaunchParts,
         packages: Sequence[Package],
         edited: Sequence[str],
+        removed: Sequence[str],
         known: set[str],
         facts_of: Callable[[str], FileFacts | None],
     ) -> tuple[Graph, frozenset[str]] | None:
         """The build's whole graph with the trees that read an ``edited`` launch or
-        parameter file walked again (``workspace.launch_patch``) over every file the
-        build had facts of (``known``), and the files the walk extracted again under an
+        parameter file walked again (``workspace.launch_patch``), and those of the
+        ``removed`` launch files gone, over every file the build had facts of and the
+        added launch files (``known``); and the files the walk extracted again under an
         includer's arguments; None where it cannot be."""
         specialise = self.specialiser()
         graph = launch_patched(
@@ -1209,8 +1244,22 @@ class _GraphPatch:
             packages=packages,
             specialise=specialise,
             prepare=specialise.prepare,
+            removed=removed,
         )
         return None if graph is None else (graph, specialise.specialised)
+
+
+def _a_tree_alone(facts: FileFacts, found_by: tuple[frozenset[str], frozenset[str]]) -> bool:
+    """Whether a launch file added or removed (``shifts``) changes the graph only by a
+    tree of its own: nothing includes it (no launch file finds a file of its name), and
+    its facts hold nothing else the graph or the run's end reads (``launch_edit`` and
+    ``_patchable`` from or to the facts of an empty file)."""
+    empty = FileFacts(facts.path, facts.language, facts.generation)
+    return (
+        not shifts.found_by_name(facts.path, *found_by)
+        and launch_edit(empty, facts)
+        and _patchable(empty, facts, wiring_kept=True)
+    )
 
 
 def _kept_findings(

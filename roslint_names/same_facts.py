@@ -169,14 +169,11 @@ class Replay:
             tuple(sorted(self.run_wide.named_sources)),
         )
 
-    def renumbered(self, renumbering: Renumbering, reported: int) -> Replay | None:
+    def renumbered(self, renumbering: Renumbering, reported: int) -> Replay:
         """This replay of an earlier run over the files of a run renumbered from it
         (``shifts``), ``reported`` of them reported: an added file's tag is ``ADDED``,
-        a removed file's findings go with it. None where one held a graph finding."""
+        a removed file's findings go with it."""
         then_of = renumbering.then_of(reported)
-        gone = {index for index, _ in renumbering.removed}
-        if gone & self.graph.keys():
-            return None
         return Replay(
             tuple(ADDED if then < 0 else self.tags[then] for then in renumbering.previous),
             reported,

@@ -164,6 +164,12 @@ def main() -> None:
     node.create_publisher(String, "fleet_beacon", 10)
     rclpy.spin(node)
 """
+SPARE_LAUNCH = f"{TURTLE_LAUNCH}/spare.launch"
+SPARE_SMOOTHER = """<launch>
+  <node name="spare_smoother" pkg="turtle_bringup" type="velocity_smoother"/>
+  <node name="spare_smoother" pkg="turtle_bringup" type="battery_monitor"/>
+</launch>
+"""
 # A script named after an executable a launch file runs, which no build file makes
 SMOOTHER_SCRIPT = "src/turtle_bringup/scripts/velocity_smoother.py"
 
@@ -207,11 +213,17 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     (MONITOR, "", "\n// Back as it was.\n", "replay"),
     # Gone again: its files renumbered once more, from the last run's.
     (MODULE, "", None, "replay"),
+    # A launch file nothing includes: a tree of its own, walked (a duplicate node name,
+    # RN402); edited, walked again (the pair gone); after another edit removed, its tree
+    # gone (``launch_patch``, its ``removed``).
+    (SPARE_LAUNCH, None, SPARE_SMOOTHER, "patch"),
+    (SPARE_LAUNCH, 'name="spare_smoother"', 'name="velocity_smoother"', "patch"),
     (HEADER, "", None, "replay"),
     # A publisher added in the middle of the node (the names below it move), and the
     # recorder's subscription renamed to it: a new RN401 pair, the old one gone.
     (MONITOR, "    odom_sub_ =", f"    {STATUS}\n    odom_sub_ =", "patch"),
     (RECORDER, '"Robot_Pose"', '"Fleet_Status"', "patch"),
+    (SPARE_LAUNCH, "", None, "patch"),
     # ROS 1 code launched in each robot's namespace: a relative name renamed.
     (RELAY, '<nav_msgs::Odometry>("odom"', '<nav_msgs::Odometry>("odometry"', "patch"),
     # The publisher taken out again, and a parameter renamed (the graph is built).

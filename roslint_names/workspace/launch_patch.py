@@ -132,15 +132,19 @@ def launch_patched(
     packages: Sequence[Package],
     specialise: Specialise,
     prepare: Prepare | None = None,
+    removed: Collection[str] = (),
 ) -> Graph | None:
     """``graph`` (a build's, whole: ``parts`` is what the same build left) with the trees
     that read one of the ``edited`` files (launch files, ``launch_edit``; parameter files,
     ``parameter_edit``) walked again over ``facts`` (every file of the run: a
-    ``LazyFacts``); None where that cannot be done exactly (module docstring)."""
-    edited = frozenset(edited)
+    ``LazyFacts``); None where that cannot be done exactly (module docstring).
+    ``removed``: edited launch files the run has not (``shifts``): their trees go, and
+    those that read them are walked again; an edited file the build had not is a root
+    where nothing includes it, as any."""
+    edited = frozenset(edited) | frozenset(removed)
     index = WorkspaceIndex.restored(facts, packages, parts.executables)
     try:
-        roots = _roots(parts, edited, LaunchTrees(index, specialise, roots=[]))
+        roots = _roots(parts, edited, LaunchTrees(index, specialise, roots=[]), frozenset(removed))
         gone = set(parts.roots) - set(roots)
         handed = _handed(graph, parts, edited)
         walked = [
@@ -158,11 +162,14 @@ def launch_patched(
         return None
 
 
-def _roots(parts: LaunchParts, edited: frozenset[str], trees: LaunchTrees) -> list[str]:
+def _roots(
+    parts: LaunchParts, edited: frozenset[str], trees: LaunchTrees, removed: frozenset[str]
+) -> list[str]:
     """The roots after the edits: a file an edited include names now, or named before,
-    is a root where it is a launch file no launch file includes (``LaunchTrees``)."""
+    and an edited file itself, is a root where it is a launch file no launch file
+    includes (``LaunchTrees``); a ``removed`` file is none."""
     includers = {target: set(paths) - edited for target, paths in parts.includers.items()}
-    for path in sorted(edited):
+    for path in sorted(edited - removed):
         facts = trees.index.facts[path]
         if not trees.is_launch_file(path):
             continue
@@ -175,9 +182,11 @@ def _roots(parts: LaunchParts, edited: frozenset[str], trees: LaunchTrees) -> li
         for target in includers.keys() | parts.includers.keys()
         if includers.get(target, set()) != set(parts.includers.get(target, ()))
     }
-    roots = set(parts.roots) - changed
+    roots = set(parts.roots) - changed - removed
     roots.update(
-        target for target in changed if not includers.get(target) and trees.is_launch_file(target)
+        target
+        for target in changed | (edited - removed)
+        if not includers.get(target) and trees.is_launch_file(target)
     )
     return sorted(roots)
 
