@@ -117,7 +117,9 @@ class RunInputs:
         self._statuses = statuses_of(self._status_files)
         key = self._kept.key(self._identity, self._statuses)
         if key is None:
-            keying = self._kept.keying(self._identity)
+            keying = self._kept.keying(
+                self._identity, self._shape, self._where_files, len(self._checked)
+            )
             if (
                 keying is not None
                 and len(keying.tags) == len(self._checked)
@@ -232,7 +234,16 @@ class RunInputs:
             file_statuses = [statuses[path] for path in files]
             keying = (self._tags, self.place_key, self._packages.lookups())
             packages = self._packages.statuses
-            self._kept.keep(self._identity, kept_key, file_statuses, packages, keying)
+            self._kept.keep(
+                self._identity,
+                kept_key,
+                file_statuses,
+                packages,
+                keying,
+                shape=self._shape,
+                files=self._where_files,
+                checked=len(self._checked),
+            )
 
     # Both below are asked at the start of the run and again at its end: made once.
     @cached_property
@@ -268,6 +279,25 @@ class RunInputs:
                 digest.update(f"positions {len(positions)}\0".encode())
                 digest.update(array("q", positions).tobytes())
         return digest.hexdigest()
+
+    def _where_files(self) -> list[str]:
+        """The status files as a run of another identity matches them (``KeptKey``): each
+        checked file as where it is, how it is shown and its language (its facts key
+        holds the last two), then the ``.srv`` files' paths."""
+        checked = len(self._checked)
+        return [_where(source) for source in self._checked] + self._status_files[checked:]
+
+    @cached_property
+    def _shape(self) -> str | None:
+        """The identity but for which files are checked, for a run that reports every
+        file it checks and names every file of its workspace (the CLI's over a workspace):
+        a run of the same shape over some other files takes up this one's keying
+        (``KeptKey.keying``). None for other runs."""
+        if self._reported != len(self._checked) or len(self._named) != len(self._everything):
+            return None
+        python2 = self._ros1_python2
+        head = f"shape\0{self._fingerprints()}\0{self._fallback.value}\0{python2}\0"
+        return hashlib.blake2b(_text_bytes(head), digest_size=20).hexdigest()
 
     def _fingerprints(self) -> str:
         from .cache import code_fingerprint
@@ -313,7 +343,7 @@ class RunInputs:
         keying, checked = self._keying, len(self._checked)
         if keying is None or self._statuses[checked:] != keying.file_statuses[checked:]:
             return None
-        return keying.place_key
+        return keying.place_key  # None for an earlier run over other files
 
     def _place(self) -> str:
         """All the run's key holds but the checked files' facts keys: which files, where,

@@ -52,9 +52,11 @@ from .reading import Status, is_racy, open_regular, racy_from, status_of
 if TYPE_CHECKING:
     from .generation import KeptLookups
 
-KEYS = "keys"  # their directory in the facts cache: one file per workspace
+KEYS = "keys"  # their directory in the facts cache: one file per workspace, and its files
 KEPT = 64
-_FORMAT = 2
+_FORMAT = 3
+_FILES_FORMAT = 1
+MOST_SHIFTED = 64  # checked files added or removed past which a run is keyed file by file
 _PROTOCOL = pickle.HIGHEST_PROTOCOL
 
 
@@ -64,8 +66,8 @@ class Keying:
 
     file_statuses: list[Status | bool | None]  # as ``KeptKey.keep`` stores them
     package_statuses: dict[str, Status | None]
-    tags: list[str]  # the facts key of each checked file, or why it has none
-    place_key: str
+    tags: list[str]  # the facts key of each checked file, or why it has none ("": unknown)
+    place_key: str | None  # None: an earlier run over other files (``KeptKey.keying``)
     lookups: KeptLookups
 
 
@@ -85,8 +87,10 @@ class KeptKey:
         # (``PackageGenerations.status``).
         self._package_status = package_status
         self.started = time.time_ns()  # before any status of this run is taken
+        self._files_path = self._path.with_name(f"{name}.files")  # ``_KeptFiles``
         self._kept: _Kept | None = None
         self._loaded = False
+        self._kept_identity: str | None = None  # of what was kept, once loaded
         self._packages_stand: bool | None = None  # once asked: their statuses are as kept
 
     def key(self, identity: str, statuses: Sequence[Status | None]) -> str | None:
@@ -97,14 +101,27 @@ class KeptKey:
             return None
         return kept.key if self._packages_as_kept(kept) else None
 
-    def keying(self, identity: str) -> Keying | None:
+    def keying(
+        self,
+        identity: str,
+        shape: str | None = None,
+        files: Callable[[], Sequence[str]] = list,
+        checked: int = 0,
+    ) -> Keying | None:
         """What the kept key was made of, if it was kept for ``identity`` and every package
-        status it was kept with is the status now (its files' statuses may differ). Asked
-        last: what was kept is let go (30 MB at 77,000 files), ``Keying`` holds what is
-        still needed."""
+        status it was kept with is the status now (its files' statuses may differ); or,
+        kept for the same ``shape`` (the identity but for which files are checked) over
+        other checked files, renumbered to this run's (``_renumbered``). Asked last: what
+        was kept is let go (30 MB at 77,000 files), ``Keying`` holds what is still
+        needed. ``files``: the status files now (``RunInputs._status_files``), the first
+        ``checked`` of them checked, each of those as where it is, how it is shown and its
+        language (a facts key holds the last two)."""
         kept = self._load()
         self._kept = None
-        if kept is None or kept.identity != identity or not self._packages_as_kept(kept):
+        if kept is None or not self._packages_as_kept(kept):
+            return None
+        same = kept.identity == identity
+        if not same and (shape is None or kept.shape != shape):
             return None
         try:
             tags, lookups = BuiltinsUnpickler(io.BytesIO(kept.made_of)).load()
@@ -113,7 +130,64 @@ class KeptKey:
             return None
         if not isinstance(tags, list):
             return None
-        return Keying(kept.file_statuses, package_statuses, tags, kept.place_key, lookups)
+        keying = Keying(kept.file_statuses, package_statuses, tags, kept.place_key, lookups)
+        return keying if same else self._renumbered(keying, kept.identity, files(), checked)
+
+    def _renumbered(
+        self, keying: Keying, identity: str, files: Sequence[str], checked: int
+    ) -> Keying | None:
+        """``keying``, kept for ``identity``, over this run's status files: each checked
+        file the kept run had takes its status and facts key, an added one has none (so
+        it is read), the run's place is hashed anew. None where the ``.srv`` files differ,
+        more than ``MOST_SHIFTED`` checked files do, or an added file is in a directory
+        the kept lookups never saw (a package there would be one they never read)."""
+        kept_files = self._kept_files(identity)
+        if kept_files is None:
+            return None
+        locations, kept_checked = kept_files
+        if list(locations[kept_checked:]) != list(files[checked:]):
+            return None
+        at = {where: index for index, where in enumerate(locations[:kept_checked])}
+        previous = [at.get(where, -1) for where in files[:checked]]
+        added = [files[index].partition("\0")[0] for index, then in enumerate(previous) if then < 0]
+        removed = kept_checked - (checked - len(added))
+        try:
+            directories = keying.lookups[1]
+        except (TypeError, IndexError):
+            return None
+        if (
+            len(added) + removed > MOST_SHIFTED
+            or len(keying.tags) != kept_checked
+            or any(os.path.dirname(path) not in directories for path in added)
+        ):
+            return None
+        statuses = keying.file_statuses
+        return Keying(
+            [statuses[then] if then >= 0 else None for then in previous] + statuses[kept_checked:],
+            keying.package_statuses,
+            [keying.tags[then] if then >= 0 else "" for then in previous],
+            None,
+            keying.lookups,
+        )
+
+    def _kept_files(self, identity: str) -> tuple[Sequence[str], int] | None:
+        """The status files of the run kept for ``identity`` and how many it checked."""
+        try:
+            with open_regular(self._files_path) as stream:
+                loaded = BuiltinsUnpickler(stream).load()
+        except Exception:  # absent, unreadable or damaged
+            return None
+        if not (isinstance(loaded, tuple) and len(loaded) == 4 and loaded[0] == _FILES_FORMAT):
+            return None
+        _, kept_identity, locations, checked = loaded
+        if (
+            kept_identity != identity
+            or not isinstance(locations, list)
+            or not isinstance(checked, int)
+            or not 0 <= checked <= len(locations)
+        ):
+            return None
+        return locations, checked
 
     def keep(
         self,
@@ -122,22 +196,37 @@ class KeptKey:
         file_statuses: Sequence[Status | None],
         package_statuses: Mapping[str, Status | None],
         keying: tuple[Sequence[str], str, KeptLookups],
+        *,
+        shape: str | None = None,
+        files: Callable[[], Sequence[str]] = list,
+        checked: int = 0,
     ) -> None:
         """Keep ``key`` with what it was made from (``keying``: each file's facts key, the
         place and the packages' lookups), unless a package status is too recent to say
         that nothing changed after it was taken. A file whose status is that recent is
-        kept as changed (False: no status is)."""
+        kept as changed (False: no status is). ``shape``: the identity but for which
+        files are checked, where a run of that shape over other files may take this one
+        up (``keying``); the status files (``files``, as ``keying`` takes them) are then
+        kept beside, written only when the identity changed (a file added or removed:
+        10 MB at 81,000 files)."""
         if any(s is not None and self._racy(s) for s in package_statuses.values()):
             return
+        if shape is not None and (
+            self._kept_identity != identity or not self._files_path.is_file()
+        ):
+            listed = (_FILES_FORMAT, identity, list(files()), checked)
+            self._cache.write_newest(
+                self._files_path, partial(pickle.dump, listed, protocol=_PROTOCOL), KEPT
+            )
         recent = racy_from(self.started)  # ``_racy`` of each, without a call each
-        files = [
+        trusted = [
             False if s is not None and (s[1] >= recent or s[2] >= recent) else s
             for s in file_statuses
         ]
         tags, place_key, lookups = keying
         made_of = pickle.dumps((list(tags), lookups), _PROTOCOL)
         paths, statuses = tuple(package_statuses), list(package_statuses.values())
-        kept = (_FORMAT, identity, key, files, paths, statuses, place_key, made_of)
+        kept = (_FORMAT, identity, key, trusted, paths, statuses, place_key, made_of, shape)
         # Pickled into the file: 12 MB at 77,000 files, the peak of a run that patched.
         self._cache.write_newest(self._path, partial(pickle.dump, kept, protocol=_PROTOCOL), KEPT)
 
@@ -153,6 +242,7 @@ class KeptKey:
     def _load(self) -> _Kept | None:
         if not self._loaded:
             self._kept, self._loaded = self._read(), True
+            self._kept_identity = None if self._kept is None else self._kept.identity
         return self._kept
 
     def _read(self) -> _Kept | None:
@@ -161,9 +251,18 @@ class KeptKey:
                 loaded = BuiltinsUnpickler(stream).load()
         except Exception:  # absent, unreadable or damaged: the run is keyed file by file
             return None
-        if not (isinstance(loaded, tuple) and len(loaded) == 8 and loaded[0] == _FORMAT):
+        if not (isinstance(loaded, tuple) and len(loaded) == 9 and loaded[0] == _FORMAT):
             return None
-        shapes = (str, str, list, tuple, list, str, bytes)
+        shapes: tuple[type | tuple[type, ...], ...] = (
+            str,
+            str,
+            list,
+            tuple,
+            list,
+            str,
+            bytes,
+            (str, type(None)),
+        )
         if not all(map(isinstance, loaded[1:], shapes)):
             return None
         return _Kept(*loaded[1:])
@@ -177,3 +276,4 @@ class _Kept(NamedTuple):
     package_statuses: list[Status | None]
     place_key: str
     made_of: bytes  # the pickled tags and lookups: read only by a run that takes them up
+    shape: str | None  # ``KeptKey.keep``'s

@@ -724,9 +724,10 @@ def test_runs_after_edits_load_no_digest_and_journal_those_they_read(
 ) -> None:
     """A run keyed from the last run's keying (the same files) loads no file's digest
     (0.2 s of it at 8 copies of the benchmark's workspace) and journals the digests of
-    the files it read over those kept; a run keyed from the digests after them (a file
-    added: the identity changed, no keying) finds every other file's digest as it is,
-    and reads only the new file."""
+    the files it read over those kept; so does a run over a file more in a directory the
+    last run looked up (the keying renumbered: ``KeptKey.keying``), which keys only the
+    new file; a run keyed from the digests after them (a file in a new directory: no
+    keying) finds every other file's digest as it is, and reads only the new file."""
     loads: list[int] = []
     load = ContentDigests._load
 
@@ -760,8 +761,18 @@ def test_runs_after_edits_load_no_digest_and_journal_those_they_read(
     assert loads == [] and rekeyed[0] == ["base.launch"]
     assert second.stdout == check("--no-cache").stdout
     added = after(_add_file)
-    assert loads == [1] and reads == ["two.launch"]
+    # Its place is hashed anew, with the ``.srv`` files' digests (read: none is loaded).
+    assert loads == [] and rekeyed[0] == ["two.launch"]
+    assert reads == ["two.launch", "CmdVel.srv"]
     assert added.stdout == check("--no-cache").stdout
+    elsewhere = after(_add_file_in_a_new_directory)
+    assert loads == [1] and reads == ["three.launch"]
+    assert elsewhere.stdout == check("--no-cache").stdout
+
+
+def _add_file_in_a_new_directory(workspace: Path) -> None:
+    launch = LAUNCH.replace("robot1", "robot3")
+    write(workspace, "src/robot_base/launch/more/three.launch", launch)
 
 
 def _edit_launch(workspace: Path) -> None:
@@ -807,9 +818,11 @@ def test_a_damaged_kept_keying_keys_every_file(
     made_of: bytes,
 ) -> None:
     def damaged(_: Path) -> None:
-        (kept,) = private_cache.glob("facts-v*/keys/*")
+        (kept,) = [
+            path for path in private_cache.glob("facts-v*/keys/*") if path.suffix != ".files"
+        ]
         loaded = pickle.loads(kept.read_bytes())
-        kept.write_bytes(pickle.dumps((*loaded[:-1], made_of)))
+        kept.write_bytes(pickle.dumps((*loaded[:7], made_of, *loaded[8:])))
 
     after = edited_after_a_run(check, workspace, rekeyed, damaged, _edit_code)
     files, _ = rekeyed
