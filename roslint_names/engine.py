@@ -353,7 +353,7 @@ def _lint(
     # the run whose replay this one's files were renumbered from (``shifts``).
     graph_place: _GraphPlace | None = None if kept_at is None else _GraphPlace(kept_at)
     shifted: _Shift | None = None
-    if last_replay is None and kept_at is not None and not context and focus is None:
+    if last_replay is None and kept_at is not None and not context:
         assert cache is not None and inputs is not None and clean_key is not None
         shifted = _shifted(cache, inputs, clean_key, files)
         if shifted is not None:

@@ -718,7 +718,7 @@ def test_the_language_server_patches_a_graph_whose_findings_moved_since(
 
 # pre-commit's runs, each naming the files staged: (files named, the edit before the
 # run or None, what the run with the cache does: ``taken``).
-FOCUSED_STEPS: list[tuple[tuple[str, ...], tuple[str, str, str] | None, str]] = [
+FOCUSED_STEPS: list[tuple[tuple[str, ...], tuple[str, str | None, str | None] | None, str]] = [
     # The whole workspace's run, taken up whatever files are named.
     ((MONITOR, RECORDER), None, "replay"),
     ((DOCK,), None, "replay"),
@@ -742,6 +742,8 @@ FOCUSED_STEPS: list[tuple[tuple[str, ...], tuple[str, str, str] | None, str]] = 
     ),
     # A comment in a file not named: the edited file checked, nothing reported in it.
     ((DOCK,), (RECORDER, "import rclpy", "# Records poses.\nimport rclpy"), "replay"),
+    # A header added in a commit: the last run's replay, its files renumbered (``shifts``).
+    ((HEADER, DOCK), (HEADER, None, ANGLES), "replay"),
 ]
 
 
@@ -756,9 +758,9 @@ def test_runs_over_some_files_are_the_workspace_s_run(
     cache = tmp_path / "cache"
     outputs(run_cli, workspace, cache)  # the workspace's run: the graph built and kept
     arguments = ["check", "--format", "json", "--jobs", "1", "--exit-zero"]
-    for named, change, how in FOCUSED_STEPS:
-        if change is not None:
-            edit(workspace / change[0], change[1], change[2])
+    for named, step, how in FOCUSED_STEPS:
+        if step is not None:
+            change(workspace / step[0], step[1], step[2])
         taken.clear()
         cached = run_cli([*arguments, "--cache-dir", str(cache), *named], workspace)
         fresh = run_cli([*arguments, "--no-cache", *named], workspace)
