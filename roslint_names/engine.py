@@ -47,6 +47,7 @@ from .model import (
     Fix,
     Generation,
     Kind,
+    Language,
     RelatedLocation,
     Span,
 )
@@ -595,7 +596,7 @@ class _FileChecks:
     _wired: set[str] = field(default_factory=set)  # absolute names launch files remap to
     _rejected: dict[str, set[str]] = field(default_factory=dict)  # package: fixture names
     _built: BuiltSources = field(default_factory=BuiltSources)
-    _looked_up: set[str] = field(default_factory=set)  # ``RunWide``'s
+    _looked_up: dict[str, set[str]] = field(default_factory=dict)  # ``RunWide``'s
     _named_sources: set[str] = field(default_factory=set)
     _done: int = 0
 
@@ -623,7 +624,8 @@ class _FileChecks:
             self._built.add(facts, self.package_of(index))
         if facts.launch_nodes or facts.includes or facts.parameter_loads or facts.executables:
             looked_up, named = shifts.lookups(facts)
-            self._looked_up |= looked_up
+            for name in looked_up:
+                self._looked_up.setdefault(name, set()).add(facts.path)
             self._named_sources |= named
         symbols = uses_constants(facts)
         if index < self.reported:
@@ -787,7 +789,7 @@ class _FileChecks:
             frozenset(self._wired),
             self._built.given(),
             {package: frozenset(names) for package, names in self._rejected.items()},
-            frozenset(self._looked_up),
+            {name: frozenset(by) for name, by in self._looked_up.items()},
             frozenset(self._named_sources),
         )
 
@@ -807,7 +809,8 @@ class _FileChecks:
         for facts, package in run_wide.built:
             self._built.add(facts, package)
         self._rejected = {package: set(names) for package, names in run_wide.rejected.items()}
-        self._looked_up |= run_wide.looked_up
+        for name, by in run_wide.looked_up.items():
+            self._looked_up.setdefault(name, set()).update(by)
         self._named_sources |= run_wide.named_sources
 
     def facts_of(self, index: int) -> FileFacts | None:
@@ -1057,14 +1060,17 @@ class _GraphPatch:
             named |= more[1]
         found_by = (frozenset(looked_up), frozenset(named))
         # Launch files added or removed that nothing includes: trees that come or go.
-        new_trees: set[str] = set()
+        # Parameter files added that no launch file but an edited one names (those trees
+        # are walked again, and find them), and removed ones (the trees handed them are).
+        new_files: set[str] = set()
+        settings: list[str] = []  # parameter files added
         removed_trees: list[str] = []
         for display, tag in stored.gone:
             gone = self.cache.load(tag, display) if is_facts_key(tag) else None
             if gone is None:
                 return None
             if not shifts.adds_nothing(gone, *found_by):
-                if not _a_tree_alone(gone, found_by):
+                if gone.language is not Language.PARAMETERS and not _a_tree_alone(gone, found_by):
                     return None
                 removed_trees.append(display)
 
@@ -1091,11 +1097,15 @@ class _GraphPatch:
                 added = facts_at(index) if is_facts_key(now) else None
                 if added is None:
                     return None
-                if not shifts.adds_nothing(added, *found_by):
-                    if not _a_tree_alone(added, found_by):
-                        return None
-                    new_trees.add(display)
+                if shifts.adds_nothing(added, *found_by):
+                    continue
+                if added.language is Language.PARAMETERS:
+                    settings.append(display)
+                elif _a_tree_alone(added, found_by):
                     tree_edits.append(display)
+                else:
+                    return None
+                new_files.add(display)
                 continue
             before = self.cache.load(then, display) if is_facts_key(then) else None
             facts = facts_at(index) if is_facts_key(now) else None
@@ -1111,6 +1121,12 @@ class _GraphPatch:
             elif _patchable(before, facts, wiring_kept=moved_only):
                 changed.append((display, before, facts))
             else:
+                return None
+        # A parameter file added is found by the trees walked again alone.
+        walked_again = set(tree_edits)
+        for display in settings:
+            name = display.rpartition("/")[2]
+            if not walked_again.issuperset(wide.looked_up.get(name, ())):
                 return None
         declaring: set[str] = set()  # code files whose parameters changed
         edits = edits_of(changed, declaring)
@@ -1137,7 +1153,7 @@ class _GraphPatch:
             known = {
                 files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)
             }
-            known |= new_trees
+            known |= new_files
         specialised = replay.specialised
         if tree_edits or removed_trees:
             assert kept is not None

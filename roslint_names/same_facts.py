@@ -45,7 +45,7 @@ from __future__ import annotations
 
 import hashlib
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 from .model import CompiledSources, Diagnostic, FileFacts, Finding, Generation
 from .moves import Moves, UnplacedError, moved_diagnostic, moved_finding, moved_spans
@@ -70,9 +70,9 @@ class RunWide:
     built: Built  # the build files' compiled sources, and the sources C++ files include
     rejected: Mapping[str, frozenset[str]]  # package: the fixture names its tests refuse
     # Where the run finds a file by its name (``shifts``): the executables launch files
-    # run and the names of the files they include and hand nodes; the display paths of
-    # the sources build files' executables name.
-    looked_up: frozenset[str] = frozenset()
+    # run and the names of the files they include and hand nodes, each with the launch
+    # files that do; the display paths of the sources build files' executables name.
+    looked_up: Mapping[str, frozenset[str]] = field(default_factory=dict)
     named_sources: frozenset[str] = frozenset()
 
 
@@ -146,6 +146,7 @@ class Replay:
 
     def stored(self) -> tuple[object, ...]:
         """As the cache keeps it: model values and builtins only."""
+        wide = self.run_wide
         return (
             _FORMAT,
             self.tags,
@@ -153,20 +154,17 @@ class Replay:
             tuple(sorted(self.found.items())),
             tuple(sorted(self.graph.items())),
             tuple(sorted(self.specialised)),
-            tuple(sorted(self.run_wide.service_types, key=_by_text)),
-            tuple(sorted(self.run_wide.wired)),
-            self.run_wide.built,
+            tuple(sorted(wide.service_types, key=_by_text)),
+            tuple(sorted(wide.wired)),
+            wide.built,
             tuple(
-                sorted(
-                    (package, tuple(sorted(names)))
-                    for package, names in self.run_wide.rejected.items()
-                )
+                sorted((package, tuple(sorted(names))) for package, names in wide.rejected.items())
             ),
             self.skipped,
             self.unbuilt,
             self.rostest_named,
-            tuple(sorted(self.run_wide.looked_up)),
-            tuple(sorted(self.run_wide.named_sources)),
+            tuple(sorted((name, tuple(sorted(by))) for name, by in wide.looked_up.items())),
+            tuple(sorted(wide.named_sources)),
         )
 
     def renumbered(self, renumbering: Renumbering, reported: int) -> Replay:
@@ -215,6 +213,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         built_pairs = tuple((facts, package) for facts, package in built)
         skipped_pairs = tuple((str(path), str(why)) for path, why in skipped)
         type_pairs = frozenset((generation, str(spelling)) for generation, spelling in types)
+        looked_up_map = {str(name): frozenset(by) for name, by in looked_up}
     except (TypeError, ValueError):
         return None
     if not (
@@ -231,7 +230,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         )
         and _strings(specialised)
         and _strings(wired)
-        and _strings(looked_up)
+        and all(_strings(tuple(by)) for by in looked_up_map.values())
         and _strings(named_sources)
         and _indices(unbuilt, reported)
         and _indices(rostest_named, reported)
@@ -249,7 +248,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
             frozenset(wired),
             built_pairs,
             rejected_map,
-            frozenset(looked_up),
+            looked_up_map,
             frozenset(named_sources),
         ),
         skipped_pairs,

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import posixpath
 from array import array
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 from .model import FileFacts, InPackage, Language, replaced
@@ -47,7 +47,7 @@ def says_nothing(facts: FileFacts) -> bool:
     return bare == FileFacts(facts.path, facts.language, facts.generation)
 
 
-def found_by_name(display: str, looked_up: frozenset[str], named: frozenset[str]) -> bool:
+def found_by_name(display: str, looked_up: Collection[str], named: Collection[str]) -> bool:
     """Whether the run finds a file by where it is (module docstring): ``looked_up``, the
     names the launch files run and include by; ``named``, what the build files'
     executables name (display paths)."""
@@ -58,7 +58,7 @@ def found_by_name(display: str, looked_up: frozenset[str], named: frozenset[str]
     return name == "__init__.py" and f"{posixpath.dirname(display)}.py" in named
 
 
-def adds_nothing(facts: FileFacts, looked_up: frozenset[str], named: frozenset[str]) -> bool:
+def adds_nothing(facts: FileFacts, looked_up: Collection[str], named: Collection[str]) -> bool:
     """Whether a file may come or go without a graph of its own (module docstring)."""
     return says_nothing(facts) and not found_by_name(facts.path, looked_up, named)
 

@@ -166,10 +166,13 @@ def main() -> None:
 """
 SPARE_LAUNCH = f"{TURTLE_LAUNCH}/spare.launch"
 SPARE_SMOOTHER = """<launch>
-  <node name="spare_smoother" pkg="turtle_bringup" type="velocity_smoother"/>
+  <node name="spare_smoother" pkg="turtle_bringup" type="velocity_smoother">
+    <rosparam command="load" file="$(find turtle_bringup)/config/spare.yaml"/>
+  </node>
   <node name="spare_smoother" pkg="turtle_bringup" type="battery_monitor"/>
 </launch>
 """
+SPARE_SETTINGS = "src/turtle_bringup/config/spare.yaml"
 # A script named after an executable a launch file runs, which no build file makes
 SMOOTHER_SCRIPT = "src/turtle_bringup/scripts/velocity_smoother.py"
 
@@ -216,6 +219,9 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     # A launch file nothing includes: a tree of its own, walked (a duplicate node name,
     # RN402); edited, walked again (the pair gone); after another edit removed, its tree
     # gone (``launch_patch``, its ``removed``).
+    # A parameter file no launch file names yet, then the launch file handing it to a
+    # node: the tree that loads it finds it.
+    (SPARE_SETTINGS, None, "speed_lim_v: 0.8\nnever_read: 1\n", "patch"),
     (SPARE_LAUNCH, None, SPARE_SMOOTHER, "patch"),
     (SPARE_LAUNCH, 'name="spare_smoother"', 'name="velocity_smoother"', "patch"),
     (HEADER, "", None, "replay"),
@@ -223,6 +229,8 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     # recorder's subscription renamed to it: a new RN401 pair, the old one gone.
     (MONITOR, "    odom_sub_ =", f"    {STATUS}\n    odom_sub_ =", "patch"),
     (RECORDER, '"Robot_Pose"', '"Fleet_Status"', "patch"),
+    # The parameter file removed while the launch file still loads it, then the launch file.
+    (SPARE_SETTINGS, "", None, "patch"),
     (SPARE_LAUNCH, "", None, "patch"),
     # ROS 1 code launched in each robot's namespace: a relative name renamed.
     (RELAY, '<nav_msgs::Odometry>("odom"', '<nav_msgs::Odometry>("odometry"', "patch"),
@@ -479,7 +487,7 @@ def test_an_empty_stored_replay_reads_back() -> None:
         ((*EMPTY[:8], (("x", None),), *EMPTY[9:]), 1),  # built sources that are not facts
         ((*EMPTY[:11], (3,), *EMPTY[12:]), 1),  # an unbuilt file that is not reported
         ((*EMPTY[:11], ("src/a.cpp",), *EMPTY[12:]), 1),  # one that is not an index
-        ((*EMPTY[:13], (7,), ()), 1),  # a name looked up that is not one
+        ((*EMPTY[:13], (("talker", (7,)),), ()), 1),  # looked up by a file that is not one
     ],
 )
 def test_a_stored_replay_of_another_shape_is_none(value: object, files: int) -> None:
@@ -499,7 +507,7 @@ def test_a_stored_replay_reads_back_as_it_was() -> None:
             frozenset({"/cmd_vel"}),
             ((built, "src/a"),),
             {"src/a": frozenset({"bad.launch"})},
-            frozenset({"talker", "params.yaml"}),
+            {"talker": frozenset({"src/a/launch/a.launch.xml"}), "params.yaml": frozenset()},
             frozenset({"src/a/src/talker.cpp"}),
         ),
         skipped=(("src/a/big.cpp", "too large"),),
