@@ -35,8 +35,9 @@ when each of those files (``moves``):
 Its edited files are then checked by the per-file rules, the graph rules' findings in
 them made into diagnostics again under their new text and suppressions, and every other
 file's findings are the stored ones (their places in the edited files moved); the rest
-of the run is the same code. Anything else (a file added or removed, settings changed, a
-name changed) is a run like any other, which keeps a new replay.
+of the run is the same code. A file added or removed renumbers the replay of the last
+run of the same shape (``shifts``); anything else (settings changed, a name changed) is
+a run like any other, which keeps a new replay.
 ``tests/test_same_facts.py`` compares every run of a sequence of edits with a run from
 an empty cache.
 """
