@@ -23,8 +23,10 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
   (``workspace.launch_patch``);
 - ``edit_parameter``: a parameter declared in that C++ source: the parameters of the
   code spanning its package gathered again (``workspace.parameter_patch``);
-- ``add_file``, ``remove_file``: a header that names nothing put beside that source,
-  then removed: the last run's findings stand, its files renumbered (``shifts``);
+- ``add_file``, ``add_launch``, ``remove_file``: a header that names nothing put
+  beside that source (the last run's findings stand, its files renumbered:
+  ``shifts``), a launch file starting a node put beside that launch file (a tree of
+  its own walked), then the header removed;
 - ``edit_build``: a class deriving from ``rclcpp::Node`` added to that source: what an
   edit the graph must be built again for costs (where a node's declarations may hide
   changes, and no patch follows it);
@@ -89,6 +91,11 @@ inline int twice(int value) { return 2 * value; }
 }  // namespace bench
 """
 _ADDED_NAME = "bench_added.hpp"
+_NEW_LAUNCH = b"""<launch>
+  <node pkg="bench" exec="bench_node" name="bench_added"/>
+</launch>
+"""
+_ADDED_LAUNCH = "bench_added.launch.xml"
 # An edit the graph is built again for: a class of the code derives from another.
 _NEW_CLASS = b"""
 class BenchProbe : public rclcpp::Node
@@ -117,6 +124,7 @@ _EDITS = {
     # compiles does not.
     "edit_cmake": (("CMakeLists.txt",), "add_executable(", _NEW_DEPENDENCY, "start"),
     "add_file": ((".cpp",), "create_publisher", _NEW_HEADER, "beside"),
+    "add_launch": ((".launch.xml", ".launch"), "<node", _NEW_LAUNCH, "beside"),
     "remove_file": ((".cpp",), "create_publisher", b"", "removed"),
     "edit_build": ((".cpp",), "create_publisher", _NEW_CLASS, "end"),
 }
@@ -149,7 +157,8 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
                 edited = named_most(root / "src", suffixes, marker)
                 _add_below(edited, marker.encode(), text)
             elif where in ("beside", "removed"):
-                edited = pick(root / "src", suffixes, marker).with_name(_ADDED_NAME)
+                added = _ADDED_LAUNCH if text is _NEW_LAUNCH else _ADDED_NAME
+                edited = pick(root / "src", suffixes, marker).with_name(added)
                 if where == "beside":
                     edited.write_bytes(text)
                 else:
