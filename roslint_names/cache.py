@@ -113,6 +113,7 @@ GRAPHS_KEPT = 2  # tens of MB each in a large workspace: the last file sets only
 # The last run of each shape that kept a replay, and where a renumbered run's graph is
 # (``shifts``): one per recent (file set, settings) of each checkout, as replays.
 _BASES = "bases"
+_FILE_LISTS = "file-lists"
 _GRAPH_MOVES = "graph-moves"
 _LOG_BATCH = 512  # lines buffered before an append; and every batch of extraction ends one
 _TAG_NAME = "CACHEDIR.TAG"
@@ -352,6 +353,18 @@ class FactsCache:
         """Keep the last run of a shape (``shifts.Base``); forget the least recently used
         beyond ``REPLAYS_KEPT``."""
         self.write_newest(self.directory / _BASES / key, _encoded(value), REPLAYS_KEPT)
+
+    def load_file_list(self, key: str) -> object | None:
+        """The value ``store_file_list`` kept under ``key``, or None."""
+        return self._load_entry(_FILE_LISTS, key)
+
+    def holds_file_list(self, key: str) -> bool:
+        return os.path.isfile(os.path.join(self.directory, _FILE_LISTS, key))
+
+    def store_file_list(self, key: str, value: object) -> None:
+        """Keep the files of a run that kept a replay (``shifts.Base``), by its replay's
+        key; forget the least recently used beyond ``REPLAYS_KEPT``."""
+        self.write_newest(self.directory / _FILE_LISTS / key, _encoded(value), REPLAYS_KEPT)
 
     def load_graph_move(self, key: str) -> object | None:
         """The value ``store_graph_move`` kept under ``key``, or None."""

@@ -392,6 +392,7 @@ def _lint(
         )
         patch = None
         if cache is not None and inputs is not None and graph_place is not None:
+            assert clean_key is not None
             patch = _GraphPatch(
                 gathered,
                 checks,
@@ -401,6 +402,7 @@ def _lint(
                 graph_rules,
                 settings,
                 specialiser,
+                elsewhere=partial(_base_place, cache, inputs, clean_key, files),
             )
         replayed = _take_facts(
             gathered,
@@ -509,11 +511,11 @@ def _lint(
                 cache.store_replay(kept_at, kept_replay.stored())
                 _keep_base(cache, inputs, clean_key, kept_at, files=files, reported=reported)
                 # A graph this run's files were renumbered to, not built: where it is.
-                moved = (
-                    None
-                    if graph is not None or shifted is None or graph_place is None
-                    else graph_place.resolved(cache)
-                )
+                moved = None
+                if graph is None and patch is not None and patch.found_elsewhere is not None:
+                    moved = patch.found_elsewhere
+                elif graph is None and shifted is not None and graph_place is not None:
+                    moved = graph_place.resolved(cache, [source.display for source in files])
                 if moved is not None and moved.renumbering is not None:
                     move = shifts.GraphMove(moved.key, moved.renumbering)
                     cache.store_graph_move(kept_at, move.stored())
@@ -596,8 +598,9 @@ class _FileChecks:
     _wired: set[str] = field(default_factory=set)  # absolute names launch files remap to
     _rejected: dict[str, set[str]] = field(default_factory=dict)  # package: fixture names
     _built: BuiltSources = field(default_factory=BuiltSources)
-    _looked_up: dict[str, set[str]] = field(default_factory=dict)  # ``RunWide``'s
-    _named_sources: set[str] = field(default_factory=set)
+    # ``RunWide``'s, per launch and build file (``shifts.lookups``)
+    _looked_up: dict[str, str] = field(default_factory=dict)
+    _named_sources: dict[str, str] = field(default_factory=dict)
     _done: int = 0
 
     def __post_init__(self) -> None:
@@ -624,9 +627,8 @@ class _FileChecks:
             self._built.add(facts, self.package_of(index))
         if facts.launch_nodes or facts.includes or facts.parameter_loads or facts.executables:
             looked_up, named = shifts.lookups(facts)
-            for name in looked_up:
-                self._looked_up.setdefault(name, set()).add(facts.path)
-            self._named_sources |= named
+            self._looked_up[facts.path] = looked_up
+            self._named_sources[facts.path] = named
         symbols = uses_constants(facts)
         if index < self.reported:
             if waits_for_the_run(facts, self.judge.wiring):
@@ -789,8 +791,8 @@ class _FileChecks:
             frozenset(self._wired),
             self._built.given(),
             {package: frozenset(names) for package, names in self._rejected.items()},
-            {name: frozenset(by) for name, by in self._looked_up.items()},
-            frozenset(self._named_sources),
+            self._looked_up,
+            self._named_sources,
         )
 
     def resume(self, replay: Replay, edited: Sequence[int]) -> None:
@@ -809,9 +811,9 @@ class _FileChecks:
         for facts, package in run_wide.built:
             self._built.add(facts, package)
         self._rejected = {package: set(names) for package, names in run_wide.rejected.items()}
-        for name, by in run_wide.looked_up.items():
-            self._looked_up.setdefault(name, set()).update(by)
-        self._named_sources |= run_wide.named_sources
+        # Before the edited files' own (``take``): theirs stand for what they were.
+        self._looked_up = {**run_wide.looked_up, **self._looked_up}
+        self._named_sources = {**run_wide.named_sources, **self._named_sources}
 
     def facts_of(self, index: int) -> FileFacts | None:
         """File ``index``'s facts, when they were kept and it arrived."""
@@ -874,32 +876,52 @@ def _shifted(
     files; it stands where each file it had and this run has not says nothing and is
     found by no name (its findings go with it), each added file asked the same once its
     facts are known (``_replay_moved``)."""
-    shape = inputs.shape_key
-    if shape is None:
+    found = _base_of(cache, inputs, clean_key, files)
+    if found is None:
         return None
-    base = shifts.loaded_base(cache.load_base(same_facts.key(shape, clean_key)))
-    if base is None:
-        return None
-    renumbering = shifts.renumbering(
-        base.displays, base.reported, [source.display for source in files]
-    )
-    if renumbering is None:
-        return None
+    base, renumbering = found
     earlier = same_facts.loaded(
         cache.load_replay(base.replay_at), len(base.displays), base.reported
     )
     if earlier is None:
         return None
-    wide = earlier.run_wide
+    found_by = earlier.run_wide.found_by() if renumbering.removed else None
     stands = True
     for index, display in renumbering.removed:
+        assert found_by is not None
         tag = earlier.tags[index]
         facts = cache.load(tag, display) if is_facts_key(tag) else None
-        if facts is None or not shifts.adds_nothing(facts, wide.looked_up, wide.named_sources):
+        if facts is None or not found_by.adds_nothing(facts):
             stands = False
             break
     replay = earlier.renumbered(renumbering, len(files))
     return _Shift(base.replay_at, renumbering, replay, stands)
+
+
+def _base_of(
+    cache: FactsCache, inputs: RunInputs, clean_key: str, files: Sequence[SourceFile]
+) -> tuple[shifts.Base, shifts.Renumbering] | None:
+    """The last run of this run's shape that kept a replay (``shifts.Base``), and how this
+    run's files map to its; None where there is none, or the files differ too much."""
+    shape = inputs.shape_key
+    if shape is None:
+        return None
+    base = shifts.loaded_base(
+        cache.load_base(same_facts.key(shape, clean_key)), cache.load_file_list
+    )
+    if base is None:
+        return None
+    displays = [source.display for source in files]
+    renumbering = shifts.renumbering(base.displays, base.reported, displays)
+    return None if renumbering is None else (base, renumbering)
+
+
+def _base_place(
+    cache: FactsCache, inputs: RunInputs, clean_key: str, files: Sequence[SourceFile]
+) -> _GraphPlace | None:
+    """Where the graph of the last run of this run's shape is (``_GraphPatch.elsewhere``)."""
+    found = _base_of(cache, inputs, clean_key, files)
+    return None if found is None else _GraphPlace(found[0].replay_at, found[1])
 
 
 def _keep_base(
@@ -911,14 +933,14 @@ def _keep_base(
     files: Sequence[SourceFile],
     reported: int,
 ) -> None:
-    """Keep the run that kept its replay at ``kept_at`` as the last of its shape, where
-    the run was keyed by its place (a run that took up the last run's keying is over the
-    same files: its base stands)."""
+    """Keep the run that kept its replay at ``kept_at`` as the last of its shape: its
+    files, where no run over them kept them yet, and the pointer to them."""
     if inputs.shape_key is None or clean_key is None:
         return
-    displays = tuple(source.display for source in files)
-    base = shifts.Base(kept_at, displays, reported)
-    cache.store_base(same_facts.key(inputs.shape_key, clean_key), base.stored())
+    base = shifts.Base(kept_at, tuple(source.display for source in files), reported)
+    if not cache.holds_file_list(kept_at):
+        cache.store_file_list(kept_at, base.listed())
+    cache.store_base(same_facts.key(inputs.shape_key, clean_key), base.pointer())
 
 
 @dataclass(frozen=True)
@@ -929,9 +951,10 @@ class _GraphPlace:
     key: str
     renumbering: shifts.Renumbering | None = None
 
-    def resolved(self, cache: FactsCache) -> _GraphPlace | None:
+    def resolved(self, cache: FactsCache, displays: Sequence[str]) -> _GraphPlace | None:
         """Where a build kept the graph: ``key``, or where the run kept under it says
-        (``shifts.GraphMove``), the renumberings joined; None where neither is."""
+        (``shifts.GraphMove``), the renumberings joined (``displays``: this run's
+        files); None where neither is."""
         if cache.holds_graph(self.key):
             return self
         move = shifts.loaded_move(cache.load_graph_move(self.key))
@@ -939,7 +962,7 @@ class _GraphPlace:
             return None
         renumbering = move.renumbering
         if self.renumbering is not None:
-            renumbering = self.renumbering.after(renumbering)
+            renumbering = self.renumbering.after(renumbering, displays)
         return _GraphPlace(move.graph_at, renumbering)
 
     def graph(self, cache: FactsCache, files: int, reported: int) -> KeptGraph | None:
@@ -1034,11 +1057,21 @@ class _GraphPatch:
     settings: Settings
     # Launch files under their includers' arguments, for the trees walked again
     specialiser: Callable[[], Specialiser]
+    # Where the graph of the last run of this run's shape is, where ``place`` no longer
+    # leads to one (a run over these files long ago, whose graph was since forgotten)
+    elsewhere: Callable[[], _GraphPlace | None] = lambda: None
+    found_elsewhere: _GraphPlace | None = None  # and resolved, once asked
 
     def __call__(self, replay: Replay, arrived: Sequence[_Arrived]) -> _Replayed | None:
         files = self.gathered.files
-        place = self.place.resolved(self.cache)
+        displays = [source.display for source in files]
+        place = self.place.resolved(self.cache, displays)
         stored = None if place is None else place.graph(self.cache, len(files), replay.reported)
+        if stored is None:
+            other = self.elsewhere()
+            place = None if other is None else other.resolved(self.cache, displays)
+            stored = None if place is None else place.graph(self.cache, len(files), replay.reported)
+            self.found_elsewhere = place
         codes = {rule.code for rule in self.rules}
         if (
             place is None
@@ -1052,27 +1085,28 @@ class _GraphPatch:
         # Files the build did not have, or had and the run has not, say nothing and are
         # found by no name, the edited files' names too (``shifts``): then the build's
         # graph is theirs.
-        wide = replay.run_wide
-        looked_up, named = set(wide.looked_up), set(wide.named_sources)
+        looked_up, named = dict(replay.run_wide.looked_up), dict(replay.run_wide.named_sources)
         for edited in arrived_facts.values():
-            more = shifts.lookups(edited)
-            looked_up |= more[0]
-            named |= more[1]
-        found_by = (frozenset(looked_up), frozenset(named))
+            looked_up[edited.path], named[edited.path] = shifts.lookups(edited)
+        found_by = shifts.FoundBy(looked_up, named)
         # Launch files added or removed that nothing includes: trees that come or go.
-        # Parameter files added that no launch file but an edited one names (those trees
-        # are walked again, and find them), and removed ones (the trees handed them are).
+        # Parameter files added or removed: the trees that read a launch file naming a
+        # file of that name are walked again (and the trees handed a removed one), as
+        # ``find_in_package`` may find another file by that name now.
         new_files: set[str] = set()
-        settings: list[str] = []  # parameter files added
         removed_trees: list[str] = []
+        naming: set[str] = set()  # launch files that name a parameter file added or removed
         for display, tag in stored.gone:
             gone = self.cache.load(tag, display) if is_facts_key(tag) else None
             if gone is None:
                 return None
-            if not shifts.adds_nothing(gone, *found_by):
-                if gone.language is not Language.PARAMETERS and not _a_tree_alone(gone, found_by):
-                    return None
-                removed_trees.append(display)
+            if found_by.adds_nothing(gone):
+                continue
+            if gone.language is Language.PARAMETERS:
+                naming |= found_by.naming(display.rpartition("/")[2])
+            elif not _a_tree_alone(gone, found_by):
+                return None
+            removed_trees.append(display)
 
         def facts_at(index: int) -> FileFacts | None:
             if index in arrived_facts:
@@ -1097,10 +1131,10 @@ class _GraphPatch:
                 added = facts_at(index) if is_facts_key(now) else None
                 if added is None:
                     return None
-                if shifts.adds_nothing(added, *found_by):
+                if found_by.adds_nothing(added):
                     continue
                 if added.language is Language.PARAMETERS:
-                    settings.append(display)
+                    naming |= found_by.naming(display.rpartition("/")[2])
                 elif _a_tree_alone(added, found_by):
                     tree_edits.append(display)
                 else:
@@ -1122,12 +1156,8 @@ class _GraphPatch:
                 changed.append((display, before, facts))
             else:
                 return None
-        # A parameter file added is found by the trees walked again alone.
-        walked_again = set(tree_edits)
-        for display in settings:
-            name = display.rpartition("/")[2]
-            if not walked_again.issuperset(wide.looked_up.get(name, ())):
-                return None
+        naming -= {*tree_edits, *removed_trees}
+        walk = [*tree_edits, *sorted(naming)]  # the launch files whose trees are walked again
         declaring: set[str] = set()  # code files whose parameters changed
         edits = edits_of(changed, declaring)
         if edits is None:
@@ -1142,7 +1172,7 @@ class _GraphPatch:
         # for a patch that walks trees or gathers parameters again.
         kept: KeptLaunch | None = None
         known: set[str] = set()  # the files the build had facts of (a skipped one has none)
-        if tree_edits or removed_trees or declaring:
+        if walk or removed_trees or declaring:
             kept = same_facts.loaded_launch(
                 self.cache.load_launch_parts(place.key), stored.built_from
             )
@@ -1155,13 +1185,15 @@ class _GraphPatch:
             }
             known |= new_files
         specialised = replay.specialised
-        if tree_edits or removed_trees:
+        if walk or removed_trees:
             assert kept is not None
+            if not naming <= known:
+                return None  # a launch file naming one that has no facts now
             walked = self._walked(
                 graph,
                 parts=kept.parts,
                 packages=stored.packages,
-                edited=tree_edits,
+                edited=walk,
                 removed=removed_trees,
                 known=known,
                 facts_of=facts_of,
@@ -1207,7 +1239,7 @@ class _GraphPatch:
         # none where launch trees were walked again.
         kept_codes, kept_found = (
             (frozenset(), {})
-            if tree_edits or removed_trees or declaring
+            if walk or removed_trees or declaring
             else _kept_findings(stored.found, edits, self.rules, files)
         )
         fresh = [rule for rule in self.rules if rule.code not in kept_codes]
@@ -1265,14 +1297,14 @@ class _GraphPatch:
         return None if graph is None else (graph, specialise.specialised)
 
 
-def _a_tree_alone(facts: FileFacts, found_by: tuple[frozenset[str], frozenset[str]]) -> bool:
+def _a_tree_alone(facts: FileFacts, found_by: shifts.FoundBy) -> bool:
     """Whether a launch file added or removed (``shifts``) changes the graph only by a
     tree of its own: nothing includes it (no launch file finds a file of its name), and
     its facts hold nothing else the graph or the run's end reads (``launch_edit`` and
     ``_patchable`` from or to the facts of an empty file)."""
     empty = FileFacts(facts.path, facts.language, facts.generation)
     return (
-        not shifts.found_by_name(facts.path, *found_by)
+        not found_by.finds(facts.path)
         and launch_edit(empty, facts)
         and _patchable(empty, facts, wiring_kept=True)
     )
@@ -1343,13 +1375,14 @@ def _replay_moved(
     if not same_facts.codes_of(replay.graph) <= rules.keys():
         return None
     moves: list[Moves] = []
-    wide = replay.run_wide
+    found_by: shifts.FoundBy | None = None  # made for a file the replay's run did not have
     for index, facts, _, _ in arrived:
         old = replay.tags[index]
         if inputs.facts_key(index) is None:
             return None
-        if old == ADDED:  # a file the replay's run did not have (``shifts``)
-            if not shifts.adds_nothing(facts, wide.looked_up, wide.named_sources):
+        if old == ADDED:  # (``shifts``)
+            found_by = found_by or replay.run_wide.found_by()
+            if not found_by.adds_nothing(facts):
                 return None
             continue
         if not is_facts_key(old):

@@ -232,7 +232,7 @@ class RunInputs:
             statuses = dict(zip(files, self._statuses, strict=True)) | statuses
         if all(path in statuses for path in files) and self.place_key is not None:
             file_statuses = [statuses[path] for path in files]
-            keying = (self._tags, self.place_key, self._packages.lookups())
+            keying = (self._tags, self.place_key, self._packages.lookups(), self.shape_key)
             packages = self._packages.statuses
             self._kept.keep(
                 self._identity,
@@ -343,6 +343,7 @@ class RunInputs:
         keying, checked = self._keying, len(self._checked)
         if keying is None or self._statuses[checked:] != keying.file_statuses[checked:]:
             return None
+        self.shape_key = keying.shape_key
         return keying.place_key  # None for an earlier run over other files
 
     def _place(self) -> str:

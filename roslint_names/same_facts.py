@@ -51,7 +51,7 @@ from dataclasses import dataclass, field, replace
 from .model import CompiledSources, Diagnostic, FileFacts, Finding, Generation
 from .moves import Moves, UnplacedError, moved_diagnostic, moved_finding, moved_spans
 from .run_inputs import ADDED
-from .shifts import Renumbering
+from .shifts import FoundBy, Renumbering
 from .symbols import uses_constants
 from .wiring import wired_by
 from .workspace.graph import Graph
@@ -70,11 +70,14 @@ class RunWide:
     wired: frozenset[str]  # absolute names the launch files wire
     built: Built  # the build files' compiled sources, and the sources C++ files include
     rejected: Mapping[str, frozenset[str]]  # package: the fixture names its tests refuse
-    # Where the run finds a file by its name (``shifts``): the executables launch files
-    # run and the names of the files they include and hand nodes, each with the launch
-    # files that do; the display paths of the sources build files' executables name.
-    looked_up: Mapping[str, frozenset[str]] = field(default_factory=dict)
-    named_sources: frozenset[str] = frozenset()
+    # Where the run finds a file by its name (``shifts.lookups``), per launch file: the
+    # executables it runs and the names of the files it includes and hands nodes; per
+    # build file: the display paths of the sources its executables name.
+    looked_up: Mapping[str, str] = field(default_factory=dict)
+    named_sources: Mapping[str, str] = field(default_factory=dict)
+
+    def found_by(self) -> FoundBy:
+        return FoundBy(self.looked_up, self.named_sources)
 
 
 @dataclass(frozen=True)
@@ -164,8 +167,8 @@ class Replay:
             self.skipped,
             self.unbuilt,
             self.rostest_named,
-            tuple(sorted((name, tuple(sorted(by))) for name, by in wide.looked_up.items())),
-            tuple(sorted(wide.named_sources)),
+            tuple(sorted(wide.looked_up.items())),
+            tuple(sorted(wide.named_sources.items())),
         )
 
     def renumbered(self, renumbering: Renumbering, reported: int) -> Replay:
@@ -173,13 +176,19 @@ class Replay:
         (``shifts``), ``reported`` of them reported: an added file's tag is ``ADDED``,
         a removed file's findings go with it."""
         then_of = renumbering.then_of(reported)
+        gone = {display for _, display in renumbering.removed}
+        wide = self.run_wide
         return Replay(
             tuple(ADDED if then < 0 else self.tags[then] for then in renumbering.previous),
             reported,
             {then_of[index]: found for index, found in self.found.items() if index in then_of},
             {then_of[index]: found for index, found in self.graph.items() if index in then_of},
             self.specialised,
-            self.run_wide,
+            replace(
+                wide,
+                looked_up={p: n for p, n in wide.looked_up.items() if p not in gone},
+                named_sources={p: n for p, n in wide.named_sources.items() if p not in gone},
+            ),
             self.skipped,
             tuple(sorted(then_of[index] for index in self.unbuilt if index in then_of)),
             tuple(sorted(then_of[index] for index in self.rostest_named if index in then_of)),
@@ -214,7 +223,8 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         built_pairs = tuple((facts, package) for facts, package in built)
         skipped_pairs = tuple((str(path), str(why)) for path, why in skipped)
         type_pairs = frozenset((generation, str(spelling)) for generation, spelling in types)
-        looked_up_map = {str(name): frozenset(by) for name, by in looked_up}
+        looked_up_map = dict(looked_up)
+        named_map = dict(named_sources)
     except (TypeError, ValueError):
         return None
     if not (
@@ -231,8 +241,8 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         )
         and _strings(specialised)
         and _strings(wired)
-        and all(_strings(tuple(by)) for by in looked_up_map.values())
-        and _strings(named_sources)
+        and _strings((*looked_up_map.keys(), *looked_up_map.values()))
+        and _strings((*named_map.keys(), *named_map.values()))
         and _indices(unbuilt, reported)
         and _indices(rostest_named, reported)
         and all(isinstance(generation, Generation | None) for generation, _ in type_pairs)
@@ -250,7 +260,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
             built_pairs,
             rejected_map,
             looked_up_map,
-            frozenset(named_sources),
+            named_map,
         ),
         skipped_pairs,
         unbuilt,

@@ -14,7 +14,7 @@ few known ways only (``WorkspaceIndex``):
   executable, and an include or a parameter file is found by its name where the path
   does not hold it (``sources_of``, ``find_in_package``): ``RunWide.looked_up``.
 
-A file that says nothing (``adds_nothing``) and is found by none of those can come or go
+A file that says nothing and is found by none of those (``FoundBy.adds_nothing``) can come or go
 without a graph of its own: the last replay of the same run but for the file list (its
 ``Base``, kept by the run's shape: ``RunInputs.shape_key``) stands, its files renumbered
 (``Renumbering``): an added file is an edited one whose facts before were nothing
@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import posixpath
 from array import array
-from collections.abc import Collection, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 from .model import FileFacts, InPackage, Language, replaced
@@ -47,27 +47,14 @@ def says_nothing(facts: FileFacts) -> bool:
     return bare == FileFacts(facts.path, facts.language, facts.generation)
 
 
-def found_by_name(display: str, looked_up: Collection[str], named: Collection[str]) -> bool:
-    """Whether the run finds a file by where it is (module docstring): ``looked_up``, the
-    names the launch files run and include by; ``named``, what the build files'
-    executables name (display paths)."""
-    name = posixpath.basename(display)
-    if name in looked_up or name.rpartition(".")[0] in looked_up or display in named:
-        return True
-    # A console_scripts module ``a/b.py`` may be the package ``a/b/__init__.py``.
-    return name == "__init__.py" and f"{posixpath.dirname(display)}.py" in named
+_JOINED = "\0"  # between the names a file looks up, or the sources it names (no path holds it)
 
 
-def adds_nothing(facts: FileFacts, looked_up: Collection[str], named: Collection[str]) -> bool:
-    """Whether a file may come or go without a graph of its own (module docstring)."""
-    return says_nothing(facts) and not found_by_name(facts.path, looked_up, named)
-
-
-def lookups(facts: FileFacts) -> tuple[set[str], set[str]]:
-    """What a file's facts add to ``RunWide.looked_up`` and ``RunWide.named_sources``:
-    a launch file's executables and the names of the files it includes, loads and hands
-    on (an argument's value may be a file the included one loads); a build file's
-    executables' sources, as display paths."""
+def lookups(facts: FileFacts) -> tuple[str, str]:
+    """What a file's facts give ``RunWide.looked_up`` and ``RunWide.named_sources``, each
+    joined in one string ("" for none): a launch file's executables and the names of the
+    files it includes, loads and hands on (an argument's value may be a file the
+    included one loads); a build file's executables' sources, as display paths."""
     looked_up: set[str] = set()
     named: set[str] = set()
     paths: list[str | None] = [load.path for load in facts.parameter_loads]
@@ -83,7 +70,37 @@ def lookups(facts: FileFacts) -> tuple[set[str], set[str]]:
     directory = posixpath.dirname(facts.path)
     for executable in facts.executables:
         named.update(join(directory, source) for source in executable.sources)
-    return looked_up, named
+    return _JOINED.join(sorted(looked_up)), _JOINED.join(sorted(named))
+
+
+class FoundBy:
+    """Where the run finds a file by its name (module docstring), from what each launch
+    and build file gives (``lookups``, by display path): made only by a run that asks."""
+
+    def __init__(self, looked_up: Mapping[str, str], named_sources: Mapping[str, str]) -> None:
+        self._looked_up = looked_up
+        self.names = {name for joined in looked_up.values() for name in joined.split(_JOINED)}
+        self.names.discard("")
+        self.named = {path for joined in named_sources.values() for path in joined.split(_JOINED)}
+        self.named.discard("")
+
+    def finds(self, display: str) -> bool:
+        """Whether a launch file finds the file by its name or stem (``looked_up``), or a
+        build file's executable names it as a source (``named``)."""
+        name = posixpath.basename(display)
+        if name in self.names or name.rpartition(".")[0] in self.names or display in self.named:
+            return True
+        # A console_scripts module ``a/b.py`` may be the package ``a/b/__init__.py``.
+        return name == "__init__.py" and f"{posixpath.dirname(display)}.py" in self.named
+
+    def naming(self, name: str) -> set[str]:
+        """The launch files that look up a file of this name."""
+        return {path for path, joined in self._looked_up.items() if name in joined.split(_JOINED)}
+
+    def adds_nothing(self, facts: FileFacts) -> bool:
+        """Whether a file may come or go without a graph of its own: it says nothing and
+        is found by no name."""
+        return says_nothing(facts) and not self.finds(facts.path)
 
 
 @dataclass(frozen=True)
@@ -106,18 +123,31 @@ class Renumbering:
             if 0 <= then < self.reported_before
         }
 
-    def after(self, earlier: Renumbering) -> Renumbering:
+    def after(self, earlier: Renumbering, displays: Sequence[str]) -> Renumbering:
         """This renumbering of the files ``earlier`` renumbered: from its earlier run to
-        this one's run. A file removed since ``earlier``'s run and added again is both
-        added and removed: each side must say nothing."""
-        previous = tuple(earlier.previous[then] if then >= 0 else -1 for then in self.previous)
+        this one's run, whose files are ``displays``. A file ``earlier`` removed that
+        this run has again is the earlier run's file (its facts then and now compared as
+        any edited file's)."""
         removed = dict(earlier.removed)
+        again = {display: first for first, display in earlier.removed}
+        previous = []
+        for index, then in enumerate(self.previous):
+            if then >= 0:
+                previous.append(earlier.previous[then])
+            elif (first := again.get(displays[index])) is not None:
+                previous.append(first)
+                del removed[first]
+            else:
+                previous.append(-1)
         for then, display in self.removed:
             first = earlier.previous[then]
             if first >= 0:
                 removed[first] = display
         return Renumbering(
-            previous, earlier.before, earlier.reported_before, tuple(sorted(removed.items()))
+            tuple(previous),
+            earlier.before,
+            earlier.reported_before,
+            tuple(sorted(removed.items())),
         )
 
     def stored(self) -> tuple[object, ...]:
@@ -173,32 +203,45 @@ def loaded_renumbering(value: object) -> Renumbering | None:
     return Renumbering(previous, before, reported_before, gone)
 
 
-_BASE_FORMAT = "base 1"
+_BASE_FORMAT = "base 2"
+_LIST_FORMAT = "file list 1"
 
 
 @dataclass(frozen=True)
 class Base:
     """The last run of a shape (``RunInputs.shape_key``) that kept a replay: where (its
-    replay's key), and its files (display paths) with how many it reported."""
+    replay's key), and its files (display paths) with how many it reported. Kept as a
+    pointer, rewritten by every such run (``pointer``), and the files, written once per
+    replay key (``listed``: 81,000 paths)."""
 
     replay_at: str
     displays: tuple[str, ...]
     reported: int
 
-    def stored(self) -> tuple[object, ...]:
-        return (_BASE_FORMAT, self.replay_at, self.displays, self.reported)
+    def pointer(self) -> tuple[object, ...]:
+        return (_BASE_FORMAT, self.replay_at, self.reported, len(self.displays))
+
+    def listed(self) -> tuple[object, ...]:
+        return (_LIST_FORMAT, self.displays)
 
 
-def loaded_base(value: object) -> Base | None:
-    if not isinstance(value, tuple) or len(value) != 4 or value[0] != _BASE_FORMAT:
+def loaded_base(pointer: object, listed: Callable[[str], object]) -> Base | None:
+    """The base a stored ``pointer`` gives, its files read by ``listed`` (by the
+    pointer's replay key); None for anything else."""
+    if not isinstance(pointer, tuple) or len(pointer) != 4 or pointer[0] != _BASE_FORMAT:
         return None
-    _, replay_at, displays, reported = value
+    _, replay_at, reported, count = pointer
+    if not (isinstance(replay_at, str) and isinstance(reported, int)):
+        return None
+    found = listed(replay_at)
+    if not isinstance(found, tuple) or len(found) != 2 or found[0] != _LIST_FORMAT:
+        return None
+    displays = found[1]
     if not (
-        isinstance(replay_at, str)
-        and isinstance(displays, tuple)
+        isinstance(displays, tuple)
+        and len(displays) == count
+        and 0 <= reported <= count
         and all(isinstance(display, str) for display in displays)
-        and isinstance(reported, int)
-        and 0 <= reported <= len(displays)
     ):
         return None
     return Base(replay_at, displays, reported)

@@ -69,6 +69,7 @@ class Keying:
     tags: list[str]  # the facts key of each checked file, or why it has none ("": unknown)
     place_key: str | None  # None: an earlier run over other files (``KeptKey.keying``)
     lookups: KeptLookups
+    shape_key: str | None = None  # ``RunInputs.shape_key``, with the place
 
 
 class KeptKey:
@@ -124,13 +125,15 @@ class KeptKey:
         if not same and (shape is None or kept.shape != shape):
             return None
         try:
-            tags, lookups = BuiltinsUnpickler(io.BytesIO(kept.made_of)).load()
+            tags, lookups, shape_key = BuiltinsUnpickler(io.BytesIO(kept.made_of)).load()
             package_statuses = dict(zip(kept.package_paths, kept.package_statuses, strict=True))
         except Exception:  # damaged: keyed file by file
             return None
-        if not isinstance(tags, list):
+        if not isinstance(tags, list) or not isinstance(shape_key, str | None):
             return None
-        keying = Keying(kept.file_statuses, package_statuses, tags, kept.place_key, lookups)
+        keying = Keying(
+            kept.file_statuses, package_statuses, tags, kept.place_key, lookups, shape_key
+        )
         return keying if same else self._renumbered(keying, kept.identity, files(), checked)
 
     def _renumbered(
@@ -195,20 +198,20 @@ class KeptKey:
         key: str,
         file_statuses: Sequence[Status | None],
         package_statuses: Mapping[str, Status | None],
-        keying: tuple[Sequence[str], str, KeptLookups],
+        keying: tuple[Sequence[str], str, KeptLookups, str | None],
         *,
         shape: str | None = None,
         files: Callable[[], Sequence[str]] = list,
         checked: int = 0,
     ) -> None:
         """Keep ``key`` with what it was made from (``keying``: each file's facts key, the
-        place and the packages' lookups), unless a package status is too recent to say
-        that nothing changed after it was taken. A file whose status is that recent is
-        kept as changed (False: no status is). ``shape``: the identity but for which
-        files are checked, where a run of that shape over other files may take this one
-        up (``keying``); the status files (``files``, as ``keying`` takes them) are then
-        kept beside, written only when the identity changed (a file added or removed:
-        10 MB at 81,000 files)."""
+        place, the packages' lookups and the place's shape), unless a package status is
+        too recent to say that nothing changed after it was taken. A file whose status is
+        that recent is kept as changed (False: no status is). ``shape``: the identity but
+        for which files are checked, where a run of that shape over other files may take
+        this one up (``keying``); the status files (``files``, as ``keying`` takes them)
+        are then kept beside, written only when the identity changed (a file added or
+        removed: 10 MB at 81,000 files)."""
         if any(s is not None and self._racy(s) for s in package_statuses.values()):
             return
         if shape is not None and (
@@ -223,8 +226,8 @@ class KeptKey:
             False if s is not None and (s[1] >= recent or s[2] >= recent) else s
             for s in file_statuses
         ]
-        tags, place_key, lookups = keying
-        made_of = pickle.dumps((list(tags), lookups), _PROTOCOL)
+        tags, place_key, lookups, shape_key = keying
+        made_of = pickle.dumps((list(tags), lookups, shape_key), _PROTOCOL)
         paths, statuses = tuple(package_statuses), list(package_statuses.values())
         kept = (_FORMAT, identity, key, trusted, paths, statuses, place_key, made_of, shape)
         # Pickled into the file: 12 MB at 77,000 files, the peak of a run that patched.

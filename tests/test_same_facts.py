@@ -143,6 +143,7 @@ inline double wrapped(double angle)
 }
 }  // namespace fleet_bringup
 """
+UNITS = f"{FLEET}/include/fleet_bringup/units.hpp"
 MODULE = f"{FLEET}/fleet_bringup/geometry.py"
 GEOMETRY = """\"\"\"Plane geometry for the fleet's poses.\"\"\"
 
@@ -173,6 +174,7 @@ SPARE_SMOOTHER = """<launch>
 </launch>
 """
 SPARE_SETTINGS = "src/turtle_bringup/config/spare.yaml"
+SPARE_SETTING_TEXT = "speed_lim_v: 0.8\nnever_read: 1\n"
 # A script named after an executable a launch file runs, which no build file makes
 SMOOTHER_SCRIPT = "src/turtle_bringup/scripts/velocity_smoother.py"
 
@@ -216,12 +218,10 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     (MONITOR, "", "\n// Back as it was.\n", "replay"),
     # Gone again: its files renumbered once more, from the last run's.
     (MODULE, "", None, "replay"),
-    # A launch file nothing includes: a tree of its own, walked (a duplicate node name,
-    # RN402); edited, walked again (the pair gone); after another edit removed, its tree
-    # gone (``launch_patch``, its ``removed``).
-    # A parameter file no launch file names yet, then the launch file handing it to a
-    # node: the tree that loads it finds it.
-    (SPARE_SETTINGS, None, "speed_lim_v: 0.8\nnever_read: 1\n", "patch"),
+    # A parameter file no launch file names yet, then a launch file nothing includes
+    # handing it to a node: a tree of its own, walked (RN406 in the parameter file, a
+    # duplicate node name, RN402); edited, walked again (the pair gone).
+    (SPARE_SETTINGS, None, SPARE_SETTING_TEXT, "patch"),
     (SPARE_LAUNCH, None, SPARE_SMOOTHER, "patch"),
     (SPARE_LAUNCH, 'name="spare_smoother"', 'name="velocity_smoother"', "patch"),
     (HEADER, "", None, "replay"),
@@ -229,9 +229,8 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     # recorder's subscription renamed to it: a new RN401 pair, the old one gone.
     (MONITOR, "    odom_sub_ =", f"    {STATUS}\n    odom_sub_ =", "patch"),
     (RECORDER, '"Robot_Pose"', '"Fleet_Status"', "patch"),
-    # The parameter file removed while the launch file still loads it, then the launch file.
+    # The parameter file removed while the launch file still loads it.
     (SPARE_SETTINGS, "", None, "patch"),
-    (SPARE_LAUNCH, "", None, "patch"),
     # ROS 1 code launched in each robot's namespace: a relative name renamed.
     (RELAY, '<nav_msgs::Odometry>("odom"', '<nav_msgs::Odometry>("odometry"', "patch"),
     # The publisher taken out again, and a parameter renamed (the graph is built).
@@ -255,6 +254,17 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
         "create_service<std_srvs::srv::Empty>",
         "build",
     ),
+    # The parameter file back, named by a launch file the build read: the trees that
+    # read that file walked again find it. Then the launch file removed: its tree gone
+    # (``launch_patch``, its ``removed``).
+    (SPARE_SETTINGS, None, SPARE_SETTING_TEXT, "patch"),
+    (SPARE_LAUNCH, "", None, "patch"),
+    # A header added, then the launch file back in a list of files no run had (the
+    # build's file again, through two renumberings: ``Renumbering.after``), then the
+    # header removed (the files of an earlier run: its replay, the launch file edited).
+    (UNITS, None, ANGLES.replace("wrapped", "unit"), "replay"),
+    (SPARE_LAUNCH, None, SPARE_SMOOTHER, "patch"),
+    (UNITS, "", None, "patch"),
     # A parameter renamed: the parameters of the code spanning its package gathered
     # again (``workspace.parameter_patch``).
     (MONITOR, '"map_frame"', '"map_frame_id"', "patch"),
@@ -347,13 +357,13 @@ def test_a_sequence_of_edits_gives_what_a_fresh_run_gives(
     cache = tmp_path / "cache"
     cached, fresh = outputs(run_cli, workspace, cache)
     assert cached == fresh
-    for relative, old, new, how in STEPS:
+    for step, (relative, old, new, how) in enumerate(STEPS):
         taken.clear()
         change(workspace / relative, old, new)
         cached, fresh = outputs(run_cli, workspace, cache)
-        assert cached == fresh, (relative, old, new)
+        assert cached == fresh, (step, relative, old, new)
         # The cached run, then the fresh one (which builds).
-        assert taken == [*([] if how == "stored" else [how]), "build"], (relative, old, new, taken)
+        assert taken == [*([] if how == "stored" else [how]), "build"], (step, relative, taken)
 
 
 def test_the_step_that_holds_a_graph_finding_shows_it_moved(
@@ -487,7 +497,7 @@ def test_an_empty_stored_replay_reads_back() -> None:
         ((*EMPTY[:8], (("x", None),), *EMPTY[9:]), 1),  # built sources that are not facts
         ((*EMPTY[:11], (3,), *EMPTY[12:]), 1),  # an unbuilt file that is not reported
         ((*EMPTY[:11], ("src/a.cpp",), *EMPTY[12:]), 1),  # one that is not an index
-        ((*EMPTY[:13], (("talker", (7,)),), ()), 1),  # looked up by a file that is not one
+        ((*EMPTY[:13], (("a.launch", 7),), ()), 1),  # names that are not a string
     ],
 )
 def test_a_stored_replay_of_another_shape_is_none(value: object, files: int) -> None:
@@ -507,8 +517,8 @@ def test_a_stored_replay_reads_back_as_it_was() -> None:
             frozenset({"/cmd_vel"}),
             ((built, "src/a"),),
             {"src/a": frozenset({"bad.launch"})},
-            {"talker": frozenset({"src/a/launch/a.launch.xml"}), "params.yaml": frozenset()},
-            frozenset({"src/a/src/talker.cpp"}),
+            {"src/a/launch/a.launch.xml": "params.yaml\0talker"},
+            {"src/a/CMakeLists.txt": "src/a/src/talker.cpp"},
         ),
         skipped=(("src/a/big.cpp", "too large"),),
         unbuilt=(1,),

@@ -23,9 +23,9 @@ from roslint_names.model import (
 from roslint_names.shifts import (
     MOST_CHANGED,
     Base,
+    FoundBy,
     GraphMove,
     Renumbering,
-    adds_nothing,
     loaded_base,
     loaded_move,
     loaded_renumbering,
@@ -58,10 +58,9 @@ def test_renumberings_join_from_the_first_run_to_the_last() -> None:
     earlier = renumbering(first, 3, second)
     later = renumbering(second, 3, third)
     assert earlier is not None and later is not None
-    joined = later.after(earlier)
-    # b.py is new to the second run: added, and removed since the first (both must say
-    # nothing); d.py never was in the first run.
-    assert joined == Renumbering((-1, 2, -1), 3, 3, ((0, "a.cpp"), (1, "b.py")))
+    joined = later.after(earlier, third)
+    # b.py, removed by the second run, is the first run's again; d.py never was in it.
+    assert joined == Renumbering((1, 2, -1), 3, 3, ((0, "a.cpp"),))
 
 
 def test_a_renumbering_reads_back_and_a_damaged_one_is_none() -> None:
@@ -78,9 +77,13 @@ def test_a_renumbering_reads_back_and_a_damaged_one_is_none() -> None:
 
 def test_a_base_and_a_graph_move_read_back() -> None:
     base = Base("k" * 40, ("a.cpp", "b.py"), 2)
-    assert loaded_base(base.stored()) == base
-    assert loaded_base(("base 0", *base.stored()[1:])) is None
-    assert loaded_base((*base.stored()[:3], 3)) is None  # reported more than it had
+    lists = {base.replay_at: base.listed()}
+    assert loaded_base(base.pointer(), lists.get) == base
+    assert loaded_base(("base 0", *base.pointer()[1:]), lists.get) is None
+    assert loaded_base((*base.pointer()[:2], 3, 2), lists.get) is None  # more reported
+    assert loaded_base((*base.pointer()[:3], 3), lists.get) is None  # another count
+    assert loaded_base(base.pointer(), lambda _: None) is None  # its files forgotten
+    assert loaded_base(base.pointer(), {base.replay_at: ("file list 1", ("a", 1))}.get) is None
     move = GraphMove("g" * 40, Renumbering((1, 0), 2, 2, ()))
     assert loaded_move(move.stored()) == move
     assert loaded_move((*move.stored()[:2], None)) is None
@@ -121,30 +124,35 @@ def test_what_launch_and_build_files_find_by_name() -> None:
         includes=(include,),
         parameter_loads=(ParameterLoad(None, "../config/extra.yaml", SPAN),),
     )
-    assert lookups(launch) == (
-        {"talker", "nav.yaml", "robot.launch.py", "warehouse.yaml", "w.sdf", "extra.yaml"},
-        set(),
+    names = "\0".join(
+        sorted({"talker", "nav.yaml", "robot.launch.py", "warehouse.yaml", "w.sdf", "extra.yaml"})
     )
+    assert lookups(launch) == (names, "")
     executables = (
         Executable("talker", ExecutableKind.PROGRAM, ("src/talker.cpp", "../b/src/x.cpp"), SPAN),
         Executable("listener", ExecutableKind.PROGRAM, ("a/listener.py",), SPAN),
     )
     build = _facts("src/a/CMakeLists.txt", Language.CMAKE, executables=executables)
-    looked_up, named = lookups(build)
-    assert named == {"src/a/src/talker.cpp", "src/b/src/x.cpp", "src/a/a/listener.py"}
-    looked_up |= lookups(launch)[0]
-    found_by = (frozenset(looked_up), frozenset(named))
-    assert adds_nothing(_facts("src/a/src/util.cpp"), *found_by)
+    assert lookups(build) == ("", "src/a/a/listener.py\0src/a/src/talker.cpp\0src/b/src/x.cpp")
+    found_by = FoundBy(
+        {launch.path: lookups(launch)[0], build.path: ""},
+        {launch.path: "", build.path: lookups(build)[1]},
+    )
+    assert found_by.adds_nothing(_facts("src/a/src/util.cpp"))
     # rosrun's rule: a script of the executable's name, a code file of its stem
-    assert not adds_nothing(_facts("src/c/scripts/talker", Language.PYTHON), *found_by)
-    assert not adds_nothing(_facts("src/c/src/talker.cpp"), *found_by)
+    assert not found_by.adds_nothing(_facts("src/c/scripts/talker", Language.PYTHON))
+    assert not found_by.adds_nothing(_facts("src/c/src/talker.cpp"))
     # a file an include finds by its name (a Python file of a launch file's name)
-    assert not adds_nothing(_facts("src/c/robot.launch.py", Language.PYTHON), *found_by)
-    assert not adds_nothing(_facts("src/b/src/x.cpp"), *found_by)  # a target's source
+    assert not found_by.adds_nothing(_facts("src/c/robot.launch.py", Language.PYTHON))
+    assert not found_by.adds_nothing(_facts("src/b/src/x.cpp"))  # a target's source
     # a console_scripts module that is a package
-    assert not adds_nothing(_facts("src/a/a/listener/__init__.py", Language.PYTHON), *found_by)
+    assert not found_by.adds_nothing(_facts("src/a/a/listener/__init__.py", Language.PYTHON))
+    # the launch files that look up a file of a name (a parameter file added: ``shifts``)
+    assert found_by.naming("nav.yaml") == {launch.path}
+    assert found_by.naming("nav") == set()
 
 
-@pytest.mark.parametrize("value", [None, (), ("base 1",), ("base 1", "k", ("a", 1), 1)])
+@pytest.mark.parametrize("value", [None, (), ("base 2",), ("base 2", 7, 1, 1)])
 def test_a_base_of_another_shape_is_none(value: object) -> None:
-    assert loaded_base(value) is None
+    lists: dict[object, object] = {7: ("file list 1", ("a",))}
+    assert loaded_base(value, lists.get) is None

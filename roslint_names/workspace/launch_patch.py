@@ -138,9 +138,10 @@ def launch_patched(
     that read one of the ``edited`` files (launch files, ``launch_edit``; parameter files,
     ``parameter_edit``) walked again over ``facts`` (every file of the run: a
     ``LazyFacts``); None where that cannot be done exactly (module docstring).
-    ``removed``: edited launch files the run has not (``shifts``): their trees go, and
-    those that read them are walked again; an edited file the build had not is a root
-    where nothing includes it, as any."""
+    ``removed``: launch and parameter files the run has not (``shifts``): a removed
+    launch file's tree goes, and the trees that read or are handed one are walked
+    again; an edited launch file the build had not is a root where nothing includes it,
+    as any."""
     edited = frozenset(edited) | frozenset(removed)
     index = WorkspaceIndex.restored(facts, packages, parts.executables)
     try:
