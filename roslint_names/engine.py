@@ -71,6 +71,7 @@ from .workspace.index import Package, PackageFiles
 from .workspace.interfaces import service_definitions
 from .workspace.launch_parts import CodeParameterParts, LaunchParts
 from .workspace.launch_patch import LazyFacts, launch_edit, launch_patched, parameter_edit
+from .workspace.launch_tree import LAUNCH_LANGUAGES
 from .workspace.parameter_patch import parameters_patched
 from .workspace.patch import (
     Moved,
@@ -598,9 +599,7 @@ class _FileChecks:
     _wired: set[str] = field(default_factory=set)  # absolute names launch files remap to
     _rejected: dict[str, set[str]] = field(default_factory=dict)  # package: fixture names
     _built: BuiltSources = field(default_factory=BuiltSources)
-    # ``RunWide``'s, per launch and build file (``shifts.lookups``)
-    _looked_up: dict[str, str] = field(default_factory=dict)
-    _named_sources: dict[str, str] = field(default_factory=dict)
+    _lookups: shifts.Lookups = field(default_factory=shifts.Lookups)  # ``RunWide``'s
     _done: int = 0
 
     def __post_init__(self) -> None:
@@ -626,9 +625,7 @@ class _FileChecks:
         if facts.compiled is not None or facts.included_sources:
             self._built.add(facts, self.package_of(index))
         if facts.launch_nodes or facts.includes or facts.parameter_loads or facts.executables:
-            looked_up, named = shifts.lookups(facts)
-            self._looked_up[facts.path] = looked_up
-            self._named_sources[facts.path] = named
+            self._lookups.add(facts)
         symbols = uses_constants(facts)
         if index < self.reported:
             if waits_for_the_run(facts, self.judge.wiring):
@@ -791,8 +788,9 @@ class _FileChecks:
             frozenset(self._wired),
             self._built.given(),
             {package: frozenset(names) for package, names in self._rejected.items()},
-            self._looked_up,
-            self._named_sources,
+            frozenset(self._lookups.names),
+            {name: frozenset(by) for name, by in self._lookups.naming.items()},
+            frozenset(self._lookups.named),
         )
 
     def resume(self, replay: Replay, edited: Sequence[int]) -> None:
@@ -811,9 +809,7 @@ class _FileChecks:
         for facts, package in run_wide.built:
             self._built.add(facts, package)
         self._rejected = {package: set(names) for package, names in run_wide.rejected.items()}
-        # Before the edited files' own (``take``): theirs stand for what they were.
-        self._looked_up = {**run_wide.looked_up, **self._looked_up}
-        self._named_sources = {**run_wide.named_sources, **self._named_sources}
+        self._lookups.update(run_wide.looked_up, run_wide.naming, run_wide.named_sources)
 
     def facts_of(self, index: int) -> FileFacts | None:
         """File ``index``'s facts, when they were kept and it arrived."""
@@ -885,7 +881,7 @@ def _shifted(
     )
     if earlier is None:
         return None
-    found_by = earlier.run_wide.found_by() if renumbering.removed else None
+    found_by = earlier.run_wide.lookups() if renumbering.removed else None
     stands = True
     for index, display in renumbering.removed:
         assert found_by is not None
@@ -940,7 +936,9 @@ def _keep_base(
     base = shifts.Base(kept_at, tuple(source.display for source in files), reported)
     if not cache.holds_file_list(kept_at):
         cache.store_file_list(kept_at, base.listed())
-    cache.store_base(same_facts.key(inputs.shape_key, clean_key), base.pointer())
+    at = same_facts.key(inputs.shape_key, clean_key)
+    if cache.load_base(at) != base.pointer():  # most runs: the last run's, as it is
+        cache.store_base(at, base.pointer())
 
 
 @dataclass(frozen=True)
@@ -1085,10 +1083,13 @@ class _GraphPatch:
         # Files the build did not have, or had and the run has not, say nothing and are
         # found by no name, the edited files' names too (``shifts``): then the build's
         # graph is theirs.
-        looked_up, named = dict(replay.run_wide.looked_up), dict(replay.run_wide.named_sources)
+        found_by = replay.run_wide.lookups()
         for edited in arrived_facts.values():
-            looked_up[edited.path], named[edited.path] = shifts.lookups(edited)
-        found_by = shifts.FoundBy(looked_up, named)
+            found_by.add(edited)
+
+        def launch_files() -> list[str]:
+            return [source.display for source in files if source.language in LAUNCH_LANGUAGES]
+
         # Launch files added or removed that nothing includes: trees that come or go.
         # Parameter files added or removed: the trees that read a launch file naming a
         # file of that name are walked again (and the trees handed a removed one), as
@@ -1103,7 +1104,10 @@ class _GraphPatch:
             if found_by.adds_nothing(gone):
                 continue
             if gone.language is Language.PARAMETERS:
-                naming |= found_by.naming(display.rpartition("/")[2])
+                named_by = found_by.naming_of(display.rpartition("/")[2], launch_files())
+                if named_by is None:
+                    return None
+                naming |= named_by
             elif not _a_tree_alone(gone, found_by):
                 return None
             removed_trees.append(display)
@@ -1134,7 +1138,10 @@ class _GraphPatch:
                 if found_by.adds_nothing(added):
                     continue
                 if added.language is Language.PARAMETERS:
-                    naming |= found_by.naming(display.rpartition("/")[2])
+                    named_by = found_by.naming_of(display.rpartition("/")[2], launch_files())
+                    if named_by is None:
+                        return None
+                    naming |= named_by
                 elif _a_tree_alone(added, found_by):
                     tree_edits.append(display)
                 else:
@@ -1297,7 +1304,7 @@ class _GraphPatch:
         return None if graph is None else (graph, specialise.specialised)
 
 
-def _a_tree_alone(facts: FileFacts, found_by: shifts.FoundBy) -> bool:
+def _a_tree_alone(facts: FileFacts, found_by: shifts.Lookups) -> bool:
     """Whether a launch file added or removed (``shifts``) changes the graph only by a
     tree of its own: nothing includes it (no launch file finds a file of its name), and
     its facts hold nothing else the graph or the run's end reads (``launch_edit`` and
@@ -1375,13 +1382,13 @@ def _replay_moved(
     if not same_facts.codes_of(replay.graph) <= rules.keys():
         return None
     moves: list[Moves] = []
-    found_by: shifts.FoundBy | None = None  # made for a file the replay's run did not have
+    found_by: shifts.Lookups | None = None  # made for a file the replay's run did not have
     for index, facts, _, _ in arrived:
         old = replay.tags[index]
         if inputs.facts_key(index) is None:
             return None
         if old == ADDED:  # (``shifts``)
-            found_by = found_by or replay.run_wide.found_by()
+            found_by = found_by or replay.run_wide.lookups()
             if not found_by.adds_nothing(facts):
                 return None
             continue

@@ -51,7 +51,7 @@ from dataclasses import dataclass, field, replace
 from .model import CompiledSources, Diagnostic, FileFacts, Finding, Generation
 from .moves import Moves, UnplacedError, moved_diagnostic, moved_finding, moved_spans
 from .run_inputs import ADDED
-from .shifts import FoundBy, Renumbering
+from .shifts import Lookups, Renumbering
 from .symbols import uses_constants
 from .wiring import wired_by
 from .workspace.graph import Graph
@@ -70,14 +70,19 @@ class RunWide:
     wired: frozenset[str]  # absolute names the launch files wire
     built: Built  # the build files' compiled sources, and the sources C++ files include
     rejected: Mapping[str, frozenset[str]]  # package: the fixture names its tests refuse
-    # Where the run finds a file by its name (``shifts.lookups``), per launch file: the
-    # executables it runs and the names of the files it includes and hands nodes; per
-    # build file: the display paths of the sources its executables name.
-    looked_up: Mapping[str, str] = field(default_factory=dict)
-    named_sources: Mapping[str, str] = field(default_factory=dict)
+    # Where the run finds a file by its name (``shifts.Lookups``): the names launch files
+    # run and include, load and hand on files by; for a parameter file's name, who does
+    # (digests of their display paths); the sources build files' executables name
+    # (digests). Gathered over every run since the last build: one that no longer holds
+    # makes a file found by name that is not, a build or a walk more, never a wrong result.
+    looked_up: frozenset[str] = frozenset()
+    naming: Mapping[str, frozenset[int]] = field(default_factory=dict)
+    named_sources: frozenset[int] = frozenset()
 
-    def found_by(self) -> FoundBy:
-        return FoundBy(self.looked_up, self.named_sources)
+    def lookups(self) -> Lookups:
+        found = Lookups()
+        found.update(self.looked_up, self.naming, self.named_sources)
+        return found
 
 
 @dataclass(frozen=True)
@@ -167,8 +172,9 @@ class Replay:
             self.skipped,
             self.unbuilt,
             self.rostest_named,
-            tuple(sorted(wide.looked_up.items())),
-            tuple(sorted(wide.named_sources.items())),
+            tuple(sorted(wide.looked_up)),
+            tuple(sorted((name, tuple(sorted(by))) for name, by in wide.naming.items())),
+            tuple(sorted(wide.named_sources)),
         )
 
     def renumbered(self, renumbering: Renumbering, reported: int) -> Replay:
@@ -176,19 +182,13 @@ class Replay:
         (``shifts``), ``reported`` of them reported: an added file's tag is ``ADDED``,
         a removed file's findings go with it."""
         then_of = renumbering.then_of(reported)
-        gone = {display for _, display in renumbering.removed}
-        wide = self.run_wide
         return Replay(
             tuple(ADDED if then < 0 else self.tags[then] for then in renumbering.previous),
             reported,
             {then_of[index]: found for index, found in self.found.items() if index in then_of},
             {then_of[index]: found for index, found in self.graph.items() if index in then_of},
             self.specialised,
-            replace(
-                wide,
-                looked_up={p: n for p, n in wide.looked_up.items() if p not in gone},
-                named_sources={p: n for p, n in wide.named_sources.items() if p not in gone},
-            ),
+            self.run_wide,
             self.skipped,
             tuple(sorted(then_of[index] for index in self.unbuilt if index in then_of)),
             tuple(sorted(then_of[index] for index in self.rostest_named if index in then_of)),
@@ -196,7 +196,7 @@ class Replay:
 
 
 _FORMAT = "replay 4"
-_FIELDS = 15  # of ``stored``
+_FIELDS = 16  # of ``stored``
 
 
 def key(place_key: str, checks_key: str) -> str:
@@ -210,7 +210,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
     if not isinstance(value, tuple) or len(value) != _FIELDS:
         return None
     form, tags, kept_reported, found, graph, specialised, types, wired = value[:8]
-    built, rejected, skipped, unbuilt, rostest_named, looked_up, named_sources = value[8:]
+    built, rejected, skipped, unbuilt, rostest_named, looked_up, naming, named = value[8:]
     if form != _FORMAT or kept_reported != reported or not _strings(tags) or len(tags) != files:
         return None
     try:
@@ -223,8 +223,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         built_pairs = tuple((facts, package) for facts, package in built)
         skipped_pairs = tuple((str(path), str(why)) for path, why in skipped)
         type_pairs = frozenset((generation, str(spelling)) for generation, spelling in types)
-        looked_up_map = dict(looked_up)
-        named_map = dict(named_sources)
+        naming_map = {str(name): frozenset(by) for name, by in naming}
     except (TypeError, ValueError):
         return None
     if not (
@@ -241,8 +240,9 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         )
         and _strings(specialised)
         and _strings(wired)
-        and _strings((*looked_up_map.keys(), *looked_up_map.values()))
-        and _strings((*named_map.keys(), *named_map.values()))
+        and _strings(looked_up)
+        and all(_ints(tuple(by)) for by in naming_map.values())
+        and _ints(named)
         and _indices(unbuilt, reported)
         and _indices(rostest_named, reported)
         and all(isinstance(generation, Generation | None) for generation, _ in type_pairs)
@@ -259,8 +259,9 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
             frozenset(wired),
             built_pairs,
             rejected_map,
-            looked_up_map,
-            named_map,
+            frozenset(looked_up),
+            naming_map,
+            frozenset(named),
         ),
         skipped_pairs,
         unbuilt,
@@ -428,6 +429,10 @@ def _indices(value: object, reported: int) -> bool:
     return isinstance(value, tuple) and all(
         isinstance(item, int) and 0 <= item < reported for item in value
     )
+
+
+def _ints(value: object) -> bool:
+    return isinstance(value, tuple) and all(isinstance(item, int) for item in value)
 
 
 def _strings(value: object) -> bool:

@@ -14,7 +14,7 @@ few known ways only (``WorkspaceIndex``):
   executable, and an include or a parameter file is found by its name where the path
   does not hold it (``sources_of``, ``find_in_package``): ``RunWide.looked_up``.
 
-A file that says nothing and is found by none of those (``FoundBy.adds_nothing``) can come or go
+A file that says nothing and is found by none of those (``Lookups.adds_nothing``) can come or go
 without a graph of its own: the last replay of the same run but for the file list (its
 ``Base``, kept by the run's shape: ``RunInputs.shape_key``) stands, its files renumbered
 (``Renumbering``): an added file is an edited one whose facts before were nothing
@@ -26,10 +26,11 @@ nothing as unchanged, and asks the same of every file the build had and the run 
 
 from __future__ import annotations
 
+import hashlib
 import posixpath
 from array import array
-from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
 
 from .model import FileFacts, InPackage, Language, replaced
 from .workspace.index import join
@@ -47,60 +48,82 @@ def says_nothing(facts: FileFacts) -> bool:
     return bare == FileFacts(facts.path, facts.language, facts.generation)
 
 
-_JOINED = "\0"  # between the names a file looks up, or the sources it names (no path holds it)
+def digest(display: str) -> int:
+    """A display path as ``RunWide`` keeps it: 8 bytes, not 70 characters (every run after
+    an edit loads and keeps 7,000 of them at 8 copies). Two paths of one digest make a
+    file found by name that is not: a build, never a wrong result."""
+    data = display.encode("utf-8", errors="surrogatepass")
+    return int.from_bytes(hashlib.blake2b(data, digest_size=8).digest(), "little")
 
 
-def lookups(facts: FileFacts) -> tuple[str, str]:
-    """What a file's facts give ``RunWide.looked_up`` and ``RunWide.named_sources``, each
-    joined in one string ("" for none): a launch file's executables and the names of the
-    files it includes, loads and hands on (an argument's value may be a file the
-    included one loads); a build file's executables' sources, as display paths."""
-    looked_up: set[str] = set()
-    named: set[str] = set()
-    paths: list[str | None] = [load.path for load in facts.parameter_loads]
-    for node in facts.launch_nodes:
-        looked_up.add(node.executable or "")
-        paths += [load.path for load in node.parameter_files]
-    for include in facts.includes:
-        paths.append(include.path)
-        for _, value in include.arguments:
-            paths.append(value.path if isinstance(value, InPackage) else value)
-    looked_up.update(posixpath.basename(path) for path in paths if path)
-    looked_up.discard("")
-    directory = posixpath.dirname(facts.path)
-    for executable in facts.executables:
-        named.update(join(directory, source) for source in executable.sources)
-    return _JOINED.join(sorted(looked_up)), _JOINED.join(sorted(named))
+PARAMETER_NAMES = (".yaml", ".yml")  # the names ``RunWide.naming`` keeps who looks up
 
 
-class FoundBy:
-    """Where the run finds a file by its name (module docstring), from what each launch
-    and build file gives (``lookups``, by display path): made only by a run that asks."""
+@dataclass
+class Lookups:
+    """Where a run finds files by name (``RunWide``'s): the names launch files run,
+    include, load and hand on, those of parameter files with who looks them up (digests
+    of their display paths), and the sources build files' executables name (digests)."""
 
-    def __init__(self, looked_up: Mapping[str, str], named_sources: Mapping[str, str]) -> None:
-        self._looked_up = looked_up
-        self.names = {name for joined in looked_up.values() for name in joined.split(_JOINED)}
-        self.names.discard("")
-        self.named = {path for joined in named_sources.values() for path in joined.split(_JOINED)}
-        self.named.discard("")
+    names: set[str] = field(default_factory=set)
+    naming: dict[str, set[int]] = field(default_factory=dict)
+    named: set[int] = field(default_factory=set)
+
+    def add(self, facts: FileFacts) -> None:
+        """What a file's facts look up: a launch file's executables and the names of the
+        files it includes, loads and hands on (an argument's value may be a file the
+        included one loads); a build file's executables' sources."""
+        paths: list[str | None] = [load.path for load in facts.parameter_loads]
+        for node in facts.launch_nodes:
+            if node.executable:
+                self.names.add(node.executable)
+            paths += [load.path for load in node.parameter_files]
+        for include in facts.includes:
+            paths.append(include.path)
+            for _, value in include.arguments:
+                paths.append(value.path if isinstance(value, InPackage) else value)
+        for path in paths:
+            name = posixpath.basename(path) if path else ""
+            if name:
+                self.names.add(name)
+                if name.endswith(PARAMETER_NAMES):
+                    self.naming.setdefault(name, set()).add(digest(facts.path))
+        directory = posixpath.dirname(facts.path)
+        for executable in facts.executables:
+            self.named.update(digest(join(directory, source)) for source in executable.sources)
+
+    def update(
+        self, names: Iterable[str], naming: Mapping[str, Iterable[int]], named: Iterable[int]
+    ) -> None:
+        """What an earlier run found (``RunWide``'s), with what this one finds."""
+        self.names.update(names)
+        for name, by in naming.items():
+            self.naming.setdefault(name, set()).update(by)
+        self.named.update(named)
 
     def finds(self, display: str) -> bool:
-        """Whether a launch file finds the file by its name or stem (``looked_up``), or a
-        build file's executable names it as a source (``named``)."""
+        """Whether a launch file finds the file by its name or stem, or a build file's
+        executable names it as a source."""
         name = posixpath.basename(display)
-        if name in self.names or name.rpartition(".")[0] in self.names or display in self.named:
+        if name in self.names or name.rpartition(".")[0] in self.names:
+            return True
+        if digest(display) in self.named:
             return True
         # A console_scripts module ``a/b.py`` may be the package ``a/b/__init__.py``.
-        return name == "__init__.py" and f"{posixpath.dirname(display)}.py" in self.named
-
-    def naming(self, name: str) -> set[str]:
-        """The launch files that look up a file of this name."""
-        return {path for path, joined in self._looked_up.items() if name in joined.split(_JOINED)}
+        return name == "__init__.py" and digest(f"{posixpath.dirname(display)}.py") in self.named
 
     def adds_nothing(self, facts: FileFacts) -> bool:
         """Whether a file may come or go without a graph of its own: it says nothing and
         is found by no name."""
         return says_nothing(facts) and not self.finds(facts.path)
+
+    def naming_of(self, name: str, displays: Iterable[str]) -> set[str] | None:
+        """Those of ``displays`` that look up a parameter file of this name (None for a
+        name whose lookers are not kept)."""
+        if not name.endswith(PARAMETER_NAMES):
+            return None
+        by = self.naming.get(name, set())
+        return {display for display in displays if digest(display) in by} if by else set()
 
 
 @dataclass(frozen=True)

@@ -476,7 +476,7 @@ def test_a_damaged_replay_is_a_run_like_any(
 
 
 # One file, nothing found
-EMPTY = ("replay 4", ("k1",), 1, (), (), (), (), (), (), (), (), (), (), (), ())
+EMPTY = ("replay 4", ("k1",), 1, (), (), (), (), (), (), (), (), (), (), (), (), ())
 
 
 def test_an_empty_stored_replay_reads_back() -> None:
@@ -497,7 +497,8 @@ def test_an_empty_stored_replay_reads_back() -> None:
         ((*EMPTY[:8], (("x", None),), *EMPTY[9:]), 1),  # built sources that are not facts
         ((*EMPTY[:11], (3,), *EMPTY[12:]), 1),  # an unbuilt file that is not reported
         ((*EMPTY[:11], ("src/a.cpp",), *EMPTY[12:]), 1),  # one that is not an index
-        ((*EMPTY[:13], (("a.launch", 7),), ()), 1),  # names that are not a string
+        ((*EMPTY[:13], (7,), (), ()), 1),  # a name that is not a string
+        ((*EMPTY[:14], (("a.yaml", ("x",)),), ()), 1),  # a digest that is not one
     ],
 )
 def test_a_stored_replay_of_another_shape_is_none(value: object, files: int) -> None:
@@ -517,8 +518,9 @@ def test_a_stored_replay_reads_back_as_it_was() -> None:
             frozenset({"/cmd_vel"}),
             ((built, "src/a"),),
             {"src/a": frozenset({"bad.launch"})},
-            {"src/a/launch/a.launch.xml": "params.yaml\0talker"},
-            {"src/a/CMakeLists.txt": "src/a/src/talker.cpp"},
+            frozenset({"params.yaml", "talker"}),
+            {"params.yaml": frozenset({7})},
+            frozenset({1 << 63}),
         ),
         skipped=(("src/a/big.cpp", "too large"),),
         unbuilt=(1,),

@@ -23,13 +23,13 @@ from roslint_names.model import (
 from roslint_names.shifts import (
     MOST_CHANGED,
     Base,
-    FoundBy,
     GraphMove,
+    Lookups,
     Renumbering,
+    digest,
     loaded_base,
     loaded_move,
     loaded_renumbering,
-    lookups,
     renumbering,
     says_nothing,
 )
@@ -124,20 +124,28 @@ def test_what_launch_and_build_files_find_by_name() -> None:
         includes=(include,),
         parameter_loads=(ParameterLoad(None, "../config/extra.yaml", SPAN),),
     )
-    names = "\0".join(
-        sorted({"talker", "nav.yaml", "robot.launch.py", "warehouse.yaml", "w.sdf", "extra.yaml"})
-    )
-    assert lookups(launch) == (names, "")
+    found_by = Lookups()
+    found_by.add(launch)
+    assert found_by.names == {
+        "talker",
+        "nav.yaml",
+        "robot.launch.py",
+        "warehouse.yaml",
+        "w.sdf",
+        "extra.yaml",
+    }
+    # who looks up a parameter file's name (a parameter file added: ``shifts``)
+    assert found_by.naming_of("nav.yaml", [launch.path, "src/b/launch/b.launch"]) == {launch.path}
+    assert found_by.naming_of("other.yaml", [launch.path]) == set()
+    assert found_by.naming_of("robot.launch.py", [launch.path]) is None  # not kept
     executables = (
         Executable("talker", ExecutableKind.PROGRAM, ("src/talker.cpp", "../b/src/x.cpp"), SPAN),
         Executable("listener", ExecutableKind.PROGRAM, ("a/listener.py",), SPAN),
     )
-    build = _facts("src/a/CMakeLists.txt", Language.CMAKE, executables=executables)
-    assert lookups(build) == ("", "src/a/a/listener.py\0src/a/src/talker.cpp\0src/b/src/x.cpp")
-    found_by = FoundBy(
-        {launch.path: lookups(launch)[0], build.path: ""},
-        {launch.path: "", build.path: lookups(build)[1]},
-    )
+    found_by.add(_facts("src/a/CMakeLists.txt", Language.CMAKE, executables=executables))
+    assert found_by.named == {
+        digest(path) for path in ("src/a/src/talker.cpp", "src/b/src/x.cpp", "src/a/a/listener.py")
+    }
     assert found_by.adds_nothing(_facts("src/a/src/util.cpp"))
     # rosrun's rule: a script of the executable's name, a code file of its stem
     assert not found_by.adds_nothing(_facts("src/c/scripts/talker", Language.PYTHON))
@@ -147,9 +155,6 @@ def test_what_launch_and_build_files_find_by_name() -> None:
     assert not found_by.adds_nothing(_facts("src/b/src/x.cpp"))  # a target's source
     # a console_scripts module that is a package
     assert not found_by.adds_nothing(_facts("src/a/a/listener/__init__.py", Language.PYTHON))
-    # the launch files that look up a file of a name (a parameter file added: ``shifts``)
-    assert found_by.naming("nav.yaml") == {launch.path}
-    assert found_by.naming("nav") == set()
 
 
 @pytest.mark.parametrize("value", [None, (), ("base 2",), ("base 2", 7, 1, 1)])
