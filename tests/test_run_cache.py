@@ -770,6 +770,27 @@ def test_runs_after_edits_load_no_digest_and_journal_those_they_read(
     assert elsewhere.stdout == check("--no-cache").stdout
 
 
+@pytest.mark.parametrize("damage", [b"not a pickle", pickle.dumps((1, "another", [], 0))])
+@pytest.mark.usefixtures("old_tree")
+def test_a_file_added_after_damaged_kept_files_keys_every_file(
+    check: Callable[..., Any],
+    workspace: Path,
+    private_cache: Path,
+    rekeyed: tuple[list[str], list[str]],
+    damage: bytes,
+) -> None:
+    """The kept key's status files (``KeptKey.keying``, renumbered by them) unreadable or
+    of another run: the run is keyed file by file, as before any was kept."""
+
+    def damaged(_: Path) -> None:
+        (files,) = private_cache.glob("facts-v*/keys/*.files")
+        files.write_bytes(damage)
+
+    after = edited_after_a_run(check, workspace, rekeyed, damaged, _add_file)
+    assert len(rekeyed[0]) == 4  # every file, the new one among them
+    assert after.stdout == check("--no-cache").stdout
+
+
 def _add_file_in_a_new_directory(workspace: Path) -> None:
     launch = LAUNCH.replace("robot1", "robot3")
     write(workspace, "src/robot_base/launch/more/three.launch", launch)
