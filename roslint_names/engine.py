@@ -1099,18 +1099,12 @@ class _GraphPatch:
         naming: set[str] = set()  # launch files that name a parameter file added or removed
         for display, tag in stored.gone:
             gone = self.cache.load(tag, display) if is_facts_key(tag) else None
-            if gone is None:
+            came = None if gone is None else _came_or_went(gone, found_by, launch_files)
+            if came is None:
                 return None
-            if found_by.adds_nothing(gone):
-                continue
-            if gone.language is Language.PARAMETERS:
-                named_by = found_by.naming_of(display.rpartition("/")[2], launch_files())
-                if named_by is None:
-                    return None
-                naming |= named_by
-            elif not _a_tree_alone(gone, found_by):
-                return None
-            removed_trees.append(display)
+            naming |= came[1]
+            if came[0] != _SAYS_NOTHING:
+                removed_trees.append(display)
 
         def facts_at(index: int) -> FileFacts | None:
             if index in arrived_facts:
@@ -1133,20 +1127,14 @@ class _GraphPatch:
                 return None  # the graph read its bytes under an includer's arguments
             if then == ADDED:
                 added = facts_at(index) if is_facts_key(now) else None
-                if added is None:
+                came = None if added is None else _came_or_went(added, found_by, launch_files)
+                if came is None:
                     return None
-                if found_by.adds_nothing(added):
-                    continue
-                if added.language is Language.PARAMETERS:
-                    named_by = found_by.naming_of(display.rpartition("/")[2], launch_files())
-                    if named_by is None:
-                        return None
-                    naming |= named_by
-                elif _a_tree_alone(added, found_by):
+                naming |= came[1]
+                if came[0] == _A_TREE:
                     tree_edits.append(display)
-                else:
-                    return None
-                new_files.add(display)
+                if came[0] != _SAYS_NOTHING:
+                    new_files.add(display)
                 continue
             before = self.cache.load(then, display) if is_facts_key(then) else None
             facts = facts_at(index) if is_facts_key(now) else None
@@ -1302,6 +1290,25 @@ class _GraphPatch:
             removed=removed,
         )
         return None if graph is None else (graph, specialise.specialised)
+
+
+_SAYS_NOTHING, _A_TREE, _SETTINGS = "says nothing", "a tree", "settings"
+
+
+def _came_or_went(
+    facts: FileFacts, found_by: shifts.Lookups, launch_files: Callable[[], list[str]]
+) -> tuple[str, set[str]] | None:
+    """What a file added or removed since the build (``shifts``) asks of its graph, and
+    the launch files whose trees are walked again for it: nothing, where it says nothing
+    and is found by no name; a tree of its own (``_a_tree_alone``); a parameter file's
+    settings, the trees of the launch files naming a file of its name walked again (of
+    ``launch_files``, the run's); None where the graph must be built."""
+    if found_by.adds_nothing(facts):
+        return _SAYS_NOTHING, set()
+    if facts.language is Language.PARAMETERS:
+        naming = found_by.naming_of(facts.path.rpartition("/")[2], launch_files())
+        return None if naming is None else (_SETTINGS, naming)
+    return (_A_TREE, set()) if _a_tree_alone(facts, found_by) else None
 
 
 def _a_tree_alone(facts: FileFacts, found_by: shifts.Lookups) -> bool:
