@@ -88,7 +88,7 @@ class KeptKey:
         # (``PackageGenerations.status``).
         self._package_status = package_status
         self.started = time.time_ns()  # before any status of this run is taken
-        self._files_path = self._path.with_name(f"{name}.files")  # ``_KeptFiles``
+        self._files_path = self._path.with_name(f"{name}.files")  # ``keep``'s ``files``
         self._kept: _Kept | None = None
         self._loaded = False
         self._kept_identity: str | None = None  # of what was kept, once loaded
@@ -148,7 +148,8 @@ class KeptKey:
         if kept_files is None:
             return None
         locations, kept_checked = kept_files
-        if list(locations[kept_checked:]) != list(files[checked:]):
+        statuses = keying.file_statuses
+        if len(statuses) != len(locations) or locations[kept_checked:] != list(files[checked:]):
             return None
         at = {where: index for index, where in enumerate(locations[:kept_checked])}
         previous = [at.get(where, -1) for where in files[:checked]]
@@ -164,7 +165,6 @@ class KeptKey:
             or any(os.path.dirname(path) not in directories for path in added)
         ):
             return None
-        statuses = keying.file_statuses
         return Keying(
             [statuses[then] if then >= 0 else None for then in previous] + statuses[kept_checked:],
             keying.package_statuses,
@@ -186,6 +186,7 @@ class KeptKey:
         if (
             kept_identity != identity
             or not isinstance(locations, list)
+            or not all(isinstance(where, str) for where in locations)
             or not isinstance(checked, int)
             or not 0 <= checked <= len(locations)
         ):

@@ -770,21 +770,28 @@ def test_runs_after_edits_load_no_digest_and_journal_those_they_read(
     assert elsewhere.stdout == check("--no-cache").stdout
 
 
-@pytest.mark.parametrize("damage", [b"not a pickle", pickle.dumps((1, "another", [], 0))])
+@pytest.mark.parametrize("damage", ["not a pickle", "another run's", "not paths"])
 @pytest.mark.usefixtures("old_tree")
 def test_a_file_added_after_damaged_kept_files_keys_every_file(
     check: Callable[..., Any],
     workspace: Path,
     private_cache: Path,
     rekeyed: tuple[list[str], list[str]],
-    damage: bytes,
+    damage: str,
 ) -> None:
-    """The kept key's status files (``KeptKey.keying``, renumbered by them) unreadable or
-    of another run: the run is keyed file by file, as before any was kept."""
+    """The kept key's status files (``KeptKey.keying``, renumbered by them) unreadable, of
+    another run or not paths: the run is keyed file by file, as before any was kept."""
 
     def damaged(_: Path) -> None:
         (files,) = private_cache.glob("facts-v*/keys/*.files")
-        files.write_bytes(damage)
+        form, identity, wheres, checked = pickle.loads(files.read_bytes())
+        files.write_bytes(
+            {
+                "not a pickle": b"not a pickle",
+                "another run's": pickle.dumps((form, "another", wheres, checked)),
+                "not paths": pickle.dumps((form, identity, [[where] for where in wheres], checked)),
+            }[damage]
+        )
 
     after = edited_after_a_run(check, workspace, rekeyed, damaged, _add_file)
     assert len(rekeyed[0]) == 4  # every file, the new one among them
