@@ -1,27 +1,31 @@
 """A run over the files of an earlier run, some added or removed: that run's replay and
 kept graph, their files renumbered.
 
-A file added or removed (a header, a Python module) changes the run's file list, so its
-place key (``RunInputs.place_key``): no replay or graph is kept under it, and every such
-run built the graph (8 s at 81,000 files, issue 30). Yet most files' facts are empty for
-the graph: code with no name, no class, no include the build reads. Such a file changes
-nothing the graph or the run's end is made of, but where it is, and that matters in a
-few known ways only (``WorkspaceIndex``):
+A file added or removed (a header, a Python module, a launch file) changes the run's
+file list, so its place key (``RunInputs.place_key``): no replay or graph is kept under
+it, and every such run built the graph (7.7 s at 81,000 files, issue 30). Yet most
+files' facts are empty for the graph: code with no name, no class, no include the build
+reads. Such a file changes nothing the graph or the run's end is made of, but where it
+is, and that matters in a few known ways only (``WorkspaceIndex``):
 
 - a build file's executable may name it as a source (``_existing`` keeps only sources
-  the run holds): ``RunWide.named_sources``;
+  the run holds);
 - a launch file's node runs it by its name or stem where no build file makes that
   executable, and an include or a parameter file is found by its name where the path
-  does not hold it (``sources_of``, ``find_in_package``): ``RunWide.looked_up``.
+  does not hold it (``sources_of``, ``find_in_package``).
 
-A file that says nothing and is found by none of those (``Lookups.adds_nothing``) can come or go
-without a graph of its own: the last replay of the same run but for the file list (its
-``Base``, kept by the run's shape: ``RunInputs.shape_key``) stands, its files renumbered
-(``Renumbering``): an added file is an edited one whose facts before were nothing
-(``run_inputs.ADDED``), a removed one is gone with its findings. A graph kept by a build is found
-through the same renumbering (``GraphMove``: the run that shifted keeps where the graph
-is and how its files map), and a patch over it takes an added file that still says
-nothing as unchanged, and asks the same of every file the build had and the run has not.
+``Lookups`` keeps both (``RunWide``'s, gathered since the last build: one that no longer
+holds costs a build, never a result). A file that says nothing and is found by none of
+them (``Lookups.adds_nothing``) can come or go without a graph of its own: the replay of
+the last run of the same shape (its place but for the file list: ``Base``, by
+``RunInputs.shape_key``) stands, its files renumbered (``Renumbering``): an added file
+is an edited one whose facts before were nothing (``run_inputs.ADDED``), a removed one
+is gone with its findings. Other files added or removed are the graph patch's to judge
+(``engine._came_or_went``: a launch file nothing includes is a tree of its own, a
+parameter file has the trees naming a file of its name walked again). A graph kept by a
+build is found through the same renumbering (``GraphMove``: the run that renumbered
+keeps where the graph is and how its files map), and a patch over it asks the same of
+every file added since the build, and of every file the build had and the run has not.
 """
 
 from __future__ import annotations
