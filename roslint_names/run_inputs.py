@@ -285,7 +285,13 @@ class RunInputs:
         checked file as where it is, how it is shown and its language (its facts key
         holds the last two), then the ``.srv`` files' paths."""
         checked = len(self._checked)
-        return [_where(source) for source in self._checked] + self._status_files[checked:]
+        return [*self._wheres, *self._status_files[checked:]]
+
+    @cached_property
+    def _wheres(self) -> list[str]:
+        """Each checked file as where it is, how it is shown and its language: for the
+        place and for the status files a run of another identity matches (made once)."""
+        return [_where(source) for source in self._checked]
 
     @cached_property
     def _shape(self) -> str | None:
@@ -357,12 +363,16 @@ class RunInputs:
         digest.update(_text_bytes(f"{fingerprints}\0{self._reported}\0"))
         # The bytes of one line per file, hashed in one update: the same digest as an
         # update per line, without 77,000 calls.
-        lines = [f"{_where(source)}\n" for source in self._checked]
-        digest.update(_text_bytes("".join(lines)))
+        wheres = self._wheres
+        digest.update(_text_bytes("\n".join(wheres) + "\n" if wheres else ""))
         linted = {source.location for source in self._checked}
-        lines.clear()
+        lines: list[str] = []
+        # Every manifest a run reads read now; where the lookups are an earlier run's over
+        # the same directories (``unchanged``), they read none.
+        look_up = not self._packages.restored
         for source in self._everything:
-            self._packages.for_file(source.location)  # so every manifest a run reads is read now
+            if look_up:
+                self._packages.for_file(source.location)
             if source.location not in linted:
                 lines.append(f"{_where(source)}\n")
             if source.language is Language.SERVICE_DEFINITION:  # RN403 reads its text too
