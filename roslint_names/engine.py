@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import hashlib
 import os
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from functools import partial
 from pathlib import Path
@@ -1154,7 +1154,8 @@ class _GraphPatch:
         naming -= {*tree_edits, *removed_trees}
         walk = [*tree_edits, *sorted(naming)]  # the launch files whose trees are walked again
         declaring: set[str] = set()  # code files whose parameters changed
-        edits = edits_of(changed, declaring)
+        renamed: set[str] = set()  # and those whose node name did (``patch.name_edit``)
+        edits = edits_of(changed, declaring, renamed)
         if edits is None:
             return None
         slots = {source.display: index for index, source in enumerate(files)}
@@ -1180,7 +1181,7 @@ class _GraphPatch:
             }
             known |= new_files
         specialised = replay.specialised
-        if walk or removed_trees:
+        if walk or removed_trees or renamed:
             assert kept is not None
             if not naming <= known:
                 return None  # a launch file naming one that has no facts now
@@ -1190,6 +1191,7 @@ class _GraphPatch:
                 packages=stored.packages,
                 edited=walk,
                 removed=removed_trees,
+                code=renamed,
                 known=known,
                 facts_of=facts_of,
             )
@@ -1270,6 +1272,7 @@ class _GraphPatch:
         packages: Sequence[Package],
         edited: Sequence[str],
         removed: Sequence[str],
+        code: Collection[str],
         known: set[str],
         facts_of: Callable[[str], FileFacts | None],
     ) -> tuple[Graph, frozenset[str]] | None:
@@ -1288,6 +1291,7 @@ class _GraphPatch:
             specialise=specialise,
             prepare=specialise.prepare,
             removed=removed,
+            code=code,
         )
         return None if graph is None else (graph, specialise.specialised)
 

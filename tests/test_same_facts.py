@@ -27,6 +27,7 @@ FLEET = "src/fleet_bringup"
 MONITOR = f"{FLEET}/src/fleet_monitor.cpp"  # a graph finding (RN401) at line 22
 DOCK = f"{FLEET}/src/dock_manager.cpp"  # RN204 waits for the run; RN407 at line 18
 RECORDER = f"{FLEET}/fleet_bringup/pose_recorder.py"  # the other side of the RN401
+REPORTER = f"{FLEET}/fleet_bringup/battery_reporter.py"  # launched by fleet.launch.py
 PARAMETERS = f"{FLEET}/config/waypoint_follower.yaml"  # RN405
 LOCALIZATION = f"{FLEET}/launch/localization.launch.xml"
 TURTLE_BUILD = "src/turtle_bringup/CMakeLists.txt"
@@ -127,6 +128,10 @@ def change(path: Path, old: str | None, new: str | None) -> None:
 LINE_18 = 'get_parameter("dockframe").as_string().c_str());'
 STATUS = 'auto status = create_publisher<std_msgs::msg::String>("fleet_status", 1);'
 RELAY = "src/turtle_bringup/src/odom_relay.cpp"  # ROS 1, launched in robot namespaces
+OWN_STATUS = (
+    '    auto own = create_publisher<std_msgs::msg::String>("~/Status", 1);\n'
+    '    auto all = create_publisher<std_msgs::msg::String>("/fleet_monitor/status", 1);\n'
+)
 
 # Files added and removed (``shifts``)
 HEADER = f"{FLEET}/include/fleet_bringup/angles.hpp"
@@ -246,6 +251,12 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     (BEACON, "", None, "build"),
     # The files of three runs ago, as they were: that run's stored result.
     (SMOOTHER_SCRIPT, "", None, "stored"),
+    # A private topic and the one its name resolves to in another case (RN401, by the
+    # node's name), and a node of fleet.launch.py started without a name (its code's).
+    # The first is built: the script a launch file ran by name is gone since the last
+    # build.
+    (MONITOR, "    odom_sub_ =", f"{OWN_STATUS}    odom_sub_ =", "build"),
+    (f"{FLEET}/launch/fleet.launch.py", '                name="batteryReporter",\n', "", "patch"),
     # A service of another type: the service types every file is compared with (RN204)
     # change, and the graph is built.
     (
@@ -267,6 +278,11 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     (UNITS, "", None, "patch"),
     # A parameter renamed: the parameters of the code spanning its package gathered
     # again (``workspace.parameter_patch``).
+    # Since that build, the node names their code gives themselves changed
+    # (``patch.name_edit``): the monitor's program of its own made again (its RN401 pair
+    # gone), the tree that starts the reporter walked again (its RN406 names it anew).
+    (MONITOR, 'Node("fleet_monitor", options)', 'Node("fleet_watch", options)', "patch"),
+    (REPORTER, 'super().__init__("battery_reporter")', 'super().__init__("battery")', "patch"),
     (MONITOR, '"map_frame"', '"map_frame_id"', "patch"),
     # A launch file nothing includes, which wires no absolute name.
     (LOCALIZATION, "</launch>", "</launch>\n<!-- localization -->", "replay"),

@@ -133,6 +133,7 @@ def launch_patched(
     specialise: Specialise,
     prepare: Prepare | None = None,
     removed: Collection[str] = (),
+    code: Collection[str] = (),
 ) -> Graph | None:
     """``graph`` (a build's, whole: ``parts`` is what the same build left) with the trees
     that read one of the ``edited`` files (launch files, ``launch_edit``; parameter files,
@@ -141,8 +142,10 @@ def launch_patched(
     ``removed``: launch and parameter files the run has not (``shifts``): a removed
     launch file's tree goes, and the trees that read or are handed one are walked
     again; an edited launch file the build had not is a root where nothing includes it,
-    as any."""
+    as any. ``code``: code files whose node name changed (``patch.name_edit``): the trees
+    that start them are walked again, and their programs of their own made again."""
     edited = frozenset(edited) | frozenset(removed)
+    renamed = frozenset(code)
     index = WorkspaceIndex.restored(facts, packages, parts.executables)
     try:
         roots = _roots(parts, edited, LaunchTrees(index, specialise, roots=[]), frozenset(removed))
@@ -154,11 +157,12 @@ def launch_patched(
             if root not in parts.trees
             or root in handed
             or not edited.isdisjoint(parts.trees[root].visited)
+            or not renamed.isdisjoint(parts.trees[root].sources)
         ]
-        if not walked and not gone:
+        if not walked and not gone and not renamed:
             return graph
         trees = LaunchTrees(index, specialise, prepare, roots=walked)
-        return _patched(graph, parts, roots, gone, trees, edited=edited)
+        return _patched(graph, parts, roots, gone, trees, edited=edited, renamed=renamed)
     except UnknownFactsError:
         return None
 
@@ -217,6 +221,7 @@ def _patched(
     trees: LaunchTrees,
     *,
     edited: frozenset[str],
+    renamed: frozenset[str] = frozenset(),
 ) -> Graph | None:
     index = trees.index
     walked = trees.roots()
@@ -237,9 +242,10 @@ def _patched(
     # now is one no more.
     was = set(parts.programs.unlaunched(_launched(parts, parts.roots, {})))
     now = parts.programs.unlaunched(_launched(parts, roots, sources_of))
-    stopped = was - set(now)
+    # Those that run on, of code whose node name changed, are made again.
+    stopped = (was - set(now)) | {sources for sources in now if not renamed.isdisjoint(sources)}
     for sources in now:
-        if sources not in was:  # a set: every program of its own is looked up in it
+        if sources not in was or sources in stopped:  # sets: every program looked up
             node, own_endpoints = _unlaunched_instance(index, sources)
             nodes.append(node)
             endpoints.extend(own_endpoints)

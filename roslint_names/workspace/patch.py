@@ -83,6 +83,19 @@ def declaration_edit(before: FileFacts, now: FileFacts) -> Moved | None:
     return code_edit(_without_uses(before), _without_uses(now))
 
 
+def name_edit(before: FileFacts, now: FileFacts) -> Moved | None:
+    """``declaration_edit``'s moves for an edit that may also change the node name the
+    code gives itself (``ros::init``, ``Node("x")``): the launch trees that start the file
+    and its programs of their own are then made again (``workspace.launch_patch``, its
+    ``code``), the rest as for a declaration edit; None where something else changed."""
+    return declaration_edit(_without_node_names(before), _without_node_names(now))
+
+
+def _without_node_names(facts: FileFacts) -> FileFacts:
+    kept = tuple(use for use in facts.names if use.role is not Role.NODE_NAME)
+    return replace(facts, names=kept)
+
+
 def build_moves(before: FileFacts, now: FileFacts) -> Moved | None:
     """Where an edit of a build file moved its facts, when it changed nothing else (a
     dependency found above its targets): the graph keeps no place of a build file, so
@@ -99,13 +112,16 @@ def _without_uses(facts: FileFacts) -> FileFacts:
 
 
 def edits_of(
-    changed: Iterable[tuple[str, FileFacts, FileFacts]], declaring: set[str] | None = None
+    changed: Iterable[tuple[str, FileFacts, FileFacts]],
+    declaring: set[str] | None = None,
+    naming: set[str] | None = None,
 ) -> dict[str, Moved] | None:
     """``patched``'s edits for the files whose facts changed since the graph was made
     (display path, facts then and now): each a ``code_edit``, or the same facts in the same
     places (nothing of the graph to patch) or a build file's moved (``build_moves``);
     None where one is neither. With ``declaring``, a ``declaration_edit`` is one too,
-    its file added to ``declaring``."""
+    its file added to ``declaring``; with ``naming`` as well, a ``name_edit``, its file
+    added to both."""
     edits: dict[str, Moved] = {}
     for display, then, now in changed:
         moves = code_edit(then, now)
@@ -115,6 +131,11 @@ def edits_of(
             moves = declaration_edit(then, now)
             if moves is not None:
                 declaring.add(display)
+        if moves is None and declaring is not None and naming is not None:
+            moves = name_edit(then, now)
+            if moves is not None:
+                declaring.add(display)
+                naming.add(display)
         if moves is not None:
             edits[display] = moves
         elif not same_places(then, now):
