@@ -8,6 +8,7 @@ cannot follow is refused, never patched wrong."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from itertools import pairwise
 from pathlib import Path
 
@@ -136,7 +137,9 @@ class _Workspace(ExampleCopy):
         self,
         built: tuple[Graph, LaunchParts, CodeParameterParts, dict[str, FileFacts]],
         now: dict[str, FileFacts],
+        load: Callable[[str], FileFacts | None] | None = None,
     ) -> Graph | None:
+        """``load``: a file's facts for the patch (``now``'s by default)."""
         graph, parts, code, before = built
         changed = [path for path in now if before.get(path) != now[path]]
         assert changed and before.keys() == now.keys()
@@ -159,7 +162,7 @@ class _Workspace(ExampleCopy):
             parts,
             code,
             {path: (before[path], now[path]) for path in changed},
-            facts=LazyFacts(now.keys(), now.get),
+            facts=LazyFacts(now.keys(), now.get if load is None else load),
             packages=self.packages,
         )
 
@@ -211,3 +214,19 @@ def test_an_edit_the_patches_cannot_follow_is_refused(tmp_path: Path, step: int)
     now = workspace.built()
     assert now[0] != last[0]
     assert workspace.patched(last, now[3]) is None
+
+
+def test_a_file_whose_facts_cannot_be_loaded_refuses_the_patch(tmp_path: Path) -> None:
+    """A file of the edited package the patch cannot load (one taking another file's
+    constant: only the whole run resolves it, ``engine._GraphPatch``): the graph is
+    built, never an internal error (a node renamed in moveit_ros_planning raised one)."""
+    workspace = _Workspace(tmp_path / "ws")
+    workspace.add(EXTRA_FILES)
+    for edit in SETUP:
+        workspace.edit(*edit)
+    last = workspace.built()
+    workspace.edit(*PATCHED[0])
+    now = workspace.built()[3]
+    edited = PATCHED[0][0]
+    assert workspace.patched(last, now) is not None
+    assert workspace.patched(last, now, lambda path: now[path] if path == edited else None) is None

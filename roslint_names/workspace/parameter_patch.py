@@ -30,6 +30,7 @@ from roslint_names.workspace.build import _TestFiles
 from roslint_names.workspace.graph import Graph
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
 from roslint_names.workspace.launch_parts import CodeParameterParts, LaunchParts
+from roslint_names.workspace.launch_patch import UnknownFactsError
 from roslint_names.workspace.parameters import (
     DeclarationCounts,
     ParameterSets,
@@ -62,7 +63,10 @@ def parameters_patched(
     if not spanning:
         fresh = {}
     else:
-        fresh = {sources: sets.of(sources) for sources in spanning}
+        try:
+            fresh = {sources: sets.of(sources) for sources in spanning}
+        except UnknownFactsError:  # a file the patch cannot load: the graph is built
+            return None
         # A receiver of a parameter file keeps its code's parameters without the code.
         stale = [parts.parameters[sources] for sources in spanning]
         if any(
