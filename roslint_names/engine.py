@@ -930,15 +930,18 @@ def _keep_base(
     reported: int,
 ) -> None:
     """Keep the run that kept its replay at ``kept_at`` as the last of its shape: its
-    files, where no run over them kept them yet, and the pointer to them."""
+    files, where no run over them kept them yet (or what was kept does not read back),
+    and the pointer to them."""
     if inputs.shape_key is None or clean_key is None:
         return
     base = shifts.Base(kept_at, tuple(source.display for source in files), reported)
-    if not cache.holds_file_list(kept_at):
-        cache.store_file_list(kept_at, base.listed())
     at = same_facts.key(inputs.shape_key, clean_key)
-    if cache.load_base(at) != base.pointer():  # most runs: the last run's, as it is
-        cache.store_base(at, base.pointer())
+    listed = cache.holds_file_list(kept_at)
+    if cache.load_base(at) == base.pointer() and listed:
+        return  # most runs: the last run's, as it is
+    if not listed or shifts.loaded_base(base.pointer(), cache.load_file_list) != base:
+        cache.store_file_list(kept_at, base.listed())
+    cache.store_base(at, base.pointer())
 
 
 @dataclass(frozen=True)

@@ -823,3 +823,26 @@ def test_edits_of_two_nodes_in_one_run_patch_the_graph_once(
     assert cached == fresh
     assert taken == ["patch", "build"]
     assert '"RN401"' not in cached  # the case collision between them is gone
+
+
+def test_a_damaged_file_list_is_written_again_by_the_next_run_over_those_files(
+    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str]
+) -> None:
+    """The files of a run the next run renumbers from (``shifts.Base``): damaged, the
+    next run over them writes them again, so a file added after it still takes the
+    replay."""
+    cache = tmp_path / "cache"
+    outputs(run_cli, workspace, cache)
+    lists = sorted((cache).glob("facts-v*/file-lists/*"))
+    assert len(lists) == 1
+    change(workspace / HEADER, None, ANGLES)
+    outputs(run_cli, workspace, cache)
+    lists[0].write_bytes(b"damaged")
+    change(workspace / HEADER, "", None)
+    append(workspace / MONITOR, "\n// Reviewed.\n")
+    outputs(run_cli, workspace, cache)
+    taken.clear()
+    change(workspace / UNITS, None, ANGLES.replace("wrapped", "unit"))
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    assert taken == ["replay", "build"]
