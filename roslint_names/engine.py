@@ -934,11 +934,11 @@ def _keep_base(
     and the pointer to them."""
     if inputs.shape_key is None or clean_key is None:
         return
-    base = shifts.Base(kept_at, tuple(source.display for source in files), reported)
     at = same_facts.key(inputs.shape_key, clean_key)
     listed = cache.holds_file_list(kept_at)
-    if cache.load_base(at) == base.pointer() and listed:
-        return  # most runs: the last run's, as it is
+    if listed and cache.load_base(at) == shifts.pointer(kept_at, reported, len(files)):
+        return  # most runs: the last run's, as it is (its display paths not made)
+    base = shifts.Base(kept_at, tuple(source.display for source in files), reported)
     if not listed or shifts.loaded_base(base.pointer(), cache.load_file_list) != base:
         cache.store_file_list(kept_at, base.listed())
     cache.store_base(at, base.pointer())

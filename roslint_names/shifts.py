@@ -246,10 +246,16 @@ class Base:
     reported: int
 
     def pointer(self) -> tuple[object, ...]:
-        return (_BASE_FORMAT, self.replay_at, self.reported, len(self.displays))
+        return pointer(self.replay_at, self.reported, len(self.displays))
 
     def listed(self) -> tuple[object, ...]:
         return (_LIST_FORMAT, self.displays)
+
+
+def pointer(replay_at: str, reported: int, files: int) -> tuple[object, ...]:
+    """``Base.pointer`` of a run's ``files``, without its display paths: what every run
+    that keeps a replay compares with the kept one."""
+    return (_BASE_FORMAT, replay_at, reported, files)
 
 
 def loaded_base(pointer: object, listed: Callable[[str], object]) -> Base | None:
