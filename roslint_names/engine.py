@@ -511,12 +511,13 @@ def _lint(
             if kept_replay is not None and kept_at is not None:
                 cache.store_replay(kept_at, kept_replay.stored())
                 _keep_base(cache, inputs, clean_key, kept_at, files=files, reported=reported)
-                # A graph this run's files were renumbered to, not built: where it is.
+                # A graph this run's files were renumbered to, not built: where it is (as
+                # the patch found it, where one ran).
                 moved = None
-                if graph is None and patch is not None and patch.found_elsewhere is not None:
-                    moved = patch.found_elsewhere
-                elif graph is None and shifted is not None and graph_place is not None:
-                    moved = graph_place.resolved(cache, [source.display for source in files])
+                renumbered = shifted is not None or (patch is not None and patch.elsewhere_used)
+                if graph is None and renumbered and graph_place is not None:
+                    patched_from = None if patch is None else patch.graph_from
+                    moved = patched_from or graph_place.resolved(cache, files)
                 if moved is not None and moved.renumbering is not None:
                     move = shifts.GraphMove(moved.key, moved.renumbering)
                     cache.store_graph_move(kept_at, move.stored())
@@ -952,10 +953,10 @@ class _GraphPlace:
     key: str
     renumbering: shifts.Renumbering | None = None
 
-    def resolved(self, cache: FactsCache, displays: Sequence[str]) -> _GraphPlace | None:
+    def resolved(self, cache: FactsCache, files: Sequence[SourceFile]) -> _GraphPlace | None:
         """Where a build kept the graph: ``key``, or where the run kept under it says
-        (``shifts.GraphMove``), the renumberings joined (``displays``: this run's
-        files); None where neither is."""
+        (``shifts.GraphMove``), the renumberings joined (``files``: this run's); None
+        where neither is."""
         if cache.holds_graph(self.key):
             return self
         move = shifts.loaded_move(cache.load_graph_move(self.key))
@@ -963,6 +964,7 @@ class _GraphPlace:
             return None
         renumbering = move.renumbering
         if self.renumbering is not None:
+            displays = [source.display for source in files]
             renumbering = self.renumbering.after(renumbering, displays)
         return _GraphPlace(move.graph_at, renumbering)
 
@@ -1061,18 +1063,19 @@ class _GraphPatch:
     # Where the graph of the last run of this run's shape is, where ``place`` no longer
     # leads to one (a run over these files long ago, whose graph was since forgotten)
     elsewhere: Callable[[], _GraphPlace | None] = lambda: None
-    found_elsewhere: _GraphPlace | None = None  # and resolved, once asked
+    elsewhere_used: bool = False
+    graph_from: _GraphPlace | None = None  # where the graph it patched is, resolved
 
     def __call__(self, replay: Replay, arrived: Sequence[_Arrived]) -> _Replayed | None:
         files = self.gathered.files
-        displays = [source.display for source in files]
-        place = self.place.resolved(self.cache, displays)
+        place = self.place.resolved(self.cache, files)
         stored = None if place is None else place.graph(self.cache, len(files), replay.reported)
         if stored is None:
             other = self.elsewhere()
-            place = None if other is None else other.resolved(self.cache, displays)
+            place = None if other is None else other.resolved(self.cache, files)
             stored = None if place is None else place.graph(self.cache, len(files), replay.reported)
-            self.found_elsewhere = place
+            self.elsewhere_used = True
+        self.graph_from = place
         codes = {rule.code for rule in self.rules}
         if (
             place is None
