@@ -882,17 +882,19 @@ def _shifted(
     )
     if earlier is None:
         return None
-    found_by = earlier.run_wide.lookups() if renumbering.removed else None
     stands = True
-    for index, display in renumbering.removed:
-        assert found_by is not None
-        tag = earlier.tags[index]
-        facts = cache.load(tag, display) if is_facts_key(tag) else None
-        if facts is None or not found_by.adds_nothing(facts):
-            stands = False
-            break
+    if renumbering.removed:
+        found_by = earlier.run_wide.lookups()
+        gone = (_facts_by_tag(cache, earlier.tags[at], path) for at, path in renumbering.removed)
+        stands = all(facts is not None and found_by.adds_nothing(facts) for facts in gone)
     replay = earlier.renumbered(renumbering, len(files))
     return _Shift(base.replay_at, renumbering, replay, stands)
+
+
+def _facts_by_tag(cache: FactsCache, tag: str, display: str) -> FileFacts | None:
+    """The facts of the file shown as ``display`` under ``tag`` (``RunInputs.tags``), None
+    where the tag is no facts key or they are not kept."""
+    return cache.load(tag, display) if is_facts_key(tag) else None
 
 
 def _base_of(
@@ -1104,7 +1106,7 @@ class _GraphPatch:
         removed_trees: list[str] = []
         naming: set[str] = set()  # launch files that name a parameter file added or removed
         for display, tag in stored.gone:
-            gone = self.cache.load(tag, display) if is_facts_key(tag) else None
+            gone = _facts_by_tag(self.cache, tag, display)
             came = None if gone is None else _came_or_went(gone, found_by, launch_files)
             if came is None:
                 return None
@@ -1142,7 +1144,7 @@ class _GraphPatch:
                 if came[0] != _SAYS_NOTHING:
                     new_files.add(display)
                 continue
-            before = self.cache.load(then, display) if is_facts_key(then) else None
+            before = _facts_by_tag(self.cache, then, display)
             facts = facts_at(index) if is_facts_key(now) else None
             if before is None or facts is None:
                 return None
