@@ -144,16 +144,16 @@ class Specialiser:
         """Extract every specialisation of ``wanted`` not known yet: from the cache, else
         through the dispatcher (in workers when it has them), all handed over together."""
         asked: list[tuple[tuple[str, LaunchArguments], _Item]] = []
-        for key in dict.fromkeys(wanted):
-            if key in self._memo:
-                continue
-            found = self._job(len(asked), *key)
-            if isinstance(found, tuple):
-                asked.append((key, found))
-                self._take(asked, self._dispatcher.put(found, len(found[1].data)))
-            else:
-                self._memo[key] = found
-        self._take(asked, self._dispatcher.finish())
+        unknown = [key for key in dict.fromkeys(wanted) if key not in self._memo]
+        with self._dispatcher.batch(len(unknown)):
+            for key in unknown:
+                found = self._job(len(asked), *key)
+                if isinstance(found, tuple):
+                    asked.append((key, found))
+                    self._take(asked, self._dispatcher.put(found, len(found[1].data)))
+                else:
+                    self._memo[key] = found
+            self._take(asked, self._dispatcher.finish())
 
     def _take(
         self, asked: list[tuple[tuple[str, LaunchArguments], _Item]], results: Iterable[Extracted]

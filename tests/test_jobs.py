@@ -278,6 +278,28 @@ def test_chunks_are_large_where_there_are_items_enough(expected: int, largest: i
     assert max(sizes) == largest
 
 
+def test_a_batch_waited_for_whole_is_spread_over_every_worker() -> None:
+    """A depth of the launch trees (``gather.Specialiser``) is waited for whole: in
+    chunks that give each worker two at least, not the stream's 32 items, which left
+    most of 16 workers idle on a depth of 229 files. The stream after it is chunked as
+    before."""
+    dispatcher: Dispatcher[int, tuple[int, int]] = Dispatcher(_chunk_sizes, 4, min_items=1)
+    with dispatcher:
+        batch: list[tuple[int, int]] = []
+        with dispatcher.batch(40):
+            for item in range(40):
+                batch.extend(dispatcher.put(item, size=1))
+            batch.extend(dispatcher.finish())
+        stream: list[tuple[int, int]] = []
+        for item in range(40, 140):
+            stream.extend(dispatcher.put(item, size=1))
+        stream.extend(dispatcher.finish())
+    assert sorted(item for item, _ in batch) == list(range(40))
+    assert max(size for _, size in batch) == 5  # 40 items, 4 workers, 2 chunks each
+    assert sorted(item for item, _ in stream) == list(range(40, 140))
+    assert max(size for _, size in stream) == workers.CHUNK_ITEMS
+
+
 @pytest.mark.usefixtures("small_chunks")
 def test_putting_an_item_waits_on_no_future(monkeypatch: pytest.MonkeyPatch) -> None:
     """The main process asks after every item it puts which chunks came back: by each
