@@ -13,7 +13,8 @@ Measures, in this order, and prints as a table (and as JSON with ``--json``):
   the files past the extractors' prefilters (the files a run parses) are summed apart:
   the share of the floor that no cold run can avoid;
 - the real CLI as a subprocess (start-up and imports count), each in a fresh temporary
-  cache directory: cold ``--jobs 1``, cold ``--jobs 2``, then warm (unchanged files, the
+  cache directory: cold ``--jobs 1``, cold ``--jobs 2`` (and each count of
+  ``--cold-jobs``: how cores pay off), then warm (unchanged files, the
   default ``--jobs``: the stored result of the run before), then warm from the facts
   alone (the stored results deleted: where a run after an edit starts), with their
   ratios to the floor and to the parses past the prefilters, and whether their outputs
@@ -42,7 +43,7 @@ The CLI runs use a copy of the package taken when the benchmark starts (on ``PYT
 so that edits to the checkout during the benchmark change neither the code measured nor
 the cache fingerprint between the run that fills the cache and the warm run.
 
-With ``--repeat N`` the floor and the four CLI runs are each taken N times and the
+With ``--repeat N`` the floor and the CLI runs are each taken N times and the
 fastest is kept: on a shared machine the minimum is the least disturbed measurement.
 Times are wall-clock; CPU time (user + system, workers included) is printed beside them.
 """
@@ -106,6 +107,8 @@ TARGETS = {
     "single_file_seconds": 0.3,
     # The main process's own CPU in a cold run with two workers: the serial part (issue 30).
     "serial_seconds": 1.0,
+    # A cold run's CPU with two jobs over its CPU with one (issue 30).
+    "cold_2_jobs_cpu": 1.1,
     "peak_memory_mb": 200.0,
     "cpplint_ratio": 20.0,
 }
@@ -156,6 +159,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--cpplint-cap", type=float, default=300.0, metavar="SECONDS")
     parser.add_argument("--skip-cpplint", action="store_true")
     parser.add_argument(
+        "--cold-jobs",
+        type=job_counts,
+        default=(),
+        metavar="N,N,...",
+        help="also run cold with these job counts (1 and 2 always run): how cores pay off",
+    )
+    parser.add_argument(
         "--copies",
         type=int,
         metavar="N",
@@ -188,6 +198,20 @@ def main(argv: Sequence[str] | None = None) -> int:
     return 0
 
 
+def job_counts(text: str) -> tuple[int, ...]:
+    try:
+        counts = tuple(int(part) for part in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a list of job counts: {text!r}") from None
+    if any(count < 1 for count in counts):
+        raise argparse.ArgumentTypeError(f"a job count is at least 1: {text!r}")
+    return counts
+
+
+def cold_run_name(jobs: int) -> str:
+    return "cold_1_job" if jobs == 1 else f"cold_{jobs}_jobs"
+
+
 def benchmark(workspace: Path, options: argparse.Namespace) -> dict[str, Any]:
     load_before = os.getloadavg()
     sources = lintable(discover([workspace], (), workspace, workspace))
@@ -200,10 +224,12 @@ def benchmark(workspace: Path, options: argparse.Namespace) -> dict[str, Any]:
         results["floor"] = floor
         floor_s = floor["total_s"]
         runs = {}
-        for name, jobs in (("cold_1_job", ["--jobs", "1"]), ("cold_2_jobs", ["--jobs", "2"])):
-            runs[name] = fastest_run(
+        for jobs in sorted({1, 2, *options.cold_jobs}):
+            runs[cold_run_name(jobs)] = fastest_run(
                 options.repeat,
-                lambda jobs=jobs: cli(workspace, ["--format", "json", *jobs, "."], fresh(scratch)),
+                lambda jobs=jobs: cli(
+                    workspace, ["--format", "json", "--jobs", str(jobs), "."], fresh(scratch)
+                ),
             )
         warm_cache = fresh(scratch)
         cli(workspace, ["--format", "json", "."], warm_cache)  # fill it
@@ -730,6 +756,11 @@ def verdicts(results: dict[str, Any]) -> dict[str, dict[str, Any]]:
     if serial is not None:
         target = TARGETS["serial_seconds"]
         found["serial_s"] = {"value": serial, "target": target, "met": serial <= target}
+    if "cold_1_job" in runs and "cold_2_jobs" in runs:
+        # What a second worker costs in CPU: imports, and facts sent back (issue 30).
+        ratio = round(runs["cold_2_jobs"]["cpu_s"] / runs["cold_1_job"]["cpu_s"], 3)
+        target = TARGETS["cold_2_jobs_cpu"]
+        found["cold_2_jobs_cpu"] = {"value": ratio, "target": target, "met": ratio <= target}
     for name, basis in TARGET_BASIS.items():
         if name not in runs:
             continue
@@ -803,7 +834,7 @@ def table(results: dict[str, Any]) -> str:
             f"{'-' if past is None else f'{past:.3f}':>9}{target:>15}"
             f"{run['max_rss_mb']:>12.0f}{tree:>9}"
         )
-    lines.append(f"outputs of the four runs byte-identical: {results['identical_output']}")
+    lines.append(f"outputs of the CLI runs byte-identical: {results['identical_output']}")
     serial = results["runs"].get("cold_2_jobs", {}).get("main_cpu_s")
     if serial is not None:
         lines.append(f"serial part of the cold run with 2 jobs (main process CPU): {serial} s")
