@@ -167,6 +167,7 @@ class Dispatcher(Generic[Item, Result]):
         self._give_up = give_up
         self._workers = worker_count(jobs)
         self._chunk_items = CHUNK_ITEMS
+        self._expected = expected_items
         if expected_items is not None:
             self._workers = min(self._workers, max(1, expected_items // ITEMS_PER_WORKER))
             spread = expected_items // (self._workers * CHUNKS_EACH)
@@ -199,9 +200,18 @@ class Dispatcher(Generic[Item, Result]):
             if len(self._pending) < self._min_items:
                 return []
             self._start()
-        if len(self._pending) >= self._chunk_items or self._pending_bytes >= CHUNK_BYTES:
+        if len(self._pending) >= self._chunk_limit() or self._pending_bytes >= CHUNK_BYTES:
             self._submit()
         return self._collect(block=len(self._inflight) >= self._workers * CHUNKS_PER_WORKER)
+
+    def _chunk_limit(self) -> int:
+        """``_chunk_items``, less as the expected items run out: the last chunks of a
+        stream give each worker two at least, so that the workers finish together rather
+        than all but one waiting on a last chunk of 32 files (guided self-scheduling)."""
+        if self._expected is None or self._numbered > self._expected:
+            return self._chunk_items
+        left = self._expected - self._numbered + len(self._pending)  # this chunk on
+        return max(1, min(self._chunk_items, -(-left // (self._workers * BATCH_CHUNKS_EACH))))
 
     @contextmanager
     def batch(self, items: int) -> Iterator[None]:

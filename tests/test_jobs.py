@@ -300,6 +300,24 @@ def test_a_batch_waited_for_whole_is_spread_over_every_worker() -> None:
     assert max(size for _, size in stream) == workers.CHUNK_ITEMS
 
 
+def test_the_last_chunks_of_a_stream_are_small() -> None:
+    """Where the items to come are known, the chunks shrink as they run out: each worker
+    gets two at least of what is left, and no worker is left alone on a last chunk of 32
+    files while the others wait (the end of a cold run on 16 cores)."""
+    expected = 1_000
+    dispatcher: Dispatcher[int, tuple[int, int]] = Dispatcher(
+        _chunk_sizes, 2, min_items=1, expected_items=expected
+    )
+    size_of = dict(run_all(dispatcher, range(expected)))
+    assert size_of[0] == workers.CHUNK_ITEMS
+    assert [size_of[item] for item in range(expected - 4, expected)] == [1, 1, 1, 1]
+    # never more than a quarter of what was left when a chunk was started
+    start = 0
+    while start < expected:
+        assert size_of[start] <= max(1, -(-(expected - start) // 4))
+        start += size_of[start]
+
+
 @pytest.mark.usefixtures("small_chunks")
 def test_putting_an_item_waits_on_no_future(monkeypatch: pytest.MonkeyPatch) -> None:
     """The main process asks after every item it puts which chunks came back: by each
