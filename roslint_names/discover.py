@@ -323,7 +323,8 @@ class _Spec:
 
     def match_file(self, relative: str) -> bool:
         spec, any_pattern = self._patterns
-        if any_pattern is not None and any_pattern.match(relative) is None:
+        # pathspec searches each pattern: "*/" is a "/" anywhere in the path
+        if any_pattern is not None and any_pattern.search(relative) is None:
             return False
         return bool(spec.match_file(relative))
 

@@ -10,6 +10,8 @@ from typing import Any
 
 import pytest
 from conftest import write
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from roslint_names.discover import DiscoveryError, classify, discover
 from roslint_names.generation import PackageGenerations, package_xml_generation, service_types
@@ -143,6 +145,8 @@ GITIGNORES = [
     ["**/generated/*.py", "docs/**/*.xacro", "a?b[0-9].urdf"],
     ["*", "!*/", "!*.launch"],  # the "ignore all but" idiom
     ["\\!important.launch", "#comment", "", "foo\\ bar.launch "],
+    ["*/"],  # every directory: pathspec searches "/" anywhere in the path
+    ["**/", "!keep.launch"],
 ]
 PATHS = [
     "keep.launch",
@@ -175,6 +179,43 @@ def test_the_one_regex_per_gitignore_agrees_with_pathspec(lines: list[str]) -> N
     ours = _Spec(lines)
     for path in PATHS:
         assert ours.match_file(path) == exact.match_file(path), path
+
+
+_PIECES = st.sampled_from(["build", "log", "src", "keep", "a", "x.launch", "y.py", "gen"])
+_PATTERN = st.builds(
+    "".join,
+    st.lists(
+        st.sampled_from(["", "!", "/", "**/", "*", "*.launch", "build/", "log/**", "a?", "src/"])
+        | _PIECES,
+        min_size=1,
+        max_size=4,
+    ),
+)
+_PATH = st.builds(
+    lambda parts, directory: "/".join(parts) + ("/" if directory else ""),
+    st.lists(_PIECES, min_size=1, max_size=4),
+    st.booleans(),
+)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(_PATTERN, min_size=1, max_size=5), st.lists(_PATH, min_size=1, max_size=8))
+def test_the_one_regex_per_gitignore_agrees_with_pathspec_on_any_patterns(
+    lines: list[str], paths: list[str]
+) -> None:
+    """With "!" patterns or without (where a match of the one regex is the answer, no
+    pattern asked on its own), whatever the patterns and paths."""
+    import pathspec
+
+    from roslint_names.discover import _Spec
+
+    try:
+        exact = pathspec.GitIgnoreSpec.from_lines(lines)
+    except (ValueError, re.error):
+        return  # an invalid pattern: ``_Spec`` leaves such lines out (tested apart)
+    ours = _Spec(lines)
+    for path in paths:
+        assert ours.match_file(path) == exact.match_file(path), (lines, path)
 
 
 def test_extension_less_scripts_are_found_by_shebang_walked_or_named(tmp_path: Path) -> None:
