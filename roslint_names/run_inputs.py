@@ -129,6 +129,13 @@ class RunInputs:
                 self._keying = keying
         return key
 
+    def sizes(self) -> list[int] | None:
+        """Each checked file's size as the run's statuses took it (``unchanged_key``; 0
+        where it has none); None before they were taken."""
+        if len(self._statuses) < len(self._checked):
+            return None
+        return [0 if status is None else status[0] for status in self._statuses]
+
     def key_first(self) -> str | None:
         """The run's key before anything is extracted, when an earlier run of this
         workspace left its keying or its digests (only then can a stored result match)."""

@@ -218,10 +218,11 @@ class Dispatcher(Generic[Item, Result]):
 
     @contextmanager
     def batch(self, items: int) -> Iterator[None]:
-        """The next ``items`` puts are one batch the caller then waits for whole
-        (``finish``; a depth of the launch trees, ``gather.Specialiser``): chunked so that
-        every worker gets some. Chunks sized for the stream of a whole workspace (32
-        items) left 8 of 16 workers idle on a depth of 229 launch files, and every
+        """The next ``items`` puts are chunked so that every worker gets some: a batch the
+        caller then waits for whole (``finish``; a depth of the launch trees,
+        ``gather.Specialiser``), or items each slow to work on (the largest files, handed
+        out first: ``gather.Gatherer``). Chunks sized for the stream of a whole workspace
+        (32 items) left 8 of 16 workers idle on a depth of 229 launch files, and every
         worker but one on the deepest depths."""
         kept = self._chunk_items
         spread = -(-items // (self._workers * BATCH_CHUNKS_EACH))  # rounded up
