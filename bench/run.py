@@ -22,7 +22,8 @@ Measures, in this order, and prints as a table (and as JSON with ``--json``):
   workers, the serial part of the run, at most 1 s with two jobs (issue 30). The
   verdicts are issue 18's: a cold run is judged against the parses it cannot avoid
   (``past_prefilters``: at most 1.5x with one job, 0.9x with two), a re-run against the
-  whole floor (0.05x unchanged, 0.08x from the facts alone);
+  whole floor (0.05x unchanged, 0.08x from the facts alone); and issue 30's: the serial
+  part at most 1 s, a cold run's CPU with two jobs within 10 % of its CPU with one;
 - peak memory: the largest resident set of any process of a run (``wait4`` rusage, as
   ``RUSAGE_CHILDREN`` reports it), and the peak sum over the run's process tree (sampled
   from /proc, so the workers and the main process together);
