@@ -57,6 +57,7 @@ from .registry import Registry
 from .rule import Rule, RuleContext, WorkspaceFinding
 from .run_inputs import ADDED, RunInputs, is_facts_key
 from .same_facts import KeptGraph, KeptLaunch, Replay, RunWide
+from .speculation import Speculation
 from .suppress import Suppression, find_suppressions, is_our_code
 from .symbols import PackageConstants, uses_constants
 from .templates import holds_placeholder, is_template
@@ -379,6 +380,15 @@ def _lint(
             dispatcher=dispatcher,
             ros1_python2=python2,
         )
+        # A run that builds the graph, over workers, walks its launch trees' depths
+        # while the files are extracted (``speculation``).
+        ahead: Speculation | None = None
+        if last_replay is None and (graph_rules or want_graph) and dispatcher.parallel:
+            built_with = workspace_packages(workspace, packages)
+            launch_files = sum(source.language in Speculation.languages for source in files)
+            ahead = Speculation(
+                specialiser(), built_with, launch_files=launch_files, first=len(files)
+            )
         # (2) and (3)
         gathered = Gatherer(
             files=files,
@@ -390,6 +400,7 @@ def _lint(
             fallback=fallback,
             ros1_python2=python2,
             max_file_size=settings.max_file_size,
+            ahead=ahead,
         )
         patch = None
         if cache is not None and inputs is not None and graph_place is not None:
@@ -433,8 +444,8 @@ def _lint(
         # (4) The graph, and what each launch tree gave it (kept for a launch patch).
         elif graph_rules or want_graph:
             known_facts = checks.facts()
-            specialise = specialiser()
-            built_with = workspace_packages(workspace, packages)
+            specialise = specialiser() if ahead is None else ahead.specialiser
+            built_with = built_with or workspace_packages(workspace, packages)
             graph, launch_parts, code_parts = build_parts(
                 known_facts, built_with, specialise, specialise.prepare
             )

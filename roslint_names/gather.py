@@ -16,6 +16,7 @@ launch files never imports libcst or tree-sitter.
 from __future__ import annotations
 
 import importlib
+from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
@@ -122,6 +123,13 @@ class Specialiser:
         self._dispatcher = dispatcher
         self._memo: dict[tuple[str, LaunchArguments], FileFacts | None] = {}
         self._files: dict[str, tuple[bytes | None, str]] = {}
+        # Extracted ahead of the walk, while the rest of the workspace was (``ahead``):
+        # each taken up as the walk asks for it, as if extracted then.
+        self._ahead: dict[tuple[str, LaunchArguments], FileFacts | None] = {}
+        self._ahead_files: dict[str, tuple[bytes | None, str]] = {}
+        self._sent: dict[int, tuple[tuple[str, LaunchArguments], _Item]] = {}  # by number
+        self._flying: set[tuple[str, LaunchArguments]] = set()  # those sent, not back
+        self._numbered_ahead = 0
 
     @cached_property
     def _sources(self) -> dict[str, SourceFile]:
@@ -149,7 +157,11 @@ class Specialiser:
         """Extract every specialisation of ``wanted`` not known yet: from the cache, else
         through the dispatcher (in workers when it has them), all handed over together."""
         asked: list[tuple[tuple[str, LaunchArguments], _Item]] = []
-        unknown = [key for key in dict.fromkeys(wanted) if key not in self._memo]
+        unknown = [
+            key
+            for key in dict.fromkeys(wanted)
+            if key not in self._memo and not self._taken_up(key)
+        ]
         with self._dispatcher.batch(len(unknown)):
             for key in unknown:
                 found = self._job(len(asked), *key)
@@ -160,6 +172,56 @@ class Specialiser:
                     self._memo[key] = found
             self._take(asked, self._dispatcher.finish())
 
+    def ahead(self, wanted: Sequence[tuple[str, LaunchArguments]], first: int) -> list[Extracted]:
+        """Send the specialisations of ``wanted`` not known yet to be extracted while the
+        walk is not there yet, numbered from ``first`` on (past the run's files: whose
+        results are told apart by the number, ``sent``); the dispatcher's results that
+        came back meanwhile, of any item. None is taken for a file the walk reads
+        (``specialised``) until the walk asks for it (``prepare``)."""
+        results: list[Extracted] = []
+        for key in dict.fromkeys(wanted):
+            if key in self._memo or key in self._ahead or key in self._flying:
+                continue
+            found = self._job(first + self._numbered_ahead, *key, ahead=True)
+            if isinstance(found, tuple):
+                self._numbered_ahead += 1
+                self._sent[found[0].index] = (key, found)
+                self._flying.add(key)
+                results.extend(self._dispatcher.put(found, len(found[1].data)))
+            else:
+                self._ahead[key] = found
+        return results
+
+    def sent(self, number: int) -> bool:
+        """Whether ``number`` is an item ``ahead`` sent whose result is not back."""
+        return number in self._sent
+
+    def back(self, result: Extracted) -> None:
+        """The result of an item ``ahead`` sent."""
+        key, item = self._sent.pop(result[0])
+        self._flying.discard(key)
+        self._ahead[key] = _as_read(result, item, self._dispatcher)[1]
+
+    def known_ahead(self, display: str, arguments: LaunchArguments) -> FileFacts | None:
+        """What ``ahead`` extracted (None where it has not, or the file is none)."""
+        key = (display, arguments)
+        return self._ahead[key] if key in self._ahead else self._memo.get(key)
+
+    @property
+    def flying(self) -> int:
+        """How many items ``ahead`` sent are not back."""
+        return len(self._sent)
+
+    def _taken_up(self, key: tuple[str, LaunchArguments]) -> bool:
+        """Whether ``key`` was extracted ahead: then it is known, its file read, as if the
+        walk had asked for it now."""
+        if key not in self._ahead:
+            return False
+        self._memo[key] = self._ahead.pop(key)
+        if key[0] in self._ahead_files:
+            self._files.setdefault(key[0], self._ahead_files[key[0]])
+        return True
+
     def _take(
         self, asked: list[tuple[tuple[str, LaunchArguments], _Item]], results: Iterable[Extracted]
     ) -> None:
@@ -168,13 +230,13 @@ class Specialiser:
             self._memo[key] = _as_read(result, item, self._dispatcher)[1]
 
     def _job(
-        self, index: int, display: str, arguments: LaunchArguments
+        self, index: int, display: str, arguments: LaunchArguments, *, ahead: bool = False
     ) -> FileFacts | tuple[_Job, OnDisk, str | None] | None:
         """The cached facts (None: nothing to specialise), or the work to extract them."""
         source = self._sources.get(display)
         if source is None or source.language not in SPECIALISABLE:
             return None
-        data, content = self._read(source)
+        data, content = self._read(source, self._ahead_files if ahead else self._files)
         if data is None:
             return None
         package = self._packages.for_file(source.location)
@@ -192,13 +254,18 @@ class Specialiser:
         job = _Job(index, display, source.language, package, self._fallback, arguments, python2)
         return job, OnDisk(source.location, data, content), cache_key
 
-    def _read(self, source: SourceFile) -> tuple[bytes | None, str]:
+    def _read(
+        self, source: SourceFile, files: dict[str, tuple[bytes | None, str]]
+    ) -> tuple[bytes | None, str]:
         """A launch file's bytes and content digest, read once however many argument
-        sets it is specialised under (up to 19 on realws)."""
-        if source.display not in self._files:
-            data, _, _ = read_file(source.location, self._max_file_size)
-            self._files[source.display] = data, "" if data is None else content_digest(data)
-        return self._files[source.display]
+        sets it is specialised under (up to 19 on realws), kept in ``files``."""
+        if source.display not in files:
+            known = self._files.get(source.display) or self._ahead_files.get(source.display)
+            if known is None:
+                data, _, _ = read_file(source.location, self._max_file_size)
+                known = data, "" if data is None else content_digest(data)
+            files[source.display] = known
+        return files[source.display]
 
 
 @dataclass(frozen=True)
@@ -455,6 +522,24 @@ def _file_error(source: SourceFile, message: str) -> FileFacts:
     )
 
 
+class Ahead(Protocol):
+    """What extracts work ahead of the walk while the files are gathered
+    (``speculation.Speculation``): told the facts of each file of ``languages`` (handed
+    out first), it sends items numbered past the run's files (``sent``) and takes their
+    results (``back``), each time returning the dispatcher's results that came back
+    meanwhile; it sends nothing once ``stop`` is called."""
+
+    languages: frozenset[Language]
+
+    def saw(self, facts: FileFacts) -> list[Extracted]: ...
+
+    def sent(self, number: int) -> bool: ...
+
+    def back(self, result: Extracted) -> list[Extracted]: ...
+
+    def stop(self) -> None: ...
+
+
 @dataclass
 class Gatherer:
     """Every file of ``files`` as ``(index, facts, bytes)``, in the order facts arrive.
@@ -475,6 +560,7 @@ class Gatherer:
     fallback: Generation
     ros1_python2: bool  # ``config.ros1_python2``
     max_file_size: int
+    ahead: Ahead | None = None  # work done ahead of the walk, with the facts of some files
     extracted: int = 0
     cached: int = 0
     _skipped: dict[int, tuple[str, str]] = field(default_factory=dict)  # by file index
@@ -493,12 +579,29 @@ class Gatherer:
         first (``_heaviest_first``) in chunks that spread them over every worker."""
         if indices is None:
             heavy, rest = self._heaviest_first()
+            if self.ahead is not None:  # the files it wants first, then the rest
+                wanted = self.ahead.languages
+                rest = [i for i in rest if self.files[i].language in wanted] + [
+                    i for i in rest if self.files[i].language not in wanted
+                ]
             with self.dispatcher.batch(len(heavy)):
-                yield from self._each(heavy)
-            yield from self._each(rest)
+                yield from self._told(self._each(heavy))
+            yield from self._told(self._each(rest))
         else:
-            yield from self._each(indices)
-        yield from self._arrived(self.dispatcher.finish())
+            yield from self._told(self._each(indices))
+        if self.ahead is not None:
+            self.ahead.stop()  # what it sent still comes back, through ``finish``
+        yield from self._told(self._arrived(self.dispatcher.finish()))
+
+    def _told(
+        self, gathered: Iterable[tuple[int, FileFacts, bytes | None, Verdict | None]]
+    ) -> Iterator[tuple[int, FileFacts, bytes | None, Verdict | None]]:
+        """``gathered``, the facts of each file of the languages ``ahead`` wants told to
+        it (by the file's language, as the files were handed out)."""
+        for found in gathered:
+            yield found
+            if self.ahead is not None and self.files[found[0]].language in self.ahead.languages:
+                yield from self._told(self._arrived(self.ahead.saw(found[1])))
 
     def _each(
         self, indices: Iterable[int]
@@ -614,14 +717,20 @@ class Gatherer:
     def _arrived(
         self, results: Iterable[Extracted]
     ) -> Iterator[tuple[int, FileFacts, bytes | None, Verdict | None]]:
-        for result in results:
-            item = self._extracting.pop(result[0])
-            index, facts, verdict, read = _as_read(result, item, self.dispatcher)
-            if read is not None:
-                yield self._read_there(index, facts, verdict, *read)
-                continue
-            assert facts is not None and isinstance(item[1], OnDisk)
-            yield index, facts, item[1].data, verdict
+        for first in results:  # as they come: ``finish`` waits for each chunk in turn
+            waiting = deque([first])
+            while waiting:
+                result = waiting.popleft()
+                if self.ahead is not None and self.ahead.sent(result[0]):
+                    waiting.extend(self.ahead.back(result))  # and what it sent next
+                    continue
+                item = self._extracting.pop(result[0])
+                index, facts, verdict, read = _as_read(result, item, self.dispatcher)
+                if read is not None:
+                    yield self._read_there(index, facts, verdict, *read)
+                    continue
+                assert facts is not None and isinstance(item[1], OnDisk)
+                yield index, facts, item[1].data, verdict
 
     def _read_there(
         self,

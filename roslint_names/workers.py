@@ -185,6 +185,11 @@ class Dispatcher(Generic[Item, Result]):
         self._next_overdue_check = 0.0  # ``time.monotonic``: a put looks no sooner
 
     @property
+    def parallel(self) -> bool:
+        """Whether the items go to worker processes (once there are enough of them)."""
+        return self._workers >= 2
+
+    @property
     def workers(self) -> int:
         """How many worker processes were started (0: everything ran in-process)."""
         return self._workers if self._started else 0

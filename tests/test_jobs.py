@@ -18,7 +18,8 @@ from typing import Any
 import pytest
 from conftest import write
 
-from roslint_names import gather, reading, run_inputs, workers
+from roslint_names import gather, reading, run_inputs, same_facts, workers
+from roslint_names.cache import FactsCache
 from roslint_names.gather import OnDisk
 from roslint_names.progress import DELAY_SECONDS, ProgressBar, wanted
 from roslint_names.workers import Dispatcher, worker_count
@@ -166,6 +167,57 @@ def test_a_first_run_hands_out_the_heaviest_files_first(
     uncached = run_cli([*arguments[:-1], "--no-cache", "."], workspace)
     assert handed[0] != big and big in handed  # no statuses taken: in the files' order
     assert (first.stdout, first.exit_code) == (uncached.stdout, uncached.exit_code)
+
+
+@pytest.mark.usefixtures("small_chunks")
+def test_includes_are_extracted_under_their_arguments_while_the_files_are(
+    run_cli: Any, workspace: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A first run with workers hands out the launch and Python files first and, once
+    their facts are in, sends the launch files an includer hands arguments to (depth by
+    depth, ``speculation``) between the other files: the build's walk then waits on the
+    workers for none of them. It reads the same files as a run in one process, and
+    prints the same."""
+    sent_by_the_build: list[str] = []
+    building = False
+    real_prepare = gather.Specialiser.prepare
+    real_put = workers.Dispatcher.put
+
+    def prepare(self: gather.Specialiser, wanted: Any) -> None:
+        nonlocal building
+        building = True
+        try:
+            real_prepare(self, wanted)
+        finally:
+            building = False
+
+    def put(self: Dispatcher[Any, Any], item: Any, size: int) -> list[Any]:
+        if building:
+            sent_by_the_build.append(item[0].display)
+        return list(real_put(self, item, size))
+
+    monkeypatch.setattr(gather.Specialiser, "prepare", prepare)
+    monkeypatch.setattr(workers.Dispatcher, "put", put)
+
+    def run(cache: str, jobs: str) -> Any:
+        arguments = ["check", "--format", "json", "--verbose", "--jobs", jobs, "."]
+        return run_cli([*arguments[:-1], "--cache-dir", str(tmp_path / cache), "."], workspace)
+
+    parallel = run("a", "2")
+    assert "extracted by 2 worker processes" in parallel.stderr
+    assert sent_by_the_build == []
+    alone = run("b", "1")
+    assert sent_by_the_build  # in one process nothing goes ahead: the build extracts them
+    assert (parallel.stdout, parallel.exit_code) == (alone.stdout, alone.exit_code)
+    assert parallel.stderr.splitlines()[1:] == alone.stderr.splitlines()[1:]
+    specialised = []  # what each run's replay says the graph read under arguments
+    for name in ("a", "b"):
+        kept = next((tmp_path / name).glob("facts-v*/replays/*"))
+        stored: Any = FactsCache(tmp_path / name).load_replay(kept.name)
+        replay = same_facts.loaded(stored, len(stored[1]), stored[2])
+        assert replay is not None
+        specialised.append(replay.specialised)
+    assert specialised[0] == specialised[1] == {"src/fleet_bringup/launch/fleet.launch.py"}
 
 
 def test_a_file_goes_to_a_worker_as_where_it_is(tmp_path: Path) -> None:

@@ -237,12 +237,22 @@ class LaunchTrees:
         """Walk the trees depth by depth, handing each depth's specialisations to
         ``prepare`` before asking for them; the walk proper then visits the same frames
         depth first (the order its launched nodes come in)."""
+        for wanted in self._depths(frames):
+            prepare(wanted)
+
+    def depths(self) -> Iterator[list[tuple[str, LaunchArguments]]]:
+        """Each depth of every tree's specialisations, as ``launched`` asks ``prepare``
+        for them: the next depth is made once ``specialise`` gives those of the last (a
+        run extracting them while the rest of the workspace is, ``gather.Speculation``)."""
+        return self._depths([_start(root) for root in self.roots()])
+
+    def _depths(self, frames: list[_Frame]) -> Iterator[list[tuple[str, LaunchArguments]]]:
         while frames:
             wanted = dict.fromkeys((frame.path, frame.arguments) for frame in frames)
             # A file's specialisations side by side: a worker that parses it for one
             # extracts it under the next arguments from the same parse.
             specialised = [(path, arguments) for path, arguments in wanted if arguments]
-            prepare(sorted(specialised, key=lambda pair: pair[0]))
+            yield sorted(specialised, key=lambda pair: pair[0])
             frames = [
                 inner
                 for frame in frames
