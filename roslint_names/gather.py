@@ -560,7 +560,9 @@ class Gatherer:
     fallback: Generation
     ros1_python2: bool  # ``config.ros1_python2``
     max_file_size: int
-    ahead: Ahead | None = None  # work done ahead of the walk, with the facts of some files
+    # Work done ahead of the walk with the facts of some files, in a first run (where
+    # every file is extracted: ``_read_where_extracted``)
+    ahead: Ahead | None = None
     extracted: int = 0
     cached: int = 0
     _skipped: dict[int, tuple[str, str]] = field(default_factory=dict)  # by file index
@@ -577,6 +579,8 @@ class Gatherer:
     ) -> Iterator[tuple[int, FileFacts, bytes | None, Verdict | None]]:
         """Those of the files at ``indices`` of ``files``, or of all of them, the heaviest
         first (``_heaviest_first``) in chunks that spread them over every worker."""
+        if self.ahead is not None and (indices is not None or not self._read_where_extracted()):
+            self.ahead = None  # no extraction of every file for its work to go beside
         if indices is None:
             heavy, rest = self._heaviest_first()
             if self.ahead is not None:  # the files it wants first, then the rest

@@ -218,6 +218,16 @@ def test_includes_are_extracted_under_their_arguments_while_the_files_are(
         assert replay is not None
         specialised.append(replay.specialised)
     assert specialised[0] == specialised[1] == {"src/fleet_bringup/launch/fleet.launch.py"}
+    # A build from cached facts extracts no file to go beside: nothing goes ahead.
+    for kept in (
+        *(tmp_path / "a").glob("facts-v*/runs"),
+        *(tmp_path / "a").glob("facts-v*/replays"),
+    ):
+        shutil.rmtree(kept)
+    sent_ahead: list[object] = []
+    monkeypatch.setattr(gather.Specialiser, "ahead", lambda *given: sent_ahead.append(given))
+    again = run("a", "2")
+    assert sent_ahead == [] and again.stdout == parallel.stdout
 
 
 def test_a_file_goes_to_a_worker_as_where_it_is(tmp_path: Path) -> None:
