@@ -384,10 +384,12 @@ def _lint(
         # while the files are extracted (``speculation``).
         ahead: Speculation | None = None
         if last_replay is None and (graph_rules or want_graph) and dispatcher.parallel:
-            built_with = workspace_packages(workspace, packages)
             launch_files = sum(source.language in Speculation.languages for source in files)
             ahead = Speculation(
-                specialiser(), built_with, launch_files=launch_files, first=len(files)
+                specialiser(),
+                partial(workspace_packages, workspace, packages),
+                launch_files=launch_files,
+                first=len(files),
             )
         # (2) and (3)
         gathered = Gatherer(
@@ -444,8 +446,10 @@ def _lint(
         # (4) The graph, and what each launch tree gave it (kept for a launch patch).
         elif graph_rules or want_graph:
             known_facts = checks.facts()
-            specialise = specialiser() if ahead is None else ahead.specialiser
-            built_with = built_with or workspace_packages(workspace, packages)
+            if ahead is None:
+                specialise, built_with = specialiser(), workspace_packages(workspace, packages)
+            else:
+                specialise, built_with = ahead.specialiser, list(ahead.packages())
             graph, launch_parts, code_parts = build_parts(
                 known_facts, built_with, specialise, specialise.prepare
             )

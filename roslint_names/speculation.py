@@ -17,7 +17,7 @@ file is handed out: the depths left are the build's.
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 
 from .gather import Extracted, Specialiser
 from .model import FileFacts, Language, LaunchArguments
@@ -36,16 +36,18 @@ class Speculation:
     def __init__(
         self,
         specialiser: Specialiser,
-        packages: Sequence[Package],
+        packages: Callable[[], Sequence[Package]],
         *,
         launch_files: int,
         first: int,
     ) -> None:
-        """``launch_files``: how many files of ``languages`` the run has (by their
-        ``SourceFile.language``); ``first``: the first number past its files
-        (``Specialiser.ahead``)."""
+        """``packages``: the workspace's (made when first asked: while the workers
+        extract, rather than before they start); ``launch_files``: how many files of
+        ``languages`` the run has (by their ``SourceFile.language``); ``first``: the first
+        number past its files (``Specialiser.ahead``)."""
         self.specialiser = specialiser
-        self._packages = packages
+        self._make_packages = packages
+        self._packages: Sequence[Package] | None = None
         self._expected = launch_files
         self._first = first
         self._launch: list[FileFacts] = []
@@ -56,9 +58,15 @@ class Speculation:
         self._launch.append(facts)
         if self._stopped or self._depths is not None or len(self._launch) < self._expected:
             return []
-        index = WorkspaceIndex(self._launch, self._packages)
+        index = WorkspaceIndex(self._launch, self.packages())
         self._depths = LaunchTrees(index, self.specialiser.known_ahead).depths()
         return self._next()
+
+    def packages(self) -> Sequence[Package]:
+        """The workspace's packages, which the build takes too."""
+        if self._packages is None:
+            self._packages = self._make_packages()
+        return self._packages
 
     def sent(self, number: int) -> bool:
         return self.specialiser.sent(number)
