@@ -218,8 +218,7 @@ class Dispatcher(Generic[Item, Result]):
         than all but one waiting on a last chunk of 32 files (guided self-scheduling)."""
         if self._expected is None or self._numbered > self._expected:
             return self._chunk_items
-        left = self._expected - self._numbered + len(self._pending)  # this chunk on
-        return max(1, min(self._chunk_items, -(-left // (self._workers * BATCH_CHUNKS_EACH))))
+        return self._spread(self._expected - self._numbered + len(self._pending))
 
     @contextmanager
     def batch(self, items: int) -> Iterator[None]:
@@ -230,12 +229,16 @@ class Dispatcher(Generic[Item, Result]):
         (32 items) left 8 of 16 workers idle on a depth of 229 launch files, and every
         worker but one on the deepest depths."""
         kept = self._chunk_items
-        spread = -(-items // (self._workers * BATCH_CHUNKS_EACH))  # rounded up
-        self._chunk_items = max(1, min(kept, spread))
+        self._chunk_items = self._spread(items)
         try:
             yield
         finally:
             self._chunk_items = kept
+
+    def _spread(self, items: int) -> int:
+        """Chunks of ``items`` that give every worker ``BATCH_CHUNKS_EACH`` at least (the
+        count rounded up), no larger than ``_chunk_items``."""
+        return max(1, min(self._chunk_items, -(-items // (self._workers * BATCH_CHUNKS_EACH))))
 
     def here(self, items: Iterable[Item]) -> list[Result]:
         """The results of ``items``, worked on in this process."""

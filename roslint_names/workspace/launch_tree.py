@@ -243,7 +243,7 @@ class LaunchTrees:
     def depths(self) -> Iterator[list[tuple[str, LaunchArguments]]]:
         """Each depth of every tree's specialisations, as ``launched`` asks ``prepare``
         for them: the next depth is made once ``specialise`` gives those of the last (a
-        run extracting them while the rest of the workspace is, ``gather.Speculation``)."""
+        run extracting them while the rest of the workspace is, ``speculation.Speculation``)."""
         return self._depths([_start(root) for root in self.roots()])
 
     def _depths(self, frames: list[_Frame]) -> Iterator[list[tuple[str, LaunchArguments]]]:
