@@ -55,8 +55,10 @@ class Speculation:
         self._stopped = False
 
     def saw(self, facts: FileFacts) -> list[Extracted]:
+        if self._stopped or self._depths is not None:
+            return []  # walking, or done: the facts are the gatherer's to keep
         self._launch.append(facts)
-        if self._stopped or self._depths is not None or len(self._launch) < self._expected:
+        if len(self._launch) < self._expected:
             return []
         index = WorkspaceIndex(self._launch, self.packages())
         self._depths = LaunchTrees(index, self.specialiser.known_ahead).depths()
