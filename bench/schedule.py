@@ -27,11 +27,12 @@ import heapq
 import os
 import sys
 import time
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 from roslint_names import cli, gather, workers
+from roslint_names.model import Language
 
 MESSAGE_SECONDS = 0.002
 
@@ -39,7 +40,8 @@ MESSAGE_SECONDS = 0.002
 @dataclass(frozen=True)
 class Timed:
     seconds: float
-    weight: int  # ``gather.Gatherer._heaviest_first``'s: bytes, a Python file's counted more
+    language: Language
+    size: int
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -52,16 +54,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     total = sum(file.seconds for file in files)
     print(f"{len(files)} files extracted in {total:.2f} s in one process")
     print(f"{'workers':>8}{'ideal s':>10}{'in order s':>12}{'now s':>8}")
+    heavy, rest = gather.heaviest_first([f.language for f in files], [f.size for f in files])
     for count in counts:
-        before = finished(files, in_order(len(files)), count, heavy=0, guided=False)
-        order, heavy = heaviest_first(files)
-        now = finished(files, order, count, heavy=heavy, guided=True)
+        # The dispatcher before: no items expected (chunks of 32 to the end), in order.
+        before = finished(files, chunks(range(len(files)), count, expected=None), count)
+        now = finished(files, chunks(rest, count, expected=len(files), heavy=heavy), count)
         print(f"{count:>8}{total / count:>10.2f}{before:>12.2f}{now:>8.2f}")
     return 0
 
 
 def timed_extraction(workspace: Path) -> list[Timed]:
-    """Each file's extraction time and weight, in the order of the run's files."""
+    """Each file's extraction time, language and size, in the order of the run's files."""
     found: dict[int, Timed] = {}
     real = gather._extract_within_budget
 
@@ -69,9 +72,7 @@ def timed_extraction(workspace: Path) -> list[Timed]:
         started = time.perf_counter()
         facts = real(job, data)
         if not job.arguments:  # a specialisation is no file of the stream
-            parsed = job.language in gather._PYTHON_PARSED
-            weight = len(data) * gather.PYTHON_WEIGHT if parsed else len(data)
-            found[job.index] = Timed(time.perf_counter() - started, weight)
+            found[job.index] = Timed(time.perf_counter() - started, job.language, len(data))
         return facts
 
     gather._extract_within_budget = timed  # type: ignore[assignment]
@@ -88,47 +89,49 @@ def timed_extraction(workspace: Path) -> list[Timed]:
     finally:
         os.chdir(previous)
         gather._extract_within_budget = real
-    return [found.get(index, Timed(0.0, 0)) for index in range(max(found, default=-1) + 1)]
+    missing = Timed(0.0, Language.CPP, 0)  # a file the extractors never saw
+    return [found.get(index, missing) for index in range(max(found, default=-1) + 1)]
 
 
-def in_order(count: int) -> list[int]:
-    return list(range(count))
+class _Chunking(workers.Dispatcher[int, None]):
+    """The real dispatcher, its chunks recorded rather than sent."""
+
+    def __init__(self, count: int, expected: int | None) -> None:
+        super().__init__(lambda items: [], count, min_items=1, expected_items=expected)
+        self.chunks: list[list[int]] = []
+
+    def _start(self) -> None:
+        self._executor = object()  # type: ignore[assignment] # no pool: nothing is sent
+        self._started = True
+
+    def _send(self, chunk: list[tuple[int, int]]) -> None:
+        self.chunks.append([item for _, item in chunk])
+
+    def _collect(self, block: bool) -> list[None]:
+        return []
 
 
-def heaviest_first(files: Sequence[Timed]) -> tuple[list[int], int]:
-    heavy = sorted(
-        (index for index, file in enumerate(files) if file.weight >= gather.HEAVY_WEIGHT),
-        key=lambda index: (-files[index].weight, index),
-    )
-    chosen = set(heavy)
-    return heavy + [index for index in range(len(files)) if index not in chosen], len(heavy)
+def chunks(
+    order: Iterable[int], count: int, *, expected: int | None, heavy: Sequence[int] = ()
+) -> list[list[int]]:
+    """The chunks ``workers.Dispatcher`` makes for ``count`` workers of ``heavy`` (as
+    ``gather.Gatherer`` hands them out, ``Dispatcher.batch``), then ``order``."""
+    dispatcher = _Chunking(count, expected)
+    with dispatcher.batch(len(heavy)):
+        for index in heavy:
+            dispatcher.put(index, 0)
+    for index in order:
+        dispatcher.put(index, 0)
+    list(dispatcher.finish())
+    return dispatcher.chunks
 
 
-def chunks(order: Sequence[int], count: int, *, heavy: int, guided: bool) -> list[list[int]]:
-    """The chunks ``workers.Dispatcher`` makes of ``order`` for ``count`` workers."""
-    most = max(1, min(workers.CHUNK_ITEMS, len(order) // (count * workers.CHUNKS_EACH)))
-    spread = count * workers.BATCH_CHUNKS_EACH
-    made: list[list[int]] = []
-    start = 0
-    while start < len(order):
-        if start < heavy:
-            end = min(start + max(1, min(most, -(-heavy // spread))), heavy)
-        else:
-            left = len(order) - start
-            limit = max(1, min(most, -(-left // spread))) if guided else most
-            end = min(start + limit, len(order))
-        made.append(list(order[start:end]))
-        start = end
-    return made
-
-
-def finished(
-    files: Sequence[Timed], order: Sequence[int], count: int, *, heavy: int, guided: bool
-) -> float:
-    """When the last of ``count`` workers is done, each chunk going to the first free."""
+def finished(files: Sequence[Timed], made: Sequence[Sequence[int]], count: int) -> float:
+    """When the last of ``count`` workers is done, each chunk of ``made`` going to the
+    first free."""
     free = [(0.0, worker) for worker in range(count)]
     last = 0.0
-    for chunk in chunks(order, count, heavy=heavy, guided=guided):
+    for chunk in made:
         start, worker = heapq.heappop(free)
         done = start + MESSAGE_SECONDS + sum(files[index].seconds for index in chunk)
         last = max(last, done)
