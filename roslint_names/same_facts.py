@@ -377,7 +377,7 @@ def loaded_launch(value: object, tags: tuple[str, ...]) -> KeptLaunch | None:
     return KeptLaunch(tags, parameters, parts)
 
 
-_CODE_FORMAT = "code parameters 1"
+_CODE_FORMAT = "code parameters 2"
 
 
 @dataclass(frozen=True)

@@ -14,13 +14,16 @@ from pathlib import Path
 
 import pytest
 from conftest import ExampleCopy, assert_patched
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from roslint_names.model import FileFacts
+from roslint_names.model import FileFacts, Generation, Language
 from roslint_names.workspace.graph import Graph
-from roslint_names.workspace.index import PackageFiles
+from roslint_names.workspace.index import PackageFiles, WorkspaceIndex
 from roslint_names.workspace.launch_parts import CodeParameterParts, LaunchParts
 from roslint_names.workspace.launch_patch import LazyFacts
 from roslint_names.workspace.parameter_patch import parameters_patched
+from roslint_names.workspace.parameters import ParameterTables, TableLookups
 from roslint_names.workspace.patch import edits_of, patched
 
 FOLLOWER = "src/fleet_bringup/fleet_bringup/waypoint_follower.py"  # ROS 2 Python
@@ -32,6 +35,11 @@ SQUARE = "src/turtle_bringup/scripts/draw_square.py"  # ROS 1 Python script
 # A package of the steps' workspace besides the examples' (``_Workspace``): the base class
 # the dock manager derives from, which declares a parameter of its own.
 MANAGED = "src/fleet_core/include/fleet_core/managed_node.hpp"
+# The dock manager's package: a helper that reads a parameter, and the base of the
+# sensors it loads as plugins with one of them; a third package with another of them.
+APPROACH = "src/fleet_bringup/include/fleet_bringup/approach.hpp"
+DOCK_SENSOR = "src/fleet_bringup/include/fleet_bringup/dock_sensor.hpp"
+SONAR = "src/fleet_sensors/include/fleet_sensors/sonar_dock_sensor.hpp"
 EXTRA_FILES = {
     "src/fleet_core/package.xml": """<?xml version="1.0"?>
 <package format="3">
@@ -63,13 +71,64 @@ public:
 };
 }  // namespace fleet_core
 """,
+    APPROACH: """#pragma once
+#include <rclcpp/rclcpp.hpp>
+
+namespace fleet_bringup
+{
+inline double approach_speed(rclcpp::Node & node)
+{
+  return node.get_parameter("approach_speed").as_double();
 }
-# The edits that make the dock manager one (before the first build: a base class changed
-# is no edit the patches follow).
+}  // namespace fleet_bringup
+""",
+    DOCK_SENSOR: """#pragma once
+
+namespace fleet_bringup
+{
+class DockSensor
+{
+public:
+  virtual ~DockSensor() = default;
+};
+
+class LidarDockSensor : public fleet_bringup::DockSensor
+{
+};
+}  // namespace fleet_bringup
+""",
+    "src/fleet_sensors/package.xml": """<?xml version="1.0"?>
+<package format="3">
+  <name>fleet_sensors</name>
+  <version>0.1.0</version>
+  <description>Sensors a dock manager may load</description>
+  <maintainer email="dev@example.com">Example Maintainer</maintainer>
+  <license>Apache-2.0</license>
+  <buildtool_depend>ament_cmake</buildtool_depend>
+  <depend>fleet_bringup</depend>
+  <export>
+    <build_type>ament_cmake</build_type>
+  </export>
+</package>
+""",
+    SONAR: """#pragma once
+#include <fleet_bringup/dock_sensor.hpp>
+
+namespace fleet_sensors
+{
+class SonarDockSensor : public fleet_bringup::DockSensor
+{
+};
+}  // namespace fleet_sensors
+""",
+}
+# The edits that make the dock manager one, and the fleet monitor report through a class
+# no file defines yet (before the first build).
 SETUP = [
     (DOCK, "#include <rclcpp/rclcpp.hpp>", "#include <fleet_core/managed_node.hpp>"),
     (DOCK, "public rclcpp::Node", "public fleet_core::ManagedNode"),
     (DOCK, ': Node("dock_manager")', ': fleet_core::ManagedNode("dock_manager")'),
+    (MONITOR, "public rclcpp::Node\n", "public rclcpp::Node, public fleet_core::Reporter\n"),
 ]
 
 # (file, text before, text after); each step's graph is patched from the step before's.
@@ -118,11 +177,48 @@ PATCHED = [
     (FOLLOWER, '        self.declare_parameter("loop_rate", 10.0)\n', ""),
     # A declaration of the base class, another package's, renamed: the dock manager's.
     (MANAGED, '"heartbeat_period"', '"heartbeat_interval"'),
+    # A header of its own package included: the parameter it reads is the node's.
+    (
+        DOCK,
+        "#include <std_srvs/srv/trigger.hpp>\n",
+        "#include <std_srvs/srv/trigger.hpp>\n\n#include <fleet_bringup/approach.hpp>\n",
+    ),
+    # The class the fleet monitor reports through defined in another package: its
+    # declarations are the monitor's, and its bases all known (the monitor's code spans
+    # none of that package's files before: found by the classes deriving from it).
+    (
+        MANAGED,
+        "}  // namespace fleet_core\n",
+        "class Reporter\n{\npublic:\n  void declare_reporting(rclcpp::Node & node)\n  {\n"
+        '    node.declare_parameter("report_period", 5.0);\n  }\n};\n'
+        "}  // namespace fleet_core\n",
+    ),
+    # A loader of sensor plugins, one of them of another package: the node's
+    # declarations may hide there (plugins left open).
+    (
+        DOCK,
+        "private:\n",
+        "private:\n  pluginlib::ClassLoader<fleet_bringup::DockSensor> sensors_{\n"
+        '    "fleet_bringup", "fleet_bringup::DockSensor"};\n',
+    ),
+    # That sensor taken out of the other package: every plugin is the package's own.
+    (SONAR, "class SonarDockSensor : public fleet_bringup::DockSensor", "class SonarDockSensor"),
+    # The monitor reports no more: a base taken out of its class.
+    (MONITOR, ", public fleet_core::Reporter\n", "\n"),
+    # A class that derives from the client library's node added to the monitor's code
+    # (the growth benchmark's ``edit_build``).
+    (
+        MONITOR,
+        "",
+        "\nclass MonitorProbe : public rclcpp::Node\n{\n  void probe()\n  {\n"
+        '    declare_parameter("probe_rate", 2.0);\n  }\n};\n',
+    ),
 ]
 
 # Edits the patches cannot follow: the graph is built.
 REFUSED = [
-    # A base class added: where the node's declarations may hide changes.
+    # A base class the linter does not know: the class is no node of the code's now (its
+    # handle and its name go with it).
     (DOCK, "class DockManager : public rclcpp::Node", "class DockManager : public nav2::Node"),
 ]
 
@@ -230,3 +326,61 @@ def test_a_file_whose_facts_cannot_be_loaded_refuses_the_patch(tmp_path: Path) -
     edited = PATCHED[0][0]
     assert workspace.patched(last, now) is not None
     assert workspace.patched(last, now, lambda path: now[path] if path == edited else None) is None
+
+
+# Files for ``with_classes``' property: a few paths, class and base names, some of them
+# qualified, plugin loaders; each file's classes in the order written.
+_PATHS = [f"src/pkg_{p}/include/pkg_{p}/{n}.hpp" for p in "ab" for n in ("base", "node", "z")]
+_CLASS_NAMES = st.sampled_from(["Base", "Node", "Sensor", "Probe"])
+_BASES = st.sampled_from(["Base", "a::Base", "rclcpp::Node", "Sensor", "b::Sensor", "Probe"])
+_CLASSES = st.lists(st.tuples(_CLASS_NAMES, st.lists(_BASES, max_size=2).map(tuple)), max_size=3)
+_LOADERS = st.lists(st.sampled_from(["a::Sensor", "Base", ""]), max_size=1)
+
+
+def _class_facts(
+    path: str, classes: list[tuple[str, tuple[str, ...]]], loaders: list[str]
+) -> FileFacts:
+    return FileFacts(
+        path,
+        Language.CPP,
+        Generation.ROS2,
+        class_bases=tuple(classes),
+        plugin_loaders=tuple(loaders),
+    )
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    st.fixed_dictionaries({path: st.tuples(_CLASSES, _LOADERS) for path in _PATHS}),
+    st.lists(st.tuples(st.sampled_from(_PATHS), _CLASSES), min_size=1, max_size=3),
+    st.sets(st.sampled_from(_PATHS), max_size=2),
+)
+def test_classes_edited_in_the_lookups_are_the_lookups_made_anew(
+    files: dict[str, tuple[list[tuple[str, tuple[str, ...]]], list[str]]],
+    edits: list[tuple[str, list[tuple[str, tuple[str, ...]]]]],
+    excluded: set[str],
+) -> None:
+    """``TableLookups.with_classes`` over a build's lookups gives what the lookups made
+    from the edited files' facts give, entries in the same order; and reports every
+    file whose classes' lookups changed beneath it (``dependents``)."""
+    before = {path: _class_facts(path, *found) for path, found in files.items()}
+    now = dict(before)
+    for path, classes in edits:
+        now[path] = _class_facts(path, classes, list(now[path].plugin_loaders))
+
+    def lookups(facts: dict[str, FileFacts]) -> TableLookups:
+        index = WorkspaceIndex(facts.values(), [])
+        return ParameterTables.of(index, excluded.__contains__).lookups
+
+    built = lookups(before)
+    edited = [(path, before[path], now[path]) for path in now if now[path] != before[path]]
+    found, reached = built.with_classes(edited, excluded.__contains__)
+    made = lookups(now)
+    assert (found.classes, found.derived) == (made.classes, made.derived)
+    changed = {
+        key
+        for table in ("classes", "derived")
+        for key in getattr(built, table).keys() | getattr(made, table).keys()
+        if getattr(built, table).get(key) != getattr(made, table).get(key)
+    }
+    assert reached == {path for key in changed for path in built.dependents.get(key, ())}

@@ -183,6 +183,45 @@ SPARE_SETTING_TEXT = "speed_lim_v: 0.8\nnever_read: 1\n"
 # A script named after an executable a launch file runs, which no build file makes
 SMOOTHER_SCRIPT = "src/turtle_bringup/scripts/velocity_smoother.py"
 
+# A class of the fleet's package whose method declares a parameter, for the nodes
+# deriving from it.
+REPORTING = """#pragma once
+#include <rclcpp/rclcpp.hpp>
+
+namespace fleet_bringup
+{
+class Reporting
+{
+public:
+  void declare_reporting(rclcpp::Node & node) { node.declare_parameter("report_period", 5.0); }
+};
+}  // namespace fleet_bringup
+"""
+TOPICS = f"{FLEET}/include/fleet_bringup/topics.hpp"
+TOPICS_HEADER = """#pragma once
+#include <string>
+
+namespace fleet_bringup
+{
+static const std::string DOCK_STATUS_TOPIC = "dock_status";
+}  // namespace fleet_bringup
+"""
+STATUS_SOURCE = f"{FLEET}/src/dock_status.cpp"
+STATUS_NODE = """#include <fleet_bringup/topics.hpp>
+#include <rclcpp/rclcpp.hpp>
+#include <std_msgs/msg/string.hpp>
+
+int main(int argc, char ** argv)
+{
+  rclcpp::init(argc, argv);
+  auto node = rclcpp::Node::make_shared("dock_status");
+  auto publisher = node->create_publisher<std_msgs::msg::String>(
+    fleet_bringup::DOCK_STATUS_TOPIC, 10);
+  rclcpp::spin(node);
+  return 0;
+}
+"""
+
 # (file, text before, text after, what the run after it does: ``taken``): ``change``.
 STEPS: list[tuple[str, str | None, str | None, str]] = [
     # A comment below everything: the facts are the same.
@@ -364,6 +403,25 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
         '        self.declare_parameter("loop_rate", 10.0)\n',
         "patch",
     ),
+    # What a node's parameters are gathered through (``patch.gathering_edit``): a header
+    # of its package included, a class deriving from the client library's node added
+    # (the growth benchmark's ``edit_build``), and a base of the dock manager's class
+    # its own package now defines (its code spans another file).
+    (
+        MONITOR,
+        "#include <std_srvs/srv/set_bool.hpp>\n",
+        "#include <std_srvs/srv/set_bool.hpp>\n\n#include <fleet_bringup/units.hpp>\n",
+        "patch",
+    ),
+    (MONITOR, "", "\nclass MonitorProbe : public rclcpp::Node\n{\n};\n", "patch"),
+    (UNITS, None, REPORTING, "build"),
+    (DOCK, "public rclcpp::Node", "public rclcpp::Node, public fleet_bringup::Reporting", "patch"),
+    # A header whose constant names a topic, and code taking it: the whole run resolves
+    # the name. Then an include changed in that package: a file's names may take another
+    # constant now, which no patch follows.
+    (TOPICS, None, TOPICS_HEADER, "build"),
+    (STATUS_SOURCE, None, STATUS_NODE, "build"),
+    (MONITOR, "\n#include <fleet_bringup/units.hpp>\n", "", "build"),
 ]
 
 
@@ -846,3 +904,52 @@ def test_a_damaged_file_list_is_written_again_by_the_next_run_over_those_files(
     cached, fresh = outputs(run_cli, workspace, cache)
     assert cached == fresh
     assert taken == ["replay", "build"]
+
+
+NAMES = "src/fleet_names"  # a package of headers and their test: no node's code
+NAMES_MANIFEST = """<?xml version="1.0"?>
+<package format="3">
+  <name>fleet_names</name>
+  <version>0.1.0</version>
+  <description>The names the fleet's nodes share</description>
+  <maintainer email="dev@example.com">Example Maintainer</maintainer>
+  <license>Apache-2.0</license>
+  <buildtool_depend>ament_cmake</buildtool_depend>
+  <export>
+    <build_type>ament_cmake</build_type>
+  </export>
+</package>
+"""
+
+
+def test_an_include_that_gives_test_code_a_constant_is_built(
+    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str]
+) -> None:
+    """A header's include changed reaches a test through it: the constant the test's
+    topic takes, which only the whole run resolves (``symbols``). No node's code is of
+    that package, so no parameter gathered again reads its files: the patch refuses
+    such an edit by the files of the package that take a constant
+    (``parameter_patch._constants_kept``), or the test's illegal topic would stay
+    unreported."""
+    status = workspace / NAMES / "include/fleet_names/status.hpp"
+    change(workspace / NAMES / "package.xml", None, NAMES_MANIFEST)
+    change(
+        workspace / NAMES / "include/fleet_names/topics.hpp",
+        None,
+        TOPICS_HEADER.replace("fleet_bringup", "fleet_names").replace(
+            '"dock_status"', '"dock status"'
+        ),
+    )
+    change(status, None, "#pragma once\n#include <string>\n")
+    test = STATUS_NODE.replace("fleet_bringup/topics.hpp", "fleet_names/status.hpp")
+    test = test.replace("fleet_bringup", "fleet_names")
+    change(workspace / NAMES / "test/test_status.cpp", None, test)
+    cache = tmp_path / "cache"
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh and "dock status" not in fresh
+    taken.clear()
+    edit(status, "#include <string>\n", "#include <string>\n\n#include <fleet_names/topics.hpp>\n")
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert "dock status" in fresh
+    assert cached == fresh
+    assert taken == ["build", "build"]

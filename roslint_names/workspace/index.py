@@ -74,6 +74,18 @@ class PackageFiles:
             package = self._package_of_path[path] = self._package_of_directory(parent(path))
             return package
 
+    def enclosing(self, path: str) -> list[Package]:
+        """Every package whose directory holds ``path``, the nearest first."""
+        found: list[Package] = []
+        package = self.package_of(path)
+        while package is not None:
+            found.append(package)
+            up = parent(package.directory)
+            if not package.directory or up == package.directory:
+                break
+            package = self._package_of_directory(up)
+        return found
+
     def _package_of_directory(self, directory: str) -> Package | None:
         # Memoised: every file of the workspace is asked about, several times each.
         if directory in self._package_of:

@@ -109,8 +109,9 @@ class ParameterPart(Compact):
 @dataclass(frozen=True, slots=True)
 class CodeParameterParts(Compact):
     """What a build leaves for a patch of what code declares (``workspace.parameter_patch``):
-    the parameter tables' lookups (made from every file's facts; no such edit changes
-    them), the packages each node's code (by its sources, as ``LaunchParts.parameters``)
+    the parameter tables' lookups (made from every file's facts; an edit of a file's
+    classes is followed by ``TableLookups.with_classes``), the packages each node's code
+    (by its sources, as ``LaunchParts.parameters``)
     was gathered from, and how many code files declare each name of the workspace's
     declarations. Kept apart from the launch parts (``same_facts.KeptLaunch``): 6 MB at
     8 copies of the benchmark's workspace, which a launch patch need not load."""

@@ -11,13 +11,22 @@ its sources' packages and those of the base classes it derives from
 (``ParameterSets._own_code``: what a file includes is of its own package), so only the
 nodes whose code spans an edited file's package are gathered again, by the build's own
 ``ParameterSets``, over the lookups the build made from every file's facts
-(``CodeParameterParts``: an edit whose class bases, includes and build facts are the
-same changes none of them) and an index that loads a file's facts when asked.
+(``CodeParameterParts``) and an index that loads a file's facts when asked.
+
+An edit may change what the parameters are gathered through as well
+(``patch.gathering_edit``): what a file includes stays in its package; a class of it
+added, taken out or given other bases changes the lookups of classes by name, which
+follow it (``TableLookups.with_classes``), and the code of the nodes whose files derive
+from a class of that name, or load plugins of such a base, may span other packages now:
+those nodes are gathered again too (``TableLookups.dependents``). The growth
+benchmark's ``edit_build`` (a class deriving from ``rclcpp::Node`` appended to a node's
+source) is such an edit.
 
 ``parameters_patched`` gives the graph a build would; None (the caller builds) where a
 node of unknown name is handed a parameter file and its code's parameters change (the
-graph keeps those without the code they are of). ``tests/test_parameter_patch.py``
-compares patched graphs with built ones.
+graph keeps those without the code they are of), or where an include changed in a
+package one of whose files takes another file's constant (``_constants_kept``).
+``tests/test_parameter_patch.py`` compares patched graphs with built ones.
 """
 
 from __future__ import annotations
@@ -26,6 +35,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import replace
 
 from roslint_names.model import FileFacts, replaced
+from roslint_names.symbols import uses_constants
 from roslint_names.workspace.build import _TestFiles
 from roslint_names.workspace.graph import Graph
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
@@ -56,9 +66,23 @@ def parameters_patched(
     (module docstring)."""
     index = WorkspaceIndex.restored(facts, packages, parts.executables)
     tests = _TestFiles(index, {})
-    tables = ParameterTables(code.lookups, lambda path: path in parts.unbuilt or tests(path))
-    sets = ParameterSets(index, tables)
-    reached = {(package.name if (package := index.package_of(path)) else "") for path in edited}
+
+    def excluded(path: str) -> bool:
+        return path in parts.unbuilt or tests(path)
+
+    lookups, dependent = code.lookups.with_classes(
+        ((path, before, now) for path, (before, now) in edited.items()), excluded
+    )
+    try:
+        if not _constants_kept(index, facts, edited):
+            return None
+    except UnknownFactsError:
+        return None  # a file there takes another file's constant: the graph is built
+    sets = ParameterSets(index, ParameterTables(lookups, excluded))
+    reached = {
+        (package.name if (package := index.package_of(path)) else "")
+        for path in (*edited, *dependent)
+    }
     spanning = [sources for sources, spans in code.spans.items() if not spans.isdisjoint(reached)]
     if not spanning:
         fresh = {}
@@ -84,6 +108,27 @@ def parameters_patched(
     return replace(
         graph, nodes=nodes, parameter_declarations=_declarations(code.counts, edited).declarations()
     )
+
+
+def _constants_kept(
+    index: WorkspaceIndex,
+    facts: Mapping[str, FileFacts],
+    edited: Mapping[str, tuple[FileFacts, FileFacts]],
+) -> bool:
+    """Whether no file's name can take another constant for an edit's includes: a file's
+    names take the constants of the headers it reaches through includes below its
+    package's directory (``symbols.PackageConstants``), which the whole run resolves and a
+    patch does not; an edited file's includes changed is followed only where no file of
+    a package holding it takes a constant. An ``UnknownFactsError`` where such a file's
+    facts cannot be loaded (the CLI loads none of a file that takes a constant)."""
+    for path, (before, now) in edited.items():
+        if before.cpp_includes == now.cpp_includes:
+            continue
+        for package in index.enclosing(path):
+            for held in index.files_of(package.name):
+                if index.package_of(held) == package and uses_constants(facts[held]):
+                    return False
+    return True
 
 
 def _declarations(

@@ -40,9 +40,10 @@ from __future__ import annotations
 import posixpath
 import re
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import Enum
 from functools import cache
+from typing import TypeVar
 
 from roslint_names.model import (
     EventKind,
@@ -213,7 +214,8 @@ class WorkspaceDeclarations:
 @dataclass(frozen=True)
 class TableLookups:
     """What ``ParameterTables`` looks up, made from every file's facts: what a parameter
-    patch keeps of a build (``workspace.parameter_patch``), whose edits change none of it."""
+    patch keeps of a build (``workspace.parameter_patch``), which follows an edit of a
+    file's classes through ``with_classes``."""
 
     classes: dict[str, list[str]]  # class name -> files defining it
     # base class name -> (file, base as written) of each class derived from it
@@ -223,6 +225,90 @@ class TableLookups:
     programs: set[str]  # sources of every program and component
     # ``NameConfig`` -> (package, path) of each .cfg generating it
     configs: dict[str, list[tuple[str | None, str]]]
+    # class name -> every code file (test and unbuilt code too) deriving from a class of
+    # that name or loading plugins of a base of that name: the files whose nodes'
+    # parameters may change where the classes of that name or derived from it do
+    # (``ParameterSets._defined``, ``_own_plugins``). Read by a patch only.
+    dependents: dict[str, list[str]]
+
+    def add_classes(self, path: str, facts: FileFacts, *, excluded: bool) -> None:
+        """What a code file's classes add (``ParameterTables.of``: files in path order)."""
+        for key in _dependencies(facts):
+            self.dependents.setdefault(key, []).append(path)
+        if excluded:
+            return
+        for key, defining in _defined_classes(path, facts):
+            self.classes.setdefault(key, []).append(defining)
+        for key, deriving in _derived_classes(path, facts):
+            self.derived.setdefault(key, []).append(deriving)
+
+    def with_classes(
+        self,
+        edited: Iterable[tuple[str, FileFacts, FileFacts]],
+        excluded: Callable[[str], bool],
+    ) -> tuple[TableLookups, set[str]]:
+        """These lookups (a build's, of the files' facts before) with each edited code
+        file's classes as they are now (display path, facts before and now), where
+        ``ParameterTables.of`` puts them; and the files whose nodes' parameters the
+        changed entries may change besides the edited ones (``dependents``)."""
+        classes, derived = dict(self.classes), dict(self.derived)
+        changed: set[str] = set()
+        for path, before, now in edited:
+            if before.class_bases == now.class_bases or excluded(path):
+                continue
+            old, new = _defined_classes(path, before), _defined_classes(path, now)
+            changed |= _replace_entries(classes, path, old, new, lambda entry: entry)
+            old_bases, new_bases = _derived_classes(path, before), _derived_classes(path, now)
+            changed |= _replace_entries(derived, path, old_bases, new_bases, lambda entry: entry[0])
+        reached = {path for key in changed for path in self.dependents.get(key, ())}
+        return replace(self, classes=classes, derived=derived), reached
+
+
+_E = TypeVar("_E")
+
+
+def _defined_classes(path: str, facts: FileFacts) -> list[tuple[str, str]]:
+    """``TableLookups.classes``' entries of a file: (class name, its path)."""
+    return [(name, path) for name, _ in facts.class_bases]
+
+
+def _derived_classes(path: str, facts: FileFacts) -> list[tuple[str, tuple[str, str]]]:
+    """``TableLookups.derived``' entries of a file: (base class name, (its path, the base
+    as written))."""
+    return [(_class_name(base), (path, base)) for _, bases in facts.class_bases for base in bases]
+
+
+def _dependencies(facts: FileFacts) -> list[str]:
+    """The class names a code file's nodes' parameters may depend on the classes of
+    (``TableLookups.dependents``): its classes' bases and its plugin loaders' bases."""
+    bases = [base for _, written in facts.class_bases for base in written]
+    return sorted({_class_name(base) for base in (*bases, *facts.plugin_loaders) if base})
+
+
+def _replace_entries(
+    table: dict[str, list[_E]],
+    path: str,
+    old: list[tuple[str, _E]],
+    new: list[tuple[str, _E]],
+    path_of: Callable[[_E], str],
+) -> set[str]:
+    """``table`` (a copy: its lists are replaced, never changed) with ``path``'s entries
+    ``old`` (key, entry) put out and ``new`` put in among the other files' in path
+    order; the keys whose entries changed."""
+    changed: set[str] = set()
+    for key in sorted({key for key, _ in (*old, *new)}):
+        listed = table.get(key, [])
+        kept = [entry for entry in listed if path_of(entry) != path]
+        at = next((i for i, entry in enumerate(kept) if path_of(entry) > path), len(kept))
+        kept[at:at] = [entry for found, entry in new if found == key]
+        if kept == listed:
+            continue
+        changed.add(key)
+        if kept:
+            table[key] = kept
+        else:
+            del table[key]
+    return changed
 
 
 @dataclass
@@ -277,19 +363,20 @@ class ParameterTables:
     @classmethod
     def of(cls, index: WorkspaceIndex, excluded: Callable[[str], bool]) -> ParameterTables:
         """The tables of every file of ``index``."""
-        tables = cls(TableLookups({}, {}, {}, set(), {}), excluded)
+        lookups = TableLookups({}, {}, {}, set(), {}, {})
+        tables = cls(lookups, excluded)
         for path, facts in sorted(index.facts.items()):
             if facts.reconfigure is not None and facts.reconfigure.name is not None:
                 package = facts.reconfigure.package or _package_name(index, path)
                 tables.configs.setdefault(f"{facts.reconfigure.name}Config", []).append(
                     (package, path)
                 )
-            if facts.language not in CODE_LANGUAGES or tables.excluded(path):
+            if facts.language not in CODE_LANGUAGES:
                 continue
-            for name, bases in facts.class_bases:
-                tables.classes.setdefault(name, []).append(path)
-                for base in bases:
-                    tables.derived.setdefault(_class_name(base), []).append((path, base))
+            left_out = tables.excluded(path)
+            lookups.add_classes(path, facts, excluded=left_out)
+            if left_out:
+                continue
             if facts.language is Language.CPP:
                 key = (_directory(index, path), posixpath.basename(path))
                 tables.by_name.setdefault(key, []).append(path)

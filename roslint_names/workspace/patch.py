@@ -91,6 +91,35 @@ def name_edit(before: FileFacts, now: FileFacts) -> Moved | None:
     return declaration_edit(_without_node_names(before), _without_node_names(now))
 
 
+def gathering_edit(before: FileFacts, now: FileFacts) -> tuple[Moved, bool] | None:
+    """``name_edit``'s moves for an edit that may also change what the parameters of
+    its nodes' code are gathered through (``_without_gathering``), which
+    ``workspace.parameter_patch`` follows, and whether the node name the code gives
+    itself changed too; None where something else changed."""
+    bare_before, bare_now = _without_gathering(before), _without_gathering(now)
+    moves = declaration_edit(bare_before, bare_now)
+    if moves is not None:
+        return moves, False
+    moves = name_edit(bare_before, bare_now)
+    return None if moves is None else (moves, True)
+
+
+def _without_gathering(facts: FileFacts) -> FileFacts:
+    """``facts`` less what decides which code its nodes' parameters are gathered from
+    and how (``parameters.ParameterSets``: its classes' bases, what it includes, the
+    plugins and configs it loads, what leaves its names open), which the graph reads
+    nowhere else (but for the constants a file's names take through includes, which
+    ``parameter_patch._constants_kept`` minds)."""
+    return replace(
+        facts,
+        class_bases=(),
+        cpp_includes=(),
+        parameter_traits=(),
+        plugin_loaders=(),
+        reconfigure_servers=(),
+    )
+
+
 def _without_node_names(facts: FileFacts) -> FileFacts:
     kept = tuple(use for use in facts.names if use.role is not Role.NODE_NAME)
     return replace(facts, names=kept)
@@ -121,7 +150,8 @@ def edits_of(
     places (nothing of the graph to patch) or a build file's moved (``build_moves``);
     None where one is neither. With ``declaring``, a ``declaration_edit`` is one too,
     its file added to ``declaring``; with ``naming`` as well, a ``name_edit``, its file
-    added to both."""
+    added to both. A ``gathering_edit`` is one with ``declaring``, its file added to it,
+    where its node name is the same or ``naming`` is given (the file added to it)."""
     edits: dict[str, Moved] = {}
     for display, then, now in changed:
         moves = code_edit(then, now)
@@ -136,6 +166,13 @@ def edits_of(
             if moves is not None:
                 declaring.add(display)
                 naming.add(display)
+        if moves is None and declaring is not None:
+            gathering = gathering_edit(then, now)
+            if gathering is not None and (naming is not None or not gathering[1]):
+                moves, renames = gathering
+                declaring.add(display)
+                if renames and naming is not None:
+                    naming.add(display)
         if moves is not None:
             edits[display] = moves
         elif not same_places(then, now):
