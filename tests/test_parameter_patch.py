@@ -332,7 +332,7 @@ def test_a_file_whose_facts_cannot_be_loaded_refuses_the_patch(tmp_path: Path) -
 # qualified, plugin loaders; each file's classes in the order written.
 _PATHS = [f"src/pkg_{p}/include/pkg_{p}/{n}.hpp" for p in "ab" for n in ("base", "node", "z")]
 _CLASS_NAMES = st.sampled_from(["Base", "Node", "Sensor", "Probe"])
-_BASES = st.sampled_from(["Base", "a::Base", "rclcpp::Node", "Sensor", "b::Sensor", "Probe"])
+_BASES = st.sampled_from(["Base", "a::Base", "rclcpp::Node", "Node", "Sensor", "b::Sensor", "Probe"])
 _CLASSES = st.lists(st.tuples(_CLASS_NAMES, st.lists(_BASES, max_size=2).map(tuple)), max_size=3)
 _LOADERS = st.lists(st.sampled_from(["a::Sensor", "Base", ""]), max_size=1)
 
@@ -362,7 +362,7 @@ def test_classes_edited_in_the_lookups_are_the_lookups_made_anew(
 ) -> None:
     """``TableLookups.with_classes`` over a build's lookups gives what the lookups made
     from the edited files' facts give, entries in the same order; and reports every
-    file whose classes' lookups changed beneath it (``dependents``)."""
+    file whose classes' lookups changed beneath it (``deriving``, ``loading``)."""
     before = {path: _class_facts(path, *found) for path, found in files.items()}
     now = dict(before)
     for path, classes in edits:
@@ -377,10 +377,15 @@ def test_classes_edited_in_the_lookups_are_the_lookups_made_anew(
     found, reached = built.with_classes(edited, excluded.__contains__)
     made = lookups(now)
     assert (found.classes, found.derived) == (made.classes, made.derived)
-    changed = {
-        key
+    defined, bases = (
+        {
+            key
+            for key in getattr(built, table).keys() | getattr(made, table).keys()
+            if getattr(built, table).get(key) != getattr(made, table).get(key)
+        }
         for table in ("classes", "derived")
-        for key in getattr(built, table).keys() | getattr(made, table).keys()
-        if getattr(built, table).get(key) != getattr(made, table).get(key)
+    )
+    assert reached == {
+        *(path for key in defined for path in built.deriving.get(key, ())),
+        *(path for key in defined | bases for path in built.loading.get(key, ())),
     }
-    assert reached == {path for key in changed for path in built.dependents.get(key, ())}

@@ -18,7 +18,7 @@ An edit may change what the parameters are gathered through as well
 added, taken out or given other bases changes the lookups of classes by name, which
 follow it (``TableLookups.with_classes``), and the code of the nodes whose files derive
 from a class of that name, or load plugins of such a base, may span other packages now:
-those nodes are gathered again too (``TableLookups.dependents``). The growth
+those nodes are gathered again too (``TableLookups.deriving``, ``loading``). The growth
 benchmark's ``edit_build`` (a class deriving from ``rclcpp::Node`` appended to a node's
 source) is such an edit.
 

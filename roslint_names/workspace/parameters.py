@@ -226,15 +226,23 @@ class TableLookups:
     # ``NameConfig`` -> (package, path) of each .cfg generating it
     configs: dict[str, list[tuple[str | None, str]]]
     # class name -> every code file (test and unbuilt code too) deriving from a class of
-    # that name or loading plugins of a base of that name: the files whose nodes'
-    # parameters may change where the classes of that name or derived from it do
-    # (``ParameterSets._defined``, ``_own_plugins``). Read by a patch only.
-    dependents: dict[str, list[str]]
+    # that name, but for the client libraries' nodes (``_ROOT_BASES``, never looked up):
+    # the files whose nodes' code may be another where the classes of that name change
+    # (``ParameterSets._defined``). Read by a patch only.
+    deriving: dict[str, list[str]]
+    # class name -> every code file loading plugins of a base of that name: whose nodes'
+    # plugins may be others where the classes of that name or derived from one change
+    # (``ParameterSets._own_plugins``). Read by a patch only.
+    loading: dict[str, list[str]]
 
     def add_classes(self, path: str, facts: FileFacts, *, excluded: bool) -> None:
         """What a code file's classes add (``ParameterTables.of``: files in path order)."""
-        for key in _dependencies(facts):
-            self.dependents.setdefault(key, []).append(path)
+        for lookup, keys in (
+            (self.deriving, _bases_looked_up(facts)),
+            (self.loading, _loaded(facts)),
+        ):
+            for key in keys:
+                lookup.setdefault(key, []).append(path)
         if excluded:
             return
         for key, defining in _defined_classes(path, facts):
@@ -250,17 +258,21 @@ class TableLookups:
         """These lookups (a build's, of the files' facts before) with each edited code
         file's classes as they are now (display path, facts before and now), where
         ``ParameterTables.of`` puts them; and the files whose nodes' parameters the
-        changed entries may change besides the edited ones (``dependents``)."""
+        changed entries may change besides the edited ones: those deriving from a class
+        of a name whose classes changed, or loading plugins of such a base or of one
+        whose derived classes changed (``deriving``, ``loading``)."""
         classes, derived = dict(self.classes), dict(self.derived)
-        changed: set[str] = set()
+        defined: set[str] = set()  # names whose classes changed
+        bases: set[str] = set()  # names whose derived classes changed
         for path, before, now in edited:
             if before.class_bases == now.class_bases or excluded(path):
                 continue
             old, new = _defined_classes(path, before), _defined_classes(path, now)
-            changed |= _replace_entries(classes, path, old, new, lambda entry: entry)
+            defined |= _replace_entries(classes, path, old, new, lambda entry: entry)
             old_bases, new_bases = _derived_classes(path, before), _derived_classes(path, now)
-            changed |= _replace_entries(derived, path, old_bases, new_bases, lambda entry: entry[0])
-        reached = {path for key in changed for path in self.dependents.get(key, ())}
+            bases |= _replace_entries(derived, path, old_bases, new_bases, lambda entry: entry[0])
+        reached = {path for key in defined for path in self.deriving.get(key, ())}
+        reached.update(path for key in defined | bases for path in self.loading.get(key, ()))
         return replace(self, classes=classes, derived=derived), reached
 
 
@@ -278,11 +290,16 @@ def _derived_classes(path: str, facts: FileFacts) -> list[tuple[str, tuple[str, 
     return [(_class_name(base), (path, base)) for _, bases in facts.class_bases for base in bases]
 
 
-def _dependencies(facts: FileFacts) -> list[str]:
-    """The class names a code file's nodes' parameters may depend on the classes of
-    (``TableLookups.dependents``): its classes' bases and its plugin loaders' bases."""
-    bases = [base for _, written in facts.class_bases for base in written]
-    return sorted({_class_name(base) for base in (*bases, *facts.plugin_loaders) if base})
+def _bases_looked_up(facts: FileFacts) -> list[str]:
+    """The names of the bases of a code file's classes that the parameter sets look up
+    (``TableLookups.deriving``)."""
+    written = {base for _, bases in facts.class_bases for base in bases}
+    return sorted({_class_name(base) for base in written - _ROOT_BASES})
+
+
+def _loaded(facts: FileFacts) -> list[str]:
+    """The names of the bases of the plugins a code file loads (``TableLookups.loading``)."""
+    return sorted({_class_name(base) for base in facts.plugin_loaders if base})
 
 
 def _replace_entries(
@@ -363,7 +380,7 @@ class ParameterTables:
     @classmethod
     def of(cls, index: WorkspaceIndex, excluded: Callable[[str], bool]) -> ParameterTables:
         """The tables of every file of ``index``."""
-        lookups = TableLookups({}, {}, {}, set(), {}, {})
+        lookups = TableLookups({}, {}, {}, set(), {}, {}, {})
         tables = cls(lookups, excluded)
         for path, facts in sorted(index.facts.items()):
             if facts.reconfigure is not None and facts.reconfigure.name is not None:
