@@ -27,9 +27,12 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
   beside that source (the last run's findings stand, its files renumbered:
   ``shifts``), a launch file starting a node put beside that launch file (a tree of
   its own walked), then the header removed;
-- ``edit_build``: a class deriving from ``rclcpp::Node`` added to that source: what an
-  edit the graph must be built again for costs (where a node's declarations may hide
-  changes, and no patch follows it);
+- ``edit_class``: a class deriving from ``rclcpp::Node`` added to that source: what
+  the parameters of nodes' code are gathered through changes (the classes' lookups),
+  the parameters of the code spanning its package gathered again
+  (``patch.gathering_edit``);
+- ``edit_build``: a dependency added to a package's manifest: what an edit the graph
+  must be built again for costs (the packages every file is judged by change);
 - ``identical_after_edits``: whether the last edited run printed what a run with an
   empty cache prints over the same tree (a stale cache must never change a result);
 - ``commit``: pre-commit's run, naming the edited C++ source and launch file, the
@@ -96,11 +99,14 @@ _NEW_LAUNCH = b"""<launch>
 </launch>
 """
 _ADDED_LAUNCH = "bench_added.launch.xml"
-# An edit the graph is built again for: a class of the code derives from another.
+# A class of the code that derives from the client library's node.
 _NEW_CLASS = b"""
 class BenchProbe : public rclcpp::Node
 {
 };
+"""
+# An edit the graph is built again for: a package depends on another.
+_NEW_MANIFEST_DEPENDENCY = b"""  <depend>bench_probe</depend>
 """
 # One edit each, in this order. The first three are comments: at the end, where they move
 # no name, or at the start, where it moves every name of the file; so that the run
@@ -126,7 +132,8 @@ _EDITS = {
     "add_file": ((".cpp",), "create_publisher", _NEW_HEADER, "beside"),
     "add_launch": ((".launch.xml", ".launch"), "<node", _NEW_LAUNCH, "beside"),
     "remove_file": ((".cpp",), "create_publisher", b"", "removed"),
-    "edit_build": ((".cpp",), "create_publisher", _NEW_CLASS, "end"),
+    "edit_class": ((".cpp",), "create_publisher", _NEW_CLASS, "end"),
+    "edit_build": (("package.xml",), "<depend>", _NEW_MANIFEST_DEPENDENCY, "inside"),
 }
 
 

@@ -206,7 +206,7 @@ PATCHED = [
     # The monitor reports no more: a base taken out of its class.
     (MONITOR, ", public fleet_core::Reporter\n", "\n"),
     # A class that derives from the client library's node added to the monitor's code
-    # (the growth benchmark's ``edit_build``).
+    # (the growth benchmark's ``edit_class``).
     (
         MONITOR,
         "",

@@ -405,7 +405,7 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     ),
     # What a node's parameters are gathered through (``patch.gathering_edit``): a header
     # of its package included, a class deriving from the client library's node added
-    # (the growth benchmark's ``edit_build``), and a base of the dock manager's class
+    # (the growth benchmark's ``edit_class``), and a base of the dock manager's class
     # its own package now defines (its code spans another file).
     (
         MONITOR,

@@ -19,7 +19,7 @@ added, taken out or given other bases changes the lookups of classes by name, wh
 follow it (``TableLookups.with_classes``), and the code of the nodes whose files derive
 from a class of that name, or load plugins of such a base, may span other packages now:
 those nodes are gathered again too (``TableLookups.deriving``, ``loading``). The growth
-benchmark's ``edit_build`` (a class deriving from ``rclcpp::Node`` appended to a node's
+benchmark's ``edit_class`` (a class deriving from ``rclcpp::Node`` appended to a node's
 source) is such an edit.
 
 ``parameters_patched`` gives the graph a build would; None (the caller builds) where a
