@@ -128,6 +128,7 @@ async def _measure(workspace: Path, home: Path, edits: int) -> dict[str, Any]:
         "cpp": pick(workspace, (".cpp",), "create_publisher"),
         "python": pick(workspace, (".py",), "create_subscription"),
         "cpp-names": pick(workspace, (".cpp",), "create_publisher"),
+        "cpp-class": pick(workspace, (".cpp",), "create_publisher"),
     }
     client = _Client()
     await client.lsp.start_io(*SERVER, env={"XDG_CACHE_HOME": str(home), "PATH": ""})
@@ -222,6 +223,7 @@ EDITS: dict[str, Callable[[str], str]] = {
     "cpp": lambda text: _edited(text, '// bench: "cmd vel"\n'),
     "python": lambda text: _edited(text, '# bench: "cmd vel"\n'),
     "cpp-names": _renamed,
+    "cpp-class": lambda text: f"{text}\nclass BenchProbe : public rclcpp::Node\n{{\n}};\n",
 }
 
 

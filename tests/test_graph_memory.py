@@ -221,6 +221,39 @@ def _steps(ws: _Workspace) -> list[tuple[str, Callable[[], None]]]:
             ),
         ),
         (
+            "a base no file defines given to a class of a node's code",
+            lambda: ws.edit(
+                f"{FLEET}/src/fleet_monitor.cpp",
+                "public rclcpp::Node\n",
+                "public rclcpp::Node, public Reporting\n",
+            ),
+        ),
+        (
+            "a class of that name defined in another package's code",
+            lambda: ws.edit(
+                f"{TURTLE}/src/velocity_smoother.cpp",
+                "int main(",
+                "class Reporting\n{\npublic:\n  void read_reporting(ros::NodeHandle & nh)\n"
+                '  {\n    nh.param("report_period", period_, 5.0);\n  }\n\n'
+                "  double period_;\n};\n\nint main(",
+            ),
+        ),
+        (
+            "a class deriving from the client library's node added",
+            lambda: ws.edit(
+                f"{FLEET}/src/fleet_monitor.cpp",
+                "int main(",
+                "class MonitorProbe : public rclcpp::Node\n{\n  void probe()\n  {\n"
+                '    declare_parameter("probe_rate", 2.0);\n  }\n};\n\nint main(',
+            ),
+        ),
+        (
+            "the defined class renamed",
+            lambda: ws.edit(
+                f"{TURTLE}/src/velocity_smoother.cpp", "class Reporting\n", "class Reports\n"
+            ),
+        ),
+        (
             "a remap changed in a Python launch file",
             lambda: ws.edit(f"{FLEET}/launch/fleet.launch.py", '("/tf", "tf")', '("/tf", "tf2")'),
         ),
