@@ -273,6 +273,18 @@ class PackageGenerations:
 _IN_DIRECTORY = os.sep + "package.xml"
 
 
+def manifest_digest(path: str) -> str | None:
+    """The digest ``PackageGenerations.manifests`` keeps of a package.xml or plugin
+    description read now; None where it cannot be read."""
+    limit = -1 if path.endswith(_IN_DIRECTORY) or path == "package.xml" else _MAX_DESCRIPTION
+    try:
+        with open(path, encoding="utf-8", errors="replace") as stream:
+            text = stream.read(limit)
+    except OSError:
+        return None
+    return content_digest(text.encode())
+
+
 def _parent(path: str) -> str:
     """``os.path.dirname(path)``, by one ``rpartition`` where the path has no repeated
     separator (every path a run asks about, 81,000 at 8 copies of the benchmark's

@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING, Any
 from .config import Settings, settings_fingerprint
 from .digests import ContentDigests
 from .discover import SourceFile
-from .generation import PackageGenerations, reads_python2
+from .generation import PackageGenerations, manifest_digest, reads_python2
 from .model import Generation, Language
 from .reading import (
     MAX_DEFINITION_BYTES,
@@ -92,7 +92,7 @@ class RunInputs:
         self._ros1_python2 = ros1_python2  # the environment's part (``config.ros1_python2``)
         root = _common_directory(checked)
         # First: every status of the run is taken after.
-        self._kept = KeptKey(cache, root, packages.status)
+        self._kept = KeptKey(cache, root, packages.status, manifest_digest)
         self._digests = ContentDigests.of(cache, root)
         # Per checked file: its facts key, or why it has none ("" until it is known).
         self._tags: list[str] = [""] * len(checked)
@@ -247,6 +247,7 @@ class RunInputs:
                 file_statuses,
                 packages,
                 keying,
+                manifests=self._packages.manifests,
                 shape=self._shape,
                 files=self._where_files,
                 checked=len(self._checked),

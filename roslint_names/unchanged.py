@@ -20,8 +20,12 @@ time. So the key is kept here with:
 A re-run whose identity and statuses are all equal is keyed by the kept key. A status
 taken within ``reading.RACY_NANOSECONDS`` of a change is never kept (an edit in the same
 clock tick would not show: git's "racily clean" files): such a file is kept as changed,
-and a package status so taken keeps nothing. The file is builtins only, read with an
-unpickler that resolves no class; one that cannot be read is no key.
+and a manifest so taken is kept by the digest of the text the run read
+(``PackageGenerations.manifests``), which the next run compares with the text it has
+then (``manifest_digest``: one file read, where a manifest edited just before a run
+made the next run look every package up again, 0.8 s at 8 copies of the benchmark's
+workspace). The file is builtins only, read with an unpickler that resolves no class;
+one that cannot be read is no key.
 
 A re-run that edited some files is keyed file by file, yet most of that work gives what it
 gave last time too: so the kept key comes with what it was made of (``Keying``), which a
@@ -54,7 +58,7 @@ if TYPE_CHECKING:
 
 KEYS = "keys"  # their directory in the facts cache: one file per workspace, and its files
 KEPT = 64
-_FORMAT = 3
+_FORMAT = 4
 _FILES_FORMAT = 1
 MOST_SHIFTED = 64  # checked files added or removed past which a run is keyed file by file
 _PROTOCOL = pickle.HIGHEST_PROTOCOL
@@ -80,6 +84,7 @@ class KeptKey:
         cache: FactsCache,
         root: Path,
         package_status: Callable[[str], Status | None] = status_of,
+        manifest_digest: Callable[[str], str | None] = lambda path: None,
     ) -> None:
         name = hashlib.blake2b(os.fsencode(root), digest_size=8).hexdigest()
         self._path = cache.directory / KEYS / name
@@ -87,6 +92,12 @@ class KeptKey:
         # A package.xml's or plugin description's status now, as the lookups take it
         # (``PackageGenerations.status``).
         self._package_status = package_status
+        # The digest of a package.xml's or plugin description's text now, as the lookups
+        # take it (``generation.manifest_digest``); None where it cannot be read.
+        self._manifest_digest = manifest_digest
+        # Once the kept packages stand: each manifest kept by its digest (its status was
+        # too recent), with its status now.
+        self._verified: dict[str, Status] = {}
         self.started = time.time_ns()  # before any status of this run is taken
         self._files_path = self._path.with_name(f"{name}.files")  # ``keep``'s ``files``
         self._kept: _Kept | None = None
@@ -126,7 +137,12 @@ class KeptKey:
             return None
         try:
             tags, lookups, shape_key = BuiltinsUnpickler(io.BytesIO(kept.made_of)).load()
-            package_statuses = dict(zip(kept.package_paths, kept.package_statuses, strict=True))
+            # A manifest kept by its digest is as kept (``_packages_as_kept``): its status
+            # now is what the lookups are taken up with.
+            package_statuses = {
+                path: self._verified[path] if isinstance(status, str) else status
+                for path, status in zip(kept.package_paths, kept.package_statuses, strict=True)
+            }
         except Exception:  # damaged: keyed file by file
             return None
         if not isinstance(tags, list) or not isinstance(shape_key, str | None):
@@ -201,20 +217,29 @@ class KeptKey:
         package_statuses: Mapping[str, Status | None],
         keying: tuple[Sequence[str], str, KeptLookups, str | None],
         *,
+        manifests: Mapping[str, str] | None = None,
         shape: str | None = None,
         files: Callable[[], Sequence[str]] = list,
         checked: int = 0,
     ) -> None:
         """Keep ``key`` with what it was made from (``keying``: each file's facts key, the
-        place, the packages' lookups and the place's shape), unless a package status is
-        too recent to say that nothing changed after it was taken. A file whose status is
-        that recent is kept as changed (False: no status is). ``shape``: the identity but
-        for which files are checked, where a run of that shape over other files may take
-        this one up (``keying``); the status files (``files``, as ``keying`` takes them)
-        are then kept beside, written only when the identity changed (a file added or
-        removed: 10 MB at 81,000 files)."""
-        if any(s is not None and self._racy(s) for s in package_statuses.values()):
-            return
+        place, the packages' lookups and the place's shape). A file whose status is too
+        recent to say that nothing changed after it was taken is kept as changed (False:
+        no status is); a manifest's, by the digest of the text the run read
+        (``manifests``: path -> digest), or nothing is kept where it has none. ``shape``:
+        the identity but for which files are checked, where a run of that shape over
+        other files may take this one up (``keying``); the status files (``files``, as
+        ``keying`` takes them) are then kept beside, written only when the identity
+        changed (a file added or removed: 10 MB at 81,000 files)."""
+        manifests = manifests or {}
+        kept_statuses: list[Status | str | None] = []
+        for path, status in package_statuses.items():
+            if status is not None and self._racy(status):
+                if path not in manifests:
+                    return
+                kept_statuses.append(manifests[path])
+            else:
+                kept_statuses.append(status)
         if shape is not None and (
             self._kept_identity != identity or not self._files_path.is_file()
         ):
@@ -229,8 +254,8 @@ class KeptKey:
         ]
         tags, place_key, lookups, shape_key = keying
         made_of = pickle.dumps((list(tags), lookups, shape_key), _PROTOCOL)
-        paths, statuses = tuple(package_statuses), list(package_statuses.values())
-        kept = (_FORMAT, identity, key, trusted, paths, statuses, place_key, made_of, shape)
+        paths = tuple(package_statuses)
+        kept = (_FORMAT, identity, key, trusted, paths, kept_statuses, place_key, made_of, shape)
         # Pickled into the file: 12 MB at 77,000 files, the peak of a run that patched.
         self._cache.write_newest(self._path, partial(pickle.dump, kept, protocol=_PROTOCOL), KEPT)
 
@@ -239,9 +264,22 @@ class KeptKey:
 
     def _packages_as_kept(self, kept: _Kept) -> bool:
         if self._packages_stand is None:
-            now = [self._package_status(path) for path in kept.package_paths]
-            self._packages_stand = now == kept.package_statuses
+            self._packages_stand = all(
+                self._package_as_kept(path, status)
+                for path, status in zip(kept.package_paths, kept.package_statuses, strict=True)
+            )
         return self._packages_stand
+
+    def _package_as_kept(self, path: str, kept: Status | str | None) -> bool:
+        """Whether a manifest looked for is as kept: the same status, or, kept by the
+        digest of its text, a file whose text has that digest now."""
+        now = self._package_status(path)
+        if not isinstance(kept, str):
+            return now == kept
+        if now is None or self._manifest_digest(path) != kept:
+            return False
+        self._verified[path] = now
+        return True
 
     def _load(self) -> _Kept | None:
         if not self._loaded:
@@ -277,7 +315,7 @@ class _Kept(NamedTuple):
     key: str
     file_statuses: list[Status | bool | None]
     package_paths: tuple[str, ...]
-    package_statuses: list[Status | None]
+    package_statuses: list[Status | str | None]  # a digest where the status was too recent
     place_key: str
     made_of: bytes  # the pickled tags and lookups: read only by a run that takes them up
     shape: str | None  # ``KeptKey.keep``'s

@@ -907,6 +907,60 @@ def test_a_file_edited_within_the_racy_window_is_kept_as_changed(
     assert reused(again) and keyed == [1] and files == ["driver.cpp"] and manifests == []
 
 
+def _manifest_edited_just_before_a_run(
+    check: Callable[..., Any],
+    workspace: Path,
+    rekeyed: tuple[list[str], list[str]],
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A run just after its manifest was edited (its status within the racy window)."""
+    monkeypatch.setattr(reading, "RACY_NANOSECONDS", 1_000_000_000)
+    age_all(workspace)
+    time.sleep(1.1)  # every status but the manifest's past the racy window
+    _package_depends(workspace)
+    check()
+    for seen in rekeyed:
+        seen.clear()
+
+
+def test_a_manifest_edited_just_before_a_run_is_kept_by_its_text(
+    check: Callable[..., Any],
+    workspace: Path,
+    keyed: list[int],
+    rekeyed: tuple[list[str], list[str]],
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Its status may hide a later edit, so the key is kept with the digest of the text
+    the run read, which the next run compares with the text now: the stored result, or
+    after an edit of code the last run's keying (no manifest looked for again), as for
+    any other run."""
+    _manifest_edited_just_before_a_run(check, workspace, rekeyed, monkeypatch)
+    again = check()
+    assert reused(again) and keyed == [1]  # the first run's alone
+    _edit_code(workspace)
+    after = check()
+    files, manifests = rekeyed
+    assert files == ["driver.cpp"] and manifests == []
+    assert after.stdout == check("--no-cache").stdout
+
+
+def test_a_manifest_kept_by_its_text_and_edited_again_is_read_again(
+    check: Callable[..., Any],
+    workspace: Path,
+    keyed: list[int],
+    rekeyed: tuple[list[str], list[str]],
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    _manifest_edited_just_before_a_run(check, workspace, rekeyed, monkeypatch)
+    manifest = workspace / "src/robot_base/package.xml"
+    manifest.write_text(manifest.read_text().replace("roscpp", "rospy"))
+    keyed.clear()
+    after = check()
+    files, manifests = rekeyed
+    assert not reused(after) and keyed == [1] and manifest.as_posix() in manifests
+    assert after.stdout == check("--no-cache").stdout
+
+
 def test_a_verbose_rerun_over_a_directory_makes_no_path_of_its_files(
     check: Callable[..., Any], monkeypatch: pytest.MonkeyPatch
 ) -> None:
