@@ -6,7 +6,9 @@ Starts ``roslint-names server`` as an editor would (a pygls client on stdio) wit
 workspace as its root, after a CLI run has filled the facts cache (``--cache``, else a
 fresh temporary one filled here): the warm workspace of the target. Then, for one launch
 file, one C++ file and one Python file of the workspace, and that C++ file again with a
-topic it publishes renamed (``cpp-names``), opens the document and makes ``--edits``
+topic it publishes renamed (``cpp-names``) and with a class deriving from
+``rclcpp::Node`` appended (``cpp-class``: the classes the parameters of nodes' code are
+gathered through change), opens the document and makes ``--edits``
 changes, each a whole-document change as editors send them, waiting between
 two for everything the change brings. Measured, from the moment the change is sent:
 
@@ -214,8 +216,10 @@ def _renamed(text: str) -> str:
 
 
 # One edit each way, then the text as it was: a line that gives the document a finding
-# (in the middle: ``_edited``), or a topic renamed (``_renamed``: the graph changes, and
-# the server patches it, ``workspace.patch``).
+# (in the middle: ``_edited``), a topic renamed (``_renamed``: the graph changes, and
+# the server patches it, ``workspace.patch``), or a class added (named as no class the
+# growth benchmark adds before it: a file's classes are known by name, and a second
+# class of one name changes nothing).
 EDITS: dict[str, Callable[[str], str]] = {
     "launch": lambda text: _edited(
         text, '  <node name="bench-node" pkg="bench" type="bench_node"/>\n'
@@ -223,7 +227,7 @@ EDITS: dict[str, Callable[[str], str]] = {
     "cpp": lambda text: _edited(text, '// bench: "cmd vel"\n'),
     "python": lambda text: _edited(text, '# bench: "cmd vel"\n'),
     "cpp-names": _renamed,
-    "cpp-class": lambda text: f"{text}\nclass BenchProbe : public rclcpp::Node\n{{\n}};\n",
+    "cpp-class": lambda text: f"{text}\nclass LspProbe : public rclcpp::Node\n{{\n}};\n",
 }
 
 
