@@ -43,7 +43,15 @@ from lsprotocol import types
 from pygls.lsp.client import LanguageClient
 from pygls.uris import from_fs_path
 
-CLI = [sys.executable, "-c", "import sys; from roslint_names.cli import main; sys.exit(main())"]
+# Isolated (``-I``): the package this interpreter has installed, never one the current
+# directory holds (``-c`` would put it first: a comparison of two installs run from a
+# checkout measured the checkout's code twice).
+CLI = [
+    sys.executable,
+    "-I",
+    "-c",
+    "import sys; from roslint_names.cli import main; sys.exit(main())",
+]
 SERVER = [*CLI, "server"]
 
 

@@ -956,7 +956,7 @@ def test_a_manifest_kept_by_its_text_and_edited_again_is_read_again(
     manifest.write_text(manifest.read_text().replace("roscpp", "rospy"))
     keyed.clear()
     after = check()
-    files, manifests = rekeyed
+    _, manifests = rekeyed
     assert not reused(after) and keyed == [1] and manifest.as_posix() in manifests
     assert after.stdout == check("--no-cache").stdout
 

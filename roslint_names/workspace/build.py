@@ -177,15 +177,21 @@ def _build(
     rooted_loads = _group_loads(index, trees)
     loads = [use for _, use in rooted_loads]
     blocks = {path: index.facts[path].parameter_blocks for path in linked_files(nodes, loads)}
-    parameters = ParameterSets(
-        index,
-        memory.piece(
-            "parameter tables",
-            ParameterTables.FIELDS,
-            lambda: ParameterTables.of(index, lambda path: path in unbuilt or tests(path)),
-        ),
-        memory,
+    tables = memory.piece(
+        "parameter tables",
+        ParameterTables.FIELDS,
+        lambda: ParameterTables.of(index, lambda path: path in unbuilt or tests(path)),
     )
+    classes = [
+        (path, old, new)
+        for path, old, new in memory.edits()
+        if (old.class_bases, old.plugin_loaders) != (new.class_bases, new.plugin_loaders)
+    ]
+    if classes:  # the last build's tables, but for the edited files' classes
+        tables, reached = tables.with_classes(classes)
+        memory.replace_piece("parameter tables", tables)
+        memory.forget(reached)
+    parameters = ParameterSets(index, tables, memory)
     finished = _Finished(memory.piece("finished nodes", (), dict))
     nodes = [
         finished(

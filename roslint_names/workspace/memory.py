@@ -15,9 +15,11 @@ executable has): nothing is taken back then. Otherwise each piece says what it w
 made from:
 
 - a piece made from one field of every file's facts (the index's executables, the build
-  files' compiled sources, the classes the parameter sets follow), or from what a
-  function makes of each file's facts (what its code declares as parameters), is taken
-  back when no changed file's field or view differs (``same``);
+  files' compiled sources), or from what a function makes of each file's facts (what
+  its code declares as parameters), is taken back when no changed file's field or view
+  differs (``same``); the lookups of classes the parameter sets follow take the changed
+  files' classes in, and the pieces of the files deriving from a class of a changed
+  name are forgotten (``build``, ``ParameterTables.with_classes``);
 - a piece made from some files (a node instance from its launch file, its code and its
   parameter files; a launch tree from the files it visits; a node's parameters from its
   code, the headers and base classes followed, its packages' code) is taken back when
@@ -31,7 +33,7 @@ next one (``keeps=False``: its pieces record no reads).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, TypeVar
 
@@ -165,6 +167,20 @@ class GraphMemory:
         for package in read.packages:
             self._package_readers.setdefault(package, []).append(entry)
         self._indexed += len(read.paths) + len(read.packages)
+
+    def edits(self) -> list[tuple[str, FileFacts, FileFacts]]:
+        """Each changed file's display path and facts before and now (``begin``)."""
+        return [(new.path, old, new) for old, new in self._pairs]
+
+    def forget(self, paths: Iterable[str]) -> None:
+        """Forget every piece that read one of ``paths``, as ``begin`` forgets those that
+        read a changed file: a build that learns of other files its change reaches
+        (``parameters.ParameterTables.with_classes``)."""
+        self._forget_readers(self._readers, frozenset(paths), _paths_read)
+
+    def replace_piece(self, name: str, value: Any) -> None:
+        """The piece ``name`` made anew from the last build's, for the next build."""
+        self._pieces[name] = (self._pieces[name][0], value)
 
     def same(self, *fields: Field) -> bool:
         """Whether every changed file's facts agree on ``fields`` before and after."""

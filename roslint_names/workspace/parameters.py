@@ -43,7 +43,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 from enum import Enum
 from functools import cache
-from typing import TypeVar
+from typing import Any
 
 from roslint_names.model import (
     EventKind,
@@ -237,77 +237,88 @@ class TableLookups:
 
     def add_classes(self, path: str, facts: FileFacts, *, excluded: bool) -> None:
         """What a code file's classes add (``ParameterTables.of``: files in path order)."""
-        for lookup, keys in (
-            (self.deriving, _bases_looked_up(facts)),
-            (self.loading, _loaded(facts)),
-        ):
-            for key in keys:
-                lookup.setdefault(key, []).append(path)
-        if excluded:
-            return
-        for key, defining in _defined_classes(path, facts):
-            self.classes.setdefault(key, []).append(defining)
-        for key, deriving in _derived_classes(path, facts):
-            self.derived.setdefault(key, []).append(deriving)
+        for name, entries in _FOLLOWED:
+            lookup: dict[str, list[Any]] = getattr(self, name)
+            for key, entry in entries(path, facts, excluded):
+                lookup.setdefault(key, []).append(entry)
 
     def with_classes(
         self,
         edited: Iterable[tuple[str, FileFacts, FileFacts]],
         excluded: Callable[[str], bool],
     ) -> tuple[TableLookups, set[str]]:
-        """These lookups (a build's, of the files' facts before) with each edited code
-        file's classes as they are now (display path, facts before and now), where
-        ``ParameterTables.of`` puts them; and the files whose nodes' parameters the
+        """These lookups (made from the files' facts before) with each edited code file's
+        classes and plugin loaders as they are now (display path, facts before and now),
+        where ``ParameterTables.of`` puts them; and the files whose nodes' parameters the
         changed entries may change besides the edited ones: those deriving from a class
         of a name whose classes changed, or loading plugins of such a base or of one
         whose derived classes changed (``deriving``, ``loading``)."""
-        classes, derived = dict(self.classes), dict(self.derived)
-        defined: set[str] = set()  # names whose classes changed
-        bases: set[str] = set()  # names whose derived classes changed
+        lookups = {name: dict(getattr(self, name)) for name, _ in _FOLLOWED}
+        changed: dict[str, set[str]] = {name: set() for name, _ in _FOLLOWED}
         for path, before, now in edited:
-            if before.class_bases == now.class_bases or excluded(path):
-                continue
-            old, new = _defined_classes(path, before), _defined_classes(path, now)
-            defined |= _replace_entries(classes, path, old, new, lambda entry: entry)
-            old_bases, new_bases = _derived_classes(path, before), _derived_classes(path, now)
-            bases |= _replace_entries(derived, path, old_bases, new_bases, lambda entry: entry[0])
+            left_out = excluded(path)
+            for name, entries in _FOLLOWED:
+                old, new = entries(path, before, left_out), entries(path, now, left_out)
+                changed[name] |= _replace_entries(lookups[name], path, old, new)
+        defined, bases = changed["classes"], changed["derived"]
         reached = {path for key in defined for path in self.deriving.get(key, ())}
         reached.update(path for key in defined | bases for path in self.loading.get(key, ()))
-        return replace(self, classes=classes, derived=derived), reached
+        found = replace(
+            self,
+            classes=lookups["classes"],
+            derived=lookups["derived"],
+            deriving=lookups["deriving"],
+            loading=lookups["loading"],
+        )
+        return found, reached
 
 
-_E = TypeVar("_E")
-
-
-def _defined_classes(path: str, facts: FileFacts) -> list[tuple[str, str]]:
+def _defined_classes(path: str, facts: FileFacts, excluded: bool) -> list[tuple[str, Any]]:
     """``TableLookups.classes``' entries of a file: (class name, its path)."""
-    return [(name, path) for name, _ in facts.class_bases]
+    return [] if excluded else [(name, path) for name, _ in facts.class_bases]
 
 
-def _derived_classes(path: str, facts: FileFacts) -> list[tuple[str, tuple[str, str]]]:
+def _derived_classes(path: str, facts: FileFacts, excluded: bool) -> list[tuple[str, Any]]:
     """``TableLookups.derived``' entries of a file: (base class name, (its path, the base
     as written))."""
+    if excluded:
+        return []
     return [(_class_name(base), (path, base)) for _, bases in facts.class_bases for base in bases]
 
 
-def _bases_looked_up(facts: FileFacts) -> list[str]:
-    """The names of the bases of a code file's classes that the parameter sets look up
-    (``TableLookups.deriving``)."""
+def _bases_looked_up(path: str, facts: FileFacts, _: bool) -> list[tuple[str, Any]]:
+    """``TableLookups.deriving``' entries of a file: the name of each base of its classes
+    that the parameter sets look up, with its path."""
     written = {base for _, bases in facts.class_bases for base in bases}
-    return sorted({_class_name(base) for base in written - _ROOT_BASES})
+    return [(name, path) for name in sorted({_class_name(base) for base in written - _ROOT_BASES})]
 
 
-def _loaded(facts: FileFacts) -> list[str]:
-    """The names of the bases of the plugins a code file loads (``TableLookups.loading``)."""
-    return sorted({_class_name(base) for base in facts.plugin_loaders if base})
+def _loaded(path: str, facts: FileFacts, _: bool) -> list[tuple[str, Any]]:
+    """``TableLookups.loading``' entries of a file: the name of each base of the plugins
+    it loads, with its path."""
+    return [(name, path) for name in sorted({_class_name(b) for b in facts.plugin_loaders if b})]
+
+
+# Each lookup of classes (a field of ``TableLookups``) and the entries a file of code
+# makes in it (from its path, facts and whether the tables leave it out).
+_FOLLOWED: tuple[tuple[str, Callable[[str, FileFacts, bool], list[tuple[str, Any]]]], ...] = (
+    ("classes", _defined_classes),
+    ("derived", _derived_classes),
+    ("deriving", _bases_looked_up),
+    ("loading", _loaded),
+)
+
+
+def _path_of(entry: str | tuple[str, str]) -> str:
+    """The file of an entry of a lookup of classes: itself, or its first item."""
+    return entry if isinstance(entry, str) else entry[0]
 
 
 def _replace_entries(
-    table: dict[str, list[_E]],
+    table: dict[str, list[Any]],
     path: str,
-    old: list[tuple[str, _E]],
-    new: list[tuple[str, _E]],
-    path_of: Callable[[_E], str],
+    old: list[tuple[str, Any]],
+    new: list[tuple[str, Any]],
 ) -> set[str]:
     """``table`` (a copy: its lists are replaced, never changed) with ``path``'s entries
     ``old`` (key, entry) put out and ``new`` put in among the other files' in path
@@ -315,8 +326,8 @@ def _replace_entries(
     changed: set[str] = set()
     for key in sorted({key for key, _ in (*old, *new)}):
         listed = table.get(key, [])
-        kept = [entry for entry in listed if path_of(entry) != path]
-        at = next((i for i, entry in enumerate(kept) if path_of(entry) > path), len(kept))
+        kept = [entry for entry in listed if _path_of(entry) != path]
+        at = next((i for i, entry in enumerate(kept) if _path_of(entry) > path), len(kept))
         kept[at:at] = [entry for found, entry in new if found == key]
         if kept == listed:
             continue
@@ -361,7 +372,9 @@ class ParameterTables:
     ``FIELDS`` of every file's facts, where files are and which are ``excluded`` (tests,
     sources no build compiles), and kept by a memory while none of that changes."""
 
-    FIELDS = ("language", "reconfigure", "class_bases", "executables", *BUILD_FIELDS)
+    # What the tables are made from in every file's facts, besides the classes, which
+    # a memory's next build takes in through ``with_classes``.
+    FIELDS = ("language", "reconfigure", "executables", *BUILD_FIELDS)
 
     def __init__(self, lookups: TableLookups, excluded: Callable[[str], bool]) -> None:
         self.lookups = lookups
@@ -376,6 +389,14 @@ class ParameterTables:
         self.included: dict[tuple[str, str], list[str]] = {}
         self.implementations: dict[str, list[str]] = {}
         self.defined: dict[tuple[str, str], list[str]] = {}
+
+    def with_classes(
+        self, edited: Iterable[tuple[str, FileFacts, FileFacts]]
+    ) -> tuple[ParameterTables, set[str]]:
+        """These tables with the edited files' classes as they are now, and the other files
+        whose nodes' parameters that may change (``TableLookups.with_classes``)."""
+        lookups, reached = self.lookups.with_classes(edited, self.excluded)
+        return ParameterTables(lookups, self.excluded), reached
 
     @classmethod
     def of(cls, index: WorkspaceIndex, excluded: Callable[[str], bool]) -> ParameterTables:
@@ -417,7 +438,8 @@ class ParameterSets:
         self._tables = tables
         self._excluded = tables.excluded
         self._memory = memory = GraphMemory(keeps=False) if memory is None else memory
-        # Made from the tables too: forgotten with them.
+        # Made from the tables too: forgotten with them (and, where a file's classes
+        # change, the pieces that read a file deriving from them: ``build``).
         fields = ParameterTables.FIELDS
         self._memo = memory.reads("parameters", fields)  # sources -> their parameters
         self._reached_memo = memory.reads("reached", fields)  # path -> what it includes
