@@ -14,7 +14,7 @@ from itertools import pairwise
 from pathlib import Path
 
 import pytest
-from conftest import ExampleCopy, assert_patched
+from conftest import AMENT_PACKAGE, ExampleCopy, assert_patched
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -98,20 +98,7 @@ class LidarDockSensor : public fleet_bringup::DockSensor
 };
 }  // namespace fleet_bringup
 """,
-    "src/fleet_sensors/package.xml": """<?xml version="1.0"?>
-<package format="3">
-  <name>fleet_sensors</name>
-  <version>0.1.0</version>
-  <description>Sensors a dock manager may load</description>
-  <maintainer email="dev@example.com">Example Maintainer</maintainer>
-  <license>Apache-2.0</license>
-  <buildtool_depend>ament_cmake</buildtool_depend>
-  <depend>fleet_bringup</depend>
-  <export>
-    <build_type>ament_cmake</build_type>
-  </export>
-</package>
-""",
+    "src/fleet_sensors/package.xml": AMENT_PACKAGE.format(name="fleet_sensors"),
     SONAR: """#pragma once
 #include <fleet_bringup/dock_sensor.hpp>
 

@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from conftest import AMENT_PACKAGE
 
 from roslint_names import cache as cache_module
 from roslint_names import engine, same_facts
@@ -907,19 +908,6 @@ def test_a_damaged_file_list_is_written_again_by_the_next_run_over_those_files(
 
 
 NAMES = "src/fleet_names"  # a package of headers and their test: no node's code
-NAMES_MANIFEST = """<?xml version="1.0"?>
-<package format="3">
-  <name>fleet_names</name>
-  <version>0.1.0</version>
-  <description>The names the fleet's nodes share</description>
-  <maintainer email="dev@example.com">Example Maintainer</maintainer>
-  <license>Apache-2.0</license>
-  <buildtool_depend>ament_cmake</buildtool_depend>
-  <export>
-    <build_type>ament_cmake</build_type>
-  </export>
-</package>
-"""
 
 
 def test_an_include_that_gives_test_code_a_constant_is_built(
@@ -932,7 +920,7 @@ def test_an_include_that_gives_test_code_a_constant_is_built(
     (``parameter_patch._constants_kept``), or the test's illegal topic would stay
     unreported."""
     status = workspace / NAMES / "include/fleet_names/status.hpp"
-    change(workspace / NAMES / "package.xml", None, NAMES_MANIFEST)
+    change(workspace / NAMES / "package.xml", None, AMENT_PACKAGE.format(name="fleet_names"))
     change(
         workspace / NAMES / "include/fleet_names/topics.hpp",
         None,
