@@ -248,6 +248,33 @@ def _steps(ws: _Workspace) -> list[tuple[str, Callable[[], None]]]:
             ),
         ),
         (
+            "a plugin loader added to a node's code, its plugins' base and one plugin beside",
+            lambda: ws.edit(
+                f"{FLEET}/src/dock_manager.cpp",
+                "class DockManager",
+                "namespace fleet_bringup\n{\nclass DockSensor\n{\n};\n\n"
+                "class LidarDockSensor : public fleet_bringup::DockSensor\n{\n};\n}\n\n"
+                "class DockManager",
+            ),
+        ),
+        (
+            "the loader itself",
+            lambda: ws.edit(
+                f"{FLEET}/src/dock_manager.cpp",
+                "private:\n",
+                "private:\n  pluginlib::ClassLoader<fleet_bringup::DockSensor> sensors_{\n"
+                '    "fleet_bringup", "fleet_bringup::DockSensor"};\n',
+            ),
+        ),
+        (
+            "a plugin of that base in another package's code",
+            lambda: ws.edit(
+                f"{TURTLE}/src/velocity_smoother.cpp",
+                "int main(",
+                "class SonarDockSensor : public fleet_bringup::DockSensor\n{\n};\n\nint main(",
+            ),
+        ),
+        (
             "the defined class renamed",
             lambda: ws.edit(
                 f"{TURTLE}/src/velocity_smoother.cpp", "class Reporting\n", "class Reports\n"
