@@ -448,3 +448,21 @@ def test_the_index_of_what_pieces_read_made_anew_forgets_as_before(tmp_path: Pat
     remembered, fresh = ws.graphs()
     assert remembered == fresh
     assert any(e.written == "cmd_vel_in" for e in fresh.endpoints)
+
+
+def test_tables_taken_up_edit_after_edit_keep_one_answer_per_file(tmp_path: Path) -> None:
+    """A memory's parameter tables follow each class edit (``with_classes``) without
+    wrapping what they ask of each file again: a session of many edits would otherwise
+    call through one more cache per edit."""
+    ws = _Workspace(tmp_path / "ws")
+    ws.graphs()
+    tables = ws.memory.piece("parameter tables", (), dict)
+    for count in range(3):
+        ws.edit(
+            f"{FLEET}/src/fleet_monitor.cpp",
+            "int main(",
+            f"class Probe{count} : public Reporting\n{{\n}};\n\nint main(",
+        )
+        ws.graphs()
+        followed = ws.memory.piece("parameter tables", (), dict)
+        assert followed is not tables and followed.excluded is tables.excluded

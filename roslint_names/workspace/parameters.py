@@ -40,6 +40,7 @@ from __future__ import annotations
 import posixpath
 import re
 from collections.abc import Callable, Iterable, Sequence
+from copy import copy
 from dataclasses import dataclass, field, replace
 from enum import Enum
 from functools import cache
@@ -394,9 +395,15 @@ class ParameterTables:
         self, edited: Iterable[tuple[str, FileFacts, FileFacts]]
     ) -> tuple[ParameterTables, set[str]]:
         """These tables with the edited files' classes as they are now, and the other files
-        whose nodes' parameters that may change (``TableLookups.with_classes``)."""
+        whose nodes' parameters that may change (``TableLookups.with_classes``). What was
+        looked up of no class is kept, the answers on excluded files with it (a
+        language server's memory takes this up edit after edit: wrapped anew each time,
+        ``excluded`` would nest one cache per edit)."""
         lookups, reached = self.lookups.with_classes(edited, self.excluded)
-        return ParameterTables(lookups, self.excluded), reached
+        tables = copy(self)
+        tables.lookups, tables.classes, tables.derived = lookups, lookups.classes, lookups.derived
+        tables.defined = {}  # which of the classes of a name a file means
+        return tables, reached
 
     @classmethod
     def of(cls, index: WorkspaceIndex, excluded: Callable[[str], bool]) -> ParameterTables:
