@@ -1129,15 +1129,53 @@ class _GraphPatch:
             if came[0] != _SAYS_NOTHING:
                 removed_trees.append(display)
 
+        def stored_facts(index: int) -> FileFacts | None:
+            """A file's facts as extracted (the edited files' of this run)."""
+            if index in arrived_facts:
+                return arrived_facts[index]
+            # By index: ``RunInputs.tags`` copies every file's key (0.08 s a patch).
+            tag = self.inputs.facts_key(index)
+            return None if tag is None else self.cache.load(tag, files[index].display)
+
+        # The files taking another file's constant are resolved as the run resolves them
+        # (``_resolved``), but where an edit changed what a file includes: then a patch
+        # must not load them at all (``parameter_patch._constants_kept``).
+        resolving = [True]
+        constants: dict[str, PackageConstants | None] = {}  # by package display directory
+
         def facts_at(index: int) -> FileFacts | None:
             if index in arrived_facts:
                 return arrived_facts[index]
             if index not in loaded:
-                # By index: ``RunInputs.tags`` copies every file's key (0.08 s a patch).
-                tag = self.inputs.facts_key(index)
-                known = None if tag is None else self.cache.load(tag, files[index].display)
-                loaded[index] = None if known is None or uses_constants(known) else known
+                known = stored_facts(index)
+                if known is not None and uses_constants(known):
+                    known = _resolved(known, index, stored_facts) if resolving[0] else None
+                loaded[index] = known
             return loaded[index]
+
+        def _resolved(
+            known: FileFacts, index: int, stored: Callable[[int], FileFacts | None]
+        ) -> FileFacts | None:
+            """``known`` with its symbols resolved by its package's headers (``symbols``),
+            from every C++ file below the package's directory; None where one of them
+            has no facts."""
+            package = self.checks.package_of(index)
+            if package is None:
+                return known  # the run resolves nothing there either
+            if package not in constants:
+                prefix = f"{package}/" if package else ""
+                below = [
+                    stored(at)
+                    for at, source in enumerate(files)
+                    if source.language is Language.CPP and source.display.startswith(prefix)
+                ]
+                made = PackageConstants()
+                for found in below:
+                    if found is not None:
+                        made.add(found)
+                constants[package] = None if None in below else made
+            table = constants[package]
+            return None if table is None else table.resolve(known, package)
 
         changed: list[tuple[str, FileFacts, FileFacts]] = []
         tree_edits: list[str] = []
@@ -1174,6 +1212,7 @@ class _GraphPatch:
                 changed.append((display, before, facts))
             else:
                 return None
+        resolving[0] = all(before.cpp_includes == now.cpp_includes for _, before, now in changed)
         naming -= {*tree_edits, *removed_trees}
         walk = [*tree_edits, *sorted(naming)]  # the launch files whose trees are walked again
         declaring: set[str] = set()  # code files whose parameters changed

@@ -423,6 +423,15 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     (TOPICS, None, TOPICS_HEADER, "build"),
     (STATUS_SOURCE, None, STATUS_NODE, "build"),
     (MONITOR, "\n#include <fleet_bringup/units.hpp>\n", "", "build"),
+    # A parameter declared beside that code: the package's files are read as the run
+    # reads them, the constant's name resolved (``engine._GraphPatch``), and patched.
+    (
+        MONITOR,
+        "",
+        "\nvoid declare_rate(rclcpp::Node & node)\n{\n"
+        '  node.declare_parameter("status_rate", 1.0);\n}\n',
+        "patch",
+    ),
 ]
 
 
