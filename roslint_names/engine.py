@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+from bisect import bisect_left
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from functools import partial
@@ -1142,6 +1143,7 @@ class _GraphPatch:
         # must not load them at all (``parameter_patch._constants_kept``).
         resolving = [True]
         constants: dict[str, PackageConstants | None] = {}  # by package display directory
+        displays: list[tuple[str, int]] = []  # every file's, sorted, with its index
 
         def facts_at(index: int) -> FileFacts | None:
             if index in arrived_facts:
@@ -1164,16 +1166,20 @@ class _GraphPatch:
                 return known  # the run resolves nothing there either
             if package not in constants:
                 prefix = f"{package}/" if package else ""
-                below = [
-                    stored(at)
-                    for at, source in enumerate(files)
-                    if source.language is Language.CPP and source.display.startswith(prefix)
-                ]
+                if not displays:
+                    displays.extend(sorted((source.display, at) for at, source in enumerate(files)))
+                place = bisect_left(displays, (prefix, -1))
+                below = []
+                while place < len(displays) and displays[place][0].startswith(prefix):
+                    at = displays[place][1]
+                    if files[at].language is Language.CPP:
+                        below.append(stored(at))
+                    place += 1
                 made = PackageConstants()
                 for found in below:
                     if found is not None:
                         made.add(found)
-                constants[package] = None if None in below else made
+                constants[package] = None if any(found is None for found in below) else made
             table = constants[package]
             return None if table is None else table.resolve(known, package)
 
