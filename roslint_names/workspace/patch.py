@@ -148,24 +148,15 @@ def edits_of(
     """``patched``'s edits for the files whose facts changed since the graph was made
     (display path, facts then and now): each a ``code_edit``, or the same facts in the same
     places (nothing of the graph to patch) or a build file's moved (``build_moves``);
-    None where one is neither. With ``declaring``, a ``declaration_edit`` is one too,
-    its file added to ``declaring``; with ``naming`` as well, a ``name_edit``, its file
-    added to both. A ``gathering_edit`` is one with ``declaring``, its file added to it,
-    where its node name is the same or ``naming`` is given (the file added to it)."""
+    None where one is neither. With ``declaring``, a ``gathering_edit`` is one too (a
+    ``declaration_edit`` among them), its file added to ``declaring``; one that also
+    changed the node name the code gives itself (a ``name_edit``) only with ``naming``,
+    the file added to both."""
     edits: dict[str, Moved] = {}
     for display, then, now in changed:
         moves = code_edit(then, now)
         if moves is None:
             moves = build_moves(then, now)
-        if moves is None and declaring is not None:
-            moves = declaration_edit(then, now)
-            if moves is not None:
-                declaring.add(display)
-        if moves is None and declaring is not None and naming is not None:
-            moves = name_edit(then, now)
-            if moves is not None:
-                declaring.add(display)
-                naming.add(display)
         if moves is None and declaring is not None:
             gathering = gathering_edit(then, now)
             if gathering is not None and (naming is not None or not gathering[1]):
