@@ -9,10 +9,9 @@ from __future__ import annotations
 
 import hashlib
 import os
-from bisect import bisect_left
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
-from functools import partial
+from functools import lru_cache, partial
 from pathlib import Path
 from typing import TYPE_CHECKING, NamedTuple
 
@@ -1130,6 +1129,12 @@ class _GraphPatch:
             if came[0] != _SAYS_NOTHING:
                 removed_trees.append(display)
 
+        slots = {source.display: index for index, source in enumerate(files)}
+        # Which package holds each file (the build's packages), for a patch that asks.
+        package_files = lru_cache(maxsize=1)(
+            lambda: PackageFiles([source.display for source in files], stored.packages)
+        )
+
         def stored_facts(index: int) -> FileFacts | None:
             """A file's facts as extracted (the edited files' of this run)."""
             if index in arrived_facts:
@@ -1139,11 +1144,10 @@ class _GraphPatch:
             return None if tag is None else self.cache.load(tag, files[index].display)
 
         # The files taking another file's constant are resolved as the run resolves them
-        # (``_resolved``), but where an edit changed what a file includes: then a patch
-        # must not load them at all (``parameter_patch._constants_kept``).
-        resolving = [True]
+        # (``resolved``), but where an edit changed what a file includes (set below):
+        # then a patch must not load them at all (``parameter_patch._constants_kept``).
+        resolving = True
         constants: dict[str, PackageConstants | None] = {}  # by package display directory
-        displays: list[tuple[str, int]] = []  # every file's, sorted, with its index
 
         def facts_at(index: int) -> FileFacts | None:
             if index in arrived_facts:
@@ -1151,13 +1155,11 @@ class _GraphPatch:
             if index not in loaded:
                 known = stored_facts(index)
                 if known is not None and uses_constants(known):
-                    known = _resolved(known, index, stored_facts) if resolving[0] else None
+                    known = resolved(known, index) if resolving else None
                 loaded[index] = known
             return loaded[index]
 
-        def _resolved(
-            known: FileFacts, index: int, stored: Callable[[int], FileFacts | None]
-        ) -> FileFacts | None:
+        def resolved(known: FileFacts, index: int) -> FileFacts | None:
             """``known`` with its symbols resolved by its package's headers (``symbols``),
             from every C++ file below the package's directory; None where one of them
             has no facts."""
@@ -1165,23 +1167,18 @@ class _GraphPatch:
             if package is None:
                 return known  # the run resolves nothing there either
             if package not in constants:
-                prefix = f"{package}/" if package else ""
-                if not displays:
-                    displays.extend(sorted((source.display, at) for at, source in enumerate(files)))
-                place = bisect_left(displays, (prefix, -1))
-                below = []
-                while place < len(displays) and displays[place][0].startswith(prefix):
-                    at = displays[place][1]
-                    if files[at].language is Language.CPP:
-                        below.append(stored(at))
-                    place += 1
-                made = PackageConstants()
+                below = [
+                    stored_facts(slots[path])
+                    for path in package_files().below(package)
+                    if files[slots[path]].language is Language.CPP
+                ]
+                table = PackageConstants()
                 for found in below:
                     if found is not None:
-                        made.add(found)
-                constants[package] = None if any(found is None for found in below) else made
-            table = constants[package]
-            return None if table is None else table.resolve(known, package)
+                        table.add(found)
+                constants[package] = None if any(found is None for found in below) else table
+            kept = constants[package]
+            return None if kept is None else kept.resolve(known, package)
 
         changed: list[tuple[str, FileFacts, FileFacts]] = []
         tree_edits: list[str] = []
@@ -1218,7 +1215,7 @@ class _GraphPatch:
                 changed.append((display, before, facts))
             else:
                 return None
-        resolving[0] = all(before.cpp_includes == now.cpp_includes for _, before, now in changed)
+        resolving = all(before.cpp_includes == now.cpp_includes for _, before, now in changed)
         naming -= {*tree_edits, *removed_trees}
         walk = [*tree_edits, *sorted(naming)]  # the launch files whose trees are walked again
         declaring: set[str] = set()  # code files whose parameters changed
@@ -1226,7 +1223,6 @@ class _GraphPatch:
         edits = edits_of(changed, declaring, renamed)
         if edits is None:
             return None
-        slots = {source.display: index for index, source in enumerate(files)}
 
         def facts_of(display: str) -> FileFacts | None:
             at = slots.get(display)
@@ -1273,7 +1269,7 @@ class _GraphPatch:
             graph,
             edits,
             facts_of,
-            lambda: PackageFiles([source.display for source in files], stored.packages),
+            package_files,
             declaring=bool(declaring),
         )
         if patched is not None and declaring:

@@ -10,7 +10,7 @@ import copy
 import posixpath
 from bisect import bisect_left
 from collections import Counter
-from collections.abc import Collection, Iterable, Mapping, Sequence
+from collections.abc import Collection, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 
 from roslint_names.model import ExecutableKind, FileFacts, Generation, Language
@@ -103,21 +103,27 @@ class PackageFiles:
         (``workspace.parameter_patch``), and asking about every file costs 0.2 s."""
         found = self._files_by_package.get(package)
         if found is None:
-            if self._sorted_paths is None:
-                self._sorted_paths = sorted(self._paths)
-            paths = self._sorted_paths
             held: set[str] = set()
             for directory in self._directories.get(package, []):
-                prefix = directory.rstrip("/") + "/" if directory else ""
-                # By position, not over a slice: a slice copies the rest of the list.
-                at = bisect_left(paths, prefix)
-                while at < len(paths) and paths[at].startswith(prefix):
-                    owner = self.package_of(paths[at])
+                for path in self.below(directory):
+                    owner = self.package_of(path)
                     if owner is not None and owner.name == package:
-                        held.add(paths[at])
-                    at += 1
+                        held.add(path)
             found = self._files_by_package[package] = sorted(held)
         return found
+
+    def below(self, directory: str) -> Iterator[str]:
+        """The paths below ``directory`` ("" for the run's root), sorted, those of the
+        packages inside it too."""
+        if self._sorted_paths is None:
+            self._sorted_paths = sorted(self._paths)
+        paths = self._sorted_paths
+        prefix = directory.rstrip("/") + "/" if directory else ""
+        # By position, not over a slice: a slice copies the rest of the list.
+        at = bisect_left(paths, prefix)
+        while at < len(paths) and paths[at].startswith(prefix):
+            yield paths[at]
+            at += 1
 
 
 class WorkspaceIndex(PackageFiles):
