@@ -201,12 +201,10 @@ class PackageGenerations:
         for relative in exported_descriptions(manifest):
             description = os.path.normpath(os.path.join(directory, relative))
             self.statuses[description] = status_of(description)
-            try:
-                with open(description, encoding="utf-8", errors="replace") as stream:
-                    text = stream.read(_MAX_DESCRIPTION)
-            except OSError:
+            text = _manifest_text(description, _MAX_DESCRIPTION)
+            if text is None:
                 continue  # a missing description declares nothing
-            self.manifests[description] = content_digest(text.encode())
+            self.manifests[description] = _text_digest(text)
             self.plugin_names |= plugin_names(text)
 
     def _for_file(self, path: str | Path) -> _Package:
@@ -249,12 +247,8 @@ class PackageGenerations:
         manifest = os.path.join(directory, "package.xml")
         package: _Package
         if self._is_manifest(directory, manifest):
-            try:
-                with open(manifest, encoding="utf-8", errors="replace") as stream:
-                    text = stream.read()
-            except OSError:
-                text = ""
-            self.manifests[manifest] = content_digest(text.encode())
+            text = _manifest_text(manifest) or ""
+            self.manifests[manifest] = _text_digest(text)
             self._read_plugin_descriptions(directory, text)
             package = _Package(
                 package_xml_name(text),
@@ -277,11 +271,22 @@ def manifest_digest(path: str) -> str | None:
     """The digest ``PackageGenerations.manifests`` keeps of a package.xml or plugin
     description read now; None where it cannot be read."""
     limit = -1 if path.endswith(_IN_DIRECTORY) or path == "package.xml" else _MAX_DESCRIPTION
+    text = _manifest_text(path, limit)
+    return None if text is None else _text_digest(text)
+
+
+def _manifest_text(path: str, limit: int = -1) -> str | None:
+    """A package.xml's or plugin description's text (its first ``limit`` characters), as
+    the lookups read it; None where it cannot be read."""
     try:
         with open(path, encoding="utf-8", errors="replace") as stream:
-            text = stream.read(limit)
+            return stream.read(limit)
     except OSError:
         return None
+
+
+def _text_digest(text: str) -> str:
+    """What ``PackageGenerations.manifests`` keeps of a manifest's text."""
     return content_digest(text.encode())
 
 
