@@ -885,34 +885,37 @@ def test_an_edit_journals_the_digests_and_listings_it_changed(
     assert reused(again) and again.stdout == after.stdout
 
 
-def _run_just_after(
-    edit: Callable[[Path], None],
+@pytest.fixture
+def run_just_after(
     check: Callable[..., Any],
     workspace: Path,
     rekeyed: tuple[list[str], list[str]],
     monkeypatch: pytest.MonkeyPatch,
-) -> None:
-    """A run just after ``edit`` (the edited file's status within the racy window);
+) -> Callable[[Callable[[Path], None]], None]:
+    """A run just after an edit (the edited file's status within the racy window);
     ``rekeyed`` cleared after it."""
-    monkeypatch.setattr(reading, "RACY_NANOSECONDS", 1_000_000_000)
-    age_all(workspace)
-    time.sleep(1.1)  # every status but the edited file's past the racy window
-    edit(workspace)
-    check()
-    for seen in rekeyed:
-        seen.clear()
+
+    def run(edit: Callable[[Path], None]) -> None:
+        monkeypatch.setattr(reading, "RACY_NANOSECONDS", 1_000_000_000)
+        age_all(workspace)
+        time.sleep(1.1)  # every status but the edited file's past the racy window
+        edit(workspace)
+        check()
+        for seen in rekeyed:
+            seen.clear()
+
+    return run
 
 
 def test_a_file_edited_within_the_racy_window_is_kept_as_changed(
     check: Callable[..., Any],
-    workspace: Path,
     keyed: list[int],
     rekeyed: tuple[list[str], list[str]],
-    monkeypatch: pytest.MonkeyPatch,
+    run_just_after: Callable[[Callable[[Path], None]], None],
 ) -> None:
     """A run just after an edit keeps its key with that file as changed (its status may
     hide a later edit): the next run keys that file again, and only it."""
-    _run_just_after(_edit_code, check, workspace, rekeyed, monkeypatch)
+    run_just_after(_edit_code)
     files, manifests = rekeyed
     keyed.clear()
     again = check()
@@ -924,13 +927,13 @@ def test_a_manifest_edited_just_before_a_run_is_kept_by_its_text(
     workspace: Path,
     keyed: list[int],
     rekeyed: tuple[list[str], list[str]],
-    monkeypatch: pytest.MonkeyPatch,
+    run_just_after: Callable[[Callable[[Path], None]], None],
 ) -> None:
     """Its status may hide a later edit, so the key is kept with the digest of the text
     the run read, which the next run compares with the text now: the stored result, or
     after an edit of code the last run's keying (no manifest looked for again), as for
     any other run."""
-    _run_just_after(_package_depends, check, workspace, rekeyed, monkeypatch)
+    run_just_after(_package_depends)
     again = check()
     assert reused(again) and keyed == [1]  # the first run's alone
     _edit_code(workspace)
@@ -944,11 +947,11 @@ def test_a_manifest_kept_by_its_text_and_edited_again_is_read_again(
     check: Callable[..., Any],
     workspace: Path,
     rekeyed: tuple[list[str], list[str]],
-    monkeypatch: pytest.MonkeyPatch,
+    run_just_after: Callable[[Callable[[Path], None]], None],
 ) -> None:
     """A text other than the one kept: the manifest is read again (and every package
     looked up), not the result of the run before."""
-    _run_just_after(_package_depends, check, workspace, rekeyed, monkeypatch)
+    run_just_after(_package_depends)
     manifest = workspace / "src/robot_base/package.xml"
     manifest.write_text(manifest.read_text().replace("roscpp", "rospy"))
     after = check()
