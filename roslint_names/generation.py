@@ -197,15 +197,16 @@ class PackageGenerations:
             return None
         return package.depends | {package.name}
 
-    def _read_plugin_descriptions(self, directory: str, manifest: str) -> None:
-        for relative in exported_descriptions(manifest):
+    def _read_plugin_descriptions(self, directory: str, exported: Iterable[str]) -> None:
+        for relative in exported:
             description = os.path.normpath(os.path.join(directory, relative))
             self.statuses[description] = status_of(description)
             text = _manifest_text(description, _MAX_DESCRIPTION)
             if text is None:
                 continue  # a missing description declares nothing
-            self.manifests[description] = _text_digest(text)
-            self.plugin_names |= plugin_names(text)
+            names = plugin_names(text)
+            self.manifests[description] = _description_digest(names)
+            self.plugin_names |= names
 
     def _for_file(self, path: str | Path) -> _Package:
         text = os.fspath(path)
@@ -248,14 +249,9 @@ class PackageGenerations:
         package: _Package
         if self._is_manifest(directory, manifest):
             text = _manifest_text(manifest) or ""
-            self.manifests[manifest] = _text_digest(text)
-            self._read_plugin_descriptions(directory, text)
-            package = _Package(
-                package_xml_name(text),
-                package_xml_generation(text),
-                package_xml_depends(text),
-                directory,
-            )
+            package, exported = _package_said(text, directory)
+            self.manifests[manifest] = _package_digest(package, exported)
+            self._read_plugin_descriptions(directory, exported)
         elif (up := _parent(directory)) == directory:
             package = _NO_PACKAGE
         else:
@@ -270,9 +266,11 @@ _IN_DIRECTORY = os.sep + "package.xml"
 def manifest_digest(path: str) -> str | None:
     """The digest ``PackageGenerations.manifests`` keeps of a package.xml or plugin
     description read now; None where it cannot be read."""
-    limit = -1 if path.endswith(_IN_DIRECTORY) or path == "package.xml" else _MAX_DESCRIPTION
-    text = _manifest_text(path, limit)
-    return None if text is None else _text_digest(text)
+    if path.endswith(_IN_DIRECTORY) or path == "package.xml":
+        text = _manifest_text(path)
+        return None if text is None else _package_digest(*_package_said(text))
+    text = _manifest_text(path, _MAX_DESCRIPTION)
+    return None if text is None else _description_digest(plugin_names(text))
 
 
 def _manifest_text(path: str, limit: int = -1) -> str | None:
@@ -285,9 +283,36 @@ def _manifest_text(path: str, limit: int = -1) -> str | None:
         return None
 
 
-def _text_digest(text: str) -> str:
-    """What ``PackageGenerations.manifests`` keeps of a manifest's text."""
-    return content_digest(text.encode())
+def _package_said(text: str, directory: str | None = None) -> tuple[_Package, list[str]]:
+    """The package a package.xml's text says (at ``directory``), and the plugin
+    descriptions it exports."""
+    package = _Package(
+        package_xml_name(text), package_xml_generation(text), package_xml_depends(text), directory
+    )
+    return package, exported_descriptions(text)
+
+
+def _package_digest(package: _Package, exported: Iterable[str]) -> str:
+    """What ``PackageGenerations.manifests`` keeps of a package.xml: the digest of all a
+    run reads in it (its name, generation, dependencies and the plugin descriptions it
+    exports), not of its text. A version released, a maintainer or a description
+    changed is then no other run: it changed no finding, yet built the whole graph again
+    (8 s at 8 copies of the benchmark's workspace)."""
+    generation = package.generation
+    said = [
+        package.name or "",
+        "" if generation is None else str(generation.value),
+        *sorted(package.depends),
+        "",
+        *exported,
+    ]
+    return content_digest("\n".join(said).encode("utf-8", "surrogateescape"))
+
+
+def _description_digest(names: Iterable[str]) -> str:
+    """What ``PackageGenerations.manifests`` keeps of a plugin description: the digest of
+    the plugin names it gives (``plugins.plugin_names``), all a run reads in it."""
+    return content_digest("\n".join(sorted(names)).encode("utf-8", "surrogateescape"))
 
 
 def _parent(path: str) -> str:

@@ -171,6 +171,7 @@ def main() -> None:
     node.create_publisher(String, "fleet_beacon", 10)
     rclpy.spin(node)
 """
+FLEET_MANIFEST = f"{FLEET}/package.xml"
 SPARE_LAUNCH = f"{TURTLE_LAUNCH}/spare.launch"
 SPARE_SMOOTHER = """<launch>
   <node name="spare_smoother" pkg="turtle_bringup" type="velocity_smoother">
@@ -239,6 +240,9 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     (DOCK, "NOLINT(RN407)", "NOLINT(RN204)", "replay"),
     # The bytes of two runs ago: that run's stored result, nothing replayed.
     (DOCK, "NOLINT(RN204)", "NOLINT(RN407)", "stored"),
+    # A release: the manifest says nothing else the run reads (its name, build type,
+    # dependencies, plugin descriptions), so the run is the last one.
+    (FLEET_MANIFEST, "<version>0.1.0</version>", "<version>0.2.0</version>", "stored"),
     (RECORDER, "", "\n# Poses are recorded as they come.\n", "replay"),
     (RECORDER, "import rclpy", "# Records poses.\nimport rclpy", "replay"),  # names move
     (PARAMETERS, "waypoint_follower:", "# The follower's tuning.\nwaypoint_follower:", "replay"),
