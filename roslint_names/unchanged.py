@@ -20,11 +20,13 @@ time. So the key is kept here with:
 A re-run whose identity and statuses are all equal is keyed by the kept key. A status
 taken within ``reading.RACY_NANOSECONDS`` of a change is never kept (an edit in the same
 clock tick would not show: git's "racily clean" files): such a file is kept as changed,
-and a manifest so taken is kept by the digest of the text the run read
-(``PackageGenerations.manifests``), which the next run compares with the text it has
-then (``manifest_digest``: one file read, where a manifest edited just before a run
-made the next run look every package up again, 0.8 s at 8 copies of the benchmark's
-workspace). The file is builtins only, read with an unpickler that resolves no class;
+and a manifest so taken is kept by the digest of what the run read in it
+(``PackageGenerations.manifests``: its name, build type, dependencies and plugin
+descriptions), which the next run compares with what it says then (``manifest_digest``:
+one file read, where a manifest edited just before a run made the next run look every
+package up again, 0.8 s at 8 copies of the benchmark's workspace). A manifest of
+another status is compared so too: a version released or a maintainer changed is as
+kept. The file is builtins only, read with an unpickler that resolves no class;
 one that cannot be read is no key.
 
 A re-run that edited some files is keyed file by file, yet most of that work gives what it
@@ -58,7 +60,7 @@ if TYPE_CHECKING:
 
 KEYS = "keys"  # their directory in the facts cache: one file per workspace, and its files
 KEPT = 64
-_FORMAT = 4
+_FORMAT = 5
 _FILES_FORMAT = 1
 MOST_SHIFTED = 64  # checked files added or removed past which a run is keyed file by file
 _PROTOCOL = pickle.HIGHEST_PROTOCOL
@@ -137,10 +139,12 @@ class KeptKey:
             return None
         try:
             tags, lookups, shape_key = BuiltinsUnpickler(io.BytesIO(kept.made_of)).load()
-            # A manifest kept by its digest is as kept (``_packages_as_kept``): its status
-            # now is what the lookups are taken up with.
+            # A manifest as kept by what it says (``_packages_as_kept``): its status now
+            # is what the lookups are taken up with.
             package_statuses = {
-                path: self._verified[path] if isinstance(status, str) else status
+                path: self._verified[path]
+                if path in self._verified or isinstance(status, str)
+                else status
                 for path, status in zip(kept.package_paths, kept.package_statuses, strict=True)
             }
         except Exception:  # damaged: keyed file by file
@@ -225,8 +229,9 @@ class KeptKey:
         """Keep ``key`` with what it was made from (``keying``: each file's facts key, the
         place, the packages' lookups and the place's shape). A file whose status is too
         recent to say that nothing changed after it was taken is kept as changed (False:
-        no status is); a manifest's, by the digest of the text the run read
-        (``manifests``: path -> digest), or nothing is kept where it has none. ``shape``:
+        no status is); a manifest's, by the digest of what the run read in it
+        (``manifests``: path -> digest), or nothing is kept where it has none; every
+        manifest's digest is kept beside its status (``_package_as_kept``). ``shape``:
         the identity but for which files are checked, where a run of that shape over
         other files may take this one up (``keying``); the status files (``files``, as
         ``keying`` takes them) are then kept beside, written only when the identity
@@ -240,6 +245,7 @@ class KeptKey:
                 kept_statuses.append(manifests[path])
             else:
                 kept_statuses.append(status)
+        digests = [manifests.get(path) for path in package_statuses]
         if shape is not None and (
             self._kept_identity != identity or not self._files_path.is_file()
         ):
@@ -255,7 +261,18 @@ class KeptKey:
         tags, place_key, lookups, shape_key = keying
         made_of = pickle.dumps((list(tags), lookups, shape_key), _PROTOCOL)
         paths = tuple(package_statuses)
-        kept = (_FORMAT, identity, key, trusted, paths, kept_statuses, place_key, made_of, shape)
+        kept = (
+            _FORMAT,
+            identity,
+            key,
+            trusted,
+            paths,
+            kept_statuses,
+            digests,
+            place_key,
+            made_of,
+            shape,
+        )
         # Pickled into the file: 12 MB at 77,000 files, the peak of a run that patched.
         self._cache.write_newest(self._path, partial(pickle.dump, kept, protocol=_PROTOCOL), KEPT)
 
@@ -265,18 +282,24 @@ class KeptKey:
     def _packages_as_kept(self, kept: _Kept) -> bool:
         if self._packages_stand is None:
             self._packages_stand = all(
-                self._package_as_kept(path, status)
-                for path, status in zip(kept.package_paths, kept.package_statuses, strict=True)
+                self._package_as_kept(path, status, digest)
+                for path, status, digest in zip(
+                    kept.package_paths, kept.package_statuses, kept.package_digests, strict=True
+                )
             )
         return self._packages_stand
 
-    def _package_as_kept(self, path: str, kept: Status | str | None) -> bool:
-        """Whether a manifest looked for is as kept: the same status, or, kept by the
-        digest of its text, a file whose text has that digest now."""
+    def _package_as_kept(self, path: str, kept: Status | str | None, digest: str | None) -> bool:
+        """Whether a manifest looked for is as kept: the same status, or one that says
+        what it said (``digest``, or ``kept`` where the status was too recent to keep):
+        a manifest of another version, maintainer or description is read, not every
+        manifest and file of the run keyed again (1 s at 8 copies)."""
         now = self._package_status(path)
         if not isinstance(kept, str):
-            return now == kept
-        if now is None or self._manifest_digest(path) != kept:
+            if now == kept:
+                return True
+            kept = digest
+        if now is None or kept is None or self._manifest_digest(path) != kept:
             return False
         self._verified[path] = now
         return True
@@ -293,7 +316,7 @@ class KeptKey:
                 loaded = BuiltinsUnpickler(stream).load()
         except Exception:  # absent, unreadable or damaged: the run is keyed file by file
             return None
-        if not (isinstance(loaded, tuple) and len(loaded) == 9 and loaded[0] == _FORMAT):
+        if not (isinstance(loaded, tuple) and len(loaded) == 10 and loaded[0] == _FORMAT):
             return None
         shapes: tuple[type | tuple[type, ...], ...] = (
             str,
@@ -301,13 +324,17 @@ class KeptKey:
             list,
             tuple,
             list,
+            list,
             str,
             bytes,
             (str, type(None)),
         )
         if not all(map(isinstance, loaded[1:], shapes)):
             return None
-        return _Kept(*loaded[1:])
+        kept = _Kept(*loaded[1:])
+        if not len(kept.package_paths) == len(kept.package_statuses) == len(kept.package_digests):
+            return None
+        return kept
 
 
 class _Kept(NamedTuple):
@@ -316,6 +343,7 @@ class _Kept(NamedTuple):
     file_statuses: list[Status | bool | None]
     package_paths: tuple[str, ...]
     package_statuses: list[Status | str | None]  # a digest where the status was too recent
+    package_digests: list[str | None]  # what each says (``PackageGenerations.manifests``)
     place_key: str
     made_of: bytes  # the pickled tags and lookups: read only by a run that takes them up
     shape: str | None  # ``KeptKey.keep``'s

@@ -17,7 +17,7 @@ import pytest
 
 from roslint_names import cache as cache_module
 from roslint_names import digests as digests_module
-from roslint_names import engine, reading, run_inputs
+from roslint_names import engine, generation, reading, run_inputs
 from roslint_names.config import Settings, settings_fingerprint
 from roslint_names.digests import ContentDigests
 from roslint_names.discover import SourceFile
@@ -883,6 +883,42 @@ def test_an_edit_journals_the_digests_and_listings_it_changed(
     assert after.stdout == check("--no-cache").stdout
     again = check()
     assert reused(again) and again.stdout == after.stdout
+
+
+def _package_released(workspace: Path) -> None:
+    manifest = workspace / "src/robot_base/package.xml"
+    manifest.write_text(manifest.read_text().replace("0.1.0", "0.2.0").replace("Dev<", "Ops<"))
+
+
+@pytest.mark.usefixtures("old_tree")
+def test_a_manifest_that_says_what_it_said_is_as_kept(
+    check: Callable[..., Any],
+    workspace: Path,
+    keyed: list[int],
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A release (another version, maintainer): the run reads that manifest and takes
+    the kept key, no file keyed, no package looked up; the run after it, the same."""
+    read: list[str] = []
+    digest = generation.manifest_digest
+
+    def reading(path: str) -> str | None:
+        read.append(Path(path).name)
+        return digest(path)
+
+    monkeypatch.setattr(run_inputs, "manifest_digest", reading)
+    age_all(workspace)
+    cold = check()
+    keyed.clear()
+    before = time.time_ns()
+    time.sleep(0.05)  # change times tick with the kernel's coarse clock
+    _package_released(workspace)
+    age_all(workspace, before)
+    after = check()
+    assert reused(after) and keyed == [] and read == ["package.xml"]
+    assert after.stdout == cold.stdout == check("--no-cache").stdout
+    keyed.clear()
+    assert reused(check()) and keyed == []
 
 
 @pytest.fixture
