@@ -68,7 +68,7 @@ from .workers import Dispatcher
 from .workspace.build import build_parts
 from .workspace.built import BuiltSources
 from .workspace.graph import Graph
-from .workspace.index import Package, PackageFiles
+from .workspace.index import Package, PackageFiles, companions, named_once
 from .workspace.interfaces import service_definitions
 from .workspace.launch_parts import CodeParameterParts, LaunchParts
 from .workspace.launch_patch import LazyFacts, launch_edit, launch_patched, parameter_edit
@@ -230,6 +230,8 @@ def _lint(
     graph_rules = [r for r in registry.rules if r.check_workspace and r.code in enabled]
     rule_of = {rule.code: rule for rule in graph_rules}
     packages = PackageGenerations(run.without_manifest)
+    # What the run's packages depend on, once they are all looked up (once keyed).
+    depends = lru_cache(maxsize=1)(packages.depends_digest)
     fallback = settings.ros or DEFAULT_GENERATION
     python2 = ros1_python2(settings)
     cache = run.cache
@@ -358,7 +360,7 @@ def _lint(
     shifted: _Shift | None = None
     if last_replay is None and kept_at is not None and not context:
         assert cache is not None and inputs is not None and clean_key is not None
-        shifted = _shifted(cache, inputs, clean_key, files)
+        shifted = _shifted(cache, inputs, clean_key, files, depends())
         if shifted is not None:
             last_replay = shifted.replay
             graph_place = _GraphPlace(shifted.replay_at, shifted.renumbering)
@@ -417,6 +419,8 @@ def _lint(
                 settings,
                 specialiser,
                 elsewhere=partial(_base_place, cache, inputs, clean_key, files),
+                depends=depends,
+                packages=partial(workspace_packages, workspace, packages),
             )
         replayed = _take_facts(
             gathered,
@@ -525,7 +529,15 @@ def _lint(
             cache.store_run(_focused(run_key, focus), kept)
             if kept_replay is not None and kept_at is not None:
                 cache.store_replay(kept_at, kept_replay.stored())
-                _keep_base(cache, inputs, clean_key, kept_at, files=files, reported=reported)
+                _keep_base(
+                    cache,
+                    inputs,
+                    clean_key,
+                    kept_at,
+                    files=files,
+                    reported=reported,
+                    depends=depends(),
+                )
                 # A graph this run's files were renumbered to, not built: where it is (as
                 # the patch found it, where one ran).
                 moved = None
@@ -541,7 +553,11 @@ def _lint(
                 # its workspace's walk does not find), whose set is seldom run again.
                 if graph is not None and not context:
                     kept_graph = KeptGraph(
-                        inputs.tags, for_patching(graph), graph_found, tuple(built_with)
+                        inputs.tags,
+                        for_patching(graph),
+                        graph_found,
+                        tuple(built_with),
+                        depends(),
                     )
                     cache.store_graph(kept_at, kept_graph.stored())
                     if launch_parts is not None:
@@ -882,12 +898,17 @@ class _Shift(NamedTuple):
 
 
 def _shifted(
-    cache: FactsCache, inputs: RunInputs, clean_key: str, files: Sequence[SourceFile]
+    cache: FactsCache,
+    inputs: RunInputs,
+    clean_key: str,
+    files: Sequence[SourceFile],
+    depends: str,
 ) -> _Shift | None:
     """The replay of the last run of this run's shape (``shifts.Base``), renumbered to its
-    files; it stands where each file it had and this run has not says nothing and is
-    found by no name (its findings go with it), each added file asked the same once its
-    facts are known (``_replay_moved``)."""
+    files; it stands where its packages depended on what they do now (``depends``) and
+    each file it had and this run has not says nothing and is found by no name (its
+    findings go with it), each added file asked the same once its facts are known
+    (``_replay_moved``); else only a patch of the graph may take it."""
     found = _base_of(cache, inputs, clean_key, files)
     if found is None:
         return None
@@ -897,8 +918,8 @@ def _shifted(
     )
     if earlier is None:
         return None
-    stands = True
-    if renumbering.removed:
+    stands = base.depends == depends
+    if stands and renumbering.removed:
         found_by = earlier.run_wide.lookups()
         gone = (_facts_by_tag(cache, earlier.tags[at], path) for at, path in renumbering.removed)
         stands = all(facts is not None and found_by.adds_nothing(facts) for facts in gone)
@@ -946,17 +967,19 @@ def _keep_base(
     *,
     files: Sequence[SourceFile],
     reported: int,
+    depends: str,
 ) -> None:
     """Keep the run that kept its replay at ``kept_at`` as the last of its shape: its
     files, where no run over them kept them yet (or what was kept does not read back),
-    and the pointer to them."""
+    and the pointer to them, with what its packages depend on (``depends``)."""
     if inputs.shape_key is None or clean_key is None:
         return
     at = same_facts.key(inputs.shape_key, clean_key)
     listed = cache.holds_file_list(kept_at)
-    if listed and cache.load_base(at) == shifts.pointer(kept_at, reported, len(files)):
+    if listed and cache.load_base(at) == shifts.pointer(kept_at, reported, len(files), depends):
         return  # most runs: the last run's, as it is (its display paths not made)
-    base = shifts.Base(kept_at, tuple(source.display for source in files), reported)
+    displays = tuple(source.display for source in files)
+    base = shifts.Base(kept_at, displays, reported, depends)
     if not listed or shifts.loaded_base(base.pointer(), cache.load_file_list) != base:
         cache.store_file_list(kept_at, base.listed())
     cache.store_base(at, base.pointer())
@@ -1061,10 +1084,12 @@ _Arrived = tuple[int, FileFacts, "bytes | None", "Verdict | None"]
 class _GraphPatch:
     """A run whose edits change only what some nodes' code declares (``workspace.patch``)
     or what some launch trees start or hand their nodes (``workspace.launch_patch``: launch
-    and parameter files): the graph the last build kept, patched with every edit since
-    (the facts it was built from are loaded, so kept in the pack), and the graph rules
-    run over it; the files whose graph findings that changed are taken and reported again
-    with the edited ones, every other file's findings are the replay's. Only a build
+    and parameter files), or what some packages depend on (their manifests): the graph
+    the last build kept, patched with every edit since (the facts it was built from are
+    loaded, so kept in the pack), and the graph rules run over it; the files whose graph
+    findings that changed, and those of a package depending on others, are taken and
+    reported again with the edited ones, every other file's findings are the replay's.
+    Only a build
     keeps a graph: pickling it (0.36 s at 77,000 files) would cost each patched run more
     than patching it again."""
 
@@ -1080,6 +1105,11 @@ class _GraphPatch:
     # Where the graph of the last run of this run's shape is, where ``place`` no longer
     # leads to one (a run over these files long ago, whose graph was since forgotten)
     elsewhere: Callable[[], _GraphPlace | None] = lambda: None
+    # What the run's packages depend on (``PackageGenerations.depends_digest``), and the
+    # packages (``workspace_packages``): a graph built where some depended on others is
+    # patched with them as they are (``_depending_anew``).
+    depends: Callable[[], str] = lambda: ""
+    packages: Callable[[], list[Package]] = list
     elsewhere_used: bool = False
     graph_from: _GraphPlace | None = None  # where the graph it patched is, resolved
 
@@ -1101,6 +1131,13 @@ class _GraphPatch:
         ):
             return None
         built_from, graph = stored.tags, stored.graph
+        packages: Sequence[Package] = stored.packages
+        depending: frozenset[str] = frozenset()  # packages depending on others since
+        if stored.depends != self.depends():
+            anew = _depending_anew(stored.packages, self.packages())
+            if anew is None:
+                return None
+            packages, depending = anew
         arrived_facts = {index: facts for index, facts, _, _ in arrived}
         loaded: dict[int, FileFacts | None] = {}
         # Files the build did not have, or had and the run has not, say nothing and are
@@ -1132,7 +1169,7 @@ class _GraphPatch:
         slots = {source.display: index for index, source in enumerate(files)}
         # Which package holds each file (the build's packages), for a patch that asks.
         package_files = lru_cache(maxsize=1)(
-            lambda: PackageFiles([source.display for source in files], stored.packages)
+            lambda: PackageFiles([source.display for source in files], packages)
         )
 
         def stored_facts(index: int) -> FileFacts | None:
@@ -1232,7 +1269,8 @@ class _GraphPatch:
         # for a patch that walks trees or gathers parameters again.
         kept: KeptLaunch | None = None
         known: set[str] = set()  # the files the build had facts of (a skipped one has none)
-        if walk or removed_trees or declaring:
+        gathering = bool(declaring or depending)  # some nodes' parameters gathered again
+        if walk or removed_trees or gathering:
             kept = same_facts.loaded_launch(
                 self.cache.load_launch_parts(place.key), stored.built_from
             )
@@ -1240,6 +1278,8 @@ class _GraphPatch:
             if kept is None or whole is None:
                 return None
             graph = whole
+            if depending:  # which nodes can meet (``Graph.can_meet``)
+                graph = replace(graph, companions=companions(named_once(packages)))
             known = {
                 files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)
             }
@@ -1252,7 +1292,7 @@ class _GraphPatch:
             walked = self._walked(
                 graph,
                 parts=kept.parts,
-                packages=stored.packages,
+                packages=packages,
                 edited=walk,
                 removed=removed_trees,
                 code=renamed,
@@ -1272,7 +1312,7 @@ class _GraphPatch:
             package_files,
             declaring=bool(declaring),
         )
-        if patched is not None and declaring:
+        if patched is not None and gathering:
             assert kept is not None
             kept_code = same_facts.loaded_code(
                 self.cache.load_code_parameters(place.key), stored.built_from
@@ -1290,7 +1330,8 @@ class _GraphPatch:
                         if display in edits
                     },
                     facts=LazyFacts(known, facts_of),
-                    packages=stored.packages,
+                    packages=packages,
+                    depending=depending,
                 )
             )
         if patched is None:
@@ -1300,7 +1341,7 @@ class _GraphPatch:
         # none where launch trees were walked again.
         kept_codes, kept_found = (
             (frozenset(), {})
-            if walk or removed_trees or declaring
+            if walk or removed_trees or gathering
             else _kept_findings(stored.found, edits, self.rules, files)
         )
         fresh = [rule for rule in self.rules if rule.code not in kept_codes]
@@ -1323,6 +1364,15 @@ class _GraphPatch:
             for index in found.keys() | replay.graph.keys()
             if found.get(index, ()) != replay.graph.get(index, ())
         }
+        # The files of a package depending on others are compared with the service types
+        # of those (RN204: ``_FileChecks._typed``): checked again.
+        for package in packages:
+            if package.name in depending:
+                again.update(
+                    at
+                    for display in package_files().below(package.directory)
+                    if (at := slots[display]) < replay.reported
+                )
         rest = sorted(again - arrived_facts.keys())
         for index, facts, data, verdict in self.gathered.facts(rest):
             self.checks.take(index, facts, data, verdict)
@@ -1358,6 +1408,27 @@ class _GraphPatch:
             code=code,
         )
         return None if graph is None else (graph, specialise.specialised)
+
+
+def _depending_anew(
+    built: Sequence[Package], now: Sequence[Package]
+) -> tuple[list[Package], frozenset[str]] | None:
+    """The packages as they are ``now`` in the build's order (``built``), and the names
+    of those that depend on others than at the build; None where they differ in anything
+    else (the graph is built)."""
+    by_directory = {package.directory: package for package in now}
+    if len(by_directory) != len(now) or by_directory.keys() != {p.directory for p in built}:
+        return None
+    found: list[Package] = []
+    depending: set[str] = set()
+    for package in built:
+        anew = by_directory[package.directory]
+        if replace(anew, depends=package.depends) != package:
+            return None
+        if anew.depends != package.depends:
+            depending.add(package.name)
+        found.append(anew)
+    return found, frozenset(depending)
 
 
 _SAYS_NOTHING, _A_TREE, _SETTINGS = "says nothing", "a tree", "settings"

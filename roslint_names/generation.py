@@ -13,7 +13,7 @@ from __future__ import annotations
 import os
 import re
 import stat
-from collections.abc import Collection, Iterable, Mapping
+from collections.abc import Collection, Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -140,6 +140,37 @@ class PackageGenerations:
                 packages.append((package.name, generation, depends, package.root))
             directories[directory] = place
         return packages, directories, dict(self.manifests), sorted(self.plugin_names)
+
+    def layout(self) -> bytes:
+        """What the manifests read so far say but for the dependencies: where each package
+        is, its name and generation; each plugin description's digest. A run's shape
+        holds it (``RunInputs.shape_key``): an earlier run of that shape whose packages
+        depended on others is one whose graph a patch takes up (``depends_digest``)."""
+        lines = sorted(
+            f"{package.root}\0{package.name or ''}\0{_generation_text(package)}\n"
+            for package in self._found()
+        )
+        lines.extend(
+            f"{path}\0{digest}\n"
+            for path, digest in sorted(self.manifests.items())
+            if not (path.endswith(_IN_DIRECTORY) or path == "package.xml")
+        )
+        return "".join(lines).encode("utf-8", "surrogateescape")
+
+    def depends_digest(self) -> str:
+        """The digest of what each package looked up so far depends on (``layout``)."""
+        lines = sorted(
+            f"{package.root}\0{' '.join(sorted(package.depends))}\n" for package in self._found()
+        )
+        return content_digest("".join(lines).encode("utf-8", "surrogateescape"))
+
+    def _found(self) -> Iterator[_Package]:
+        """Each package looked up so far, once."""
+        seen: set[int] = set()
+        for package in self._by_directory.values():
+            if package.root is not None and id(package) not in seen:
+                seen.add(id(package))
+                yield package
 
     def restore(self, lookups: KeptLookups, statuses: Mapping[str, Status | None]) -> bool:
         """Take up what an earlier run's lookups found (``lookups``), each package.xml and
@@ -313,6 +344,10 @@ def _description_digest(names: Iterable[str]) -> str:
     """What ``PackageGenerations.manifests`` keeps of a plugin description: the digest of
     the plugin names it gives (``plugins.plugin_names``), all a run reads in it."""
     return content_digest("\n".join(sorted(names)).encode("utf-8", "surrogateescape"))
+
+
+def _generation_text(package: _Package) -> str:
+    return "" if package.generation is None else str(package.generation.value)
 
 
 def _parent(path: str) -> str:

@@ -102,8 +102,9 @@ class RunInputs:
         self.changed = False  # a file read differs from what the run was keyed by
         self.place_key: str | None = None  # once keyed: ``_place``
         # A run that reports every file it checks, keyed by ``_place``: its place but for
-        # which files it checks (``shifts``: an earlier run of that shape is this one but
-        # for some files added or removed).
+        # which files it checks and what its packages depend on (``shifts``: an earlier
+        # run of that shape is this one but for some files added or removed, and
+        # dependencies: ``engine._Shift``).
         self.shape_key: str | None = None
         self._keying: Keying | None = None  # an earlier run's, taken up (``unchanged``)
         self._carried = False  # keyed from it (``_carry``)
@@ -396,10 +397,12 @@ class RunInputs:
         digest.update(rest)
         digest.update(manifests)
         if self._reported == len(self._checked):
+            # What the manifests say but for the dependencies: a run whose packages
+            # depend on others patches the graph of the last run of its shape.
             shape = hashlib.blake2b(digest_size=20)
             shape.update(_text_bytes(f"{fingerprints}\0shape\0"))
             shape.update(rest)
-            shape.update(manifests)
+            shape.update(self._packages.layout())
             self.shape_key = shape.hexdigest()
         return digest.hexdigest()
 

@@ -36,8 +36,9 @@ Its edited files are then checked by the per-file rules, the graph rules' findin
 them made into diagnostics again under their new text and suppressions, and every other
 file's findings are the stored ones (their places in the edited files moved); the rest
 of the run is the same code. A file added or removed renumbers the replay of the last
-run of the same shape (``shifts``); anything else (settings changed, a name changed) is
-a run like any other, which keeps a new replay.
+run of the same shape (``shifts``), and a manifest depending on other packages takes it
+through a patch of the graph; anything else (settings changed, a package renamed) is a
+run like any other, which keeps a new replay.
 ``tests/test_same_facts.py`` compares every run of a sequence of edits with a run from
 an empty cache.
 """
@@ -269,7 +270,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
     )
 
 
-_GRAPH_FORMAT = "graph 3"
+_GRAPH_FORMAT = "graph 4"
 
 # The graph rules' findings per reported file (its index), as ``Replay.graph`` holds them.
 GraphFound = Mapping[int, tuple[tuple[str, Finding], ...]]
@@ -290,8 +291,11 @@ class KeptGraph:
     graph: Graph
     found: GraphFound
     # The workspace's packages as the build had them: the same where the graph can be
-    # patched (no manifest or ``.srv`` file changed), and gathered from every file else.
+    # patched (no manifest or ``.srv`` file changed) but for what they depend on, which
+    # ``depends`` says (``PackageGenerations.depends_digest``); gathered from every file
+    # else.
     packages: tuple[Package, ...]
+    depends: str
     # A graph built over an earlier file list, renumbered (``shifts.GraphMove``): the
     # facts keys as the build had them (what its launch and code parts are named by), and
     # the files it had that the run has not, (display path, facts key).
@@ -306,7 +310,7 @@ class KeptGraph:
     def stored(self) -> tuple[object, ...]:
         assert self.built_tags is None, "a renumbered graph is kept where it was built"
         found = tuple(sorted(self.found.items()))
-        return (_GRAPH_FORMAT, self.tags, self.graph, found, self.packages)
+        return (_GRAPH_FORMAT, self.tags, self.graph, found, self.packages, self.depends)
 
     def renumbered(self, renumbering: Renumbering, reported: int) -> KeptGraph:
         """This graph over the files of a run renumbered from its build's (``shifts``),
@@ -317,6 +321,7 @@ class KeptGraph:
             self.graph,
             {then_of[index]: found for index, found in self.found.items() if index in then_of},
             self.packages,
+            self.depends,
             self.tags,
             tuple((display, self.tags[index]) for index, display in renumbering.removed),
         )
@@ -325,10 +330,12 @@ class KeptGraph:
 def loaded_graph(value: object, files: int, reported: int) -> KeptGraph | None:
     """A kept graph of a run over ``files`` checked files, ``reported`` of them reported;
     None for anything else."""
-    if not isinstance(value, tuple) or len(value) != 5:
+    if not isinstance(value, tuple) or len(value) != 6:
         return None
-    form, tags, graph, found, packages = value
+    form, tags, graph, found, packages, depends = value
     if form != _GRAPH_FORMAT or not _strings(tags) or len(tags) != files:
+        return None
+    if not isinstance(depends, str):
         return None
     if not (isinstance(packages, tuple) and all(isinstance(p, Package) for p in packages)):
         return None
@@ -345,7 +352,7 @@ def loaded_graph(value: object, files: int, reported: int) -> KeptGraph | None:
         and all(isinstance(f, Finding) for items in found_map.values() for _, f in items)
     ):
         return None
-    return KeptGraph(tags, graph, found_map, packages)
+    return KeptGraph(tags, graph, found_map, packages, depends)
 
 
 _LAUNCH_FORMAT = "launch parts 2"

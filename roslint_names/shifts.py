@@ -26,6 +26,12 @@ parameter file has the trees naming a file of its name walked again). A graph ke
 build is found through the same renumbering (``GraphMove``: the run that renumbered
 keeps where the graph is and how its files map), and a patch over it asks the same of
 every file added since the build, and of every file the build had and the run has not.
+
+A run's shape leaves out what its packages depend on too (``RunInputs.shape_key``): a
+dependency added to a manifest changes which packages run together and which service
+types a file can use, nothing else. The base keeps what its packages depended on
+(``Base.depends``); where they depended on others, its replay stands only through a
+patch of the graph with the packages as they are now (``engine._GraphPatch``).
 """
 
 from __future__ import annotations
@@ -230,7 +236,7 @@ def loaded_renumbering(value: object) -> Renumbering | None:
     return Renumbering(previous, before, reported_before, gone)
 
 
-_BASE_FORMAT = "base 2"
+_BASE_FORMAT = "base 3"
 _LIST_FORMAT = "file list 1"
 
 
@@ -244,27 +250,31 @@ class Base:
     replay_at: str
     displays: tuple[str, ...]
     reported: int
+    # What its packages depended on (``PackageGenerations.depends_digest``): a run of
+    # its shape may depend on others (``RunInputs.shape_key``), then its replay stands
+    # only through a patch of the graph (``engine._GraphPatch``).
+    depends: str = ""
 
     def pointer(self) -> tuple[object, ...]:
-        return pointer(self.replay_at, self.reported, len(self.displays))
+        return pointer(self.replay_at, self.reported, len(self.displays), self.depends)
 
     def listed(self) -> tuple[object, ...]:
         return (_LIST_FORMAT, self.displays)
 
 
-def pointer(replay_at: str, reported: int, files: int) -> tuple[object, ...]:
+def pointer(replay_at: str, reported: int, files: int, depends: str) -> tuple[object, ...]:
     """``Base.pointer`` of a run's ``files``, without its display paths: what every run
     that keeps a replay compares with the kept one."""
-    return (_BASE_FORMAT, replay_at, reported, files)
+    return (_BASE_FORMAT, replay_at, reported, files, depends)
 
 
 def loaded_base(pointer: object, listed: Callable[[str], object]) -> Base | None:
     """The base a stored ``pointer`` gives, its files read by ``listed`` (by the
     pointer's replay key); None for anything else."""
-    if not isinstance(pointer, tuple) or len(pointer) != 4 or pointer[0] != _BASE_FORMAT:
+    if not isinstance(pointer, tuple) or len(pointer) != 5 or pointer[0] != _BASE_FORMAT:
         return None
-    _, replay_at, reported, count = pointer
-    if not (isinstance(replay_at, str) and isinstance(reported, int)):
+    _, replay_at, reported, count, depends = pointer
+    if not (isinstance(replay_at, str) and isinstance(reported, int) and isinstance(depends, str)):
         return None
     found = listed(replay_at)
     if not isinstance(found, tuple) or len(found) != 2 or found[0] != _LIST_FORMAT:
@@ -277,7 +287,7 @@ def loaded_base(pointer: object, listed: Callable[[str], object]) -> Base | None
         and all(isinstance(display, str) for display in displays)
     ):
         return None
-    return Base(replay_at, displays, reported)
+    return Base(replay_at, displays, reported, depends)
 
 
 _MOVE_FORMAT = "graph move 1"

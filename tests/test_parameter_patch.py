@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 
 from roslint_names.model import FileFacts, Generation, Language
 from roslint_names.workspace.graph import Graph
-from roslint_names.workspace.index import PackageFiles, WorkspaceIndex
+from roslint_names.workspace.index import PackageFiles, WorkspaceIndex, companions, named_once
 from roslint_names.workspace.launch_parts import CodeParameterParts, LaunchParts
 from roslint_names.workspace.launch_patch import LazyFacts
 from roslint_names.workspace.parameter_patch import parameters_patched
@@ -314,6 +314,62 @@ def test_a_file_whose_facts_cannot_be_loaded_refuses_the_patch(tmp_path: Path) -
     edited = PATCHED[0][0]
     assert workspace.patched(last, now) is not None
     assert workspace.patched(last, now, lambda path: now[path] if path == edited else None) is None
+
+
+# A package of the fleet's first nodes, with a class of the name the dock manager
+# derives from (``SETUP``): a package depending on neither means both.
+LEGACY_FILES = {
+    "src/fleet_legacy/package.xml": AMENT_PACKAGE.format(name="fleet_legacy"),
+    "src/fleet_legacy/include/fleet_legacy/managed_node.hpp": """#pragma once
+#include <string>
+
+#include <rclcpp/rclcpp.hpp>
+
+namespace fleet_legacy
+{
+class ManagedNode : public rclcpp::Node
+{
+public:
+  explicit ManagedNode(const std::string & name) : rclcpp::Node(name)
+  {
+    declare_parameter("watchdog_period", 0.5);
+  }
+};
+}  // namespace fleet_legacy
+""",
+}
+
+
+def test_a_dependency_added_gathers_the_parameters_of_its_package_s_code_again(
+    tmp_path: Path,
+) -> None:
+    """The dock manager derives from a ``ManagedNode`` two packages define; its package
+    depending on neither, its code spans both (``ParameterSets._defined``). A dependency
+    on one of them changes no file's facts, yet the dock manager's parameters: the
+    build's graph, its companions made anew and the parameters of the code spanning that
+    package gathered again under the packages as they are now, is the graph built."""
+    workspace = _Workspace(tmp_path / "ws")
+    workspace.add({**EXTRA_FILES, **LEGACY_FILES})
+    for edit in SETUP:
+        workspace.edit(*edit)
+    graph, parts, code, facts = workspace.built()
+    workspace.edit(
+        "src/fleet_bringup/package.xml",
+        "<exec_depend>nav2_amcl</exec_depend>",
+        "<exec_depend>nav2_amcl</exec_depend>\n  <exec_depend>fleet_core</exec_depend>",
+    )
+    built, _, _, now = workspace.built()
+    assert now == facts and _parameters(built) != _parameters(graph)
+    found = parameters_patched(
+        replace(graph, companions=companions(named_once(workspace.packages))),
+        parts,
+        code,
+        {},
+        facts=LazyFacts(facts.keys(), facts.get),
+        packages=workspace.packages,
+        depending={"fleet_bringup"},
+    )
+    assert found == built
 
 
 # Files for ``with_classes``' property: a few paths, class and base names, some of them

@@ -954,3 +954,137 @@ def test_an_include_that_gives_test_code_a_constant_is_built(
     assert "dock status" in fresh
     assert cached == fresh
     assert taken == ["build", "build"]
+
+
+DOCK_DRIVER = """#include <rclcpp/rclcpp.hpp>
+#include <std_msgs/msg/string.hpp>
+
+int main(int argc, char ** argv)
+{
+  rclcpp::init(argc, argv);
+  auto node = rclcpp::Node::make_shared("dock_driver");
+  auto state = node->create_publisher<std_msgs::msg::String>("dock_state", 10);
+  rclcpp::spin(node);
+  rclcpp::shutdown();
+  return 0;
+}
+"""
+DOCK_PANEL = """#include <rclcpp/rclcpp.hpp>
+#include <std_msgs/msg/string.hpp>
+
+#include "dock_panel/reset.hpp"
+
+void shown(std_msgs::msg::String::ConstSharedPtr) {}
+
+int main(int argc, char ** argv)
+{
+  rclcpp::init(argc, argv);
+  auto node = rclcpp::Node::make_shared("dock_panel");
+  auto state = node->create_subscription<std_msgs::msg::String>("Dock_State", 10, shown);
+  auto service = dock_panel::serve_reset(*node);
+  rclcpp::spin(node);
+  rclcpp::shutdown();
+  return 0;
+}
+"""
+# The panel's service, in a file of its own: no graph finding there, its RN204 the
+# per-file rules' alone.
+DOCK_RESET = """#include "dock_panel/reset.hpp"
+
+#include <memory>
+
+namespace dock_panel
+{
+void reset(
+  const std::shared_ptr<std_srvs::srv::Trigger::Request>,
+  std::shared_ptr<std_srvs::srv::Trigger::Response> response)
+{
+  response->success = true;
+}
+
+rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr serve_reset(rclcpp::Node & node)
+{
+  return node.create_service<std_srvs::srv::Trigger>("reset_odometry", reset);
+}
+}  // namespace dock_panel
+"""
+DOCK_RESET_HEADER = """#pragma once
+#include <rclcpp/rclcpp.hpp>
+#include <std_srvs/srv/trigger.hpp>
+
+namespace dock_panel
+{
+rclcpp::Service<std_srvs::srv::Trigger>::SharedPtr serve_reset(rclcpp::Node & node);
+}  // namespace dock_panel
+"""
+
+
+def _dock_package(root: Path, name: str, sources: dict[str, str]) -> None:
+    """``src/<name>``: an ament package building one program of ``sources`` (file name
+    in ``src/``: text)."""
+    package = root / "src" / name
+    (package / "src").mkdir(parents=True)
+    (package / "package.xml").write_text(AMENT_PACKAGE.format(name=name), encoding="utf-8")
+    compiled = " ".join(f"src/{source}" for source in sources)
+    (package / "CMakeLists.txt").write_text(
+        f"cmake_minimum_required(VERSION 3.8)\nproject({name})\n"
+        "find_package(ament_cmake REQUIRED)\n"
+        f"add_executable({name} {compiled})\nament_package()\n",
+        encoding="utf-8",
+    )
+    for source, text in sources.items():
+        (package / "src" / source).write_text(text, encoding="utf-8")
+
+
+def test_a_dependency_added_or_taken_out_patches_the_graph(
+    run_cli: Any, tmp_path: Path, taken: list[str]
+) -> None:
+    """Two packages no launch file starts, one subscribing to the other's topic in
+    another case, and serving a service named after the other's ``.srv`` type: once
+    it depends on the other, they are meant to run together (RN401, ``Graph.can_meet``)
+    and it can use that type (RN204, a per-file finding): the graph of the last build is
+    patched, its packages as they are now; taken out again, the findings are gone."""
+    root = tmp_path / "ws"
+    _dock_package(root, "dock_driver", {"dock_driver.cpp": DOCK_DRIVER})
+    (root / "src/dock_driver/srv").mkdir()
+    (root / "src/dock_driver/srv/ResetOdometry.srv").write_text("---\nbool success\n")
+    _dock_package(root, "dock_panel", {"dock_panel.cpp": DOCK_PANEL, "reset.cpp": DOCK_RESET})
+    header = root / "src/dock_panel/include/dock_panel/reset.hpp"
+    header.parent.mkdir(parents=True)
+    header.write_text(DOCK_RESET_HEADER, encoding="utf-8")
+    manifest = root / "src/dock_panel/package.xml"
+    cache = tmp_path / "cache"
+    cached, fresh = outputs(run_cli, root, cache)
+    assert cached == fresh
+    assert json.loads(fresh)["findings"] == []
+    depend = "<buildtool_depend>ament_cmake</buildtool_depend>"
+    panel = root / "src/dock_panel/src/dock_panel.cpp"
+    together = ["RN204", "RN401", "RN401"]
+    for path, old, new, codes, how in [
+        (
+            manifest,
+            depend,
+            f"{depend}\n  <exec_depend>dock_driver</exec_depend>",
+            together,
+            "patch",
+        ),
+        (manifest, "exec_depend>dock_driver</exec", "exec_depend>std_srvs</exec", [], "patch"),
+        # A release, then the first dependency again in other words: runs made before.
+        (manifest, "<version>0.1.0</version>", "<version>0.2.0</version>", [], "stored"),
+        (
+            manifest,
+            "<exec_depend>std_srvs</exec_depend>",
+            "<depend>dock_driver</depend>",
+            together,
+            "stored",
+        ),
+        # Code edited since: the graph built before the dependency, patched with both.
+        (panel, '"Dock_State"', '"DOCK_STATE"', together, "patch"),
+        (manifest, "  <depend>dock_driver</depend>\n", "", [], "patch"),
+    ]:
+        taken.clear()
+        edit(path, old, new)
+        cached, fresh = outputs(run_cli, root, cache)
+        assert cached == fresh, (old, new)
+        assert sorted(f["code"] for f in json.loads(fresh)["findings"]) == codes, fresh
+        assert taken == [*([] if how == "stored" else [how]), "build"], (old, new)

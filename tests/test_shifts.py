@@ -76,12 +76,13 @@ def test_a_renumbering_reads_back_and_a_damaged_one_is_none() -> None:
 
 
 def test_a_base_and_a_graph_move_read_back() -> None:
-    base = Base("k" * 40, ("a.cpp", "b.py"), 2)
+    base = Base("k" * 40, ("a.cpp", "b.py"), 2, "d" * 40)
     lists = {base.replay_at: base.listed()}
     assert loaded_base(base.pointer(), lists.get) == base
     assert loaded_base(("base 0", *base.pointer()[1:]), lists.get) is None
-    assert loaded_base((*base.pointer()[:2], 3, 2), lists.get) is None  # more reported
-    assert loaded_base((*base.pointer()[:3], 3), lists.get) is None  # another count
+    assert loaded_base((*base.pointer()[:2], 3, 2, ""), lists.get) is None  # more reported
+    assert loaded_base((*base.pointer()[:3], 3, ""), lists.get) is None  # another count
+    assert loaded_base((*base.pointer()[:4], None), lists.get) is None  # no dependencies
     assert loaded_base(base.pointer(), lambda _: None) is None  # its files forgotten
     assert loaded_base(base.pointer(), {base.replay_at: ("file list 1", ("a", 1))}.get) is None
     move = GraphMove("g" * 40, Renumbering((1, 0), 2, 2, ()))
@@ -157,7 +158,7 @@ def test_what_launch_and_build_files_find_by_name() -> None:
     assert not found_by.adds_nothing(_facts("src/a/a/listener/__init__.py", Language.PYTHON))
 
 
-@pytest.mark.parametrize("value", [None, (), ("base 2",), ("base 2", 7, 1, 1)])
+@pytest.mark.parametrize("value", [None, (), ("base 3",), ("base 3", 7, 1, 1, "")])
 def test_a_base_of_another_shape_is_none(value: object) -> None:
     lists: dict[object, object] = {7: ("file list 1", ("a",))}
     assert loaded_base(value, lists.get) is None

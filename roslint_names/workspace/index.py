@@ -50,6 +50,28 @@ class Executables:
     plugins: tuple[tuple[str, tuple[str, ...]], ...]
 
 
+def named_once(packages: Iterable[Package]) -> dict[str, Package]:
+    """The packages by name, but for a name two directories claim (a ROS 1 and a ROS 2
+    copy): no package we can find things in, as colcon and catkin refuse such a
+    workspace, and which copy a launch file means is unknown."""
+    listed = list(packages)
+    claims = Counter(package.name for package in listed)
+    return {package.name: package for package in listed if claims[package.name] == 1}
+
+
+def companions(packages: Mapping[str, Package]) -> dict[str, frozenset[str]]:
+    """package -> the workspace packages (``named_once``) it is meant to run with:
+    itself, those it depends on, those depending on it, and those sharing a dependent
+    with it (the packages a metapackage or a bringup package gathers)."""
+    known = set(packages)
+    found: dict[str, set[str]] = {name: {name} for name in known}
+    for name, package in packages.items():
+        gathered = (package.depends & known) | {name}
+        for one in gathered:
+            found[one] |= gathered
+    return {name: frozenset(together) for name, together in found.items()}
+
+
 class PackageFiles:
     """Which package holds each file of a run (the package of the nearest directory above
     it holding a manifest), and the files of each package name."""
@@ -137,13 +159,7 @@ class WorkspaceIndex(PackageFiles):
 
     def _placed(self, facts: Mapping[str, FileFacts], packages: Sequence[Package]) -> None:
         self.facts: Mapping[str, FileFacts] = facts
-        # A name two directories claim (a ROS 1 and a ROS 2 copy) is no package we can
-        # find things in: colcon and catkin refuse such a workspace, and which copy a
-        # launch file means is unknown.
-        claims = Counter(package.name for package in packages)
-        self.packages: dict[str, Package] = {
-            package.name: package for package in packages if claims[package.name] == 1
-        }
+        self.packages: dict[str, Package] = named_once(packages)
         PackageFiles.__init__(self, facts.keys(), packages)
 
     @classmethod
@@ -179,16 +195,8 @@ class WorkspaceIndex(PackageFiles):
     # -- packages -----------------------------------------------------------------------
 
     def companions(self) -> dict[str, frozenset[str]]:
-        """package -> the workspace packages it is meant to run with: itself, those it
-        depends on, those depending on it, and those sharing a dependent with it (the
-        packages a metapackage or a bringup package gathers)."""
-        known = set(self.packages)
-        found: dict[str, set[str]] = {name: {name} for name in known}
-        for name, package in self.packages.items():
-            gathered = (package.depends & known) | {name}
-            for one in gathered:
-                found[one] |= gathered
-        return {name: frozenset(companions) for name, companions in found.items()}
+        """``companions`` of the index's packages."""
+        return companions(self.packages)
 
     def service_definitions(self) -> dict[str, ServiceDefinition]:
         """``package/Name`` -> definition of every ROS 1 service type of the workspace's

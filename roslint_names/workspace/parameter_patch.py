@@ -22,6 +22,10 @@ those nodes are gathered again too (``TableLookups.deriving``, ``loading``). The
 benchmark's ``edit_class`` (a class deriving from ``rclcpp::Node`` appended to a node's
 source) is such an edit.
 
+A package's dependencies changed change which of the classes of one name its code means
+(``ParameterSets._defined``: those of the packages it depends on): the nodes whose code
+spans that package are gathered again too.
+
 ``parameters_patched`` gives the graph a build would; None (the caller builds) where a
 node of unknown name is handed a parameter file and its code's parameters change (the
 graph keeps those without the code they are of), or where an include changed in a
@@ -31,7 +35,7 @@ package one of whose files takes another file's constant (``_constants_kept``).
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import replace
 
 from roslint_names.model import FileFacts, replaced
@@ -57,13 +61,15 @@ def parameters_patched(
     *,
     facts: Mapping[str, FileFacts],
     packages: Sequence[Package],
+    depending: Collection[str] = (),
 ) -> Graph | None:
     """``graph`` (a build's, whole, patched since: ``parts`` and ``code`` are what the
     same build left) with the parameters of every node's code that spans the package of
-    an ``edited`` code file (display path -> its facts then and now) gathered again over
-    ``facts`` (every file of the run: a ``launch_patch.LazyFacts``), and the workspace's
-    declarations with the edited files' own; None where that cannot be done exactly
-    (module docstring)."""
+    an ``edited`` code file (display path -> its facts then and now) or one of the
+    ``depending`` packages (names: those that depend on others than at the build, as
+    ``packages`` say now) gathered again over ``facts`` (every file of the run: a
+    ``launch_patch.LazyFacts``), and the workspace's declarations with the edited files'
+    own; None where that cannot be done exactly (module docstring)."""
     index = WorkspaceIndex.restored(facts, packages, parts.executables)
     tests = _TestFiles(index, {})
 
@@ -83,6 +89,7 @@ def parameters_patched(
         (package.name if (package := index.package_of(path)) else "")
         for path in (*edited, *dependent)
     }
+    reached.update(depending)
     spanning = [sources for sources, spans in code.spans.items() if not spans.isdisjoint(reached)]
     if not spanning:
         fresh = {}
