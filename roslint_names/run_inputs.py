@@ -125,7 +125,7 @@ class RunInputs:
                 keying is not None
                 and len(keying.tags) == len(self._checked)
                 and len(keying.file_statuses) == len(self._statuses)
-                and self._packages.restore(keying.lookups, keying.package_statuses)
+                and self._packages.restore(keying.lookups, keying.package_statuses, keying.reread)
             ):
                 self._keying = keying
         return key
@@ -354,11 +354,14 @@ class RunInputs:
         return digest.hexdigest()
 
     def _kept_place(self) -> str | None:
-        """The kept place, when no ``.srv`` file changed since (the packages did not, or
-        their keying would not have been taken up). The run is carried (``_carry``): the
-        ``.srv`` files' digests stand as kept, none is read (1,024 files at 8 copies)."""
+        """The kept place, when no ``.srv`` file changed since and no manifest says
+        something else (the packages did not, or their keying would not have been taken
+        up). The run is carried (``_carry``): the ``.srv`` files' digests stand as kept,
+        none is read (1,024 files at 8 copies)."""
         keying, checked = self._keying, len(self._checked)
-        if keying is None or self._statuses[checked:] != keying.file_statuses[checked:]:
+        if keying is None or keying.reread:
+            return None
+        if self._statuses[checked:] != keying.file_statuses[checked:]:
             return None
         self.shape_key = keying.shape_key
         return keying.place_key  # None for an earlier run over other files

@@ -76,6 +76,9 @@ class Keying:
     place_key: str | None  # None: an earlier run over other files (``KeptKey.keying``)
     lookups: KeptLookups
     shape_key: str | None = None  # ``RunInputs.shape_key``, with the place
+    # The package.xml files that say something else now: the lookups are taken up with
+    # what they say (``PackageGenerations.restore``), the place hashed anew.
+    reread: tuple[str, ...] = ()
 
 
 class KeptKey:
@@ -106,6 +109,7 @@ class KeptKey:
         self._loaded = False
         self._kept_identity: str | None = None  # of what was kept, once loaded
         self._packages_stand: bool | None = None  # once asked: their statuses are as kept
+        self._differing: list[tuple[str, Status | str | None]] = []  # those not, as kept
 
     def key(self, identity: str, statuses: Sequence[Status | None]) -> str | None:
         """The kept key, if it was kept for ``identity`` and every status it was kept with
@@ -132,19 +136,25 @@ class KeptKey:
         language (a facts key holds the last two)."""
         kept = self._load()
         self._kept = None
-        if kept is None or not self._packages_as_kept(kept):
+        if kept is None:
             return None
+        reread: tuple[str, ...] = ()
+        if not self._packages_as_kept(kept):
+            found = self._rereadable(kept)
+            if found is None:
+                return None
+            reread = found
         same = kept.identity == identity
         if not same and (shape is None or kept.shape != shape):
             return None
         try:
             tags, lookups, shape_key = BuiltinsUnpickler(io.BytesIO(kept.made_of)).load()
-            # A manifest as kept by what it says (``_packages_as_kept``): its status now
-            # is what the lookups are taken up with.
+            # A manifest as kept by what it says (``_packages_as_kept``), or read again:
+            # its status now is what the lookups are taken up with.
+            now = {path: self._package_status(path) for path in reread}
+            now.update(self._verified)
             package_statuses = {
-                path: self._verified[path]
-                if path in self._verified or isinstance(status, str)
-                else status
+                path: now[path] if path in now or isinstance(status, str) else status
                 for path, status in zip(kept.package_paths, kept.package_statuses, strict=True)
             }
         except Exception:  # damaged: keyed file by file
@@ -152,7 +162,7 @@ class KeptKey:
         if not isinstance(tags, list) or not isinstance(shape_key, str | None):
             return None
         keying = Keying(
-            kept.file_statuses, package_statuses, tags, kept.place_key, lookups, shape_key
+            kept.file_statuses, package_statuses, tags, kept.place_key, lookups, shape_key, reread
         )
         return keying if same else self._renumbered(keying, kept.identity, files(), checked)
 
@@ -191,6 +201,7 @@ class KeptKey:
             [keying.tags[then] if then >= 0 else "" for then in previous],
             None,
             keying.lookups,
+            reread=keying.reread,
         )
 
     def _kept_files(self, identity: str) -> tuple[Sequence[str], int] | None:
@@ -281,13 +292,28 @@ class KeptKey:
 
     def _packages_as_kept(self, kept: _Kept) -> bool:
         if self._packages_stand is None:
-            self._packages_stand = all(
-                self._package_as_kept(path, status, digest)
+            self._differing = [
+                (path, status)
                 for path, status, digest in zip(
                     kept.package_paths, kept.package_statuses, kept.package_digests, strict=True
                 )
-            )
+                if not self._package_as_kept(path, status, digest)
+            ]
+            self._packages_stand = not self._differing
         return self._packages_stand
+
+    def _rereadable(self, kept: _Kept) -> tuple[str, ...] | None:
+        """The manifests not as kept (``_packages_as_kept``), where each is a package.xml
+        there then and now: an edit of a package's dependencies, which the lookups take
+        up (``PackageGenerations.restore``); None for any other change."""
+        found: list[str] = []
+        for path, status in self._differing:
+            if os.path.basename(path) != "package.xml" or status is None:
+                return None
+            if self._package_status(path) is None:
+                return None
+            found.append(path)
+        return tuple(found)
 
     def _package_as_kept(self, path: str, kept: Status | str | None, digest: str | None) -> bool:
         """Whether a manifest looked for is as kept: the same status, or one that says
