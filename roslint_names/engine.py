@@ -1181,9 +1181,8 @@ class _GraphPatch:
             return None if tag is None else self.cache.load(tag, files[index].display)
 
         # The files taking another file's constant are resolved as the run resolves them
-        # (``resolved``), but where an edit changed what a file includes (set below):
-        # then a patch must not load them at all (``parameter_patch._constants_kept``).
-        resolving = True
+        # (``resolved``): as the build resolved them, where an edit changed what a file
+        # includes (``resolved_alike``, below).
         constants: dict[str, PackageConstants | None] = {}  # by package display directory
 
         def facts_at(index: int) -> FileFacts | None:
@@ -1192,7 +1191,7 @@ class _GraphPatch:
             if index not in loaded:
                 known = stored_facts(index)
                 if known is not None and uses_constants(known):
-                    known = resolved(known, index) if resolving else None
+                    known = resolved(known, index)
                 loaded[index] = known
             return loaded[index]
 
@@ -1216,6 +1215,36 @@ class _GraphPatch:
                 constants[package] = None if any(found is None for found in below) else table
             kept = constants[package]
             return None if kept is None else kept.resolve(known, package)
+
+        def resolved_alike(including: Iterable[str], then_of: Mapping[str, FileFacts]) -> bool:
+            """Whether every file taking another file's constant, of a package holding a
+            file whose includes changed (``including``), resolves its names as the build
+            did, from the C++ files then (``then_of``: those edited since, as they were):
+            an include added or taken out seldom changes which header defines a constant,
+            and where it does, its names may change (the graph is built)."""
+            for display in including:
+                for package in package_files().enclosing(display):
+                    code: list[tuple[str, FileFacts]] = []
+                    for path in package_files().below(package.directory):
+                        if files[slots[path]].language is not Language.CPP:
+                            continue
+                        found = stored_facts(slots[path])
+                        if found is None:
+                            return False
+                        code.append((path, found))
+                    now, then = PackageConstants(), PackageConstants()
+                    for path, found in code:
+                        now.add(found)
+                        then.add(then_of.get(path, found))
+                    for path, found in code:
+                        if not uses_constants(found):
+                            continue
+                        if package_files().package_of(path) != package:
+                            continue  # resolved in its own package's, below this one
+                        at = package.directory
+                        if now.resolve(found, at) != then.resolve(found, at):
+                            return False
+            return True
 
         changed: list[tuple[str, FileFacts, FileFacts]] = []
         tree_edits: list[str] = []
@@ -1252,7 +1281,11 @@ class _GraphPatch:
                 changed.append((display, before, facts))
             else:
                 return None
-        resolving = all(before.cpp_includes == now.cpp_includes for _, before, now in changed)
+        including = [
+            display for display, then, now in changed if then.cpp_includes != now.cpp_includes
+        ]
+        if including and not resolved_alike(including, {d: then for d, then, _ in changed}):
+            return None
         naming -= {*tree_edits, *removed_trees}
         walk = [*tree_edits, *sorted(naming)]  # the launch files whose trees are walked again
         declaring: set[str] = set()  # code files whose parameters changed

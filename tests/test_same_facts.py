@@ -422,11 +422,11 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     (UNITS, None, REPORTING, "build"),
     (DOCK, "public rclcpp::Node", "public rclcpp::Node, public fleet_bringup::Reporting", "patch"),
     # A header whose constant names a topic, and code taking it: the whole run resolves
-    # the name. Then an include changed in that package: a file's names may take another
-    # constant now, which no patch follows.
+    # the name. Then an include changed in that package: the code resolves its names as
+    # before (``engine._GraphPatch``'s ``resolved_alike``), the graph is patched.
     (TOPICS, None, TOPICS_HEADER, "build"),
     (STATUS_SOURCE, None, STATUS_NODE, "build"),
-    (MONITOR, "\n#include <fleet_bringup/units.hpp>\n", "", "build"),
+    (MONITOR, "\n#include <fleet_bringup/units.hpp>\n", "", "patch"),
     # A parameter declared beside that code: the package's files are read as the run
     # reads them, the constant's name resolved (``engine._GraphPatch``), and patched.
     (
@@ -929,9 +929,9 @@ def test_an_include_that_gives_test_code_a_constant_is_built(
     """A header's include changed reaches a test through it: the constant the test's
     topic takes, which only the whole run resolves (``symbols``). No node's code is of
     that package, so no parameter gathered again reads its files: the patch refuses
-    such an edit by the files of the package that take a constant
-    (``parameter_patch._constants_kept``), or the test's illegal topic would stay
-    unreported."""
+    such an edit where a file of the package that takes a constant resolves it otherwise
+    now (``engine._GraphPatch``'s ``resolved_alike``), or the test's illegal topic would
+    stay unreported."""
     status = workspace / NAMES / "include/fleet_names/status.hpp"
     change(workspace / NAMES / "package.xml", None, AMENT_PACKAGE.format(name="fleet_names"))
     change(

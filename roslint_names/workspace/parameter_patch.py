@@ -26,10 +26,11 @@ A package's dependencies changed change which of the classes of one name its cod
 (``ParameterSets._defined``: those of the packages it depends on): the nodes whose code
 spans that package are gathered again too.
 
-``parameters_patched`` gives the graph a build would; None (the caller builds) where a
-node of unknown name is handed a parameter file and its code's parameters change (the
-graph keeps those without the code they are of), or where an include changed in a
-package one of whose files takes another file's constant (``_constants_kept``).
+``parameters_patched`` gives the graph a build would, over facts whose names take
+other files' constants as the build's did (``engine._GraphPatch``: where an include
+changed, its ``resolved_alike``); None (the caller builds) where a node of unknown name
+is handed a parameter file and its code's parameters change (the graph keeps those
+without the code they are of), or a file's facts cannot be loaded.
 ``tests/test_parameter_patch.py`` compares patched graphs with built ones.
 """
 
@@ -39,7 +40,6 @@ from collections.abc import Collection, Mapping, Sequence
 from dataclasses import replace
 
 from roslint_names.model import FileFacts, replaced
-from roslint_names.symbols import uses_constants
 from roslint_names.workspace.build import _TestFiles
 from roslint_names.workspace.graph import Graph
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
@@ -79,11 +79,6 @@ def parameters_patched(
     lookups, dependent = code.lookups.with_classes(
         ((path, before, now) for path, (before, now) in edited.items()), excluded
     )
-    try:
-        if not _constants_kept(index, facts, edited):
-            return None
-    except UnknownFactsError:
-        return None  # a file there takes another file's constant: the graph is built
     sets = ParameterSets(index, ParameterTables(lookups, excluded))
     reached = {
         (package.name if (package := index.package_of(path)) else "")
@@ -115,27 +110,6 @@ def parameters_patched(
     return replace(
         graph, nodes=nodes, parameter_declarations=_declarations(code.counts, edited).declarations()
     )
-
-
-def _constants_kept(
-    index: WorkspaceIndex,
-    facts: Mapping[str, FileFacts],
-    edited: Mapping[str, tuple[FileFacts, FileFacts]],
-) -> bool:
-    """Whether no file's name can take another constant for an edit's includes: a file's
-    names take the constants of the headers it reaches through includes below its
-    package's directory (``symbols.PackageConstants``), which the whole run resolves and a
-    patch does not; an edited file's includes changed is followed only where no file of
-    a package holding it takes a constant. An ``UnknownFactsError`` where such a file's
-    facts cannot be loaded (the CLI loads none of a file that takes a constant)."""
-    for path, (before, now) in edited.items():
-        if before.cpp_includes == now.cpp_includes:
-            continue
-        for package in index.enclosing(path):
-            for held in index.files_of(package.name):
-                if index.package_of(held) == package and uses_constants(facts[held]):
-                    return False
-    return True
 
 
 def _declarations(
