@@ -201,7 +201,7 @@ class PackageGenerations:
                 for kept in packages
             ]
             manifests, names = dict(kept_manifests), set(kept_names)
-            if reread and not self._depending_anew(made, manifests, reread):
+            if reread and not self._read_again(made, manifests, reread):
                 return False
             by_directory = {directory: made[place] for directory, place in directories.items()}
         except (TypeError, ValueError, IndexError, KeyError):
@@ -213,7 +213,7 @@ class PackageGenerations:
         return True
 
     @staticmethod
-    def _depending_anew(
+    def _read_again(
         made: list[_Package], manifests: dict[str, str], reread: Collection[str]
     ) -> bool:
         """``made`` (the kept packages) and ``manifests`` (their digests) with each
@@ -362,10 +362,9 @@ def _package_digest(package: _Package, exported: Iterable[str]) -> str:
     exports), not of its text. A version released, a maintainer or a description
     changed is then no other run: it changed no finding, yet built the whole graph again
     (8 s at 8 copies of the benchmark's workspace)."""
-    generation = package.generation
     said = [
         package.name or "",
-        "" if generation is None else str(generation.value),
+        _generation_text(package),
         *sorted(package.depends),
         "",
         *exported,
