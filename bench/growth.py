@@ -31,8 +31,13 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
   the parameters of nodes' code are gathered through changes (the classes' lookups),
   the parameters of the code spanning its package gathered again
   (``patch.gathering_edit``);
-- ``edit_build``: a dependency added to a package's manifest: what an edit the graph
-  must be built again for costs (the packages every file is judged by change);
+- ``edit_release``: a URL added to a package's manifest, which says nothing a run reads
+  (its name, build type, dependencies, plugin descriptions): the last run's result;
+- ``edit_depend``: a dependency added to that manifest: which packages run together and
+  which service types its files can use change, the graph the last build kept is
+  patched with the packages as they are now;
+- ``edit_build``: an executable added to a mid-sized ``CMakeLists.txt``: what an edit
+  the graph must be built again for costs (what the build files make changes);
 - ``identical_after_edits``: whether the last edited run printed what a run with an
   empty cache prints over the same tree (a stale cache must never change a result);
 - ``commit``: pre-commit's run, naming the edited C++ source and launch file, the
@@ -105,9 +110,14 @@ class BenchProbe : public rclcpp::Node
 {
 };
 """
-# An edit the graph is built again for: a package depends on another.
+# A manifest's edit that says nothing a run reads, then one that does: a package
+# depends on another.
+_NEW_MANIFEST_URL = b"""  <url type="repository">https://example.com/bench_probe</url>
+"""
 _NEW_MANIFEST_DEPENDENCY = b"""  <depend>bench_probe</depend>
 """
+# An edit the graph is built again for: the package builds another program.
+_NEW_EXECUTABLE = b"add_executable(bench_probe_node src/bench_probe_node.cpp)\n"
 # One edit each, in this order. The first three are comments: at the end, where they move
 # no name, or at the start, where it moves every name of the file; so that the run
 # measures what an edit costs, not what a new finding does. No word of a suppression in them
@@ -133,7 +143,9 @@ _EDITS = {
     "add_launch": ((".launch.xml", ".launch"), "<node", _NEW_LAUNCH, "beside"),
     "remove_file": ((".cpp",), "create_publisher", b"", "removed"),
     "edit_class": ((".cpp",), "create_publisher", _NEW_CLASS, "end"),
-    "edit_build": (("package.xml",), "<depend>", _NEW_MANIFEST_DEPENDENCY, "inside"),
+    "edit_release": (("package.xml",), "<depend>", _NEW_MANIFEST_URL, "inside"),
+    "edit_depend": (("package.xml",), "<depend>", _NEW_MANIFEST_DEPENDENCY, "inside"),
+    "edit_build": (("CMakeLists.txt",), "add_executable(", _NEW_EXECUTABLE, "end"),
 }
 
 
