@@ -357,7 +357,9 @@ class DeclarationCounts:
             (self.names, self.suffixes, self.mentioned), declared, strict=True
         ):
             for name in found:
-                counts[name] = counts.get(name, 0) + times
+                count = counts[name] = counts.get(name, 0) + times
+                if not count:
+                    del counts[name]  # as counts made anew hold it: none
 
     def declarations(self) -> WorkspaceDeclarations:
         return WorkspaceDeclarations(
