@@ -421,6 +421,7 @@ def _lint(
                 elsewhere=partial(_base_place, cache, inputs, clean_key, files),
                 depends=depends,
                 packages=partial(workspace_packages, workspace, packages),
+                may_rebase=not context,
             )
         replayed = _take_facts(
             gathered,
@@ -439,6 +440,8 @@ def _lint(
         checks.finish()
         if replayed is not None:
             graph_found, specialised = replayed.replay.graph, replayed.replay.specialised
+            if patch is not None and patch.rebased is not None:  # kept as a build's
+                graph, launch_parts, code_parts, built_with = patch.rebased
             _report_replayed(
                 replayed,
                 files=files,
@@ -1080,6 +1083,26 @@ def _take_facts(
 _Arrived = tuple[int, FileFacts, "bytes | None", "Verdict | None"]
 
 
+# Files edited since the last build past which a patch keeps what it patched as the
+# graph the next runs patch, as a build does: each run patches every edit since that
+# build again (at 8 copies of the benchmark's workspace, a parameter declared in one
+# more C++ file before each run: 2.07 s after the first, 4.02 s after the thirtieth),
+# and keeping the patched graph and its parts costs a run what a build's keeping does
+# (0.4 to 0.5 s there). Kept past 8 such files, the runs of that sequence took 2.2 to
+# 3.4 s.
+REBASE_EDITS = 8
+
+
+class _Rebased(NamedTuple):
+    """What a patch keeps as a build keeps it: the whole graph, the launch and code
+    parameter parts a build of the files as they are would leave, and the packages."""
+
+    graph: Graph
+    launch: LaunchParts
+    code: CodeParameterParts
+    packages: list[Package]
+
+
 @dataclass
 class _GraphPatch:
     """A run whose edits change only what some nodes' code declares (``workspace.patch``)
@@ -1089,9 +1112,10 @@ class _GraphPatch:
     loaded, so kept in the pack), and the graph rules run over it; the files whose graph
     findings that changed, and those of a package depending on others, are taken and
     reported again with the edited ones, every other file's findings are the replay's.
-    Only a build
-    keeps a graph: pickling it (0.36 s at 77,000 files) would cost each patched run more
-    than patching it again."""
+    A build keeps its graph; a patch keeps what it patched, as a build keeps it, only
+    where it applied many edits since (``REBASE_EDITS``): pickling a graph and its parts
+    (0.4 to 0.5 s at 81,000 files) would cost each patched run more than patching it
+    again, and every edit since the last build is patched again by each run."""
 
     gathered: Gatherer
     checks: _FileChecks
@@ -1110,8 +1134,13 @@ class _GraphPatch:
     # patched with them as they are (``_depending_anew``).
     depends: Callable[[], str] = lambda: ""
     packages: Callable[[], list[Package]] = list
+    # Whether the run keeps what a build keeps (a run over the workspace, not one with
+    # the rest of it as context): where the patch applied many edits, what it patched
+    # is kept as the next runs' graph (``rebased``).
+    may_rebase: bool = False
     elsewhere_used: bool = False
     graph_from: _GraphPlace | None = None  # where the graph it patched is, resolved
+    rebased: _Rebased | None = None
 
     def __call__(self, replay: Replay, arrived: Sequence[_Arrived]) -> _Replayed | None:
         files = self.gathered.files
@@ -1299,11 +1328,14 @@ class _GraphPatch:
             return None if at is None else facts_at(at)
 
         # The build's whole graph (its parameters kept apart, ``same_facts.KeptLaunch``)
-        # for a patch that walks trees or gathers parameters again.
+        # for a patch that walks trees or gathers parameters again, or that keeps what it
+        # patched as the graph later runs patch (``REBASE_EDITS``).
         kept: KeptLaunch | None = None
         known: set[str] = set()  # the files the build had facts of (a skipped one has none)
         gathering = bool(declaring or depending)  # some nodes' parameters gathered again
-        if walk or removed_trees or gathering:
+        since = len(changed) + len(tree_edits) + len(removed_trees) + len(new_files)
+        rebasing = self.may_rebase and since + len(depending) >= REBASE_EDITS
+        if walk or removed_trees or gathering or rebasing:
             kept = same_facts.loaded_launch(
                 self.cache.load_launch_parts(place.key), stored.built_from
             )
@@ -1317,6 +1349,7 @@ class _GraphPatch:
                 files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)
             }
             known |= new_files
+        launch_parts = None if kept is None else kept.parts  # as a build would leave them
         specialised = replay.specialised
         if walk or removed_trees or renamed:
             assert kept is not None
@@ -1337,26 +1370,29 @@ class _GraphPatch:
             # A file an edited include hands arguments to now is read under them: an
             # edit of it is never replayed nor patched (the check above). One no longer
             # read so stays in the set: its edits build, as they would have.
-            graph, specialised = walked[0], specialised | walked[1]
-        patched = patch_graph(
+            graph, launch_parts = walked[0]
+            specialised = specialised | walked[1]
+        patched: Graph | None = patch_graph(
             graph,
             edits,
             facts_of,
             package_files,
             declaring=bool(declaring),
         )
-        if patched is not None and gathering:
-            assert kept is not None
+        code_parts: CodeParameterParts | None = None
+        if patched is not None and (gathering or rebasing):
+            assert launch_parts is not None
             kept_code = same_facts.loaded_code(
                 self.cache.load_code_parameters(place.key), stored.built_from
             )
-            patched = (
-                None
-                if kept_code is None
-                else parameters_patched(
+            if kept_code is None:
+                return None
+            code_parts = kept_code.parts
+            if gathering:
+                gathered = parameters_patched(
                     patched,
-                    kept.parts,
-                    kept_code.parts,
+                    launch_parts,
+                    code_parts,
                     {
                         display: (before, now)
                         for display, before, now in changed
@@ -1366,7 +1402,9 @@ class _GraphPatch:
                     packages=packages,
                     depending=depending,
                 )
-            )
+                if gathered is None:
+                    return None
+                patched, launch_parts, code_parts = gathered
         if patched is None:
             return None
         # A rule that reads no name the patch changed has the built graph's findings, the
@@ -1409,6 +1447,8 @@ class _GraphPatch:
         rest = sorted(again - arrived_facts.keys())
         for index, facts, data, verdict in self.gathered.facts(rest):
             self.checks.take(index, facts, data, verdict)
+        if rebasing and launch_parts is not None and code_parts is not None:
+            self.rebased = _Rebased(patched, launch_parts, code_parts, list(packages))
         return _Replayed(sorted(again), replace(replay, graph=found, specialised=specialised))
 
     def _walked(
@@ -1422,12 +1462,13 @@ class _GraphPatch:
         code: Collection[str],
         known: set[str],
         facts_of: Callable[[str], FileFacts | None],
-    ) -> tuple[Graph, frozenset[str]] | None:
+    ) -> tuple[tuple[Graph, LaunchParts], frozenset[str]] | None:
         """The build's whole graph with the trees that read an ``edited`` launch or
         parameter file walked again (``workspace.launch_patch``), and those of the
         ``removed`` launch files gone, over every file the build had facts of and the
-        added launch files (``known``); and the files the walk extracted again under an
-        includer's arguments; None where it cannot be."""
+        added launch files (``known``), with the launch parts a build would leave; and
+        the files the walk extracted again under an includer's arguments; None where it
+        cannot be."""
         specialise = self.specialiser()
         graph = launch_patched(
             whole,

@@ -171,7 +171,7 @@ class _Workspace(ExampleCopy):
         parts: LaunchParts,
         before: dict[str, FileFacts],
         now: dict[str, FileFacts],
-    ) -> Graph | None:
+    ) -> tuple[Graph, LaunchParts] | None:
         changed = [path for path in now if before.get(path) != now[path]]
         assert changed and before.keys() == now.keys()
         if not all(
@@ -191,25 +191,30 @@ class _Workspace(ExampleCopy):
         )
 
 
+_Step = tuple[str, tuple[Graph, LaunchParts], tuple[Graph, LaunchParts] | None]
+
+
 @pytest.fixture(scope="module")
-def steps(tmp_path_factory: pytest.TempPathFactory) -> list[tuple[str, Graph, Graph | None]]:
-    """Each step: the file edited, the graph built after it, and the graph patched."""
+def steps(tmp_path_factory: pytest.TempPathFactory) -> list[_Step]:
+    """Each step: the file edited, the graph and launch parts built after it, and those
+    patched."""
     workspace = _Workspace(tmp_path_factory.mktemp("launch_patch") / "ws")
     workspace.add(EXTRA_FILES)
     graph, parts, facts = workspace.built()
-    found: list[tuple[str, Graph, Graph | None]] = []
+    found: list[_Step] = []
     for relative, old, new in PATCHED:
         workspace.edit(relative, old, new)
         built, built_parts, now = workspace.built()
-        found.append((relative, built, workspace.patched(graph, parts, facts, now)))
+        patched = workspace.patched(graph, parts, facts, now)
+        found.append((relative, (built, built_parts), patched))
         graph, parts, facts = built, built_parts, now
     return found
 
 
 @pytest.mark.parametrize("step", range(len(PATCHED)))
-def test_a_patched_graph_is_the_built_graph(
-    steps: list[tuple[str, Graph, Graph | None]], step: int
-) -> None:
+def test_a_patched_graph_and_its_parts_are_the_built_ones(steps: list[_Step], step: int) -> None:
+    """The parts too: a patched run keeps them as the next runs' (``engine``'s
+    ``REBASE_EDITS``), which patch from them as from a build's."""
     assert_patched(steps, step)
 
 

@@ -222,7 +222,7 @@ class _Workspace(ExampleCopy):
         built: tuple[Graph, LaunchParts, CodeParameterParts, dict[str, FileFacts]],
         now: dict[str, FileFacts],
         load: Callable[[str], FileFacts | None] | None = None,
-    ) -> Graph | None:
+    ) -> tuple[Graph, LaunchParts, CodeParameterParts] | None:
         """``load``: a file's facts for the patch (``now``'s by default)."""
         graph, parts, code, before = built
         changed = [path for path in now if before.get(path) != now[path]]
@@ -251,36 +251,40 @@ class _Workspace(ExampleCopy):
         )
 
 
+_Parts = tuple[Graph, LaunchParts, CodeParameterParts]
+_Step = tuple[str, _Parts, _Parts | None]
+
+
 @pytest.fixture(scope="module")
-def steps(tmp_path_factory: pytest.TempPathFactory) -> list[tuple[str, Graph, Graph | None]]:
-    """Each step: the file edited, the graph built after it, and the graph patched."""
+def steps(tmp_path_factory: pytest.TempPathFactory) -> list[_Step]:
+    """Each step: the file edited, the graph and the parts built after it, and those
+    patched."""
     workspace = _Workspace(tmp_path_factory.mktemp("parameter_patch") / "ws")
     workspace.add(EXTRA_FILES)
     for edit in SETUP:
         workspace.edit(*edit)
     last = workspace.built()
-    found: list[tuple[str, Graph, Graph | None]] = []
+    found: list[_Step] = []
     for relative, old, new in PATCHED:
         workspace.edit(relative, old, new)
         now = workspace.built()
-        found.append((relative, now[0], workspace.patched(last, now[3])))
+        found.append((relative, now[:3], workspace.patched(last, now[3])))
         last = now
     return found
 
 
 @pytest.mark.parametrize("step", range(len(PATCHED)))
-def test_a_patched_graph_is_the_built_graph(
-    steps: list[tuple[str, Graph, Graph | None]], step: int
-) -> None:
+def test_a_patched_graph_and_its_parts_are_the_built_ones(steps: list[_Step], step: int) -> None:
+    """The parts too: the parameters of each node's code, the lookups, the spans and
+    the counts, which a patched run keeps as the next runs' (``engine``'s
+    ``REBASE_EDITS``)."""
     assert_patched(steps, step)
 
 
-def test_the_steps_change_what_code_declares(
-    steps: list[tuple[str, Graph, Graph | None]],
-) -> None:
+def test_the_steps_change_what_code_declares(steps: list[_Step]) -> None:
     """Each step's graph differs from the one before in its parameters: a step whose edit
     changed nothing there would test nothing."""
-    graphs = [graph for _, graph, _ in steps]
+    graphs = [built[0] for _, built, _ in steps]
     for step, (before, now) in enumerate(pairwise(graphs), start=1):
         assert _parameters(before) != _parameters(now), f"step {step}"
 
@@ -358,8 +362,8 @@ def test_a_dependency_added_gathers_the_parameters_of_its_package_s_code_again(
         "<exec_depend>nav2_amcl</exec_depend>",
         "<exec_depend>nav2_amcl</exec_depend>\n  <exec_depend>fleet_core</exec_depend>",
     )
-    built, _, _, now = workspace.built()
-    assert now == facts and _parameters(built) != _parameters(graph)
+    *built, now = workspace.built()
+    assert now == facts and _parameters(built[0]) != _parameters(graph)
     found = parameters_patched(
         replace(graph, companions=companions(named_once(workspace.packages))),
         parts,
@@ -369,7 +373,7 @@ def test_a_dependency_added_gathers_the_parameters_of_its_package_s_code_again(
         packages=workspace.packages,
         depending={"fleet_bringup"},
     )
-    assert found == built
+    assert found == tuple(built)
 
 
 # Files for ``with_classes``' property: a few paths, class and base names, some of them

@@ -440,8 +440,11 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
 
 
 def test_a_sequence_of_edits_gives_what_a_fresh_run_gives(
-    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str]
+    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str], monkeypatch: pytest.MonkeyPatch
 ) -> None:
+    # Every patch from the last build, as the steps' comments say (none kept as the next
+    # runs' graph: the test below).
+    monkeypatch.setattr(engine, "REBASE_EDITS", len(STEPS))
     cache = tmp_path / "cache"
     cached, fresh = outputs(run_cli, workspace, cache)
     assert cached == fresh
@@ -452,6 +455,44 @@ def test_a_sequence_of_edits_gives_what_a_fresh_run_gives(
         assert cached == fresh, (step, relative, old, new)
         # The cached run, then the fresh one (which builds).
         assert taken == [*([] if how == "stored" else [how]), "build"], (step, relative, taken)
+
+
+def test_a_sequence_of_edits_each_kept_as_the_next_runs_graph_gives_what_a_fresh_run_gives(
+    run_cli: Any, workspace: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Every patched run keeps what it patched as a build keeps it (``REBASE_EDITS`` of
+    one): the next run patches that graph with the launch and code parameter parts the
+    patches made, and must print what a fresh run prints at every step."""
+    monkeypatch.setattr(engine, "REBASE_EDITS", 1)
+    kept: list[int] = []
+    patch = engine._GraphPatch.__call__
+
+    def patching(self: Any, *arguments: Any) -> Any:
+        found = patch(self, *arguments)
+        kept.append(self.rebased is not None)
+        return found
+
+    monkeypatch.setattr(engine._GraphPatch, "__call__", patching)
+    cache = tmp_path / "cache"
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    # Then a setting the follower ignores declared by its code (its RN406 gone), then
+    # the tree that hands it the file walked again: the node's parameters are those
+    # the first run kept (``LaunchParts.parameters``), not the build's.
+    follower = f"{FLEET}/fleet_bringup/waypoint_follower.py"
+    declared = (
+        follower,
+        '        self.declare_parameter("loop_rate", 10.0)\n',
+        '        self.declare_parameter("loop_rate", 10.0)\n'
+        '        self.declare_parameter("stop_on_arrival", False)\n',
+        "patch",
+    )
+    walked = (f"{FLEET}/launch/fleet.launch.py", '("/tf", "tf")', '("/tf", "tf_fleet")', "patch")
+    for step, (relative, old, new, _) in enumerate([*STEPS, declared, walked]):
+        change(workspace / relative, old, new)
+        cached, fresh = outputs(run_cli, workspace, cache)
+        assert cached == fresh, (step, relative, old, new)
+    assert sum(kept) >= 20, kept
 
 
 def test_the_step_that_holds_a_graph_finding_shows_it_moved(

@@ -21,8 +21,10 @@ it any more (``LaunchParts.includers``). Code a tree starts now is no program of
 own any more, and code no tree starts any more is one again (``Programs.unlaunched``).
 A patch is refused (None, the caller builds) where a node runs code whose parameters
 the build did not make (code that ran as no node, or as a program of other sources),
-or where a file it needs has no facts to load.
-``tests/test_launch_patch.py`` compares patched graphs with built ones.
+or where a file it needs has no facts to load. It gives the launch parts a build would
+leave too (the roots, each tree's part, the includers), which a run that keeps what it
+patched keeps (``engine.REBASE_EDITS``).
+``tests/test_launch_patch.py`` compares patched graphs and parts with built ones.
 """
 
 from __future__ import annotations
@@ -51,7 +53,7 @@ from roslint_names.workspace.graph import (
     ParameterFileUse,
 )
 from roslint_names.workspace.index import Package, WorkspaceIndex
-from roslint_names.workspace.launch_parts import LaunchParts, Unnamed
+from roslint_names.workspace.launch_parts import LaunchParts, TreePart, Unnamed
 from roslint_names.workspace.launch_tree import (
     LAUNCH_LANGUAGES,
     LaunchTrees,
@@ -134,11 +136,13 @@ def launch_patched(
     prepare: Prepare | None = None,
     removed: Collection[str] = (),
     code: Collection[str] = (),
-) -> Graph | None:
+) -> tuple[Graph, LaunchParts] | None:
     """``graph`` (a build's, whole: ``parts`` is what the same build left) with the trees
     that read one of the ``edited`` files (launch files, ``launch_edit``; parameter files,
     ``parameter_edit``) walked again over ``facts`` (every file of the run: a
-    ``LazyFacts``); None where that cannot be done exactly (module docstring).
+    ``LazyFacts``), and the parts a build of the files as they are would leave (but for
+    the parameters of the nodes' code, ``parameter_patch``'s); None where that cannot be
+    done exactly (module docstring).
     ``removed``: launch and parameter files the run has not (``shifts``): a removed
     launch file's tree goes, and the trees that read or are handed one are walked
     again; an edited launch file the build had not is a root where nothing includes it,
@@ -148,7 +152,9 @@ def launch_patched(
     renamed = frozenset(code)
     index = WorkspaceIndex.restored(facts, packages, parts.executables)
     try:
-        roots = _roots(parts, edited, LaunchTrees(index, specialise, roots=[]), frozenset(removed))
+        roots, includers = _roots(
+            parts, edited, LaunchTrees(index, specialise, roots=[]), frozenset(removed)
+        )
         gone = set(parts.roots) - set(roots)
         handed = _handed(graph, parts, edited)
         walked = [
@@ -160,19 +166,28 @@ def launch_patched(
             or not renamed.isdisjoint(parts.trees[root].sources)
         ]
         if not walked and not gone and not renamed:
-            return graph
+            return graph, replace(parts, includers=includers)
         trees = LaunchTrees(index, specialise, prepare, roots=walked)
-        return _patched(graph, parts, roots, gone, trees, edited=edited, renamed=renamed)
+        found = _patched(graph, parts, roots, gone, trees, edited=edited, renamed=renamed)
+        if found is None:
+            return None
+        patched, walked_parts = found
+        kept = {
+            root: walked_parts[root] if root in walked_parts else parts.trees[root]
+            for root in roots
+        }
+        return patched, replace(parts, roots=tuple(roots), trees=kept, includers=includers)
     except UnknownFactsError:
         return None
 
 
 def _roots(
     parts: LaunchParts, edited: frozenset[str], trees: LaunchTrees, removed: frozenset[str]
-) -> list[str]:
+) -> tuple[list[str], dict[str, tuple[str, ...]]]:
     """The roots after the edits: a file an edited include names now, or named before,
     and an edited file itself, is a root where it is a launch file no launch file
-    includes (``LaunchTrees``); a ``removed`` file is none."""
+    includes (``LaunchTrees``); a ``removed`` file is none. And the includers after
+    them, as ``LaunchTrees.includers`` gives them."""
     includers = {target: set(paths) - edited for target, paths in parts.includers.items()}
     for path in sorted(edited - removed):
         facts = trees.index.facts[path]
@@ -193,7 +208,8 @@ def _roots(
         for target in changed | (edited - removed)
         if not includers.get(target) and trees.is_launch_file(target)
     )
-    return sorted(roots)
+    found = {target: tuple(sorted(paths)) for target, paths in sorted(includers.items()) if paths}
+    return sorted(roots), found
 
 
 def _handed(graph: Graph, parts: LaunchParts, edited: frozenset[str]) -> set[str]:
@@ -222,7 +238,8 @@ def _patched(
     *,
     edited: frozenset[str],
     renamed: frozenset[str] = frozenset(),
-) -> Graph | None:
+) -> tuple[Graph, dict[str, TreePart]] | None:
+    """``launch_patched``'s graph, and the part of each tree walked again."""
     index = trees.index
     walked = trees.roots()
     tests = _TestFiles(index, {})
@@ -294,7 +311,16 @@ def _patched(
     if parameters.missing:
         return None
     all_nodes = _unique([*kept, *finished], NodeInstance.sort_key)
-    return replace(
+    walked_parts = {
+        root: TreePart(
+            trees.visited(root),
+            tuple(sorted(sources_of[root])),
+            tuple(unnamed_of[root]),
+            tuple(loads_of[root]),
+        )
+        for root in walked
+    }
+    patched = replace(
         graph,
         nodes=all_nodes,
         endpoints=_unique(
@@ -314,6 +340,7 @@ def _patched(
         parameter_loads=loads,
         unnamed_parameter_files=unnamed,
     )
+    return patched, walked_parts
 
 
 def _launched(parts: LaunchParts, roots: Sequence[str], walked: Mapping[str, set[str]]) -> set[str]:

@@ -30,8 +30,10 @@ spans that package are gathered again too.
 other files' constants as the build's did (``engine._GraphPatch``: where an include
 changed, its ``resolved_alike``); None (the caller builds) where a node of unknown name
 is handed a parameter file and its code's parameters change (the graph keeps those
-without the code they are of), or a file's facts cannot be loaded.
-``tests/test_parameter_patch.py`` compares patched graphs with built ones.
+without the code they are of), or a file's facts cannot be loaded. It gives the parts a
+build would leave too (each node's code parameters, the lookups, spans and counts),
+which a run that keeps what it patched keeps (``engine.REBASE_EDITS``).
+``tests/test_parameter_patch.py`` compares patched graphs and parts with built ones.
 """
 
 from __future__ import annotations
@@ -62,14 +64,16 @@ def parameters_patched(
     facts: Mapping[str, FileFacts],
     packages: Sequence[Package],
     depending: Collection[str] = (),
-) -> Graph | None:
+) -> tuple[Graph, LaunchParts, CodeParameterParts] | None:
     """``graph`` (a build's, whole, patched since: ``parts`` and ``code`` are what the
     same build left) with the parameters of every node's code that spans the package of
     an ``edited`` code file (display path -> its facts then and now) or one of the
     ``depending`` packages (names: those that depend on others than at the build, as
     ``packages`` say now) gathered again over ``facts`` (every file of the run: a
     ``launch_patch.LazyFacts``), and the workspace's declarations with the edited files'
-    own; None where that cannot be done exactly (module docstring)."""
+    own; with the parts a build of the files as they are would leave (the parameters
+    of each node's code, the lookups, spans and counts); None where that cannot be done
+    exactly (module docstring)."""
     index = WorkspaceIndex.restored(facts, packages, parts.executables)
     tests = _TestFiles(index, {})
 
@@ -107,8 +111,12 @@ def parameters_patched(
         else node
         for node in graph.nodes
     )
-    return replace(
-        graph, nodes=nodes, parameter_declarations=_declarations(code.counts, edited).declarations()
+    counts = _declarations(code.counts, edited)
+    spans = {sources: sets.spans.get(sources, frozenset()) for sources in fresh}
+    return (
+        replace(graph, nodes=nodes, parameter_declarations=counts.declarations()),
+        replace(parts, parameters={**parts.parameters, **fresh}),
+        CodeParameterParts(lookups, {**code.spans, **spans}, counts),
     )
 
 
