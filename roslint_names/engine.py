@@ -78,6 +78,7 @@ from .workspace.patch import (
     Moved,
     edits_of,
     for_patching,
+    moved_code_parameters,
     parameter_part,
     same_places,
     with_parameters,
@@ -1405,6 +1406,9 @@ class _GraphPatch:
                 if gathered is None:
                     return None
                 patched, launch_parts, code_parts = gathered
+            else:  # the nodes' parameters moved with their code (``patched``)
+                moved = moved_code_parameters(launch_parts.parameters, edits)
+                launch_parts = None if moved is None else replace(launch_parts, parameters=moved)
         if patched is None:
             return None
         # A rule that reads no name the patch changed has the built graph's findings, the

@@ -1129,3 +1129,67 @@ def test_a_dependency_added_or_taken_out_patches_the_graph(
         assert cached == fresh, (old, new)
         assert sorted(f["code"] for f in json.loads(fresh)["findings"]) == codes, fresh
         assert taken == [*([] if how == "stored" else [how]), "build"], (old, new)
+
+
+PROBE = """#include <rclcpp/rclcpp.hpp>
+#include <std_msgs/msg/float64.hpp>
+
+int main(int argc, char ** argv)
+{
+  rclcpp::init(argc, argv);
+  auto node = rclcpp::Node::make_shared("probe");
+  auto rate = node->get_parameter("probe_rate").as_double();
+  auto reading = node->create_publisher<std_msgs::msg::Float64>("probe_reading", 10);
+  rclcpp::spin(node);
+  rclcpp::shutdown();
+  return 0;
+}
+"""
+RELAY = (
+    PROBE.replace('"probe"', '"relay"')
+    .replace('  auto rate = node->get_parameter("probe_rate").as_double();\n', "")
+    .replace('"probe_reading"', '"relayed"')
+)
+PROBE_LAUNCH = """<launch>
+  <node pkg="relay_pkg" exec="relay" name="relay"/>
+</launch>
+"""
+
+
+def test_a_kept_patch_keeps_the_parameters_of_code_moved_since_where_they_are(
+    run_cli: Any, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A line put above the probe's code moves its undeclared read (RN407, replayed);
+    the relay's topic renamed is patched, and kept as the next runs' graph
+    (``REBASE_EDITS`` of one): the probe's code parameters it keeps are where they are
+    now (``patch.moved_code_parameters``), so a launch file that starts the probe
+    afterwards, which takes them from there, reports the read where it is."""
+    monkeypatch.setattr(engine, "REBASE_EDITS", 1)
+    root = tmp_path / "ws"
+    for name, executable, source in (("probe_pkg", "probe", PROBE), ("relay_pkg", "relay", RELAY)):
+        package = root / "src" / name
+        (package / "src").mkdir(parents=True)
+        (package / "package.xml").write_text(AMENT_PACKAGE.format(name=name), encoding="utf-8")
+        (package / "CMakeLists.txt").write_text(
+            f"cmake_minimum_required(VERSION 3.8)\nproject({name})\n"
+            "find_package(ament_cmake REQUIRED)\nfind_package(rclcpp REQUIRED)\n"
+            f"add_executable({executable} src/{executable}.cpp)\nament_package()\n",
+            encoding="utf-8",
+        )
+        (package / "src" / f"{executable}.cpp").write_text(source, encoding="utf-8")
+    launch = root / "src/probe_pkg/launch/probe.launch.xml"
+    launch.parent.mkdir()
+    launch.write_text(PROBE_LAUNCH, encoding="utf-8")
+    cache = tmp_path / "cache"
+    cached, fresh = outputs(run_cli, root, cache)
+    assert cached == fresh
+    steps = [
+        (root / "src/probe_pkg/src/probe.cpp", "#include", "// Probe.\n#include"),
+        (root / "src/relay_pkg/src/relay.cpp", '"relayed"', '"relayed_out"'),
+        (launch, "</launch>", '  <node pkg="probe_pkg" exec="probe" name="probe"/>\n</launch>'),
+    ]
+    for path, old, new in steps:
+        edit(path, old, new)
+        cached, fresh = outputs(run_cli, root, cache)
+        assert cached == fresh, path
+    assert [(f["code"], f["line"]) for f in json.loads(fresh)["findings"]] == [("RN407", 9)]

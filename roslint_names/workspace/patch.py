@@ -359,6 +359,18 @@ def _instance_of(node: NodeInstance) -> _Instance | None:
     return _Instance(name, namespace, node.generation)
 
 
+def moved_code_parameters(
+    parameters: Mapping[tuple[str, ...], NodeParameters], edits: Mapping[str, Moved]
+) -> dict[tuple[str, ...], NodeParameters] | None:
+    """Each node's code parameters (``LaunchParts.parameters``) with each use in an edited
+    file where it is now, as ``patched`` moves the graph's nodes' (where no parameter is
+    gathered again); None where one has no new place."""
+    try:
+        return {sources: _moved_parameters(found, edits) for sources, found in parameters.items()}
+    except UnplacedError:
+        return None
+
+
 def _moved_parameters(parameters: NodeParameters, edits: Mapping[str, Moved]) -> NodeParameters:
     """``parameters`` with each use in an edited file where it is now; an
     ``UnplacedError`` where one has no new place."""
