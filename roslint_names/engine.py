@@ -251,6 +251,7 @@ def _lint(
     else:
         context = ()
     workspace = [*sources, *context]
+    packages_now = partial(workspace_packages, workspace, packages)  # the graph's packages
 
     # (1) A stored result has neither the graph nor the facts: not for a caller wanting them.
     inputs: RunInputs | None = None
@@ -390,7 +391,7 @@ def _lint(
             launch_files = sum(source.language in Speculation.languages for source in files)
             ahead = Speculation(
                 specialiser(),
-                partial(workspace_packages, workspace, packages),
+                packages_now,
                 launch_files=launch_files,
                 first=len(files),
             )
@@ -421,7 +422,7 @@ def _lint(
                 specialiser,
                 elsewhere=partial(_base_place, cache, inputs, clean_key, files),
                 depends=depends,
-                packages=partial(workspace_packages, workspace, packages),
+                packages=packages_now,
                 may_rebase=not context,
             )
         replayed = _take_facts(
@@ -455,7 +456,7 @@ def _lint(
         elif graph_rules or want_graph:
             known_facts = checks.facts()
             if ahead is None:
-                specialise, built_with = specialiser(), workspace_packages(workspace, packages)
+                specialise, built_with = specialiser(), packages_now()
             else:
                 specialise, built_with = ahead.specialiser, list(ahead.packages())
             graph, launch_parts, code_parts = build_parts(
@@ -1225,6 +1226,29 @@ class _GraphPatch:
                 loaded[index] = known
             return loaded[index]
 
+        def code_below(directory: str) -> list[tuple[str, FileFacts]] | None:
+            """Every C++ file below a package's directory (display path) with its facts,
+            as ``symbols.PackageConstants`` reads them; None where one has no facts."""
+            code: list[tuple[str, FileFacts]] = []
+            for path in package_files().below(directory):
+                if files[slots[path]].language is not Language.CPP:
+                    continue
+                found = stored_facts(slots[path])
+                if found is None:
+                    return None
+                code.append((path, found))
+            return code
+
+        def constants_of(directory: str) -> PackageConstants | None:
+            """The constants of the C++ files below a package's directory now."""
+            if directory not in constants:
+                code = code_below(directory)
+                table = constants[directory] = None if code is None else PackageConstants()
+                if table is not None and code is not None:
+                    for _, found in code:
+                        table.add(found)
+            return constants[directory]
+
         def resolved(known: FileFacts, index: int) -> FileFacts | None:
             """``known`` with its symbols resolved by its package's headers (``symbols``),
             from every C++ file below the package's directory; None where one of them
@@ -1232,19 +1256,8 @@ class _GraphPatch:
             package = self.checks.package_of(index)
             if package is None:
                 return known  # the run resolves nothing there either
-            if package not in constants:
-                below = [
-                    stored_facts(slots[path])
-                    for path in package_files().below(package)
-                    if files[slots[path]].language is Language.CPP
-                ]
-                table = PackageConstants()
-                for found in below:
-                    if found is not None:
-                        table.add(found)
-                constants[package] = None if any(found is None for found in below) else table
-            kept = constants[package]
-            return None if kept is None else kept.resolve(known, package)
+            table = constants_of(package)
+            return None if table is None else table.resolve(known, package)
 
         def resolved_alike(including: Iterable[str], then_of: Mapping[str, FileFacts]) -> bool:
             """Whether every file taking another file's constant, of a package holding a
@@ -1254,24 +1267,18 @@ class _GraphPatch:
             and where it does, its names may change (the graph is built)."""
             for display in including:
                 for package in package_files().enclosing(display):
-                    code: list[tuple[str, FileFacts]] = []
-                    for path in package_files().below(package.directory):
-                        if files[slots[path]].language is not Language.CPP:
-                            continue
-                        found = stored_facts(slots[path])
-                        if found is None:
-                            return False
-                        code.append((path, found))
-                    now, then = PackageConstants(), PackageConstants()
+                    at = package.directory
+                    code, now = code_below(at), constants_of(at)
+                    if code is None or now is None:
+                        return False
+                    then = PackageConstants()
                     for path, found in code:
-                        now.add(found)
                         then.add(then_of.get(path, found))
                     for path, found in code:
                         if not uses_constants(found):
                             continue
                         if package_files().package_of(path) != package:
                             continue  # resolved in its own package's, below this one
-                        at = package.directory
                         if now.resolve(found, at) != then.resolve(found, at):
                             return False
             return True
@@ -1474,7 +1481,7 @@ class _GraphPatch:
         the files the walk extracted again under an includer's arguments; None where it
         cannot be."""
         specialise = self.specialiser()
-        graph = launch_patched(
+        found = launch_patched(
             whole,
             parts,
             edited,
@@ -1485,7 +1492,7 @@ class _GraphPatch:
             removed=removed,
             code=code,
         )
-        return None if graph is None else (graph, specialise.specialised)
+        return None if found is None else (found, specialise.specialised)
 
 
 def _depending_anew(
