@@ -153,7 +153,7 @@ class PackageGenerations:
         lines.extend(
             f"{path}\0{digest}\n"
             for path, digest in sorted(self.manifests.items())
-            if not (path.endswith(_IN_DIRECTORY) or path == "package.xml")
+            if not is_package_manifest(path)
         )
         return "".join(lines).encode("utf-8", "surrogateescape")
 
@@ -327,10 +327,16 @@ class PackageGenerations:
 _IN_DIRECTORY = os.sep + "package.xml"
 
 
+def is_package_manifest(path: str) -> bool:
+    """Whether a manifest the lookups read (``PackageGenerations.manifests``) is a
+    package.xml, not a plugin description."""
+    return path.endswith(_IN_DIRECTORY) or path == "package.xml"
+
+
 def manifest_digest(path: str) -> str | None:
     """The digest ``PackageGenerations.manifests`` keeps of a package.xml or plugin
     description read now; None where it cannot be read."""
-    if path.endswith(_IN_DIRECTORY) or path == "package.xml":
+    if is_package_manifest(path):
         text = _manifest_text(path)
         return None if text is None else _package_digest(*_package_said(text))
     text = _manifest_text(path, _MAX_DESCRIPTION)

@@ -55,6 +55,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, NamedTuple
 
 from .cache import BuiltinsUnpickler, FactsCache
+from .generation import is_package_manifest
 from .reading import Status, is_racy, open_regular, racy_from, status_of
 
 if TYPE_CHECKING:
@@ -310,7 +311,7 @@ class KeptKey:
         up (``PackageGenerations.restore``); None for any other change."""
         found: list[str] = []
         for path, status in self._differing:
-            if os.path.basename(path) != "package.xml" or status is None:
+            if not is_package_manifest(path) or status is None:
                 return None
             if self._package_status(path) is None:
                 return None
