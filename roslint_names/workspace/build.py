@@ -148,11 +148,13 @@ def _build(
     # Each tree's code and parameter files handed to nodes of unknown name
     tree_sources: dict[str, set[str]] = {}
     tree_unnamed: dict[str, list[Unnamed]] = {}
+    tree_started: dict[str, set[tuple[str, str]]] = {}
     for launched in trees.launched():
         place = (launched.root, place[1] + 1 if place[0] == launched.root else 0)
         sources = launched_sources_of(index, launched, unbuilt)
         launched_sources.update(sources)
         tree_sources.setdefault(launched.root, set()).update(sources)
+        tree_started.setdefault(launched.root, set()).add(started_program(launched))
         kept = started.get(place)
         if kept is None or kept[0][0] is not launched or kept[0][1] != sources:
             instance, read = _launched_instance(index, tests, launched, sources, trees)
@@ -220,6 +222,7 @@ def _build(
                     tuple(sorted(tree_sources.get(root, ()))),
                     tuple(tree_unnamed.get(root, ())),
                     tuple(tree_loads.get(root, ())),
+                    tuple(sorted(tree_started.get(root, ()))),
                 )
                 for root in trees.roots()
             },
@@ -481,6 +484,12 @@ def launched_sources_of(
     (code no build file compiles never runs: ``built``)."""
     found = index.sources_of(launched.node.package, launched.node.executable)
     return tuple(path for path in found if path not in unbuilt)
+
+
+def started_program(launched: Launched) -> tuple[str, str]:
+    """The package and executable (or component plugin) a launched node names
+    (``TreePart.started``), "" for either where it names none."""
+    return (launched.node.package or "", launched.node.executable or "")
 
 
 def _code(index: WorkspaceIndex, sources: Iterable[str]) -> list[FileFacts]:

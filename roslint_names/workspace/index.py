@@ -10,7 +10,7 @@ import copy
 import posixpath
 from bisect import bisect_left
 from collections import Counter
-from collections.abc import Collection, Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Collection, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 
 from roslint_names.model import ExecutableKind, FileFacts, Generation, Language
@@ -264,35 +264,48 @@ class WorkspaceIndex(PackageFiles):
         return {path for sources in self._plugins.values() for path in sources}
 
     def _index_executables(self) -> None:
-        for path, facts in sorted(self.facts.items()):
+        self._programs, self._plugins = self.made_by(
+            sorted(self.facts.items()), self.facts.__contains__
+        )
+
+    def made_by(
+        self, files: Iterable[tuple[str, FileFacts]], exists: Callable[[str], bool]
+    ) -> tuple[dict[tuple[str, str], list[str]], dict[str, list[str]]]:
+        """The programs and plugins ``files`` make (display path and facts, in path
+        order), of their sources those that ``exists`` says are files of the run."""
+        programs: dict[tuple[str, str], list[str]] = {}
+        plugins: dict[str, list[str]] = {}
+        for path, facts in files:
             if not facts.executables:
                 continue
             package = self.package_of(path)
             directory = parent(path)
             for executable in facts.executables:
-                sources = self._existing(directory, executable.sources)
+                sources = _existing(directory, executable.sources, exists)
                 if not sources:
                     continue
                 if executable.kind is ExecutableKind.PLUGIN:
-                    self._plugins.setdefault(executable.name, []).extend(sources)
+                    plugins.setdefault(executable.name, []).extend(sources)
                 elif package is not None:
                     # Two packages of one name (ros/geometry2's and ros2/geometry2's
                     # tf2_ros both build a buffer_server) are two programs, not one: a
                     # copy is keyed by its directory, which no launch file names.
                     owner = package.name if package.name in self.packages else package.directory
                     key = (owner, executable.name)
-                    self._programs.setdefault(key, []).extend(sources)
+                    programs.setdefault(key, []).extend(sources)
+        return programs, plugins
 
-    def _existing(self, directory: str, relatives: Iterable[str]) -> list[str]:
-        """Sources that are files of the run; a console_scripts module ``a/b.py`` may be a
-        package, ``a/b/__init__.py``."""
-        found: list[str] = []
-        for relative in relatives:
-            path = join(directory, relative)
-            if path in self.facts:
-                found.append(path)
-            elif path.endswith(".py"):
-                package_init = path[: -len(".py")] + "/__init__.py"
-                if package_init in self.facts:
-                    found.append(package_init)
-        return found
+
+def _existing(directory: str, relatives: Iterable[str], exists: Callable[[str], bool]) -> list[str]:
+    """Sources that are files of the run (``exists``); a console_scripts module ``a/b.py``
+    may be a package, ``a/b/__init__.py``."""
+    found: list[str] = []
+    for relative in relatives:
+        path = join(directory, relative)
+        if exists(path):
+            found.append(path)
+        elif path.endswith(".py"):
+            package_init = path[: -len(".py")] + "/__init__.py"
+            if exists(package_init):
+                found.append(package_init)
+    return found

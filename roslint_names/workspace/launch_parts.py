@@ -40,6 +40,10 @@ class TreePart(Compact):
     sources: tuple[str, ...]  # the code of every node it starts, named or not, sorted
     unnamed: tuple[Unnamed, ...]  # in the order the walk met them
     loads: tuple[ParameterFileUse, ...]  # group-level ``<rosparam load>``, in order
+    # The package and executable (or plugin) of every node it starts, sorted, whatever
+    # code they found: the trees a package's programs made anew are walked again
+    # (``workspace.program_patch``).
+    started: tuple[tuple[str, str], ...] = ()
 
 
 @dataclass(frozen=True, slots=True)

@@ -44,6 +44,7 @@ from roslint_names.workspace.build import (
     launched_sources_of,
     linked_files,
     mentions,
+    started_program,
     unnamed_receivers,
 )
 from roslint_names.workspace.graph import (
@@ -61,6 +62,7 @@ from roslint_names.workspace.launch_tree import (
     Specialise,
 )
 from roslint_names.workspace.parameters import NO_CODE, NodeParameters, ParameterTables
+from roslint_names.workspace.program_patch import ProgramsAnew
 
 # What a launch file's facts may not change for its trees alone to be walked again: what
 # the executables, the sources no build compiles, the parameter tables, the code no
@@ -136,6 +138,7 @@ def launch_patched(
     prepare: Prepare | None = None,
     removed: Collection[str] = (),
     code: Collection[str] = (),
+    programs: ProgramsAnew | None = None,
 ) -> tuple[Graph, LaunchParts] | None:
     """``graph`` (a build's, whole: ``parts`` is what the same build left) with the trees
     that read one of the ``edited`` files (launch files, ``launch_edit``; parameter files,
@@ -147,10 +150,21 @@ def launch_patched(
     launch file's tree goes, and the trees that read or are handed one are walked
     again; an edited launch file the build had not is a root where nothing includes it,
     as any. ``code``: code files whose node name changed (``patch.name_edit``): the trees
-    that start them are walked again, and their programs of their own made again."""
+    that start them are walked again, and their programs of their own made again.
+    ``programs``: the programs of some packages made again (``program_patch``): the
+    trees that start a node of one are walked again, and the programs of their own made
+    of the code as it is now."""
     edited = frozenset(edited) | frozenset(removed)
     renamed = frozenset(code)
-    index = WorkspaceIndex.restored(facts, packages, parts.executables)
+    anew = parts
+    if programs is not None:
+        anew = replace(
+            parts,
+            unbuilt=programs.unbuilt,
+            executables=programs.executables,
+            programs=programs.programs,
+        )
+    index = WorkspaceIndex.restored(facts, packages, anew.executables)
     try:
         roots, includers = _roots(
             parts, edited, LaunchTrees(index, specialise, roots=[]), frozenset(removed)
@@ -164,11 +178,22 @@ def launch_patched(
             or root in handed
             or not edited.isdisjoint(parts.trees[root].visited)
             or not renamed.isdisjoint(parts.trees[root].sources)
+            or (programs is not None and programs.starts(parts.trees[root]))
         ]
-        if not walked and not gone and not renamed:
+        if not walked and not gone and not renamed and programs is None:
             return graph, replace(parts, includers=includers)
         trees = LaunchTrees(index, specialise, prepare, roots=walked)
-        found = _patched(graph, parts, roots, gone, trees, edited=edited, renamed=renamed)
+        found = _patched(
+            graph,
+            parts,
+            roots,
+            gone,
+            trees,
+            edited=edited,
+            renamed=renamed,
+            anew=anew,
+            programs=programs,
+        )
         if found is None:
             return None
         patched, walked_parts = found
@@ -176,7 +201,7 @@ def launch_patched(
             root: walked_parts[root] if root in walked_parts else parts.trees[root]
             for root in roots
         }
-        return patched, replace(parts, roots=tuple(roots), trees=kept, includers=includers)
+        return patched, replace(anew, roots=tuple(roots), trees=kept, includers=includers)
     except UnknownFactsError:
         return None
 
@@ -238,8 +263,11 @@ def _patched(
     *,
     edited: frozenset[str],
     renamed: frozenset[str] = frozenset(),
+    anew: LaunchParts,
+    programs: ProgramsAnew | None = None,
 ) -> tuple[Graph, dict[str, TreePart]] | None:
-    """``launch_patched``'s graph, and the part of each tree walked again."""
+    """``launch_patched``'s graph, and the part of each tree walked again; ``anew``:
+    ``parts`` with the programs as they are now (``programs``' where it is given)."""
     index = trees.index
     walked = trees.roots()
     tests = _TestFiles(index, {})
@@ -247,9 +275,11 @@ def _patched(
     endpoints: list[Endpoint] = []
     sources_of: dict[str, set[str]] = {root: set() for root in walked}
     unnamed_of: dict[str, list[Unnamed]] = {root: [] for root in walked}
+    started_of: dict[str, set[tuple[str, str]]] = {root: set() for root in walked}
     for launched in trees.launched():
-        sources = launched_sources_of(index, launched, parts.unbuilt)
+        sources = launched_sources_of(index, launched, anew.unbuilt)
         sources_of[launched.root].update(sources)
+        started_of[launched.root].add(started_program(launched))
         started, _ = _launched_instance(index, tests, launched, sources, trees)
         if started.node is not None:
             nodes.append(started.node)
@@ -258,7 +288,7 @@ def _patched(
     # Code a launch file starts no more is a program of its own again, and code started
     # now is one no more.
     was = set(parts.programs.unlaunched(_launched(parts, parts.roots, {})))
-    now = parts.programs.unlaunched(_launched(parts, roots, sources_of))
+    now = anew.programs.unlaunched(_launched(anew, roots, sources_of))
     # Those that run on, of code whose node name changed, are made again.
     stopped = (was - set(now)) | {sources for sources in now if not renamed.isdisjoint(sources)}
     for sources in now:
@@ -294,7 +324,9 @@ def _patched(
         else index.facts[path].parameter_blocks
         for path in linked_files((*kept, *nodes), loads)
     }
-    parameters = _Parameters(parts.parameters)
+    # The code of a program made anew has no parameters in the build's parts: gathered
+    # by the parameter patch (``parameter_patch``), which the caller runs then.
+    parameters = _Parameters(parts.parameters, later=programs is not None)
     finished = [
         replaced(
             node,
@@ -308,8 +340,10 @@ def _patched(
         for path, receiver in unnamed_of[root] if root in unnamed_of else parts.trees[root].unnamed:
             receivers.setdefault(path, set()).add(receiver)
     unnamed = unnamed_receivers(receivers, parameters.of)
-    if parameters.missing:
-        return None
+    if parameters.missing or any(
+        sources in parameters.later for found in receivers.values() for _, sources in found
+    ):
+        return None  # a receiver keeps its code's parameters without the code
     all_nodes = _unique([*kept, *finished], NodeInstance.sort_key)
     walked_parts = {
         root: TreePart(
@@ -317,6 +351,7 @@ def _patched(
             tuple(sorted(sources_of[root])),
             tuple(unnamed_of[root]),
             tuple(loads_of[root]),
+            tuple(sorted(started_of[root])),
         )
         for root in walked
     }
@@ -335,7 +370,7 @@ def _patched(
             ],
             Endpoint.sort_key,
         ),
-        mentions=mentions(index, all_nodes, graph.mentions),
+        mentions=mentions(index, all_nodes, _literals_kept(graph, programs)),
         parameter_files=blocks,
         parameter_loads=loads,
         unnamed_parameter_files=unnamed,
@@ -352,18 +387,39 @@ def _launched(parts: LaunchParts, roots: Sequence[str], walked: Mapping[str, set
     return found
 
 
-class _Parameters:
-    """The build's parameters of each node's code; ``missing`` where one was not made."""
+def _literals_kept(graph: Graph, programs: ProgramsAnew | None) -> Mapping[str, frozenset[str]]:
+    """The literals of the packages the graph keeps (``Graph.mentions``) that no file was
+    added to since: ``programs``' packages' are read again."""
+    if programs is None:
+        return graph.mentions
+    return {
+        package: literals
+        for package, literals in graph.mentions.items()
+        if package not in programs.packages
+    }
 
-    def __init__(self, known: Mapping[tuple[str, ...], NodeParameters]) -> None:
+
+class _Parameters:
+    """The build's parameters of each node's code; ``missing`` where one was not made,
+    but for ``later``, where code the build had no node of is gathered later (each such
+    code in ``later``, its parameters NO_CODE until then)."""
+
+    def __init__(
+        self, known: Mapping[tuple[str, ...], NodeParameters], *, later: bool = False
+    ) -> None:
         self._known = known
+        self._gathered_later = later
         self.missing = False
+        self.later: set[tuple[str, ...]] = set()
 
     def of(self, sources: tuple[str, ...]) -> NodeParameters:
         if not sources:
             return NO_CODE
         found = self._known.get(sources)
         if found is None:
-            self.missing = True
+            if self._gathered_later:
+                self.later.add(sources)
+            else:
+                self.missing = True
             return NO_CODE
         return found

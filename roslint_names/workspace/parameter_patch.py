@@ -38,10 +38,11 @@ which a run that keeps what it patched keeps (``engine.REBASE_EDITS``).
 
 from __future__ import annotations
 
-from collections.abc import Collection, Mapping, Sequence
+import posixpath
+from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import replace
 
-from roslint_names.model import FileFacts, replaced
+from roslint_names.model import FileFacts, Language, replaced
 from roslint_names.workspace.build import _TestFiles
 from roslint_names.workspace.graph import Graph
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
@@ -52,7 +53,9 @@ from roslint_names.workspace.parameters import (
     ParameterSets,
     ParameterTables,
     file_declarations,
+    package_directory,
 )
+from roslint_names.workspace.program_patch import ProgramsAnew
 
 
 def parameters_patched(
@@ -64,6 +67,8 @@ def parameters_patched(
     facts: Mapping[str, FileFacts],
     packages: Sequence[Package],
     depending: Collection[str] = (),
+    programs: ProgramsAnew | None = None,
+    added: Collection[str] = (),
 ) -> tuple[Graph, LaunchParts, CodeParameterParts] | None:
     """``graph`` (a build's, whole, patched since: ``parts`` and ``code`` are what the
     same build left) with the parameters of every node's code that spans the package of
@@ -73,7 +78,10 @@ def parameters_patched(
     ``launch_patch.LazyFacts``), and the workspace's declarations with the edited files'
     own; with the parts a build of the files as they are would leave (the parameters
     of each node's code, the lookups, spans and counts); None where that cannot be done
-    exactly (module docstring)."""
+    exactly (module docstring). ``programs``: the programs of some packages made again
+    (``program_patch``; ``parts`` are the launch patch's, with them): the code spanning
+    those packages, and the code no node ran at the build, is gathered too; ``added``:
+    the edited code files the build had not (their facts then empty)."""
     index = WorkspaceIndex.restored(facts, packages, parts.executables)
     tests = _TestFiles(index, {})
 
@@ -83,13 +91,25 @@ def parameters_patched(
     lookups, dependent = code.lookups.with_classes(
         ((path, before, now) for path, (before, now) in edited.items()), excluded
     )
+    changed_programs: Collection[str] = ()
+    if programs is not None:
+        lookups = replace(
+            lookups,
+            programs=programs.program_sources(),
+            by_name=_by_name(lookups.by_name, index, added, excluded),
+        )
+        changed_programs = programs.sources
     sets = ParameterSets(index, ParameterTables(lookups, excluded))
     reached = {
         (package.name if (package := index.package_of(path)) else "")
-        for path in (*edited, *dependent)
+        for path in (*edited, *dependent, *changed_programs)
     }
     reached.update(depending)
     spanning = [sources for sources, spans in code.spans.items() if not spans.isdisjoint(reached)]
+    if programs is not None:  # and the code the build had no node of
+        spanning.extend(
+            sorted({node.sources for node in graph.nodes if node.sources not in code.spans})
+        )
     if not spanning:
         fresh = {}
     else:
@@ -98,7 +118,7 @@ def parameters_patched(
         except UnknownFactsError:  # a file the patch cannot load: the graph is built
             return None
         # A receiver of a parameter file keeps its code's parameters without the code.
-        stale = [parts.parameters[sources] for sources in spanning]
+        stale = [parts.parameters[sources] for sources in spanning if sources in parts.parameters]
         if any(
             receiver.parameters in stale
             for receivers in graph.unnamed_parameter_files.values()
@@ -112,12 +132,35 @@ def parameters_patched(
         for node in graph.nodes
     )
     counts = _declarations(code.counts, edited)
-    spans = {sources: sets.spans.get(sources, frozenset()) for sources in fresh}
+    spans = {**code.spans, **{sources: sets.spans.get(sources, frozenset()) for sources in fresh}}
+    parameters = {**parts.parameters, **fresh}
+    if programs is not None:  # code no node runs any more: a build gathers none of it
+        ran = {node.sources for node in nodes}
+        ran.update(sources for part in parts.trees.values() for _, (_, sources) in part.unnamed)
+        parameters = {sources: found for sources, found in parameters.items() if sources in ran}
+        spans = {sources: found for sources, found in spans.items() if sources in ran}
     return (
         replace(graph, nodes=nodes, parameter_declarations=counts.declarations()),
-        replace(parts, parameters={**parts.parameters, **fresh}),
-        CodeParameterParts(lookups, {**code.spans, **spans}, counts),
+        replace(parts, parameters=parameters),
+        CodeParameterParts(lookups, spans, counts),
     )
+
+
+def _by_name(
+    by_name: Mapping[tuple[str, str], list[str]],
+    index: WorkspaceIndex,
+    added: Collection[str],
+    excluded: Callable[[str], bool],
+) -> dict[tuple[str, str], list[str]]:
+    """``TableLookups.by_name`` with the C++ files added that no build leaves out, each
+    where ``ParameterTables.of`` puts it (in path order)."""
+    found = dict(by_name)
+    for path in sorted(added):
+        if index.facts[path].language is not Language.CPP or excluded(path):
+            continue
+        key = (package_directory(index, path), posixpath.basename(path))
+        found[key] = sorted([*found.get(key, ()), path])
+    return found
 
 
 def _declarations(

@@ -425,7 +425,7 @@ class ParameterTables:
             if left_out:
                 continue
             if facts.language is Language.CPP:
-                key = (_directory(index, path), posixpath.basename(path))
+                key = (package_directory(index, path), posixpath.basename(path))
                 tables.by_name.setdefault(key, []).append(path)
         for sources in index.built_sources().values():
             tables.programs.update(sources)
@@ -778,7 +778,7 @@ class ParameterSets:
             return []  # an included source is its own implementation
         found = self._implementations_memo.get(header)
         if found is None:
-            directory = _directory(self._index, header)
+            directory = package_directory(self._index, header)
             stem = posixpath.basename(header).rpartition(".")[0]
             found = self._implementations_memo[header] = [
                 path
@@ -979,7 +979,7 @@ def _closeness(owner: Package, user: Package) -> tuple[bool, int]:
     return None in generations or len(generations) == 1, shared
 
 
-def _directory(index: WorkspaceIndex, path: str) -> str:
+def package_directory(index: WorkspaceIndex, path: str) -> str:
     """The directory of the package holding ``path``; the file's own outside packages."""
     package = index.package_of(path)
     return posixpath.dirname(path) if package is None else package.directory

@@ -43,7 +43,7 @@ from roslint_names.workspace.parameters import NodeParameters, ParameterUse
 # What a file holds that the graph takes from launch files, build files, parameter files
 # and dynamic_reconfigure configs: an edit of any of it is built (the launch trees, the
 # executables, the parameter settings change).
-_NOT_CODE_FIELDS = (
+NOT_CODE_FIELDS = (
     "launch_nodes",
     "includes",
     "executables",
@@ -69,7 +69,7 @@ def code_edit(before: FileFacts, now: FileFacts) -> Moved | None:
     file starts is one that declares endpoints: ``build._unlaunched_programs``)."""
     if before.language not in CODE_LANGUAGES or now.language is not before.language:
         return None
-    if any(getattr(facts, field) for facts in (before, now) for field in _NOT_CODE_FIELDS):
+    if any(getattr(facts, field) for facts in (before, now) for field in NOT_CODE_FIELDS):
         return None
     if _has_endpoints(before) != _has_endpoints(now):
         return None

@@ -1,0 +1,375 @@
+"""A graph patched after a node was added to a package is the graph a build gives
+(``workspace.program_patch``, issue 30): each step adds a source, an executable to a
+build file or both, as a developer adds a node (a roscpp node and its
+``add_executable``; a script a launch file finds by its name; an rclpy node no launch
+file starts; a source no build compiles), and the last build's graph with the
+package's programs made again, the trees that start them walked again
+(``launch_patch``) and the parameters of its code gathered again (``parameter_patch``)
+must equal the graph built from every file's facts, and the parts too (a patched run may
+keep them as a build's). An edit that reaches past the package is refused."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from conftest import ExampleCopy, assert_patched
+
+from roslint_names.model import FileFacts
+from roslint_names.workspace.build import _TestFiles
+from roslint_names.workspace.built import BuiltSources
+from roslint_names.workspace.graph import Graph
+from roslint_names.workspace.index import CODE_LANGUAGES, WorkspaceIndex
+from roslint_names.workspace.launch_parts import CodeParameterParts, LaunchParts
+from roslint_names.workspace.launch_patch import LazyFacts, launch_edit, launch_patched
+from roslint_names.workspace.parameter_patch import parameters_patched
+from roslint_names.workspace.program_patch import program_edit, programs_anew
+
+CMAKE = "src/turtle_bringup/CMakeLists.txt"
+BASE = "src/turtle_bringup/launch/base.launch"
+FILTER = "src/turtle_bringup/src/odom_filter.cpp"
+FILTER_MATH = "src/turtle_bringup/src/odom_filter_math.cpp"
+IMU_RELAY = "src/turtle_bringup/src/imu_relay.cpp"
+PROBE = "src/turtle_bringup/src/probe_node.cpp"
+HEADING = "src/turtle_bringup/scripts/heading_logger.py"
+LEGACY = "src/turtle_bringup/src/legacy_driver.cpp"
+DOCK_STATUS = "src/fleet_bringup/fleet_bringup/dock_status.py"
+
+ODOM_FILTER = """// Smooths the odometry the base publishes before the planners read it.
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+
+class OdomFilter
+{
+public:
+  OdomFilter() : private_nh_("~")
+  {
+    private_nh_.param("alpha", alpha_, 0.2);
+    odom_sub_ = nh_.subscribe("odom", 10, &OdomFilter::odomCallback, this);
+    filtered_pub_ = nh_.advertise<nav_msgs::Odometry>("odom_filtered", 10);
+  }
+
+private:
+  void odomCallback(const nav_msgs::Odometry::ConstPtr & odom)
+  {
+    filtered_pub_.publish(*odom);
+  }
+
+  ros::NodeHandle nh_;
+  ros::NodeHandle private_nh_;
+  ros::Subscriber odom_sub_;
+  ros::Publisher filtered_pub_;
+  double alpha_;
+};
+
+int main(int argc, char ** argv)
+{
+  ros::init(argc, argv, "odom_filter");
+  OdomFilter filter;
+  ros::spin();
+  return 0;
+}
+"""
+
+FILTER_HELPER = """// The filter's arithmetic, apart from its topics.
+#include <ros/ros.h>
+
+double filter_gain()
+{
+  double gain = 1.0;
+  ros::param::get("~gain", gain);
+  return gain;
+}
+"""
+
+RELAY_NODE = """// Republishes the IMU under the name the localization expects.
+#include <ros/ros.h>
+#include <sensor_msgs/Imu.h>
+
+ros::Publisher relayed;
+
+void relay(const sensor_msgs::Imu::ConstPtr & imu) { relayed.publish(*imu); }
+
+int main(int argc, char ** argv)
+{
+  ros::init(argc, argv, "imu_relay");
+  ros::NodeHandle nh;
+  relayed = nh.advertise<sensor_msgs::Imu>("imu_relayed", 10);
+  ros::Subscriber sub = nh.subscribe("imu", 10, relay);
+  ros::spin();
+  return 0;
+}
+"""
+
+PROBE_NODE = """// Reports what the base sees, for the bench.
+#include <ros/ros.h>
+#include <std_msgs/String.h>
+
+int main(int argc, char ** argv)
+{
+  ros::init(argc, argv, "probe");
+  ros::NodeHandle nh;
+  ros::Publisher status = nh.advertise<std_msgs::String>("probe/status", 1);
+  ros::spin();
+  return 0;
+}
+"""
+
+HEADING_LOGGER = """#!/usr/bin/env python
+# Logs the heading the odometry reports.
+import rospy
+from nav_msgs.msg import Odometry
+
+
+def log_heading(odom):
+    rospy.loginfo("heading %f", odom.pose.pose.orientation.z)
+
+
+if __name__ == "__main__":
+    rospy.init_node("heading_logger")
+    rospy.Subscriber("odom", Odometry, log_heading)
+    rospy.spin()
+"""
+
+LEGACY_DRIVER = """// The driver of the first base, kept for reference; no target builds it.
+#include <geometry_msgs/Twist.h>
+#include <ros/ros.h>
+
+int main(int argc, char ** argv)
+{
+  ros::init(argc, argv, "legacy_driver");
+  ros::NodeHandle nh;
+  ros::Publisher wheels = nh.advertise<geometry_msgs::Twist>("wheel_cmd", 1);
+  ros::spin();
+  return 0;
+}
+"""
+
+DOCK_STATUS_NODE = """# Tells the fleet whether the dock is free.
+import rclpy
+from rclpy.node import Node
+from std_msgs.msg import Bool
+
+
+class DockStatus(Node):
+    def __init__(self):
+        super().__init__("dock_status")
+        self.declare_parameter("dock_id", "dock_1")
+        self.publisher = self.create_publisher(Bool, "dock/free", 1)
+
+
+def main():
+    rclpy.init()
+    rclpy.spin(DockStatus())
+
+
+if __name__ == "__main__":
+    main()
+"""
+
+_Edit = tuple[str, str, str]  # a file, text in it, the text put in its place ("": appended)
+# Each step: the files added, then the edits; patched from the step before's build.
+PATCHED: list[tuple[dict[str, str], list[_Edit]]] = [
+    # A roscpp node and its executable: no launch file starts it yet.
+    (
+        {FILTER: ODOM_FILTER},
+        [(CMAKE, "", "\nadd_executable(odom_filter src/odom_filter.cpp)\n")],
+    ),
+    # A launch file starts a program no build makes yet; then its source and executable.
+    (
+        {},
+        [
+            (
+                BASE,
+                "</launch>",
+                '  <node name="imu_relay" pkg="turtle_bringup" type="imu_relay">\n'
+                '    <remap from="imu" to="imu/data"/>\n'
+                "  </node>\n</launch>",
+            )
+        ],
+    ),
+    (
+        {IMU_RELAY: RELAY_NODE},
+        [(CMAKE, "", "add_executable(imu_relay src/imu_relay.cpp)\n")],
+    ),
+    # A second source of a target, which reads a parameter.
+    (
+        {FILTER_MATH: FILTER_HELPER},
+        [
+            (
+                CMAKE,
+                "add_executable(odom_filter src/odom_filter.cpp)",
+                "add_executable(odom_filter src/odom_filter.cpp src/odom_filter_math.cpp)",
+            )
+        ],
+    ),
+    # An executable whose source is not there yet; then the source.
+    ({}, [(CMAKE, "", "add_executable(probe_node src/probe_node.cpp)\n")]),
+    ({PROBE: PROBE_NODE}, []),
+    # A script a launch file starts by its name (rosrun's rule), no build file names it.
+    (
+        {},
+        [
+            (
+                BASE,
+                "</launch>",
+                '  <node name="heading_logger" pkg="turtle_bringup" type="heading_logger.py"/>\n'
+                "</launch>",
+            )
+        ],
+    ),
+    ({HEADING: HEADING_LOGGER}, []),
+    # A source no build compiles: it joins no node.
+    ({LEGACY: LEGACY_DRIVER}, []),
+    # An rclpy node of a package without a build file that names it: a program of its own.
+    ({DOCK_STATUS: DOCK_STATUS_NODE}, []),
+]
+
+# Edits that reach past the package (each from the examples' build): refused.
+REFUSED: list[tuple[dict[str, str], list[_Edit]]] = [
+    # A target naming another package's source beside one of its own.
+    (
+        {},
+        [
+            (
+                CMAKE,
+                "add_executable(odom_relay src/odom_relay.cpp)",
+                "add_executable(odom_relay src/odom_relay.cpp ../fleet_bringup/src/dock_manager.cpp)",
+            )
+        ],
+    ),
+]
+
+
+class _Workspace(ExampleCopy):
+    def built(self) -> tuple[Graph, LaunchParts, CodeParameterParts, dict[str, FileFacts]]:
+        built: tuple[Graph, LaunchParts, CodeParameterParts, dict[str, FileFacts]]
+        built = self.built_parts()
+        return built
+
+    def step(self, added: dict[str, str], edits: list[_Edit]) -> None:
+        self.add(added)
+        for edit in edits:
+            self.edit(*edit)
+
+    def patched(
+        self,
+        built: tuple[Graph, LaunchParts, CodeParameterParts, dict[str, FileFacts]],
+        now: dict[str, FileFacts],
+    ) -> tuple[Graph, LaunchParts, CodeParameterParts] | None:
+        """What ``engine._GraphPatch`` does for these edits."""
+        graph, parts, code, before = built
+        added = sorted(now.keys() - before.keys())
+        changed = [path for path in before if before[path] != now[path]]
+        launch = [path for path in changed if launch_edit(before[path], now[path])]
+        build = [path for path in changed if program_edit(before[path], now[path])]
+        if set(changed) - set(launch) - set(build):
+            return None
+        facts = LazyFacts(now.keys(), now.get)
+        index = WorkspaceIndex.restored(facts, self.packages, parts.executables)
+        added_code = [path for path in added if now[path].language in CODE_LANGUAGES]
+        owners = {index.package_of(path) for path in (*build, *added_code)}
+        packages = sorted(
+            (package for package in owners if package is not None), key=lambda p: p.directory
+        )
+        compiled = BuiltSources()
+        for path, found in now.items():
+            if found.compiled is not None or found.included_sources:
+                owner = index.package_of(path)
+                compiled.add(found, None if owner is None else owner.directory)
+        programs = programs_anew(
+            parts.programs,
+            parts.executables,
+            parts.unbuilt,
+            index=index,
+            packages=packages,
+            language_of=lambda path: now[path].language,
+            then={path: before[path] for path in build},
+            added=added,
+            compiled=compiled,
+            is_test=_TestFiles(index, {}),
+        )
+        if programs is None:
+            return None
+        assert self.specialiser is not None
+        walked = launch_patched(
+            graph,
+            parts,
+            launch,
+            facts=facts,
+            packages=self.packages,
+            specialise=self.specialiser,
+            prepare=self.specialiser.prepare,
+            programs=programs,
+        )
+        if walked is None:
+            return None
+        empty = {path: FileFacts(path, now[path].language, now[path].generation) for path in added}
+        return parameters_patched(
+            walked[0],
+            walked[1],
+            code,
+            {path: (empty[path], now[path]) for path in added_code},
+            facts=facts,
+            packages=self.packages,
+            programs=programs,
+            added=added_code,
+        )
+
+
+_Parts = tuple[Graph, LaunchParts, CodeParameterParts]
+_Step = tuple[str, _Parts, _Parts | None]
+
+
+@pytest.fixture(scope="module")
+def steps(tmp_path_factory: pytest.TempPathFactory) -> list[_Step]:
+    """Each step: what it added, the graph and parts built after it, and those patched."""
+    workspace = _Workspace(tmp_path_factory.mktemp("program_patch") / "ws")
+    built = workspace.built()
+    found: list[_Step] = []
+    for added, edits in PATCHED:
+        workspace.step(added, edits)
+        now = workspace.built()
+        patched = workspace.patched(built, now[3])
+        found.append((", ".join([*added, *(path for path, _, _ in edits)]), now[:3], patched))
+        built = now
+    return found
+
+
+@pytest.mark.parametrize("step", range(len(PATCHED)))
+def test_a_patched_graph_and_its_parts_are_the_built_ones(steps: list[_Step], step: int) -> None:
+    assert_patched(steps, step)
+
+
+def test_the_steps_change_the_graph(steps: list[_Step]) -> None:
+    """Each step changes the graph (a step that changed nothing would test nothing) but
+    the executable whose source is not there yet (the build keeps no program of no
+    source). The source no build compiles joins no node, but its literals are its
+    package's (``Graph.mentions``: a node there has remaps of its own)."""
+    graphs = [built[0] for _, built, _ in steps]
+    unchanged = [
+        steps[at + 1][0] for at, (one, other) in enumerate(zip(graphs, graphs[1:])) if one == other
+    ]
+    assert unchanged == [CMAKE]
+
+
+@pytest.mark.parametrize("step", range(len(REFUSED)))
+def test_an_edit_past_the_package_is_refused(tmp_path: Path, step: int) -> None:
+    workspace = _Workspace(tmp_path / "ws")
+    built = workspace.built()
+    workspace.step(*REFUSED[step])
+    now = workspace.built()
+    assert now[0] != built[0]
+    assert workspace.patched(built, now[3]) is None
+
+
+def test_a_built_source_once_unbuilt_is_refused(tmp_path: Path) -> None:
+    """The parameter tables leave out code no build compiles: a source the build had
+    that a target names now changes them past what the patch follows."""
+    workspace = _Workspace(tmp_path / "ws")
+    workspace.add({LEGACY: LEGACY_DRIVER})
+    built = workspace.built()
+    workspace.edit(CMAKE, "", "add_executable(legacy_driver src/legacy_driver.cpp)\n")
+    now = workspace.built()
+    assert now[0] != built[0]
+    assert workspace.patched(built, now[3]) is None
