@@ -65,16 +65,24 @@ from .test_code import is_example_code, is_test_code
 from .types import parse_type
 from .wiring import WIRING_SOURCES, awaits_wiring, wired_by
 from .workers import Dispatcher
-from .workspace.build import build_parts
+from .workspace.build import _TestFiles, build_parts
 from .workspace.built import BuiltSources
 from .workspace.graph import Graph
-from .workspace.index import Package, PackageFiles, companions, named_once
+from .workspace.index import (
+    CODE_LANGUAGES,
+    Package,
+    PackageFiles,
+    WorkspaceIndex,
+    companions,
+    named_once,
+)
 from .workspace.interfaces import service_definitions
 from .workspace.launch_parts import CodeParameterParts, LaunchParts
 from .workspace.launch_patch import LazyFacts, launch_edit, launch_patched, parameter_edit
 from .workspace.launch_tree import LAUNCH_LANGUAGES
 from .workspace.parameter_patch import parameters_patched
 from .workspace.patch import (
+    NOT_CODE_FIELDS,
     Moved,
     edits_of,
     for_patching,
@@ -84,6 +92,7 @@ from .workspace.patch import (
     with_parameters,
 )
 from .workspace.patch import patched as patch_graph
+from .workspace.program_patch import ProgramsAnew, program_edit, programs_anew
 
 if TYPE_CHECKING:
     from .cache import FactsCache  # imported by the caller that wants a cache
@@ -438,7 +447,11 @@ def _lint(
         if inputs is not None and not fresh and run_key is None:
             run_key = inputs.key_last()
         if replayed is not None:
-            checks.resume(replayed.replay, replayed.edited)
+            checks.resume(
+                replayed.replay,
+                replayed.edited,
+                {files[index].display for index in replayed.edited},
+            )
         checks.finish()
         if replayed is not None:
             graph_found, specialised = replayed.replay.graph, replayed.replay.specialised
@@ -830,11 +843,12 @@ class _FileChecks:
             frozenset(self._lookups.named),
         )
 
-    def resume(self, replay: Replay, edited: Sequence[int]) -> None:
-        """Take a run's replay (``same_facts``) for every file but the ``edited`` ones,
-        which were taken as any: their stored findings, and what the run gathered from
-        every file's facts (the edited files' share of it is the same, as their facts
-        are). Before ``finish``: an edited file may wait for the run."""
+    def resume(self, replay: Replay, edited: Sequence[int], paths: Collection[str]) -> None:
+        """Take a run's replay (``same_facts``) for every file but the ``edited`` ones
+        (``paths``: their display paths), which were taken as any: their stored
+        findings, and what the run gathered from every file's facts (the edited files'
+        share of it as it is now). Before ``finish``: an edited file may wait for the
+        run."""
         mine = set(edited)
         for index, found in replay.found.items():
             if index not in mine:
@@ -842,8 +856,14 @@ class _FileChecks:
         run_wide = replay.run_wide
         self.service_types.update(run_wide.service_types)
         self._wired.update(run_wide.wired)
+        # The files taken by this run are in as they are now (a build file may compile
+        # other sources: ``program_patch``), the others as the replay's run had them.
+        taken = self._built
         self._built = BuiltSources()
         for facts, package in run_wide.built:
+            if facts.path not in paths:
+                self._built.add(facts, package)
+        for facts, package in taken.given():
             self._built.add(facts, package)
         self._rejected = {package: set(names) for package, names in run_wide.rejected.items()}
         self._lookups.update(run_wide.looked_up, run_wide.naming, run_wide.named_sources)
@@ -1145,21 +1165,36 @@ class _GraphPatch:
     rebased: _Rebased | None = None
 
     def __call__(self, replay: Replay, arrived: Sequence[_Arrived]) -> _Replayed | None:
+        """The replay patched from the graph kept where it was made; where that holds
+        none, or one the edits since cannot patch, from the graph of the last run of
+        this run's shape (``elsewhere``): a replay found by the run's files may be of a
+        run long ago (a file removed and brought back), whose graph is older than the
+        last build's."""
         files = self.gathered.files
         place = self.place.resolved(self.cache, files)
         stored = None if place is None else place.graph(self.cache, len(files), replay.reported)
-        if stored is None:
-            other = self.elsewhere()
-            place = None if other is None else other.resolved(self.cache, files)
-            stored = None if place is None else place.graph(self.cache, len(files), replay.reported)
-            self.elsewhere_used = True
+        found = (
+            None if place is None or stored is None else self._from(replay, arrived, place, stored)
+        )
+        if found is not None:
+            return found
+        other = self.elsewhere()
+        last = None if other is None else other.resolved(self.cache, files)
+        if last is None or (place is not None and last.key == place.key):
+            return None
+        stored = last.graph(self.cache, len(files), replay.reported)
+        self.elsewhere_used = True
+        return None if stored is None else self._from(replay, arrived, last, stored)
+
+    def _from(
+        self, replay: Replay, arrived: Sequence[_Arrived], place: _GraphPlace, stored: KeptGraph
+    ) -> _Replayed | None:
+        """The replay patched from the graph ``stored`` at ``place``; None where the
+        edits since cannot be."""
+        files = self.gathered.files
         self.graph_from = place
         codes = {rule.code for rule in self.rules}
-        if (
-            place is None
-            or stored is None
-            or not same_facts.codes_of(replay.graph, stored.found) <= codes
-        ):
+        if not same_facts.codes_of(replay.graph, stored.found) <= codes:
             return None
         built_from, graph = stored.tags, stored.graph
         packages: Sequence[Package] = stored.packages
@@ -1285,6 +1320,10 @@ class _GraphPatch:
 
         changed: list[tuple[str, FileFacts, FileFacts]] = []
         tree_edits: list[str] = []
+        # Build files that build other programs now (as they were at the build), and code
+        # files added: their packages' programs are made again (``program_patch``).
+        building: dict[str, FileFacts] = {}
+        added_code: list[str] = []
         pairs = zip(self.inputs.tags, built_from, strict=True)
         for index, (now, then) in enumerate(pairs):
             if now == then:
@@ -1294,6 +1333,10 @@ class _GraphPatch:
                 return None  # the graph read its bytes under an includer's arguments
             if then == ADDED:
                 added = facts_at(index) if is_facts_key(now) else None
+                if added is not None and _new_code(added, found_by, replay.run_wide):
+                    added_code.append(display)  # its package's programs made again
+                    new_files.add(display)
+                    continue
                 came = None if added is None else _came_or_went(added, found_by, launch_files)
                 if came is None:
                     return None
@@ -1309,6 +1352,9 @@ class _GraphPatch:
                 return None
             # A launch or parameter file whose facts are where they were (a comment at the
             # end) changes no tree; else the trees that read it are walked again.
+            if program_edit(before, facts):
+                building[display] = before  # its package's programs made again
+                continue
             moved_only = same_places(before, facts)
             if (launch_edit(before, facts) or parameter_edit(before, facts)) and not moved_only:
                 if not _patchable(before, facts, wiring_kept=True):
@@ -1321,7 +1367,13 @@ class _GraphPatch:
         including = [
             display for display, then, now in changed if then.cpp_includes != now.cpp_includes
         ]
-        if including and not resolved_alike(including, {d: then for d, then, _ in changed}):
+        then_of = {display: then for display, then, _ in changed}
+        for display in added_code:  # a header added may define what a file takes
+            added = facts_at(slots[display])
+            if added is not None and added.language is Language.CPP:
+                including.append(display)
+                then_of[display] = _empty(added)
+        if including and not resolved_alike(including, then_of):
             return None
         naming -= {*tree_edits, *removed_trees}
         walk = [*tree_edits, *sorted(naming)]  # the launch files whose trees are walked again
@@ -1340,8 +1392,10 @@ class _GraphPatch:
         # patched as the graph later runs patch (``REBASE_EDITS``).
         kept: KeptLaunch | None = None
         known: set[str] = set()  # the files the build had facts of (a skipped one has none)
-        gathering = bool(declaring or depending)  # some nodes' parameters gathered again
+        # Some nodes' parameters gathered again
+        gathering = bool(declaring or depending or building or added_code)
         since = len(changed) + len(tree_edits) + len(removed_trees) + len(new_files)
+        since += len(building)
         rebasing = self.may_rebase and since + len(depending) >= REBASE_EDITS
         if walk or removed_trees or gathering or rebasing:
             kept = same_facts.loaded_launch(
@@ -1358,8 +1412,35 @@ class _GraphPatch:
             }
             known |= new_files
         launch_parts = None if kept is None else kept.parts  # as a build would leave them
+        programs: ProgramsAnew | None = None
+        compiled: tuple[BuiltSources, BuiltSources] | None = None  # at the last run, now
+        if building or added_code:
+            assert kept is not None
+            compiled = _compiled(replay.run_wide, arrived, self.checks.package_of)
+            at_now = WorkspaceIndex.restored(
+                LazyFacts(known, facts_of), packages, kept.parts.executables
+            )
+            owners = [package_files().package_of(path) for path in (*building, *added_code)]
+            if None in owners:
+                return None
+            programs = programs_anew(
+                kept.parts.programs,
+                kept.parts.executables,
+                kept.parts.unbuilt,
+                index=at_now,
+                packages=sorted(
+                    {owner for owner in owners if owner is not None}, key=_by_directory
+                ),
+                language_of=lambda path: files[slots[path]].language,
+                then=building,
+                added=added_code,
+                compiled=compiled[1],
+                is_test=_TestFiles(at_now, {}),
+            )
+            if programs is None:
+                return None
         specialised = replay.specialised
-        if walk or removed_trees or renamed:
+        if walk or removed_trees or renamed or programs is not None:
             assert kept is not None
             if not naming <= known:
                 return None  # a launch file naming one that has no facts now
@@ -1372,6 +1453,7 @@ class _GraphPatch:
                 code=renamed,
                 known=known,
                 facts_of=facts_of,
+                programs=programs,
             )
             if walked is None:
                 return None
@@ -1397,18 +1479,23 @@ class _GraphPatch:
                 return None
             code_parts = kept_code.parts
             if gathering:
+                code_edits = {
+                    display: (before, now) for display, before, now in changed if display in edits
+                }
+                for display in added_code:
+                    added = facts_at(slots[display])
+                    assert added is not None  # (``_new_code``)
+                    code_edits[display] = (_empty(added), added)
                 gathered = parameters_patched(
                     patched,
                     launch_parts,
                     code_parts,
-                    {
-                        display: (before, now)
-                        for display, before, now in changed
-                        if display in edits
-                    },
+                    code_edits,
                     facts=LazyFacts(known, facts_of),
                     packages=packages,
                     depending=depending,
+                    programs=programs,
+                    added=added_code,
                 )
                 if gathered is None:
                     return None
@@ -1455,6 +1542,18 @@ class _GraphPatch:
                     for display in package_files().below(package.directory)
                     if (at := slots[display]) < replay.reported
                 )
+        # A source rostest alone starts now, or starts no more, is judged again
+        # (``_FileChecks.spare``).
+        if programs is not None and compiled is not None:
+            again.update(
+                at
+                for package in programs.packages
+                for display in package_files().files_of(package)
+                if (at := slots[display]) < replay.reported
+                and files[at].language is Language.CPP
+                and compiled[0].started_by_rostest(display, self.checks.package_of(at))
+                != compiled[1].started_by_rostest(display, self.checks.package_of(at))
+            )
         rest = sorted(again - arrived_facts.keys())
         for index, facts, data, verdict in self.gathered.facts(rest):
             self.checks.take(index, facts, data, verdict)
@@ -1473,6 +1572,7 @@ class _GraphPatch:
         code: Collection[str],
         known: set[str],
         facts_of: Callable[[str], FileFacts | None],
+        programs: ProgramsAnew | None,
     ) -> tuple[tuple[Graph, LaunchParts], frozenset[str]] | None:
         """The build's whole graph with the trees that read an ``edited`` launch or
         parameter file walked again (``workspace.launch_patch``), and those of the
@@ -1491,6 +1591,7 @@ class _GraphPatch:
             prepare=specialise.prepare,
             removed=removed,
             code=code,
+            programs=programs,
         )
         return None if found is None else (found, specialise.specialised)
 
@@ -1535,12 +1636,60 @@ def _came_or_went(
     return (_A_TREE, set()) if _a_tree_alone(facts, found_by) else None
 
 
+def _new_code(facts: FileFacts, found_by: shifts.Lookups, run_wide: RunWide) -> bool:
+    """Whether a file added since the build (``shifts``) is code whose package's programs
+    may be made again for it (``program_patch``): code that says something or is found
+    by a name, holds none of the facts launch, build and parameter files hold, takes no
+    other file's constant, wires no name, names no source it includes, and serves or
+    calls services only of types the run knew (``RunWide``: another file's checks
+    compare with those)."""
+    if facts.language not in CODE_LANGUAGES or found_by.adds_nothing(facts):
+        return False
+    types = {(facts.generation, spelling) for spelling in typed_services(facts)}
+    return (
+        not any(getattr(facts, field) for field in NOT_CODE_FIELDS)
+        and not facts.included_sources
+        and not facts.rejected_fixtures
+        and not wired_by(facts)
+        and not uses_constants(facts)
+        and types <= run_wide.service_types
+    )
+
+
+def _empty(facts: FileFacts) -> FileFacts:
+    """The facts of an empty file where ``facts``' is: what a file added had before."""
+    return FileFacts(facts.path, facts.language, facts.generation)
+
+
+def _compiled(
+    run_wide: RunWide,
+    arrived: Sequence[_Arrived],
+    package_of: Callable[[int], str | None],
+) -> tuple[BuiltSources, BuiltSources]:
+    """What the build files compiled at the last run (its ``RunWide``), and now: with
+    the files edited since (``arrived``) as they are."""
+    then, now = BuiltSources(), BuiltSources()
+    edited = {facts.path for _, facts, _, _ in arrived}
+    for facts, package in run_wide.built:
+        then.add(facts, package)
+        if facts.path not in edited:
+            now.add(facts, package)
+    for index, facts, _, _ in arrived:
+        if facts.compiled is not None or facts.included_sources:
+            now.add(facts, package_of(index))
+    return then, now
+
+
+def _by_directory(package: Package) -> str:
+    return package.directory
+
+
 def _a_tree_alone(facts: FileFacts, found_by: shifts.Lookups) -> bool:
     """Whether a launch file added or removed (``shifts``) changes the graph only by a
     tree of its own: nothing includes it (no launch file finds a file of its name), and
     its facts hold nothing else the graph or the run's end reads (``launch_edit`` and
     ``_patchable`` from or to the facts of an empty file)."""
-    empty = FileFacts(facts.path, facts.language, facts.generation)
+    empty = _empty(facts)
     return (
         not found_by.finds(facts.path)
         and launch_edit(empty, facts)

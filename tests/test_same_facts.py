@@ -56,9 +56,9 @@ def replayed(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[list[int]]]:
     seen: list[list[int]] = []
     original = engine._FileChecks.resume
 
-    def recording(checks: Any, replay: Any, edited: Any) -> None:
+    def recording(checks: Any, replay: Any, edited: Any, paths: Any) -> None:
         seen.append(list(edited))
-        original(checks, replay, edited)
+        original(checks, replay, edited, paths)
 
     monkeypatch.setattr(engine._FileChecks, "resume", recording)
     yield seen
@@ -289,17 +289,17 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     (DOCK, "what it does.\n", "what it does.\n    // Renamed.\n", "replay"),
     (DOCK, '"StartDocking"', '"start_docking"', "patch"),
     # A file that holds a node is a program of its own; one a launch file runs by name
-    # is that node's code (``WorkspaceIndex.sources_of``): each builds.
-    (BEACON, None, BEACON_NODE, "build"),
-    (SMOOTHER_SCRIPT, None, GEOMETRY, "build"),
-    (BEACON, "", None, "build"),
+    # is that node's code (``WorkspaceIndex.sources_of``): each makes its package's
+    # programs again (``workspace.program_patch``). Then the first taken out again:
+    # the last build never had it (a code file it had, removed, builds).
+    (BEACON, None, BEACON_NODE, "patch"),
+    (SMOOTHER_SCRIPT, None, GEOMETRY, "patch"),
+    (BEACON, "", None, "patch"),
     # The files of three runs ago, as they were: that run's stored result.
     (SMOOTHER_SCRIPT, "", None, "stored"),
     # A private topic and the one its name resolves to in another case (RN401, by the
     # node's name), and a node of fleet.launch.py started without a name (its code's).
-    # The first is built: the script a launch file ran by name is gone since the last
-    # build.
-    (MONITOR, "    odom_sub_ =", f"{OWN_STATUS}    odom_sub_ =", "build"),
+    (MONITOR, "    odom_sub_ =", f"{OWN_STATUS}    odom_sub_ =", "patch"),
     (f"{FLEET}/launch/fleet.launch.py", '                name="batteryReporter",\n', "", "patch"),
     # A service of another type: the service types every file is compared with (RN204)
     # change, and the graph is built.
@@ -411,7 +411,8 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     # What a node's parameters are gathered through (``patch.gathering_edit``): a header
     # of its package included, a class deriving from the client library's node added
     # (the growth benchmark's ``edit_class``), and a base of the dock manager's class
-    # its own package now defines (its code spans another file).
+    # its own package now defines in a header added (its code spans another file; the
+    # package's programs made again, ``workspace.program_patch``).
     (
         MONITOR,
         "#include <std_srvs/srv/set_bool.hpp>\n",
@@ -419,12 +420,13 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
         "patch",
     ),
     (MONITOR, "", "\nclass MonitorProbe : public rclcpp::Node\n{\n};\n", "patch"),
-    (UNITS, None, REPORTING, "build"),
+    (UNITS, None, REPORTING, "patch"),
     (DOCK, "public rclcpp::Node", "public rclcpp::Node, public fleet_bringup::Reporting", "patch"),
-    # A header whose constant names a topic, and code taking it: the whole run resolves
-    # the name. Then an include changed in that package: the code resolves its names as
+    # A header whose constant names a topic (no file takes it yet: patched, its package
+    # resolving its names as before), and code taking it: the whole run resolves the
+    # name. Then an include changed in that package: the code resolves its names as
     # before (``engine._GraphPatch``'s ``resolved_alike``), the graph is patched.
-    (TOPICS, None, TOPICS_HEADER, "build"),
+    (TOPICS, None, TOPICS_HEADER, "patch"),
     (STATUS_SOURCE, None, STATUS_NODE, "build"),
     (MONITOR, "\n#include <fleet_bringup/units.hpp>\n", "", "patch"),
     # A parameter declared beside that code: the package's files are read as the run
