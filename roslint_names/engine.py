@@ -840,7 +840,7 @@ class _FileChecks:
             {package: frozenset(names) for package, names in self._rejected.items()},
             frozenset(self._lookups.names),
             {name: frozenset(by) for name, by in self._lookups.naming.items()},
-            frozenset(self._lookups.named),
+            {source: frozenset(by) for source, by in self._lookups.named.items()},
         )
 
     def resume(self, replay: Replay, edited: Sequence[int], paths: Collection[str]) -> None:
@@ -1223,8 +1223,14 @@ class _GraphPatch:
         new_files: set[str] = set()
         removed_trees: list[str] = []
         naming: set[str] = set()  # launch files that name a parameter file added or removed
+        # Code files the build had that the run has not, as they were: their packages'
+        # programs are made again (``program_patch``).
+        removed_code: dict[str, FileFacts] = {}
         for display, tag in stored.gone:
             gone = _facts_by_tag(self.cache, tag, display)
+            if gone is not None and _new_code(gone, found_by, frozenset()):
+                removed_code[display] = gone
+                continue
             came = None if gone is None else _came_or_went(gone, found_by, launch_files)
             if came is None:
                 return None
@@ -1297,9 +1303,10 @@ class _GraphPatch:
         def resolved_alike(including: Iterable[str], then_of: Mapping[str, FileFacts]) -> bool:
             """Whether every file taking another file's constant, of a package holding a
             file whose includes changed (``including``), resolves its names as the build
-            did, from the C++ files then (``then_of``: those edited since, as they were):
-            an include added or taken out seldom changes which header defines a constant,
-            and where it does, its names may change (the graph is built)."""
+            did, from the C++ files then (``then_of``: those edited since, as they were,
+            and those removed since): an include added or taken out seldom changes which
+            header defines a constant, and where it does, its names may change (the
+            graph is built)."""
             for display in including:
                 for package in package_files().enclosing(display):
                     at = package.directory
@@ -1309,6 +1316,9 @@ class _GraphPatch:
                     then = PackageConstants()
                     for path, found in code:
                         then.add(then_of.get(path, found))
+                    for path, found in removed_code.items():
+                        if path in then_of and path.startswith(f"{at}/" if at else ""):
+                            then.add(found)
                     for path, found in code:
                         if not uses_constants(found):
                             continue
@@ -1333,7 +1343,7 @@ class _GraphPatch:
                 return None  # the graph read its bytes under an includer's arguments
             if then == ADDED:
                 added = facts_at(index) if is_facts_key(now) else None
-                if added is not None and _new_code(added, found_by, replay.run_wide):
+                if added is not None and _new_code(added, found_by, replay.run_wide.service_types):
                     added_code.append(display)  # its package's programs made again
                     new_files.add(display)
                     continue
@@ -1373,6 +1383,10 @@ class _GraphPatch:
             if added is not None and added.language is Language.CPP:
                 including.append(display)
                 then_of[display] = _empty(added)
+        for display, gone in removed_code.items():  # and one removed may have
+            if gone.language is Language.CPP:
+                including.append(display)
+                then_of[display] = gone
         if including and not resolved_alike(including, then_of):
             return None
         naming -= {*tree_edits, *removed_trees}
@@ -1393,9 +1407,9 @@ class _GraphPatch:
         kept: KeptLaunch | None = None
         known: set[str] = set()  # the files the build had facts of (a skipped one has none)
         # Some nodes' parameters gathered again
-        gathering = bool(declaring or depending or building or added_code)
+        gathering = bool(declaring or depending or building or added_code or removed_code)
         since = len(changed) + len(tree_edits) + len(removed_trees) + len(new_files)
-        since += len(building)
+        since += len(building) + len(removed_code)
         rebasing = self.may_rebase and since + len(depending) >= REBASE_EDITS
         if walk or removed_trees or gathering or rebasing:
             kept = same_facts.loaded_launch(
@@ -1414,13 +1428,15 @@ class _GraphPatch:
         launch_parts = None if kept is None else kept.parts  # as a build would leave them
         programs: ProgramsAnew | None = None
         compiled: tuple[BuiltSources, BuiltSources] | None = None  # at the last run, now
-        if building or added_code:
+        if building or added_code or removed_code:
             assert kept is not None
             compiled = _compiled(replay.run_wide, arrived, self.checks.package_of)
             at_now = WorkspaceIndex.restored(
                 LazyFacts(known, facts_of), packages, kept.parts.executables
             )
-            owners = [package_files().package_of(path) for path in (*building, *added_code)]
+            owners = [
+                package_files().package_of(path) for path in (*building, *added_code, *removed_code)
+            ]
             if None in owners:
                 return None
             programs = programs_anew(
@@ -1434,8 +1450,12 @@ class _GraphPatch:
                 language_of=lambda path: files[slots[path]].language,
                 then=building,
                 added=added_code,
+                removed=removed_code.keys(),
                 compiled=compiled[1],
                 is_test=_TestFiles(at_now, {}),
+                named_elsewhere=lambda path, own: (
+                    not found_by.builders(path) <= {shifts.digest(builder) for builder in own}
+                ),
             )
             if programs is None:
                 return None
@@ -1486,6 +1506,8 @@ class _GraphPatch:
                     added = facts_at(slots[display])
                     assert added is not None  # (``_new_code``)
                     code_edits[display] = (_empty(added), added)
+                for display, gone in removed_code.items():
+                    code_edits[display] = (gone, _empty(gone))
                 gathered = parameters_patched(
                     patched,
                     launch_parts,
@@ -1496,6 +1518,7 @@ class _GraphPatch:
                     depending=depending,
                     programs=programs,
                     added=added_code,
+                    removed=removed_code.keys(),
                 )
                 if gathered is None:
                     return None
@@ -1636,13 +1659,17 @@ def _came_or_went(
     return (_A_TREE, set()) if _a_tree_alone(facts, found_by) else None
 
 
-def _new_code(facts: FileFacts, found_by: shifts.Lookups, run_wide: RunWide) -> bool:
-    """Whether a file added since the build (``shifts``) is code whose package's programs
-    may be made again for it (``program_patch``): code that says something or is found
-    by a name, holds none of the facts launch, build and parameter files hold, takes no
-    other file's constant, wires no name, names no source it includes, and serves or
-    calls services only of types the run knew (``RunWide``: another file's checks
-    compare with those)."""
+def _new_code(
+    facts: FileFacts,
+    found_by: shifts.Lookups,
+    service_types: Collection[tuple[Generation | None, str]],
+) -> bool:
+    """Whether a file added or removed since the build (``shifts``) is code whose
+    package's programs may be made again for it (``program_patch``): code that says
+    something or is found by a name, holds none of the facts launch, build and parameter
+    files hold, takes no other file's constant, wires no name, names no source it
+    includes, and serves or calls services only of ``service_types`` (the run's, for a
+    file added; none, for one removed: another file's checks compare with those)."""
     if facts.language not in CODE_LANGUAGES or found_by.adds_nothing(facts):
         return False
     types = {(facts.generation, spelling) for spelling in typed_services(facts)}
@@ -1652,7 +1679,7 @@ def _new_code(facts: FileFacts, found_by: shifts.Lookups, run_wide: RunWide) -> 
         and not facts.rejected_fixtures
         and not wired_by(facts)
         and not uses_constants(facts)
-        and types <= run_wide.service_types
+        and types <= set(service_types)
     )
 
 

@@ -78,7 +78,7 @@ class RunWide:
     # makes a file found by name that is not, a build or a walk more, never a wrong result.
     looked_up: frozenset[str] = frozenset()
     naming: Mapping[str, frozenset[int]] = field(default_factory=dict)
-    named_sources: frozenset[int] = frozenset()
+    named_sources: Mapping[int, frozenset[int]] = field(default_factory=dict)
 
     def lookups(self) -> Lookups:
         found = Lookups()
@@ -175,7 +175,7 @@ class Replay:
             self.rostest_named,
             tuple(sorted(wide.looked_up)),
             tuple(sorted((name, tuple(sorted(by))) for name, by in wide.naming.items())),
-            tuple(sorted(wide.named_sources)),
+            tuple(sorted((source, tuple(sorted(by))) for source, by in wide.named_sources.items())),
         )
 
     def renumbered(self, renumbering: Renumbering, reported: int) -> Replay:
@@ -196,7 +196,7 @@ class Replay:
         )
 
 
-_FORMAT = "replay 4"
+_FORMAT = "replay 5"
 _FIELDS = 16  # of ``stored``
 
 
@@ -225,6 +225,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         skipped_pairs = tuple((str(path), str(why)) for path, why in skipped)
         type_pairs = frozenset((generation, str(spelling)) for generation, spelling in types)
         naming_map = {str(name): frozenset(by) for name, by in naming}
+        named_map = {source: frozenset(by) for source, by in named}
     except (TypeError, ValueError):
         return None
     if not (
@@ -243,7 +244,8 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         and _strings(wired)
         and _strings(looked_up)
         and all(_ints(tuple(by)) for by in naming_map.values())
-        and _ints(named)
+        and _ints(tuple(named_map))
+        and all(_ints(tuple(by)) for by in named_map.values())
         and _indices(unbuilt, reported)
         and _indices(rostest_named, reported)
         and all(isinstance(generation, Generation | None) for generation, _ in type_pairs)
@@ -262,7 +264,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
             rejected_map,
             frozenset(looked_up),
             naming_map,
-            frozenset(named),
+            named_map,
         ),
         skipped_pairs,
         unbuilt,
@@ -355,7 +357,7 @@ def loaded_graph(value: object, files: int, reported: int) -> KeptGraph | None:
     return KeptGraph(tags, graph, found_map, packages, depends)
 
 
-_LAUNCH_FORMAT = "launch parts 2"
+_LAUNCH_FORMAT = "launch parts 3"
 
 
 @dataclass(frozen=True)

@@ -77,7 +77,7 @@ class Lookups:
 
     names: set[str] = field(default_factory=set)
     naming: dict[str, set[int]] = field(default_factory=dict)
-    named: set[int] = field(default_factory=set)
+    named: dict[int, set[int]] = field(default_factory=dict)  # source -> build files naming it
 
     def add(self, facts: FileFacts) -> None:
         """What a file's facts look up: a launch file's executables and the names of the
@@ -99,17 +99,23 @@ class Lookups:
                 if name.endswith(PARAMETER_NAMES):
                     self.naming.setdefault(name, set()).add(digest(facts.path))
         directory = posixpath.dirname(facts.path)
+        builder = digest(facts.path)
         for executable in facts.executables:
-            self.named.update(digest(join(directory, source)) for source in executable.sources)
+            for source in executable.sources:
+                self.named.setdefault(digest(join(directory, source)), set()).add(builder)
 
     def update(
-        self, names: Iterable[str], naming: Mapping[str, Iterable[int]], named: Iterable[int]
+        self,
+        names: Iterable[str],
+        naming: Mapping[str, Iterable[int]],
+        named: Mapping[int, Iterable[int]],
     ) -> None:
         """What an earlier run found (``RunWide``'s), with what this one finds."""
         self.names.update(names)
         for name, by in naming.items():
             self.naming.setdefault(name, set()).update(by)
-        self.named.update(named)
+        for source, by in named.items():
+            self.named.setdefault(source, set()).update(by)
 
     def finds(self, display: str) -> bool:
         """Whether a launch file finds the file by its name or stem, or a build file's
@@ -121,6 +127,14 @@ class Lookups:
             return True
         # A console_scripts module ``a/b.py`` may be the package ``a/b/__init__.py``.
         return name == "__init__.py" and digest(f"{posixpath.dirname(display)}.py") in self.named
+
+    def builders(self, display: str) -> set[int]:
+        """The build files (digests of their display paths) whose executables name the
+        file as a source."""
+        found = set(self.named.get(digest(display), ()))
+        if posixpath.basename(display) == "__init__.py":
+            found.update(self.named.get(digest(f"{posixpath.dirname(display)}.py"), ()))
+        return found
 
     def adds_nothing(self, facts: FileFacts) -> bool:
         """Whether a file may come or go without a graph of its own: it says nothing and

@@ -10,12 +10,15 @@ keep them as a build's). An edit that reaches past the package is refused."""
 
 from __future__ import annotations
 
+import posixpath
+from itertools import pairwise
 from pathlib import Path
 
 import pytest
 from conftest import ExampleCopy, assert_patched
 
-from roslint_names.model import FileFacts
+from roslint_names.gather import extract_file
+from roslint_names.model import FileFacts, Generation, Language
 from roslint_names.workspace.build import _TestFiles
 from roslint_names.workspace.built import BuiltSources
 from roslint_names.workspace.graph import Graph
@@ -168,8 +171,9 @@ if __name__ == "__main__":
 """
 
 _Edit = tuple[str, str, str]  # a file, text in it, the text put in its place ("": appended)
-# Each step: the files added, then the edits; patched from the step before's build.
-PATCHED: list[tuple[dict[str, str], list[_Edit]]] = [
+# Each step: the files added (None: removed), then the edits; patched from the step
+# before's build.
+PATCHED: list[tuple[dict[str, str | None], list[_Edit]]] = [
     # A roscpp node and its executable: no launch file starts it yet.
     (
         {FILTER: ODOM_FILTER},
@@ -223,10 +227,32 @@ PATCHED: list[tuple[dict[str, str], list[_Edit]]] = [
     ({LEGACY: LEGACY_DRIVER}, []),
     # An rclpy node of a package without a build file that names it: a program of its own.
     ({DOCK_STATUS: DOCK_STATUS_NODE}, []),
+    # Taken out again (``None``: the file removed): the rclpy node; the filter's second
+    # source and its place in the target; the script a launch file starts by name; the
+    # relay and its executable, whose node a launch file starts (it runs no code now).
+    ({DOCK_STATUS: None}, []),
+    (
+        {FILTER_MATH: None},
+        [
+            (
+                CMAKE,
+                "add_executable(odom_filter src/odom_filter.cpp src/odom_filter_math.cpp)",
+                "add_executable(odom_filter src/odom_filter.cpp)",
+            )
+        ],
+    ),
+    ({HEADING: None}, []),
+    ({IMU_RELAY: None}, [(CMAKE, "add_executable(imu_relay src/imu_relay.cpp)\n", "")]),
 ]
 
 # Edits that reach past the package (each from the examples' build): refused.
-REFUSED: list[tuple[dict[str, str], list[_Edit]]] = [
+REFUSED: list[tuple[dict[str, str | None], list[_Edit]]] = [
+    # A source added to a package that another package's target names (fleet_bringup
+    # holds no build file: turtle_bringup's is what names it).
+    (
+        {"src/fleet_bringup/src/dock_probe.cpp": PROBE_NODE},
+        [(CMAKE, "", "add_executable(dock_probe ../fleet_bringup/src/dock_probe.cpp)\n")],
+    ),
     # A target naming another package's source beside one of its own.
     (
         {},
@@ -234,7 +260,8 @@ REFUSED: list[tuple[dict[str, str], list[_Edit]]] = [
             (
                 CMAKE,
                 "add_executable(odom_relay src/odom_relay.cpp)",
-                "add_executable(odom_relay src/odom_relay.cpp ../fleet_bringup/src/dock_manager.cpp)",
+                "add_executable(odom_relay src/odom_relay.cpp"
+                " ../fleet_bringup/src/dock_manager.cpp)",
             )
         ],
     ),
@@ -247,8 +274,11 @@ class _Workspace(ExampleCopy):
         built = self.built_parts()
         return built
 
-    def step(self, added: dict[str, str], edits: list[_Edit]) -> None:
-        self.add(added)
+    def step(self, files: dict[str, str | None], edits: list[_Edit]) -> None:
+        self.add({path: text for path, text in files.items() if text is not None})
+        for path, text in files.items():
+            if text is None:
+                (self.root / path).unlink()
         for edit in edits:
             self.edit(*edit)
 
@@ -260,7 +290,8 @@ class _Workspace(ExampleCopy):
         """What ``engine._GraphPatch`` does for these edits."""
         graph, parts, code, before = built
         added = sorted(now.keys() - before.keys())
-        changed = [path for path in before if before[path] != now[path]]
+        removed = sorted(before.keys() - now.keys())
+        changed = [path for path in before if path in now and before[path] != now[path]]
         launch = [path for path in changed if launch_edit(before[path], now[path])]
         build = [path for path in changed if program_edit(before[path], now[path])]
         if set(changed) - set(launch) - set(build):
@@ -268,7 +299,8 @@ class _Workspace(ExampleCopy):
         facts = LazyFacts(now.keys(), now.get)
         index = WorkspaceIndex.restored(facts, self.packages, parts.executables)
         added_code = [path for path in added if now[path].language in CODE_LANGUAGES]
-        owners = {index.package_of(path) for path in (*build, *added_code)}
+        removed_code = [path for path in removed if before[path].language in CODE_LANGUAGES]
+        owners = {index.package_of(path) for path in (*build, *added_code, *removed_code)}
         packages = sorted(
             (package for package in owners if package is not None), key=lambda p: p.directory
         )
@@ -286,8 +318,14 @@ class _Workspace(ExampleCopy):
             language_of=lambda path: now[path].language,
             then={path: before[path] for path in build},
             added=added,
+            removed=removed,
             compiled=compiled,
             is_test=_TestFiles(index, {}),
+            named_elsewhere=lambda path, own: any(
+                builder not in own and _names(found, path)
+                for facts in (before, now)
+                for builder, found in facts.items()
+            ),
         )
         if programs is None:
             return None
@@ -304,17 +342,33 @@ class _Workspace(ExampleCopy):
         )
         if walked is None:
             return None
-        empty = {path: FileFacts(path, now[path].language, now[path].generation) for path in added}
+        edited = {path: (_empty(now[path]), now[path]) for path in added_code}
+        edited.update({path: (before[path], _empty(before[path])) for path in removed_code})
         return parameters_patched(
             walked[0],
             walked[1],
             code,
-            {path: (empty[path], now[path]) for path in added_code},
+            edited,
             facts=facts,
             packages=self.packages,
             programs=programs,
             added=added_code,
+            removed=removed_code,
         )
+
+
+def _empty(facts: FileFacts) -> FileFacts:
+    return FileFacts(facts.path, facts.language, facts.generation)
+
+
+def _names(build_file: FileFacts, path: str) -> bool:
+    """Whether a build file's executables name ``path`` as a source."""
+    directory = posixpath.dirname(build_file.path)
+    return any(
+        posixpath.normpath(posixpath.join(directory, source)) == path
+        for executable in build_file.executables
+        for source in executable.sources
+    )
 
 
 _Parts = tuple[Graph, LaunchParts, CodeParameterParts]
@@ -348,7 +402,7 @@ def test_the_steps_change_the_graph(steps: list[_Step]) -> None:
     package's (``Graph.mentions``: a node there has remaps of its own)."""
     graphs = [built[0] for _, built, _ in steps]
     unchanged = [
-        steps[at + 1][0] for at, (one, other) in enumerate(zip(graphs, graphs[1:])) if one == other
+        steps[at + 1][0] for at, (one, other) in enumerate(pairwise(graphs)) if one == other
     ]
     assert unchanged == [CMAKE]
 
@@ -373,3 +427,21 @@ def test_a_built_source_once_unbuilt_is_refused(tmp_path: Path) -> None:
     now = workspace.built()
     assert now[0] != built[0]
     assert workspace.patched(built, now[3]) is None
+
+
+def _cmake(text: str) -> FileFacts:
+    return extract_file(Language.CMAKE, CMAKE, text.encode(), Generation.ROS1, Generation.ROS1)
+
+
+def test_a_build_file_that_builds_the_same_is_no_program_edit() -> None:
+    """A line put above every target moves them, and they build what they built: no
+    program is made again (``patch.build_moves`` follows it); an executable added, or a
+    source added to one, is a program edit."""
+    text = (ExampleCopy.EXAMPLES / CMAKE).read_text(encoding="utf-8")
+    before = _cmake(text)
+    moved = _cmake("find_package(tf2_ros REQUIRED)\n" + text)
+    assert moved.executables != before.executables  # their places
+    assert not program_edit(before, moved)
+    assert program_edit(before, _cmake(text + "add_executable(probe src/probe.cpp)\n"))
+    grown = text.replace("src/odom_relay.cpp", "src/odom_relay.cpp src/odom_math.cpp")
+    assert program_edit(before, _cmake(grown))

@@ -290,8 +290,8 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     (DOCK, '"StartDocking"', '"start_docking"', "patch"),
     # A file that holds a node is a program of its own; one a launch file runs by name
     # is that node's code (``WorkspaceIndex.sources_of``): each makes its package's
-    # programs again (``workspace.program_patch``). Then the first taken out again:
-    # the last build never had it (a code file it had, removed, builds).
+    # programs again (``workspace.program_patch``). Then the first taken out again
+    # (the last build never had it: the patch is of the script alone).
     (BEACON, None, BEACON_NODE, "patch"),
     (SMOOTHER_SCRIPT, None, GEOMETRY, "patch"),
     (BEACON, "", None, "patch"),
@@ -607,7 +607,7 @@ def test_a_damaged_replay_is_a_run_like_any(
 
 
 # One file, nothing found
-EMPTY = ("replay 4", ("k1",), 1, (), (), (), (), (), (), (), (), (), (), (), (), ())
+EMPTY = ("replay 5", ("k1",), 1, (), (), (), (), (), (), (), (), (), (), (), (), ())
 
 
 def test_an_empty_stored_replay_reads_back() -> None:
@@ -651,7 +651,7 @@ def test_a_stored_replay_reads_back_as_it_was() -> None:
             {"src/a": frozenset({"bad.launch"})},
             frozenset({"params.yaml", "talker"}),
             {"params.yaml": frozenset({7})},
-            frozenset({1 << 63}),
+            {1 << 63: frozenset({5, 1 << 62})},
         ),
         skipped=(("src/a/big.cpp", "too large"),),
         unbuilt=(1,),

@@ -69,6 +69,7 @@ def parameters_patched(
     depending: Collection[str] = (),
     programs: ProgramsAnew | None = None,
     added: Collection[str] = (),
+    removed: Collection[str] = (),
 ) -> tuple[Graph, LaunchParts, CodeParameterParts] | None:
     """``graph`` (a build's, whole, patched since: ``parts`` and ``code`` are what the
     same build left) with the parameters of every node's code that spans the package of
@@ -81,7 +82,8 @@ def parameters_patched(
     exactly (module docstring). ``programs``: the programs of some packages made again
     (``program_patch``; ``parts`` are the launch patch's, with them): the code spanning
     those packages, and the code no node ran at the build, is gathered too; ``added``:
-    the edited code files the build had not (their facts then empty)."""
+    the edited code files the build had not (their facts then empty), ``removed``: those
+    the run has not (their facts now empty)."""
     index = WorkspaceIndex.restored(facts, packages, parts.executables)
     tests = _TestFiles(index, {})
 
@@ -96,7 +98,7 @@ def parameters_patched(
         lookups = replace(
             lookups,
             programs=programs.program_sources(),
-            by_name=_by_name(lookups.by_name, index, added, excluded),
+            by_name=_by_name(lookups.by_name, index, added, removed, excluded),
         )
         changed_programs = programs.sources
     sets = ParameterSets(index, ParameterTables(lookups, excluded))
@@ -105,7 +107,12 @@ def parameters_patched(
         for path in (*edited, *dependent, *changed_programs)
     }
     reached.update(depending)
-    spanning = [sources for sources, spans in code.spans.items() if not spans.isdisjoint(reached)]
+    removed_set = frozenset(removed)
+    spanning = [
+        sources
+        for sources, spans in code.spans.items()
+        if not spans.isdisjoint(reached) and removed_set.isdisjoint(sources)  # (none runs it)
+    ]
     if programs is not None:  # and the code the build had no node of
         spanning.extend(
             sorted({node.sources for node in graph.nodes if node.sources not in code.spans})
@@ -150,11 +157,19 @@ def _by_name(
     by_name: Mapping[tuple[str, str], list[str]],
     index: WorkspaceIndex,
     added: Collection[str],
+    removed: Collection[str],
     excluded: Callable[[str], bool],
 ) -> dict[tuple[str, str], list[str]]:
     """``TableLookups.by_name`` with the C++ files added that no build leaves out, each
-    where ``ParameterTables.of`` puts it (in path order)."""
+    where ``ParameterTables.of`` puts it (in path order), and without those removed."""
     found = dict(by_name)
+    for path in removed:
+        key = (package_directory(index, path), posixpath.basename(path))
+        kept = [other for other in found.get(key, ()) if other != path]
+        if kept:
+            found[key] = kept
+        else:
+            found.pop(key, None)
     for path in sorted(added):
         if index.facts[path].language is not Language.CPP or excluded(path):
             continue

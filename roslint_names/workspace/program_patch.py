@@ -17,9 +17,10 @@ such a package or plugin (``LaunchParts``' ``TreePart.started``, whatever code i
 are then walked again (``launch_patch``), and the parameters of the code spanning the
 package gathered again (``parameter_patch``). It is None (the caller builds) where the
 edit may reach past the package: a build file naming a source outside its package
-otherwise than at the build, a program or plugin of that name made by another
-package's build files too, a C++ file of the package that was there at the build built
-or not otherwise now (the parameter tables leave out code no build compiles).
+otherwise than at the build, a file added that another package's build file names, a
+program or plugin of that name made by another package's build files too, a C++ file
+of the package that was there at the build built or not otherwise now (the parameter
+tables leave out code no build compiles).
 ``tests/test_program_patch.py`` compares patched graphs and parts with built ones.
 """
 
@@ -30,6 +31,7 @@ from dataclasses import dataclass, replace
 from typing import TypeVar
 
 from roslint_names.model import FileFacts, Language
+from roslint_names.moves import moved_spans
 from roslint_names.workspace.build import _has_endpoints
 from roslint_names.workspace.built import BuiltSources
 from roslint_names.workspace.index import (
@@ -51,7 +53,7 @@ def program_edit(before: FileFacts, now: FileFacts) -> bool:
     sources it compiles) and nothing else."""
     if before.language not in BUILD_LANGUAGES or now.language is not before.language:
         return False
-    if (before.executables, before.compiled) == (now.executables, now.compiled):
+    if moved_spans(before, now) is not None:
         return False  # the same, perhaps elsewhere: ``patch.build_moves``
     return same_places(_without_programs(before), _without_programs(now))
 
@@ -102,17 +104,21 @@ def programs_anew(
     language_of: Callable[[str], Language],
     then: Mapping[str, FileFacts],
     added: Collection[str],
+    removed: Collection[str] = (),
     compiled: BuiltSources,
     is_test: Callable[[str], bool],
+    named_elsewhere: Callable[[str, Collection[str]], bool],
 ) -> ProgramsAnew | None:
     """The executables, unbuilt sources and programs a build would make of the files as
     they are (``index``: over every file of the run now, its facts loaded when asked),
     from the last build's (``built``, ``executables``, ``unbuilt``) with those of the
     ``packages`` made again: their build files as they were at the build (``then``: the
     edited ones, by display path; the others as they are), the code files the build had
-    not (``added``), what the run's build files compile now (``compiled``) and which
+    not (``added``) and those it had that the run has not (``removed``), what the run's
+    build files compile now (``compiled``) and which
     files are test code (``is_test``); None where that may reach past those packages
-    (module docstring)."""
+    (module docstring): ``named_elsewhere`` says whether a build file other than those
+    given names a file as a source (another package's program would change)."""
     files = {package.directory: _files_of(index, package) for package in packages}
     build_files = sorted(
         path for held in files.values() for path in held if language_of(path) in BUILD_LANGUAGES
@@ -120,9 +126,11 @@ def programs_anew(
     facts = index.facts
     if any(_names_elsewhere(then[path], facts[path], path, index) for path in then):
         return None
+    if any(named_elsewhere(path, build_files) for path in (*added, *removed)):
+        return None
     old = index.made_by(
         ((path, then.get(path) or facts[path]) for path in build_files),
-        lambda path: path in facts and path not in added,
+        lambda path: (path in facts and path not in added) or path in removed,
     )
     new = index.made_by(((path, facts[path]) for path in build_files), facts.__contains__)
     programs = _merged(dict(executables.programs), old[0], new[0])
@@ -145,12 +153,13 @@ def programs_anew(
     own = {path for path, _ in code}
     return ProgramsAnew(
         found,
-        frozenset((unbuilt - own) | unbuilt_now),
+        frozenset((unbuilt - own - set(removed)) | unbuilt_now),
         _programs(
             built,
             executables=found,
             facts=facts,
             added=added,
+            removed=removed,
             is_test=is_test,
             language_of=language_of,
         ),
@@ -220,6 +229,7 @@ def _programs(
     executables: Executables,
     facts: Mapping[str, FileFacts],
     added: Collection[str],
+    removed: Collection[str],
     is_test: Callable[[str], bool],
     language_of: Callable[[str], Language],
 ) -> Programs:
@@ -234,7 +244,7 @@ def _programs(
         for path in sources
         if (path in built.with_endpoints if path in before else _has_endpoints(facts[path]))
     }
-    single = set(built.single)
+    single = set(built.single) - set(removed)
     single.update(
         path
         for path in added
