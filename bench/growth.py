@@ -36,8 +36,10 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
 - ``edit_depend``: a dependency added to that manifest: which packages run together and
   which service types its files can use change, the graph the last build kept is
   patched with the packages as they are now;
-- ``edit_build``: an executable added to a mid-sized ``CMakeLists.txt``: what an edit
-  the graph must be built again for costs (what the build files make changes);
+- ``add_node``: a node added to a package: its source written to the ``src/`` beside a
+  mid-sized ``CMakeLists.txt`` and an executable compiling it added there (what the
+  package builds changes: its programs made again, ``workspace.program_patch``, the
+  trees that start a node of it walked again);
 - ``identical_after_edits``: whether the last edited run printed what a run with an
   empty cache prints over the same tree (a stale cache must never change a result);
 - ``commit``: pre-commit's run, naming the edited C++ source and launch file, the
@@ -116,8 +118,50 @@ _NEW_MANIFEST_URL = b"""  <url type="repository">https://example.com/bench_probe
 """
 _NEW_MANIFEST_DEPENDENCY = b"""  <depend>bench_probe</depend>
 """
-# An edit the graph is built again for: the package builds another program.
+# A node added to a package: its source, and the executable that compiles it.
 _NEW_EXECUTABLE = b"add_executable(bench_probe_node src/bench_probe_node.cpp)\n"
+_NODE_SOURCE = "bench_probe_node.cpp"
+_NEW_NODE_SOURCE = {
+    "ROS 2": b"""// The bench's probe: what the package's nodes publish, summed up.
+#include <rclcpp/rclcpp.hpp>
+#include <std_msgs/msg/string.hpp>
+
+class BenchProbeNode : public rclcpp::Node
+{
+public:
+  BenchProbeNode() : rclcpp::Node("bench_probe_node")
+  {
+    declare_parameter("report_period", 1.0);
+    status_ = create_publisher<std_msgs::msg::String>("bench_probe/status", 1);
+  }
+
+private:
+  rclcpp::Publisher<std_msgs::msg::String>::SharedPtr status_;
+};
+
+int main(int argc, char ** argv)
+{
+  rclcpp::init(argc, argv);
+  rclcpp::spin(std::make_shared<BenchProbeNode>());
+  return 0;
+}
+""",
+    "ROS 1": b"""// The bench's probe: what the package's nodes publish, summed up.
+#include <ros/ros.h>
+#include <std_msgs/String.h>
+
+int main(int argc, char ** argv)
+{
+  ros::init(argc, argv, "bench_probe_node");
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
+  double period = private_nh.param("report_period", 1.0);
+  ros::Publisher status = nh.advertise<std_msgs::String>("bench_probe/status", 1);
+  ros::spin();
+  return 0;
+}
+""",
+}
 # One edit each, in this order. The first three are comments: at the end, where they move
 # no name, or at the start, where it moves every name of the file; so that the run
 # measures what an edit costs, not what a new finding does. No word of a suppression in them
@@ -145,7 +189,7 @@ _EDITS = {
     "edit_class": ((".cpp",), "create_publisher", _NEW_CLASS, "end"),
     "edit_release": (("package.xml",), "<depend>", _NEW_MANIFEST_URL, "inside"),
     "edit_depend": (("package.xml",), "<depend>", _NEW_MANIFEST_DEPENDENCY, "inside"),
-    "edit_build": (("CMakeLists.txt",), "add_executable(", _NEW_EXECUTABLE, "end"),
+    "add_node": (("CMakeLists.txt",), "add_executable(", _NEW_EXECUTABLE, "node"),
 }
 
 
@@ -182,13 +226,20 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
                     edited.write_bytes(text)
                 else:
                     edited.unlink()
+            elif where == "node":  # its source, then the executable that compiles it
+                edited = pick(root / "src", suffixes, marker)
+                generation = "ROS 2" if b"ament" in edited.read_bytes() else "ROS 1"
+                source = edited.parent / "src" / _NODE_SOURCE
+                source.parent.mkdir(exist_ok=True)
+                source.write_bytes(_NEW_NODE_SOURCE[generation])
+                _add(edited, text, "end")
             else:
                 edited = pick(root / "src", suffixes, marker)
                 _add(edited, text, where)
             runs[name] = bench.cli(root, arguments, cache)
             results.setdefault("edited", {})[name] = edited.relative_to(root).as_posix()
         fresh = bench.cli(root, arguments, scratch / "fresh-cache")
-        results["identical_after_edits"] = fresh.stdout == runs["edit_build"].stdout
+        results["identical_after_edits"] = fresh.stdout == runs["add_node"].stdout
         # pre-commit's run: the files of a commit named, the C++ source among them given
         # another topic (the run over the workspace underneath, its graph patched).
         named = [results["edited"]["edit_names"], results["edited"]["edit_graph"]]
