@@ -1427,10 +1427,11 @@ class _GraphPatch:
             known |= new_files
         launch_parts = None if kept is None else kept.parts  # as a build would leave them
         programs: ProgramsAnew | None = None
-        compiled: tuple[BuiltSources, BuiltSources] | None = None  # at the last run, now
         if building or added_code or removed_code:
             assert kept is not None
-            compiled = _compiled(replay.run_wide, arrived, self.checks.package_of)
+            # What the build files compiled at the last run, where one builds other
+            # programs now (no file added or removed changes it), and now.
+            compiled = _compiled(replay.run_wide, arrived, self.checks.package_of, bool(building))
             at_now = WorkspaceIndex.restored(
                 LazyFacts(known, facts_of), packages, kept.parts.executables
             )
@@ -1452,6 +1453,7 @@ class _GraphPatch:
                 added=added_code,
                 removed=removed_code.keys(),
                 compiled=compiled[1],
+                compiled_then=compiled[0],
                 is_test=_TestFiles(at_now, {}),
                 named_elsewhere=lambda path, own: (
                     not found_by.builders(path) <= {shifts.digest(builder) for builder in own}
@@ -1567,15 +1569,9 @@ class _GraphPatch:
                 )
         # A source rostest alone starts now, or starts no more, is judged again
         # (``_FileChecks.spare``).
-        if programs is not None and compiled is not None:
+        if programs is not None:
             again.update(
-                at
-                for package in programs.packages
-                for display in package_files().files_of(package)
-                if (at := slots[display]) < replay.reported
-                and files[at].language is Language.CPP
-                and compiled[0].started_by_rostest(display, self.checks.package_of(at))
-                != compiled[1].started_by_rostest(display, self.checks.package_of(at))
+                at for display in programs.rostest_anew if (at := slots[display]) < replay.reported
             )
         rest = sorted(again - arrived_facts.keys())
         for index, facts, data, verdict in self.gathered.facts(rest):
@@ -1692,13 +1688,15 @@ def _compiled(
     run_wide: RunWide,
     arrived: Sequence[_Arrived],
     package_of: Callable[[int], str | None],
-) -> tuple[BuiltSources, BuiltSources]:
-    """What the build files compiled at the last run (its ``RunWide``), and now: with
-    the files edited since (``arrived``) as they are."""
-    then, now = BuiltSources(), BuiltSources()
+    then_too: bool,
+) -> tuple[BuiltSources | None, BuiltSources]:
+    """What the build files compiled at the last run (its ``RunWide``; ``then_too``:
+    else None), and now: with the files edited since (``arrived``) as they are."""
+    then, now = BuiltSources() if then_too else None, BuiltSources()
     edited = {facts.path for _, facts, _, _ in arrived}
     for facts, package in run_wide.built:
-        then.add(facts, package)
+        if then is not None:
+            then.add(facts, package)
         if facts.path not in edited:
             now.add(facts, package)
     for index, facts, _, _ in arrived:

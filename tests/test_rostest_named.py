@@ -3,12 +3,14 @@ starts the executable (``workspace.built``, ``engine.rostest_replaces``)."""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 from typing import Any
 
 import pytest
 from conftest import CATKIN_PACKAGE, write
 
+from roslint_names import engine
 from roslint_names.extract.build import cmake
 from roslint_names.model import Generation
 
@@ -250,3 +252,35 @@ def test_what_rostest_starts_is_recorded_apart() -> None:
         "test/set_model_state_test/set_model_state_test.test",
         "test/set_model_state_test/set_model_state_test.cpp",
     )
+
+
+def test_a_cached_run_judges_again_the_sources_a_build_file_edit_hands_rostest(
+    run_cli: Any, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The build file edited between cached runs, the test source not: the last build's
+    graph is patched (its package's programs made again, ``workspace.program_patch``)
+    and the source judged again, as a run without a cache judges it."""
+    patched: list[bool] = []
+    patch = engine._GraphPatch.__call__
+
+    def recording(*arguments: Any) -> Any:
+        found = patch(*arguments)
+        patched.append(found is not None)
+        return found
+
+    monkeypatch.setattr(engine._GraphPatch, "__call__", recording)
+    root = tmp_path / "ws"
+    package = gazebo_plugins(root)
+    built = GAZEBO_PLUGINS_CMAKE.replace(ROSTEST_GTEST, "add_executable(set_model_state-test\n")
+    arguments = ["check", "--format", "json", "--exit-zero"]
+    findings = []
+    for cmake_text in (GAZEBO_PLUGINS_CMAKE, built, GAZEBO_PLUGINS_CMAKE):
+        write(package, "CMakeLists.txt", cmake_text)
+        stamp = (package / "CMakeLists.txt").stat().st_mtime + 2  # not the racy window
+        os.utime(package / "CMakeLists.txt", (stamp, stamp))
+        cached = run_cli([*arguments, "--cache-dir", str(tmp_path / "cache"), "."], root)
+        fresh = run_cli([*arguments, "--no-cache", "."], root)
+        assert cached.stdout == fresh.stdout
+        findings.append([(f["path"], f["code"]) for f in cached.findings()])
+    assert findings == [[], [(TEST_SOURCE, "RN101")], []]
+    assert patched == [True]  # the last run's files are the first's: its stored result

@@ -78,6 +78,9 @@ class ProgramsAnew:
     # The files that are a program's or a plugin's source now and were not, or were and
     # are not (``ParameterTables``' ``programs``).
     sources: frozenset[str]
+    # The packages' C++ sources that only rostest starts now and did not, or did and
+    # does not (``workspace.built``: the node name they give is spared then).
+    rostest_anew: frozenset[str] = frozenset()
 
     def starts(self, part: TreePart) -> bool:
         """Whether a tree starts a node of one of those packages or plugins: whatever
@@ -106,6 +109,7 @@ def programs_anew(
     added: Collection[str],
     removed: Collection[str] = (),
     compiled: BuiltSources,
+    compiled_then: BuiltSources | None = None,
     is_test: Callable[[str], bool],
     named_elsewhere: Callable[[str, Collection[str]], bool],
 ) -> ProgramsAnew | None:
@@ -115,7 +119,8 @@ def programs_anew(
     ``packages`` made again: their build files as they were at the build (``then``: the
     edited ones, by display path; the others as they are), the code files the build had
     not (``added``) and those it had that the run has not (``removed``), what the run's
-    build files compile now (``compiled``) and which
+    build files compile now (``compiled``) and at the last run (``compiled_then``; None
+    where no build file changed) and which
     files are test code (``is_test``); None where that may reach past those packages
     (module docstring): ``named_elsewhere`` says whether a build file other than those
     given names a file as a source (another package's program would change)."""
@@ -151,6 +156,17 @@ def programs_anew(
     if any((path in unbuilt) != (path in unbuilt_now) for path, _ in code if path not in added):
         return None
     own = {path for path, _ in code}
+    rostest_anew = (
+        frozenset()
+        if compiled_then is None
+        else frozenset(
+            path
+            for path, package in code
+            if path not in added
+            and compiled.started_by_rostest(path, package.directory)
+            != compiled_then.started_by_rostest(path, package.directory)
+        )
+    )
     return ProgramsAnew(
         found,
         frozenset((unbuilt - own - set(removed)) | unbuilt_now),
@@ -168,6 +184,7 @@ def programs_anew(
             name for name in old[1].keys() | new[1].keys() if old[1].get(name) != new[1].get(name)
         ),
         frozenset(_sources(old) ^ _sources(new)),
+        rostest_anew,
     )
 
 
