@@ -840,7 +840,7 @@ class _FileChecks:
             {package: frozenset(names) for package, names in self._rejected.items()},
             frozenset(self._lookups.names),
             {name: frozenset(by) for name, by in self._lookups.naming.items()},
-            {source: frozenset(by) for source, by in self._lookups.named.items()},
+            dict(self._lookups.named),
         )
 
     def resume(self, replay: Replay, edited: Sequence[int], paths: Collection[str]) -> None:

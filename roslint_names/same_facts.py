@@ -78,7 +78,7 @@ class RunWide:
     # makes a file found by name that is not, a build or a walk more, never a wrong result.
     looked_up: frozenset[str] = frozenset()
     naming: Mapping[str, frozenset[int]] = field(default_factory=dict)
-    named_sources: Mapping[int, frozenset[int]] = field(default_factory=dict)
+    named_sources: Mapping[int, int] = field(default_factory=dict)  # source: build file
 
     def lookups(self) -> Lookups:
         found = Lookups()
@@ -175,7 +175,7 @@ class Replay:
             self.rostest_named,
             tuple(sorted(wide.looked_up)),
             tuple(sorted((name, tuple(sorted(by))) for name, by in wide.naming.items())),
-            tuple(sorted((source, tuple(sorted(by))) for source, by in wide.named_sources.items())),
+            tuple(sorted(wide.named_sources.items())),
         )
 
     def renumbered(self, renumbering: Renumbering, reported: int) -> Replay:
@@ -225,7 +225,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         skipped_pairs = tuple((str(path), str(why)) for path, why in skipped)
         type_pairs = frozenset((generation, str(spelling)) for generation, spelling in types)
         naming_map = {str(name): frozenset(by) for name, by in naming}
-        named_map = {source: frozenset(by) for source, by in named}
+        named_map = {source: builder for source, builder in named}
     except (TypeError, ValueError):
         return None
     if not (
@@ -245,7 +245,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         and _strings(looked_up)
         and all(_ints(tuple(by)) for by in naming_map.values())
         and _ints(tuple(named_map))
-        and all(_ints(tuple(by)) for by in named_map.values())
+        and _ints(tuple(named_map.values()))
         and _indices(unbuilt, reported)
         and _indices(rostest_named, reported)
         and all(isinstance(generation, Generation | None) for generation, _ in type_pairs)

@@ -66,6 +66,8 @@ def digest(display: str) -> int:
     return int.from_bytes(hashlib.blake2b(data, digest_size=8).digest(), "little")
 
 
+SEVERAL = -1  # no digest: a source more than one build file names (``Lookups.named``)
+
 PARAMETER_NAMES = (".yaml", ".yml")  # the names ``RunWide.naming`` keeps who looks up
 
 
@@ -77,7 +79,8 @@ class Lookups:
 
     names: set[str] = field(default_factory=set)
     naming: dict[str, set[int]] = field(default_factory=dict)
-    named: dict[int, set[int]] = field(default_factory=dict)  # source -> build files naming it
+    # source -> the build file naming it (digests), ``SEVERAL`` where more than one does
+    named: dict[int, int] = field(default_factory=dict)
 
     def add(self, facts: FileFacts) -> None:
         """What a file's facts look up: a launch file's executables and the names of the
@@ -102,20 +105,27 @@ class Lookups:
         builder = digest(facts.path)
         for executable in facts.executables:
             for source in executable.sources:
-                self.named.setdefault(digest(join(directory, source)), set()).add(builder)
+                self._name(digest(join(directory, source)), builder)
+
+    def _name(self, source: int, builder: int) -> None:
+        """One more build file naming a source: one int each, not a set (7,000 sources
+        at 8 copies of the benchmark's workspace, kept by every run's replay)."""
+        known = self.named.setdefault(source, builder)
+        if known != builder:
+            self.named[source] = SEVERAL
 
     def update(
         self,
         names: Iterable[str],
         naming: Mapping[str, Iterable[int]],
-        named: Mapping[int, Iterable[int]],
+        named: Mapping[int, int],
     ) -> None:
         """What an earlier run found (``RunWide``'s), with what this one finds."""
         self.names.update(names)
         for name, by in naming.items():
             self.naming.setdefault(name, set()).update(by)
-        for source, by in named.items():
-            self.named.setdefault(source, set()).update(by)
+        for source, builder in named.items():
+            self._name(source, builder)
 
     def finds(self, display: str) -> bool:
         """Whether a launch file finds the file by its name or stem, or a build file's
@@ -130,11 +140,11 @@ class Lookups:
 
     def builders(self, display: str) -> set[int]:
         """The build files (digests of their display paths) whose executables name the
-        file as a source."""
-        found = set(self.named.get(digest(display), ()))
+        file as a source; ``SEVERAL`` among them where more than one names it."""
+        sources = [digest(display)]
         if posixpath.basename(display) == "__init__.py":
-            found.update(self.named.get(digest(f"{posixpath.dirname(display)}.py"), ()))
-        return found
+            sources.append(digest(f"{posixpath.dirname(display)}.py"))
+        return {self.named[source] for source in sources if source in self.named}
 
     def adds_nothing(self, facts: FileFacts) -> bool:
         """Whether a file may come or go without a graph of its own: it says nothing and

@@ -22,6 +22,7 @@ from roslint_names.model import (
 )
 from roslint_names.shifts import (
     MOST_CHANGED,
+    SEVERAL,
     Base,
     GraphMove,
     Lookups,
@@ -145,13 +146,16 @@ def test_what_launch_and_build_files_find_by_name() -> None:
     )
     found_by.add(_facts("src/a/CMakeLists.txt", Language.CMAKE, executables=executables))
     assert found_by.named == {
-        digest(path): {digest("src/a/CMakeLists.txt")}
+        digest(path): digest("src/a/CMakeLists.txt")
         for path in ("src/a/src/talker.cpp", "src/b/src/x.cpp", "src/a/a/listener.py")
     }
     # which build files name a source (a file added to a package: ``program_patch``)
     assert found_by.builders("src/b/src/x.cpp") == {digest("src/a/CMakeLists.txt")}
     assert found_by.builders("src/a/a/listener/__init__.py") == {digest("src/a/CMakeLists.txt")}
     assert found_by.builders("src/b/src/y.cpp") == set()
+    found_by.add(_facts("src/b/CMakeLists.txt", Language.CMAKE, executables=executables[:1]))
+    assert found_by.builders("src/b/src/talker.cpp") == {digest("src/b/CMakeLists.txt")}
+    assert found_by.builders("src/b/src/x.cpp") == {SEVERAL}  # src/a's and src/b's
     assert found_by.adds_nothing(_facts("src/a/src/util.cpp"))
     # rosrun's rule: a script of the executable's name, a code file of its stem
     assert not found_by.adds_nothing(_facts("src/c/scripts/talker", Language.PYTHON))
