@@ -868,6 +868,13 @@ class _FileChecks:
         self._rejected = {package: set(names) for package, names in run_wide.rejected.items()}
         self._lookups.update(run_wide.looked_up, run_wide.naming, run_wide.named_sources)
 
+    def know_constants(self, facts: Iterable[FileFacts]) -> None:
+        """The constants and includes of files the run does not take (a replay's, a
+        patch's: the headers of the package of a file it checks again), for ``finish``
+        to resolve the names of the files it takes."""
+        for found in facts:
+            self._constants.add(found)
+
     def facts_of(self, index: int) -> FileFacts | None:
         """File ``index``'s facts, when they were kept and it arrived."""
         return self._all_facts[index]
@@ -1573,8 +1580,20 @@ class _GraphPatch:
             again.update(
                 at for display in programs.rostest_anew if (at := slots[display]) < replay.reported
             )
-        rest = sorted(again - arrived_facts.keys())
-        for index, facts, data, verdict in self.gathered.facts(rest):
+        rest = list(self.gathered.facts(sorted(again - arrived_facts.keys())))
+        # A file taking another file's constant is checked with its names resolved from
+        # its package's headers (``_FileChecks.finish``): the run took few of them.
+        resolving = {
+            directory
+            for index, facts, _, _ in rest
+            if uses_constants(facts) and (directory := self.checks.package_of(index)) is not None
+        }
+        for directory in sorted(resolving):
+            headers = code_below(directory)
+            if headers is None:
+                return None
+            self.checks.know_constants(found for _, found in headers)
+        for index, facts, data, verdict in rest:
             self.checks.take(index, facts, data, verdict)
         if rebasing and launch_parts is not None and code_parts is not None:
             self.rebased = _Rebased(patched, launch_parts, code_parts, list(packages))

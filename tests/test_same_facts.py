@@ -1195,3 +1195,32 @@ def test_a_kept_patch_keeps_the_parameters_of_code_moved_since_where_they_are(
         cached, fresh = outputs(run_cli, root, cache)
         assert cached == fresh, path
     assert [(f["code"], f["line"]) for f in json.loads(fresh)["findings"]] == [("RN407", 9)]
+
+
+def test_a_file_checked_again_resolves_its_names_from_its_package_s_headers(
+    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str]
+) -> None:
+    """A file taking another file's constant, whose graph findings an edit of another
+    file changes, is checked again with the patch (``_GraphPatch``'s ``again``): its
+    names resolved from its package's headers, as a run without a cache resolves them.
+    They were resolved from the few files the patch took: the RN203 of the constant's
+    value, which no edit touched, was lost."""
+    change(workspace / TOPICS, None, TOPICS_HEADER.replace('"dock_status"', '"DockStatus"'))
+    change(workspace / STATUS_SOURCE, None, STATUS_NODE)
+    subscription = (
+        "    status_sub_ = create_subscription<std_msgs::msg::Bool>(\n"
+        '      "OtherStatus", 10, [](std_msgs::msg::Bool::SharedPtr) {});\n'
+        "    pose_pub_ ="
+    )
+    change(workspace / MONITOR, "    pose_pub_ =", subscription)
+    cache = tmp_path / "cache"
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    # The monitor subscribes to the node's topic now, as another type (RN403 in both).
+    change(workspace / MONITOR, '"OtherStatus"', '"DockStatus"')
+    taken.clear()
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert taken == ["patch", "build"]
+    assert cached == fresh
+    codes = [f["code"] for f in json.loads(cached)["findings"] if f["path"] == STATUS_SOURCE]
+    assert codes == ["RN203", "RN403"]
