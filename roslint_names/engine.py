@@ -1213,6 +1213,7 @@ class _GraphPatch:
             packages, depending = anew
         arrived_facts = {index: facts for index, facts, _, _ in arrived}
         loaded: dict[int, FileFacts | None] = {}
+        raw: dict[int, FileFacts] = {}  # those of ``loaded`` whose names were resolved, as stored
         # Files the build did not have, or had and the run has not, say nothing and are
         # found by no name, the edited files' names too (``shifts``): then the build's
         # graph is theirs.
@@ -1265,11 +1266,14 @@ class _GraphPatch:
         constants: dict[str, PackageConstants | None] = {}  # by package display directory
 
         def facts_at(index: int) -> FileFacts | None:
+            if index in loaded:  # (an edited file's, resolved: below)
+                return loaded[index]
             if index in arrived_facts:
                 return arrived_facts[index]
             if index not in loaded:
                 known = stored_facts(index)
                 if known is not None and uses_constants(known):
+                    raw[index] = known
                     known = resolved(known, index)
                 loaded[index] = known
             return loaded[index]
@@ -1307,6 +1311,22 @@ class _GraphPatch:
             table = constants_of(package)
             return None if table is None else table.resolve(known, package)
 
+        def constants_then(
+            directory: str, then_of: Mapping[str, FileFacts]
+        ) -> PackageConstants | None:
+            """The constants of the C++ files below a package's directory at the build:
+            those edited since as they were (``then_of``), those removed since too."""
+            code = code_below(directory)
+            if code is None:
+                return None
+            table = PackageConstants()
+            for path, found in code:
+                table.add(then_of.get(path, found))
+            for path, found in removed_code.items():
+                if path.startswith(f"{directory}/" if directory else ""):
+                    table.add(found)
+            return table
+
         def resolved_alike(including: Iterable[str], then_of: Mapping[str, FileFacts]) -> bool:
             """Whether every file taking another file's constant, of a package holding a
             file whose includes changed (``including``), resolves its names as the build
@@ -1318,14 +1338,9 @@ class _GraphPatch:
                 for package in package_files().enclosing(display):
                     at = package.directory
                     code, now = code_below(at), constants_of(at)
-                    if code is None or now is None:
+                    then = constants_then(at, then_of)
+                    if code is None or now is None or then is None:
                         return False
-                    then = PackageConstants()
-                    for path, found in code:
-                        then.add(then_of.get(path, found))
-                    for path, found in removed_code.items():
-                        if path in then_of and path.startswith(f"{at}/" if at else ""):
-                            then.add(found)
                     for path, found in code:
                         if not uses_constants(found):
                             continue
@@ -1336,6 +1351,7 @@ class _GraphPatch:
             return True
 
         changed: list[tuple[str, FileFacts, FileFacts]] = []
+        taking: list[tuple[int, str, FileFacts]] = []  # code taking a constant: its facts then
         tree_edits: list[str] = []
         # Build files that build other programs now (as they were at the build), and code
         # files added: their packages' programs are made again (``program_patch``).
@@ -1372,6 +1388,9 @@ class _GraphPatch:
             if program_edit(before, facts):
                 building[display] = before  # its package's programs made again
                 continue
+            if uses_constants(before) or uses_constants(raw.get(index, facts)):
+                taking.append((index, display, before))  # resolved once every edit is known
+                continue
             moved_only = same_places(before, facts)
             if (launch_edit(before, facts) or parameter_edit(before, facts)) and not moved_only:
                 if not _patchable(before, facts, wiring_kept=True):
@@ -1381,15 +1400,42 @@ class _GraphPatch:
                 changed.append((display, before, facts))
             else:
                 return None
+        then_of = {display: then for display, then, _ in changed}
+        then_of.update((display, before) for _, display, before in taking)
+        for display in added_code:
+            added = facts_at(slots[display])
+            if added is not None:
+                then_of[display] = _empty(added)
+        # A code file taking another file's constant, edited: its facts then and now with
+        # their names resolved from its package's headers then and now, as the build and
+        # the run resolve them, compared as any edit's; its own check, at the run's end,
+        # resolves them from those headers (``_FileChecks.know_constants``).
+        for index, display, before in taking:
+            directory = self.checks.package_of(index)
+            now_raw = raw.get(index, arrived_facts.get(index))
+            if now_raw is None or files[index].language is not Language.CPP:
+                return None
+            if directory is None:
+                before_then, now_resolved = before, now_raw  # the run resolves none either
+            else:
+                table_then, table_now = constants_then(directory, then_of), constants_of(directory)
+                headers = code_below(directory)
+                if table_then is None or table_now is None or headers is None:
+                    return None
+                before_then = table_then.resolve(before, directory)
+                now_resolved = table_now.resolve(now_raw, directory)
+                if index in arrived_facts:
+                    self.checks.know_constants(found for _, found in headers)
+            loaded[index] = now_resolved
+            if not _patchable(before_then, now_resolved, resolved=True):
+                return None
+            changed.append((display, before_then, now_resolved))
         including = [
             display for display, then, now in changed if then.cpp_includes != now.cpp_includes
         ]
-        then_of = {display: then for display, then, _ in changed}
         for display in added_code:  # a header added may define what a file takes
-            added = facts_at(slots[display])
-            if added is not None and added.language is Language.CPP:
+            if files[slots[display]].language is Language.CPP:
                 including.append(display)
-                then_of[display] = _empty(added)
         for display, gone in removed_code.items():  # and one removed may have
             if gone.language is Language.CPP:
                 including.append(display)
@@ -1765,10 +1811,13 @@ def _kept_findings(
         return frozenset(), {}
 
 
-def _patchable(before: FileFacts, now: FileFacts, *, wiring_kept: bool = False) -> bool:
+def _patchable(
+    before: FileFacts, now: FileFacts, *, wiring_kept: bool = False, resolved: bool = False
+) -> bool:
     """Whether what the run gathers from every file's facts (``RunWide``) and the checks
     of other files read is the same before and after an edit, and the file's facts are
-    its own (no constant of another file in them). ``wiring_kept``: a launch file may
+    its own (no constant of another file in them; ``resolved``: the constants' values in
+    them, as the build and the run resolve them). ``wiring_kept``: a launch file may
     wire names (RN202's), the same before and after; code may wire none."""
     wiring = (
         wired_by(before) == wired_by(now)
@@ -1778,7 +1827,7 @@ def _patchable(before: FileFacts, now: FileFacts, *, wiring_kept: bool = False) 
     return (
         typed_services(before) == typed_services(now)
         and wiring
-        and not (uses_constants(before) or uses_constants(now))
+        and (resolved or not (uses_constants(before) or uses_constants(now)))
     )
 
 

@@ -438,6 +438,18 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
         '  node.declare_parameter("status_rate", 1.0);\n}\n',
         "patch",
     ),
+    # The file taking the constant edited: a comment, then a topic of its own added (its
+    # names resolved from its package's headers then and now, ``engine._GraphPatch``).
+    # Then the constant's value changed: what every file taking it names changes.
+    (STATUS_SOURCE, "", "\n// Reviewed with the fleet team.\n", "patch"),
+    (
+        STATUS_SOURCE,
+        "  rclcpp::spin(node);",
+        "  auto beacon = node->create_publisher<std_msgs::msg::String>(\"dock_beacon\", 10);\n"
+        "  rclcpp::spin(node);",
+        "patch",
+    ),
+    (TOPICS, '"dock_status"', '"dock_state"', "build"),
 ]
 
 
