@@ -445,7 +445,7 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     (
         STATUS_SOURCE,
         "  rclcpp::spin(node);",
-        "  auto beacon = node->create_publisher<std_msgs::msg::String>(\"dock_beacon\", 10);\n"
+        '  auto beacon = node->create_publisher<std_msgs::msg::String>("dock_beacon", 10);\n'
         "  rclcpp::spin(node);",
         "patch",
     ),
