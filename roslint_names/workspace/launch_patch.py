@@ -21,9 +21,10 @@ it any more (``LaunchParts.includers``). Code a tree starts now is no program of
 own any more, and code no tree starts any more is one again (``Programs.unlaunched``).
 A patch is refused (None, the caller builds) where a node runs code whose parameters
 the build did not make (code that ran as no node, or as a program of other sources),
-or where a file it needs has no facts to load. It gives the launch parts a build would
-leave too (the roots, each tree's part, the includers), which a run that keeps what it
-patched keeps (``engine.REBASE_EDITS``).
+but where a package's programs were made again (``program_patch``: the parameter patch
+gathers those), or where a file it needs has no facts to load. It gives the launch
+parts a build would leave too (the roots, each tree's part, the includers), which a run
+that keeps what it patched keeps (``engine.REBASE_EDITS``).
 ``tests/test_launch_patch.py`` compares patched graphs and parts with built ones.
 """
 
@@ -388,8 +389,8 @@ def _launched(parts: LaunchParts, roots: Sequence[str], walked: Mapping[str, set
 
 
 def _literals_kept(graph: Graph, programs: ProgramsAnew | None) -> Mapping[str, frozenset[str]]:
-    """The literals of the packages the graph keeps (``Graph.mentions``) that no file was
-    added to since: ``programs``' packages' are read again."""
+    """The literals of the packages the graph keeps (``Graph.mentions``) but for those
+    whose programs were made again (``programs``: code added or removed), read again."""
     if programs is None:
         return graph.mentions
     return {

@@ -24,7 +24,10 @@ source) is such an edit.
 
 A package's dependencies changed change which of the classes of one name its code means
 (``ParameterSets._defined``: those of the packages it depends on): the nodes whose code
-spans that package are gathered again too.
+spans that package are gathered again too. A package's programs made again
+(``program_patch``: a node added or taken out) change which files are programs' sources
+and which C++ files are looked up by name: the code spanning it, and the code no node
+ran at the build, is gathered again, and the code no node runs any more is dropped.
 
 ``parameters_patched`` gives the graph a build would, over facts whose names take
 other files' constants as the build's did (``engine._GraphPatch``: where an include
