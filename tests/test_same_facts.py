@@ -224,6 +224,28 @@ int main(int argc, char ** argv)
 }
 """
 
+FILTER_SOURCE = "src/turtle_bringup/src/odom_filter.cpp"
+FILTER_NODE = """// Smooths the odometry before the planners read it.
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+
+ros::Publisher filtered;
+
+void filter(const nav_msgs::Odometry::ConstPtr & odom) { filtered.publish(*odom); }
+
+int main(int argc, char ** argv)
+{
+  ros::init(argc, argv, "odom_filter");
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
+  double alpha = private_nh.param("alpha", 0.2);
+  filtered = nh.advertise<nav_msgs::Odometry>("odom_filtered", 10);
+  ros::Subscriber odom = nh.subscribe("odom", 10, filter);
+  ros::spin();
+  return 0;
+}
+"""
+
 # (file, text before, text after, what the run after it does: ``taken``): ``change``.
 STEPS: list[tuple[str, str | None, str | None, str]] = [
     # A comment below everything: the facts are the same.
@@ -450,6 +472,19 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
         "patch",
     ),
     (TOPICS, '"dock_status"', '"dock_state"', "build"),
+    # A roscpp node added as a developer adds one: its executable first (no source yet:
+    # the build keeps no program of it), then its source, then a launch file starting it;
+    # then the source taken out (``workspace.program_patch``: the package's programs made
+    # again, the trees starting a node of it walked again).
+    (TURTLE_BUILD, "", "add_executable(odom_filter src/odom_filter.cpp)\n", "patch"),
+    (FILTER_SOURCE, None, FILTER_NODE, "patch"),
+    (
+        BASE,
+        "</launch>",
+        '  <node name="odom_filter" pkg="turtle_bringup" type="odom_filter"/>\n</launch>',
+        "patch",
+    ),
+    (FILTER_SOURCE, "", None, "patch"),
 ]
 
 
