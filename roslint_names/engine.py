@@ -11,7 +11,7 @@ import hashlib
 import os
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
-from functools import lru_cache, partial
+from functools import cache, lru_cache, partial
 from pathlib import Path
 from typing import TYPE_CHECKING, NamedTuple
 
@@ -858,13 +858,7 @@ class _FileChecks:
         self._wired.update(run_wide.wired)
         # The files taken by this run are in as they are now (a build file may compile
         # other sources: ``program_patch``), the others as the replay's run had them.
-        taken = self._built
-        self._built = BuiltSources()
-        for facts, package in run_wide.built:
-            if facts.path not in paths:
-                self._built.add(facts, package)
-        for facts, package in taken.given():
-            self._built.add(facts, package)
+        self._built = built_as_taken(run_wide, self._built.given(), paths)
         self._rejected = {package: set(names) for package, names in run_wide.rejected.items()}
         self._lookups.update(run_wide.looked_up, run_wide.naming, run_wide.named_sources)
 
@@ -1263,24 +1257,23 @@ class _GraphPatch:
         # The files taking another file's constant are resolved as the run resolves them
         # (``resolved``): as the build resolved them, where an edit changed what a file
         # includes (``resolved_alike``, below).
-        constants: dict[str, PackageConstants | None] = {}  # by package display directory
-
         def facts_at(index: int) -> FileFacts | None:
             if index in loaded:  # (an edited file's, resolved: below)
                 return loaded[index]
             if index in arrived_facts:
                 return arrived_facts[index]
-            if index not in loaded:
-                known = stored_facts(index)
-                if known is not None and uses_constants(known):
-                    raw[index] = known
-                    known = resolved(known, index)
-                loaded[index] = known
-            return loaded[index]
+            known = stored_facts(index)
+            if known is not None and uses_constants(known):
+                raw[index] = known
+                known = resolved(known, index)
+            loaded[index] = known
+            return known
 
-        def code_below(directory: str) -> list[tuple[str, FileFacts]] | None:
+        @cache
+        def code_below(directory: str) -> tuple[tuple[str, FileFacts], ...] | None:
             """Every C++ file below a package's directory (display path) with its facts,
-            as ``symbols.PackageConstants`` reads them; None where one has no facts."""
+            as ``symbols.PackageConstants`` reads them; None where one has no facts. Each
+            directory's once: the tables then and now, and the checks, read the same."""
             code: list[tuple[str, FileFacts]] = []
             for path in package_files().below(directory):
                 if files[slots[path]].language is not Language.CPP:
@@ -1289,17 +1282,18 @@ class _GraphPatch:
                 if found is None:
                     return None
                 code.append((path, found))
-            return code
+            return tuple(code)
 
+        @cache
         def constants_of(directory: str) -> PackageConstants | None:
             """The constants of the C++ files below a package's directory now."""
-            if directory not in constants:
-                code = code_below(directory)
-                table = constants[directory] = None if code is None else PackageConstants()
-                if table is not None and code is not None:
-                    for _, found in code:
-                        table.add(found)
-            return constants[directory]
+            code = code_below(directory)
+            if code is None:
+                return None
+            table = PackageConstants()
+            for _, found in code:
+                table.add(found)
+            return table
 
         def resolved(known: FileFacts, index: int) -> FileFacts | None:
             """``known`` with its symbols resolved by its package's headers (``symbols``),
@@ -1311,11 +1305,11 @@ class _GraphPatch:
             table = constants_of(package)
             return None if table is None else table.resolve(known, package)
 
-        def constants_then(
-            directory: str, then_of: Mapping[str, FileFacts]
-        ) -> PackageConstants | None:
+        @cache
+        def constants_then(directory: str) -> PackageConstants | None:
             """The constants of the C++ files below a package's directory at the build:
-            those edited since as they were (``then_of``), those removed since too."""
+            those edited since as they were (``then_of``, once every edit is known),
+            those removed since too."""
             code = code_below(directory)
             if code is None:
                 return None
@@ -1327,18 +1321,16 @@ class _GraphPatch:
                     table.add(found)
             return table
 
-        def resolved_alike(including: Iterable[str], then_of: Mapping[str, FileFacts]) -> bool:
+        def resolved_alike(including: Iterable[str]) -> bool:
             """Whether every file taking another file's constant, of a package holding a
             file whose includes changed (``including``), resolves its names as the build
-            did, from the C++ files then (``then_of``: those edited since, as they were,
-            and those removed since): an include added or taken out seldom changes which
-            header defines a constant, and where it does, its names may change (the
-            graph is built)."""
+            did, from the C++ files then (``constants_then``): an include added or taken
+            out seldom changes which header defines a constant, and where it does, its
+            names may change (the graph is built)."""
             for display in including:
                 for package in package_files().enclosing(display):
                     at = package.directory
-                    code, now = code_below(at), constants_of(at)
-                    then = constants_then(at, then_of)
+                    code, now, then = code_below(at), constants_of(at), constants_then(at)
                     if code is None or now is None or then is None:
                         return False
                     for path, found in code:
@@ -1400,7 +1392,7 @@ class _GraphPatch:
                 changed.append((display, before, facts))
             else:
                 return None
-        then_of = {display: then for display, then, _ in changed}
+        then_of: dict[str, FileFacts] = {display: then for display, then, _ in changed}
         then_of.update((display, before) for _, display, before in taking)
         for display in added_code:
             added = facts_at(slots[display])
@@ -1418,7 +1410,7 @@ class _GraphPatch:
             if directory is None:
                 before_then, now_resolved = before, now_raw  # the run resolves none either
             else:
-                table_then, table_now = constants_then(directory, then_of), constants_of(directory)
+                table_then, table_now = constants_then(directory), constants_of(directory)
                 headers = code_below(directory)
                 if table_then is None or table_now is None or headers is None:
                     return None
@@ -1439,8 +1431,7 @@ class _GraphPatch:
         for display, gone in removed_code.items():  # and one removed may have
             if gone.language is Language.CPP:
                 including.append(display)
-                then_of[display] = gone
-        if including and not resolved_alike(including, then_of):
+        if including and not resolved_alike(including):
             return None
         naming -= {*tree_edits, *removed_trees}
         walk = [*tree_edits, *sorted(naming)]  # the launch files whose trees are walked again
@@ -1749,6 +1740,21 @@ def _empty(facts: FileFacts) -> FileFacts:
     return FileFacts(facts.path, facts.language, facts.generation)
 
 
+def built_as_taken(
+    run_wide: RunWide, taken: Iterable[tuple[FileFacts, str | None]], paths: Collection[str]
+) -> BuiltSources:
+    """What the build files compile: as the replay's run had them (``run_wide``), but
+    for the files this run took (``paths``), as they are now (``taken``: those of them
+    that compile or include sources, with their packages' directories)."""
+    built = BuiltSources()
+    for facts, package in run_wide.built:
+        if facts.path not in paths:
+            built.add(facts, package)
+    for facts, package in taken:
+        built.add(facts, package)
+    return built
+
+
 def _compiled(
     run_wide: RunWide,
     arrived: Sequence[_Arrived],
@@ -1757,17 +1763,17 @@ def _compiled(
 ) -> tuple[BuiltSources | None, BuiltSources]:
     """What the build files compiled at the last run (its ``RunWide``; ``then_too``:
     else None), and now: with the files edited since (``arrived``) as they are."""
-    then, now = BuiltSources() if then_too else None, BuiltSources()
-    edited = {facts.path for _, facts, _, _ in arrived}
-    for facts, package in run_wide.built:
-        if then is not None:
+    then = None
+    if then_too:
+        then = BuiltSources()
+        for facts, package in run_wide.built:
             then.add(facts, package)
-        if facts.path not in edited:
-            now.add(facts, package)
-    for index, facts, _, _ in arrived:
-        if facts.compiled is not None or facts.included_sources:
-            now.add(facts, package_of(index))
-    return then, now
+    taken = [
+        (facts, package_of(index))
+        for index, facts, _, _ in arrived
+        if facts.compiled is not None or facts.included_sources
+    ]
+    return then, built_as_taken(run_wide, taken, {facts.path for _, facts, _, _ in arrived})
 
 
 def _by_directory(package: Package) -> str:
