@@ -50,7 +50,7 @@ def memo_key(
     the package layout. Not what they say: a verdict reads a manifest only through the
     generation it gives its files (in their facts keys) and the plugin names (here); the
     packages a manifest depends on decide which service types a file is compared with,
-    and such a file's entry holds those types (``engine._FileChecks._typed``: ``under``).
+    and such a file's entry holds those types (``run_checks.RunChecks._typed``: ``under``).
     A dependency added checked every file of the workspace again: 2.8 s at 8 copies."""
     from .cache import code_fingerprint
 

@@ -18,6 +18,7 @@ from . import __version__
 from .cache import FactsCache
 from .cache import default_directory as default_cache_directory
 from .catalog import CatalogError, load_doc, rule_meta
+from .checks import recheck
 from .collection import rare_collections
 from .config import (
     ConfigError,
@@ -43,7 +44,7 @@ from .editing.baseline import BaselineError
 from .editing.changes import ChangesError, changed_lines, gate
 from .editing.files import Snapshot, WriteError, write_new
 from .editing.noqa import add_noqa
-from .engine import LintResult, RunOptions, lint, lintable, recheck
+from .engine import LintResult, RunOptions, lint, lintable
 from .extract.python.extract import is_launch_path
 from .generation import PackageGenerations
 from .model import Diagnostic, FileFacts, Generation, Kind, Language

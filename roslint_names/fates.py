@@ -11,9 +11,9 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
+from .checks import relative_to_root
 from .config import Settings
 from .discover import SourceFile, classify
-from .engine import relative_to_root
 from .gather import EXTRACTOR_MODULES
 from .model import Language
 from .reading import read_file

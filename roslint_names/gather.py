@@ -342,7 +342,7 @@ class Unread:
 # A job, the file's bytes (or where they are, or that the worker is to read them), and
 # the key its facts are cached under.
 _Item = tuple[_Job, "bytes | OnDisk | Unread | None", str | None]
-# What the per-file rules found in a file (``engine.FileChecks``): diagnostics and the
+# What the per-file rules found in a file (``checks.FileChecks``): diagnostics and the
 # file's suppressions; None where its verdict waits for the whole run.
 Verdict = tuple[list[Diagnostic], list[Suppression]]
 Checker = Callable[[FileFacts, bytes], "Verdict | None"]

@@ -104,7 +104,7 @@ class RunInputs:
         # A run that reports every file it checks, keyed by ``_place``: its place but for
         # which files it checks and what its packages depend on (``shifts``: an earlier
         # run of that shape is this one but for some files added or removed, and
-        # dependencies: ``engine._Shift``).
+        # dependencies: ``graph_patch.Shift``).
         self.shape_key: str | None = None
         self._keying: Keying | None = None  # an earlier run's, taken up (``unchanged``)
         self._carried = False  # keyed from it (``_carry``)

@@ -8,7 +8,7 @@ the 8.7 s an edit cost at 77,000 files (issue 30).
 
 After a run that built the graph, ``Replay`` keeps what the end of the run needs besides
 it: each checked file's facts key, every reported file's findings once the graph rules
-added theirs and the workspace spared some (``engine._FileChecks.spare``: with the files
+added theirs and the workspace spared some (``run_checks.RunChecks.spare``: with the files
 so judged), the graph rules' own findings per file, and what the run gathered from every
 file's facts (``RunWide``: the service types, the names the launch files wire, the build
 files' compiled sources, the fixtures tests load expecting them refused). It is keyed by
@@ -28,7 +28,7 @@ when each of those files (``moves``):
 - takes no value from another file's constant (``symbols.uses_constants``): those are
   not kept;
 - wires no name (``wiring.wired_by``): whether its wiring counts depends on its text
-  (``engine.launch_wiring``);
+  (``checks.launch_wiring``);
 - was not extracted again under an includer's arguments by the last graph build
   (``specialised``): that reads its bytes, not its facts.
 
@@ -65,7 +65,7 @@ Built = tuple[tuple[FileFacts, "str | None"], ...]  # ``BuiltSources.given``
 @dataclass(frozen=True)
 class RunWide:
     """What a run gathers from every file's facts for the checks at its end
-    (``engine._FileChecks``)."""
+    (``run_checks.RunChecks``)."""
 
     service_types: frozenset[tuple[Generation | None, str]]
     wired: frozenset[str]  # absolute names the launch files wire

@@ -28,24 +28,20 @@ from pathlib import Path
 from typing import Any
 
 from .cache import FactsCache
-from .config import Settings, enabled_codes, ros1_python2, test_code_codes
-from .decisions import one_per_decision
-from .discover import SourceFile, classify, discover, display_path
-from .engine import (
-    RunOptions,
+from .checks import (
     check_file,
     file_graph_findings,
     graph_findings,
     is_linter_code,
     launch_wiring,
-    lint,
-    lintable,
-    package_display,
     rostest_replaces,
     service_types_of,
     typed_services,
-    workspace_packages,
 )
+from .config import Settings, enabled_codes, ros1_python2, test_code_codes
+from .decisions import one_per_decision
+from .discover import SourceFile, classify, discover, display_path
+from .engine import RunOptions, lint, lintable, package_display, workspace_packages
 from .gather import (
     DEFAULT_GENERATION,
     EXTRACTOR_MODULES,

@@ -21,7 +21,7 @@ the last run of the same shape (its place but for the file list: ``Base``, by
 ``RunInputs.shape_key``) stands, its files renumbered (``Renumbering``): an added file
 is an edited one whose facts before were nothing (``run_inputs.ADDED``), a removed one
 is gone with its findings. Other files added or removed are the graph patch's to judge
-(``engine._came_or_went``: a launch file nothing includes is a tree of its own, a
+(``graph_patch._came_or_went``: a launch file nothing includes is a tree of its own, a
 parameter file has the trees naming a file of its name walked again). A graph kept by a
 build is found through the same renumbering (``GraphMove``: the run that renumbered
 keeps where the graph is and how its files map), and a patch over it asks the same of
@@ -31,7 +31,7 @@ A run's shape leaves out what its packages depend on too (``RunInputs.shape_key`
 dependency added to a manifest changes which packages run together and which service
 types a file can use, nothing else. The base keeps what its packages depended on
 (``Base.depends``); where they depended on others, its replay stands only through a
-patch of the graph with the packages as they are now (``engine._GraphPatch``).
+patch of the graph with the packages as they are now (``graph_patch.GraphPatch``).
 """
 
 from __future__ import annotations
@@ -276,7 +276,7 @@ class Base:
     reported: int
     # What its packages depended on (``PackageGenerations.depends_digest``): a run of
     # its shape may depend on others (``RunInputs.shape_key``), then its replay stands
-    # only through a patch of the graph (``engine._GraphPatch``).
+    # only through a patch of the graph (``graph_patch.GraphPatch``).
     depends: str = ""
 
     def pointer(self) -> tuple[object, ...]:

@@ -13,7 +13,7 @@ from typing import Any
 
 import pytest
 
-from roslint_names import engine
+from roslint_names import checks
 from tests.conftest import AMENT_PACKAGE, CATKIN_PACKAGE, write
 from tests.test_run_cache import CMAKE, DRIVER
 
@@ -57,13 +57,13 @@ def workspace(tmp_path: Path) -> Path:
 def checked_files(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[str]]:
     """The display paths the per-file rules check, run by run (cleared by the caller)."""
     seen: list[str] = []
-    original = engine.check_file
+    original = checks.check_file
 
     def counting(facts: Any, *arguments: Any, **keywords: Any) -> Any:
         seen.append(facts.path)
         return original(facts, *arguments, **keywords)
 
-    monkeypatch.setattr(engine, "check_file", counting)
+    monkeypatch.setattr(checks, "check_file", counting)
     yield seen
 
 

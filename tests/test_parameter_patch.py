@@ -306,7 +306,7 @@ def test_an_edit_the_patches_cannot_follow_is_refused(tmp_path: Path, step: int)
 
 def test_a_file_whose_facts_cannot_be_loaded_refuses_the_patch(tmp_path: Path) -> None:
     """A file of the edited package the patch cannot load (one taking another file's
-    constant: only the whole run resolves it, ``engine._GraphPatch``): the graph is
+    constant: only the whole run resolves it, ``graph_patch.GraphPatch``): the graph is
     built, never an internal error (a node renamed in moveit_ros_planning raised one)."""
     workspace = _Workspace(tmp_path / "ws")
     workspace.add(EXTRA_FILES)

@@ -287,7 +287,7 @@ class _Workspace(ExampleCopy):
         built: tuple[Graph, LaunchParts, CodeParameterParts, dict[str, FileFacts]],
         now: dict[str, FileFacts],
     ) -> tuple[Graph, LaunchParts, CodeParameterParts] | None:
-        """What ``engine._GraphPatch`` does for these edits."""
+        """What ``graph_patch.GraphPatch`` does for these edits."""
         graph, parts, code, before = built
         added = sorted(now.keys() - before.keys())
         removed = sorted(before.keys() - now.keys())

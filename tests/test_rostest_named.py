@@ -1,5 +1,5 @@
 """A node name rostest gives: the name a ROS 1 test hands ``ros::init`` where only rostest
-starts the executable (``workspace.built``, ``engine.rostest_replaces``)."""
+starts the executable (``workspace.built``, ``checks.rostest_replaces``)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from typing import Any
 import pytest
 from conftest import CATKIN_PACKAGE, write
 
-from roslint_names import engine
+from roslint_names import graph_patch
 from roslint_names.extract.build import cmake
 from roslint_names.model import Generation
 
@@ -261,14 +261,14 @@ def test_a_cached_run_judges_again_the_sources_a_build_file_edit_hands_rostest(
     graph is patched (its package's programs made again, ``workspace.program_patch``)
     and the source judged again, as a run without a cache judges it."""
     patched: list[bool] = []
-    patch = engine._GraphPatch.__call__
+    patch = graph_patch.GraphPatch.__call__
 
     def recording(*arguments: Any) -> Any:
         found = patch(*arguments)
         patched.append(found is not None)
         return found
 
-    monkeypatch.setattr(engine._GraphPatch, "__call__", recording)
+    monkeypatch.setattr(graph_patch.GraphPatch, "__call__", recording)
     root = tmp_path / "ws"
     package = gazebo_plugins(root)
     built = GAZEBO_PLUGINS_CMAKE.replace(ROSTEST_GTEST, "add_executable(set_model_state-test\n")

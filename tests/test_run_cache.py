@@ -17,7 +17,7 @@ import pytest
 
 from roslint_names import cache as cache_module
 from roslint_names import digests as digests_module
-from roslint_names import engine, generation, reading, run_inputs
+from roslint_names import checks, engine, generation, reading, run_inputs
 from roslint_names.config import Settings, settings_fingerprint
 from roslint_names.digests import ContentDigests
 from roslint_names.discover import SourceFile
@@ -493,9 +493,10 @@ def test_the_first_run_of_a_workspace_reads_each_file_once(
 ) -> None:
     # No digests yet, so no stored result can match: the run is keyed as it reads.
     direct = counting_reads(monkeypatch, engine)
+    direct_graph = counting_reads(monkeypatch, checks)  # a graph finding's source line
     check()
     assert sorted(reads) == ["CMakeLists.txt", "base.launch", "driver.cpp"]
-    assert direct == ["base.launch"]  # again, for the source line of its graph finding
+    assert direct == [] and direct_graph == ["base.launch"]  # again, for its graph finding
     assert reused(check())
 
 
@@ -547,6 +548,7 @@ def test_a_rerun_from_the_facts_reads_only_the_files_with_findings_or_suppressio
 
     monkeypatch.setattr(run_inputs, "read_file", recording(run_inputs.read_file))
     monkeypatch.setattr(engine, "read_file", recording(engine.read_file))
+    monkeypatch.setattr(checks, "read_file", recording(checks.read_file))
     again = check("--extend-select", "RN002")
     assert not reused(again) and again.stdout == cold.stdout
     # driver.cpp has findings, remembered with their lines (``clean_files``): not read;

@@ -16,7 +16,7 @@ import pytest
 from conftest import AMENT_PACKAGE
 
 from roslint_names import cache as cache_module
-from roslint_names import engine, same_facts, shifts
+from roslint_names import engine, graph_patch, run_checks, same_facts, shifts
 from roslint_names import session as session_module
 from roslint_names.config import load_settings
 from roslint_names.model import FileFacts, Generation, Language
@@ -54,13 +54,13 @@ def workspace(tmp_path: Path) -> Path:
 def replayed(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[list[int]]]:
     """The edited files of each run that took a replay."""
     seen: list[list[int]] = []
-    original = engine._FileChecks.resume
+    original = run_checks.RunChecks.resume
 
     def recording(checks: Any, replay: Any, edited: Any, paths: Any) -> None:
         seen.append(list(edited))
         original(checks, replay, edited, paths)
 
-    monkeypatch.setattr(engine._FileChecks, "resume", recording)
+    monkeypatch.setattr(run_checks.RunChecks, "resume", recording)
     yield seen
 
 
@@ -71,8 +71,8 @@ def taken(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[str]]:
     stored result ("stored") takes none."""
     seen: list[str] = []
     patched: list[bool] = []
-    original = engine._take_facts
-    patch = engine._GraphPatch.__call__
+    original = engine.take_facts
+    patch = graph_patch.GraphPatch.__call__
 
     def recording(*arguments: Any, **keywords: Any) -> Any:
         patched.clear()
@@ -85,8 +85,8 @@ def taken(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[str]]:
         patched.append(found is not None)
         return found
 
-    monkeypatch.setattr(engine, "_take_facts", recording)
-    monkeypatch.setattr(engine._GraphPatch, "__call__", patching)
+    monkeypatch.setattr(engine, "take_facts", recording)
+    monkeypatch.setattr(graph_patch.GraphPatch, "__call__", patching)
     yield seen
 
 
@@ -447,12 +447,12 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     # A header whose constant names a topic (no file takes it yet: patched, its package
     # resolving its names as before), and code taking it: the whole run resolves the
     # name. Then an include changed in that package: the code resolves its names as
-    # before (``engine._GraphPatch``'s ``resolved_alike``), the graph is patched.
+    # before (``graph_patch.GraphPatch``'s ``resolved_alike``), the graph is patched.
     (TOPICS, None, TOPICS_HEADER, "patch"),
     (STATUS_SOURCE, None, STATUS_NODE, "build"),
     (MONITOR, "\n#include <fleet_bringup/units.hpp>\n", "", "patch"),
     # A parameter declared beside that code: the package's files are read as the run
-    # reads them, the constant's name resolved (``engine._GraphPatch``), and patched.
+    # reads them, the constant's name resolved (``graph_patch.GraphPatch``), and patched.
     (
         MONITOR,
         "",
@@ -461,7 +461,7 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
         "patch",
     ),
     # The file taking the constant edited: a comment, then a topic of its own added (its
-    # names resolved from its package's headers then and now, ``engine._GraphPatch``).
+    # names resolved from its package's headers then and now, ``graph_patch.GraphPatch``).
     # Then the constant's value changed: what every file taking it names changes.
     (STATUS_SOURCE, "", "\n// Reviewed with the fleet team.\n", "patch"),
     (
@@ -493,7 +493,7 @@ def test_a_sequence_of_edits_gives_what_a_fresh_run_gives(
 ) -> None:
     # Every patch from the last build, as the steps' comments say (none kept as the next
     # runs' graph: the test below).
-    monkeypatch.setattr(engine, "REBASE_EDITS", len(STEPS))
+    monkeypatch.setattr(graph_patch, "REBASE_EDITS", len(STEPS))
     cache = tmp_path / "cache"
     cached, fresh = outputs(run_cli, workspace, cache)
     assert cached == fresh
@@ -512,16 +512,16 @@ def test_a_sequence_of_edits_each_kept_as_the_next_runs_graph_gives_what_a_fresh
     """Every patched run keeps what it patched as a build keeps it (``REBASE_EDITS`` of
     one): the next run patches that graph with the launch and code parameter parts the
     patches made, and must print what a fresh run prints at every step."""
-    monkeypatch.setattr(engine, "REBASE_EDITS", 1)
+    monkeypatch.setattr(graph_patch, "REBASE_EDITS", 1)
     kept: list[int] = []
-    patch = engine._GraphPatch.__call__
+    patch = graph_patch.GraphPatch.__call__
 
     def patching(self: Any, *arguments: Any) -> Any:
         found = patch(self, *arguments)
         kept.append(self.rebased is not None)
         return found
 
-    monkeypatch.setattr(engine._GraphPatch, "__call__", patching)
+    monkeypatch.setattr(graph_patch.GraphPatch, "__call__", patching)
     cache = tmp_path / "cache"
     cached, fresh = outputs(run_cli, workspace, cache)
     assert cached == fresh
@@ -827,13 +827,13 @@ def test_a_launch_file_whose_facts_only_moved_walks_no_tree(
     cache = tmp_path / "cache"
     outputs(run_cli, workspace, cache)
     walked: list[object] = []
-    real = engine.launch_patched
+    real = graph_patch.launch_patched
 
     def walking(*arguments: Any, **keywords: Any) -> Any:
         walked.append(arguments[2])
         return real(*arguments, **keywords)
 
-    monkeypatch.setattr(engine, "launch_patched", walking)
+    monkeypatch.setattr(graph_patch, "launch_patched", walking)
     append(workspace / BASE, "\n<!-- Reviewed for the second robot. -->\n")
     edit(workspace / MONITOR, '"robot_pose"', '"robot_pose_estimate"')
     taken.clear()
@@ -1020,7 +1020,7 @@ def test_an_include_that_gives_test_code_a_constant_is_built(
     topic takes, which only the whole run resolves (``symbols``). No node's code is of
     that package, so no parameter gathered again reads its files: the patch refuses
     such an edit where a file of the package that takes a constant resolves it otherwise
-    now (``engine._GraphPatch``'s ``resolved_alike``), or the test's illegal topic would
+    now (``graph_patch.GraphPatch``'s ``resolved_alike``), or the test's illegal topic would
     stay unreported."""
     status = workspace / NAMES / "include/fleet_names/status.hpp"
     change(workspace / NAMES / "package.xml", None, AMENT_PACKAGE.format(name="fleet_names"))
@@ -1213,7 +1213,7 @@ def test_a_kept_patch_keeps_the_parameters_of_code_moved_since_where_they_are(
     (``REBASE_EDITS`` of one): the probe's code parameters it keeps are where they are
     now (``patch.moved_code_parameters``), so a launch file that starts the probe
     afterwards, which takes them from there, reports the read where it is."""
-    monkeypatch.setattr(engine, "REBASE_EDITS", 1)
+    monkeypatch.setattr(graph_patch, "REBASE_EDITS", 1)
     root = tmp_path / "ws"
     for name, executable, source in (("probe_pkg", "probe", PROBE), ("relay_pkg", "relay", RELAY)):
         package = root / "src" / name

@@ -24,7 +24,7 @@ the build did not make (code that ran as no node, or as a program of other sourc
 but where a package's programs were made again (``program_patch``: the parameter patch
 gathers those), or where a file it needs has no facts to load. It gives the launch
 parts a build would leave too (the roots, each tree's part, the includers), which a run
-that keeps what it patched keeps (``engine.REBASE_EDITS``).
+that keeps what it patched keeps (``graph_patch.REBASE_EDITS``).
 ``tests/test_launch_patch.py`` compares patched graphs and parts with built ones.
 """
 

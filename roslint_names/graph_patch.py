@@ -1,0 +1,1038 @@
+"""A run that takes the last run's graph findings (``same_facts``: its replay), or patches
+the graph the last build kept (``GraphPatch``: ``workspace.patch``, ``launch_patch``,
+``parameter_patch``, ``program_patch``) instead of building it; and where that graph and
+the last run of the same shape are kept (``shifts``)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
+from dataclasses import dataclass, replace
+from functools import cache, lru_cache
+from typing import TYPE_CHECKING, NamedTuple
+
+from . import same_facts, shifts
+from .checks import file_graph_findings, graph_findings, typed_services
+from .config import Settings
+from .discover import SourceFile
+from .gather import Gatherer, Specialiser, Verdict
+from .model import FileFacts, Finding, Generation, Language
+from .moves import Moves, UnplacedError, moved_finding
+from .registry import Registry
+from .rule import Rule, WorkspaceFinding
+from .run_checks import RunChecks, built_as_taken
+from .run_inputs import ADDED, RunInputs, is_facts_key
+from .same_facts import KeptGraph, KeptLaunch, Replay, RunWide
+from .symbols import PackageConstants, uses_constants
+from .wiring import wired_by
+from .workspace.build import _TestFiles
+from .workspace.built import BuiltSources
+from .workspace.graph import Graph
+from .workspace.index import (
+    CODE_LANGUAGES,
+    Package,
+    PackageFiles,
+    WorkspaceIndex,
+    companions,
+    named_once,
+)
+from .workspace.launch_parts import CodeParameterParts, LaunchParts
+from .workspace.launch_patch import LazyFacts, launch_edit, launch_patched, parameter_edit
+from .workspace.launch_tree import LAUNCH_LANGUAGES
+from .workspace.parameter_patch import parameters_patched
+from .workspace.patch import (
+    NOT_CODE_FIELDS,
+    Moved,
+    edits_of,
+    moved_code_parameters,
+    same_places,
+    with_parameters,
+)
+from .workspace.patch import patched as patch_graph
+from .workspace.program_patch import ProgramsAnew, program_edit, programs_anew
+
+if TYPE_CHECKING:
+    from .cache import FactsCache  # imported by the caller that wants a cache
+
+
+class Shift(NamedTuple):
+    """A run over the files of an earlier run, some added or removed (``shifts``): where
+    that run's replay is kept, how the files map, and the replay renumbered; whether it
+    may stand as it is (each removed file said nothing), else only a patch of the
+    graph may take it (a launch file removed: ``GraphPatch``)."""
+
+    replay_at: str
+    renumbering: shifts.Renumbering
+    replay: Replay
+    stands: bool
+
+
+def shifted_replay(
+    cache: FactsCache,
+    inputs: RunInputs,
+    clean_key: str,
+    files: Sequence[SourceFile],
+    depends: str,
+) -> Shift | None:
+    """The replay of the last run of this run's shape (``shifts.Base``), renumbered to its
+    files; it stands where its packages depended on what they do now (``depends``) and
+    each file it had and this run has not says nothing and is found by no name (its
+    findings go with it), each added file asked the same once its facts are known
+    (``_replay_moved``); else only a patch of the graph may take it."""
+    found = _base_of(cache, inputs, clean_key, files)
+    if found is None:
+        return None
+    base, renumbering = found
+    earlier = same_facts.loaded(
+        cache.load_replay(base.replay_at), len(base.displays), base.reported
+    )
+    if earlier is None:
+        return None
+    stands = base.depends == depends
+    if stands and renumbering.removed:
+        found_by = earlier.run_wide.lookups()
+        gone = (_facts_by_tag(cache, earlier.tags[at], path) for at, path in renumbering.removed)
+        stands = all(facts is not None and found_by.adds_nothing(facts) for facts in gone)
+    replay = earlier.renumbered(renumbering, len(files))
+    return Shift(base.replay_at, renumbering, replay, stands)
+
+
+def _facts_by_tag(cache: FactsCache, tag: str, display: str) -> FileFacts | None:
+    """The facts of the file shown as ``display`` under ``tag`` (``RunInputs.tags``), None
+    where the tag is no facts key or they are not kept."""
+    return cache.load(tag, display) if is_facts_key(tag) else None
+
+
+def _base_of(
+    cache: FactsCache, inputs: RunInputs, clean_key: str, files: Sequence[SourceFile]
+) -> tuple[shifts.Base, shifts.Renumbering] | None:
+    """The last run of this run's shape that kept a replay (``shifts.Base``), and how this
+    run's files map to its; None where there is none, or the files differ too much."""
+    shape = inputs.shape_key
+    if shape is None:
+        return None
+    base = shifts.loaded_base(
+        cache.load_base(same_facts.key(shape, clean_key)), cache.load_file_list
+    )
+    if base is None:
+        return None
+    displays = [source.display for source in files]
+    renumbering = shifts.renumbering(base.displays, base.reported, displays)
+    return None if renumbering is None else (base, renumbering)
+
+
+def base_place(
+    cache: FactsCache, inputs: RunInputs, clean_key: str, files: Sequence[SourceFile]
+) -> GraphPlace | None:
+    """Where the graph of the last run of this run's shape is (``GraphPatch.elsewhere``)."""
+    found = _base_of(cache, inputs, clean_key, files)
+    return None if found is None else GraphPlace(found[0].replay_at, found[1])
+
+
+def keep_base(
+    cache: FactsCache,
+    inputs: RunInputs,
+    clean_key: str | None,
+    kept_at: str,
+    *,
+    files: Sequence[SourceFile],
+    reported: int,
+    depends: str,
+) -> None:
+    """Keep the run that kept its replay at ``kept_at`` as the last of its shape: its
+    files, where no run over them kept them yet (or what was kept does not read back),
+    and the pointer to them, with what its packages depend on (``depends``)."""
+    if inputs.shape_key is None or clean_key is None:
+        return
+    at = same_facts.key(inputs.shape_key, clean_key)
+    listed = cache.holds_file_list(kept_at)
+    if listed and cache.load_base(at) == shifts.pointer(kept_at, reported, len(files), depends):
+        return  # most runs: the last run's, as it is (its display paths not made)
+    displays = tuple(source.display for source in files)
+    base = shifts.Base(kept_at, displays, reported, depends)
+    if not listed or shifts.loaded_base(base.pointer(), cache.load_file_list) != base:
+        cache.store_file_list(kept_at, base.listed())
+    cache.store_base(at, base.pointer())
+
+
+@dataclass(frozen=True)
+class GraphPlace:
+    """Where the graph a patch starts from is kept (``key``), and how this run's files
+    map to that run's (None: they are its files)."""
+
+    key: str
+    renumbering: shifts.Renumbering | None = None
+
+    def resolved(self, cache: FactsCache, files: Sequence[SourceFile]) -> GraphPlace | None:
+        """Where a build kept the graph: ``key``, or where the run kept under it says
+        (``shifts.GraphMove``), the renumberings joined (``files``: this run's); None
+        where neither is."""
+        if cache.holds_graph(self.key):
+            return self
+        move = shifts.loaded_move(cache.load_graph_move(self.key))
+        if move is None:
+            return None
+        renumbering = move.renumbering
+        if self.renumbering is not None:
+            displays = [source.display for source in files]
+            renumbering = self.renumbering.after(renumbering, displays)
+        return GraphPlace(move.graph_at, renumbering)
+
+    def graph(self, cache: FactsCache, files: int, reported: int) -> KeptGraph | None:
+        """The kept graph over ``files`` checked files, ``reported`` of them reported
+        (renumbered to them); None where it is not kept or does not read back."""
+        if self.renumbering is None:
+            return same_facts.loaded_graph(cache.load_graph(self.key), files, reported)
+        renumbering = self.renumbering
+        if len(renumbering.previous) != files:
+            return None
+        built = same_facts.loaded_graph(
+            cache.load_graph(self.key), renumbering.before, renumbering.reported_before
+        )
+        return None if built is None else built.renumbered(renumbering, reported)
+
+
+class Replayed(NamedTuple):
+    """A run that took a replay: the files edited since (and those whose graph findings a
+    patched graph changed), and the replay with their places where they are now (with
+    the patched graph's findings)."""
+
+    edited: list[int]
+    replay: Replay
+
+
+def take_facts(
+    gathered: Gatherer,
+    checks: RunChecks,
+    replay: Replay | None,
+    inputs: RunInputs | None,
+    *,
+    rules: Mapping[str, Rule],
+    patch: Callable[[Replay, Sequence[_Arrived]], Replayed | None] | None = None,
+    stands: bool = True,
+) -> Replayed | None:
+    """Hand every file's facts to ``checks``, as they arrive; or, where the run can take
+    ``replay`` (``same_facts``), only those of the files edited since: then those files,
+    and the replay with their places where they are now; or, where ``patch`` patches the
+    replay's graph (``workspace.patch``), what it gives. The edited files come first
+    either way: whether the replay stands is their facts' question (and ``stands``:
+    False where only a patch may take it, ``Shift``)."""
+    edited = None if replay is None or inputs is None else replay.edited(inputs.tags)
+    if replay is None or edited is None or inputs is None or gathered.cache is None:
+        for index, facts, data, verdict in gathered.facts():
+            checks.take(index, facts, data, verdict)
+        return None
+    arrived = list(gathered.facts(edited))
+    for index, facts, data, verdict in arrived:
+        checks.take(index, facts, data, verdict)
+    cache = gathered.cache
+    moved = (
+        _replay_moved(replay, arrived, inputs, files=gathered.files, cache=cache, rules=rules)
+        if stands
+        else None
+    )
+    if moved is not None:
+        # Every file's facts are what the result stands on, loaded or not: kept by the
+        # pack's rewrite (``FactsCache.stand_on``).
+        cache.stand_on(tag for tag in inputs.tags if is_facts_key(tag))
+        return Replayed(edited, moved)
+    patched = None if patch is None else patch(replay, arrived)
+    if patched is not None:
+        cache.stand_on(tag for tag in inputs.tags if is_facts_key(tag))
+        return patched
+    others = set(edited)
+    rest = (index for index in range(len(gathered.files)) if index not in others)
+    for index, facts, data, verdict in gathered.facts(rest):
+        checks.take(index, facts, data, verdict)
+    return None
+
+
+_Arrived = tuple[int, FileFacts, "bytes | None", "Verdict | None"]
+
+
+# Files edited since the last build past which a patch keeps what it patched as the
+# graph the next runs patch, as a build does: each run patches every edit since that
+# build again (at 8 copies of the benchmark's workspace, a parameter declared in one
+# more C++ file before each run: 2.07 s after the first, 4.02 s after the thirtieth),
+# and keeping the patched graph and its parts costs a run what a build's keeping does
+# (0.4 to 0.5 s there). Kept past 8 such files, the runs of that sequence took 2.2 to
+# 3.4 s.
+REBASE_EDITS = 8
+
+
+class _Rebased(NamedTuple):
+    """What a patch keeps as a build keeps it: the whole graph, the launch and code
+    parameter parts a build of the files as they are would leave, and the packages."""
+
+    graph: Graph
+    launch: LaunchParts
+    code: CodeParameterParts
+    packages: list[Package]
+
+
+@dataclass
+class GraphPatch:
+    """A run whose edits change only what some nodes' code declares (``workspace.patch``)
+    or what some launch trees start or hand their nodes (``workspace.launch_patch``: launch
+    and parameter files), or what some packages depend on (their manifests): the graph
+    the last build kept, patched with every edit since (the facts it was built from are
+    loaded, so kept in the pack), and the graph rules run over it; the files whose graph
+    findings that changed, and those of a package depending on others, are taken and
+    reported again with the edited ones, every other file's findings are the replay's.
+    A build keeps its graph; a patch keeps what it patched, as a build keeps it, only
+    where it applied many edits since (``REBASE_EDITS``): pickling a graph and its parts
+    (0.4 to 0.5 s at 81,000 files) would cost each patched run more than patching it
+    again, and every edit since the last build is patched again by each run."""
+
+    gathered: Gatherer
+    checks: RunChecks
+    inputs: RunInputs
+    cache: FactsCache
+    place: GraphPlace  # where the last build's graph is kept, by the replay's
+    rules: Sequence[Rule]
+    settings: Settings
+    # Launch files under their includers' arguments, for the trees walked again
+    specialiser: Callable[[], Specialiser]
+    # Where the graph of the last run of this run's shape is, where ``place`` no longer
+    # leads to one (a run over these files long ago, whose graph was since forgotten)
+    elsewhere: Callable[[], GraphPlace | None] = lambda: None
+    # What the run's packages depend on (``PackageGenerations.depends_digest``), and the
+    # packages (``workspace_packages``): a graph built where some depended on others is
+    # patched with them as they are (``_depending_anew``).
+    depends: Callable[[], str] = lambda: ""
+    packages: Callable[[], list[Package]] = list
+    # Whether the run keeps what a build keeps (a run over the workspace, not one with
+    # the rest of it as context): where the patch applied many edits, what it patched
+    # is kept as the next runs' graph (``rebased``).
+    may_rebase: bool = False
+    elsewhere_used: bool = False
+    graph_from: GraphPlace | None = None  # where the graph it patched is, resolved
+    rebased: _Rebased | None = None
+
+    def __call__(self, replay: Replay, arrived: Sequence[_Arrived]) -> Replayed | None:
+        """The replay patched from the graph kept where it was made; where that holds
+        none, or one the edits since cannot patch, from the graph of the last run of
+        this run's shape (``elsewhere``): a replay found by the run's files may be of a
+        run long ago (a file removed and brought back), whose graph is older than the
+        last build's."""
+        files = self.gathered.files
+        place = self.place.resolved(self.cache, files)
+        stored = None if place is None else place.graph(self.cache, len(files), replay.reported)
+        found = (
+            None if place is None or stored is None else self._from(replay, arrived, place, stored)
+        )
+        if found is not None:
+            return found
+        other = self.elsewhere()
+        last = None if other is None else other.resolved(self.cache, files)
+        if last is None or (place is not None and last.key == place.key):
+            return None
+        stored = last.graph(self.cache, len(files), replay.reported)
+        self.elsewhere_used = True
+        return None if stored is None else self._from(replay, arrived, last, stored)
+
+    def _from(
+        self, replay: Replay, arrived: Sequence[_Arrived], place: GraphPlace, stored: KeptGraph
+    ) -> Replayed | None:
+        """The replay patched from the graph ``stored`` at ``place``; None where the
+        edits since cannot be."""
+        files = self.gathered.files
+        self.graph_from = place
+        codes = {rule.code for rule in self.rules}
+        if not same_facts.codes_of(replay.graph, stored.found) <= codes:
+            return None
+        built_from, graph = stored.tags, stored.graph
+        packages: Sequence[Package] = stored.packages
+        depending: frozenset[str] = frozenset()  # packages depending on others since
+        if stored.depends != self.depends():
+            anew = _depending_anew(stored.packages, self.packages())
+            if anew is None:
+                return None
+            packages, depending = anew
+        arrived_facts = {index: facts for index, facts, _, _ in arrived}
+        loaded: dict[int, FileFacts | None] = {}
+        raw: dict[int, FileFacts] = {}  # those of ``loaded`` whose names were resolved, as stored
+        # Files the build did not have, or had and the run has not, say nothing and are
+        # found by no name, the edited files' names too (``shifts``): then the build's
+        # graph is theirs.
+        found_by = replay.run_wide.lookups()
+        for edited in arrived_facts.values():
+            found_by.add(edited)
+
+        def launch_files() -> list[str]:
+            return [source.display for source in files if source.language in LAUNCH_LANGUAGES]
+
+        # Launch files added or removed that nothing includes: trees that come or go.
+        # Parameter files added or removed: the trees that read a launch file naming a
+        # file of that name are walked again (and the trees handed a removed one), as
+        # ``find_in_package`` may find another file by that name now.
+        new_files: set[str] = set()
+        removed_trees: list[str] = []
+        naming: set[str] = set()  # launch files that name a parameter file added or removed
+        # Code files the build had that the run has not, as they were: their packages'
+        # programs are made again (``program_patch``).
+        removed_code: dict[str, FileFacts] = {}
+        for display, tag in stored.gone:
+            gone = _facts_by_tag(self.cache, tag, display)
+            if gone is not None and _new_code(gone, found_by, frozenset()):
+                removed_code[display] = gone
+                continue
+            came = None if gone is None else _came_or_went(gone, found_by, launch_files)
+            if came is None:
+                return None
+            naming |= came[1]
+            if came[0] != _SAYS_NOTHING:
+                removed_trees.append(display)
+
+        slots = {source.display: index for index, source in enumerate(files)}
+        # Which package holds each file (the build's packages), for a patch that asks.
+        package_files = lru_cache(maxsize=1)(
+            lambda: PackageFiles([source.display for source in files], packages)
+        )
+
+        def stored_facts(index: int) -> FileFacts | None:
+            """A file's facts as extracted (the edited files' of this run)."""
+            if index in arrived_facts:
+                return arrived_facts[index]
+            # By index: ``RunInputs.tags`` copies every file's key (0.08 s a patch).
+            tag = self.inputs.facts_key(index)
+            return None if tag is None else self.cache.load(tag, files[index].display)
+
+        # The files taking another file's constant are resolved as the run resolves them
+        # (``resolved``): as the build resolved them, where an edit changed what a file
+        # includes (``resolved_alike``, below).
+        def facts_at(index: int) -> FileFacts | None:
+            if index in loaded:  # (an edited file's, resolved: below)
+                return loaded[index]
+            if index in arrived_facts:
+                return arrived_facts[index]
+            known = stored_facts(index)
+            if known is not None and uses_constants(known):
+                raw[index] = known
+                known = resolved(known, index)
+            loaded[index] = known
+            return known
+
+        @cache
+        def code_below(directory: str) -> tuple[tuple[str, FileFacts], ...] | None:
+            """Every C++ file below a package's directory (display path) with its facts,
+            as ``symbols.PackageConstants`` reads them; None where one has no facts. Each
+            directory's once: the tables then and now, and the checks, read the same."""
+            code: list[tuple[str, FileFacts]] = []
+            for path in package_files().below(directory):
+                if files[slots[path]].language is not Language.CPP:
+                    continue
+                found = stored_facts(slots[path])
+                if found is None:
+                    return None
+                code.append((path, found))
+            return tuple(code)
+
+        @cache
+        def constants_of(directory: str) -> PackageConstants | None:
+            """The constants of the C++ files below a package's directory now."""
+            code = code_below(directory)
+            if code is None:
+                return None
+            table = PackageConstants()
+            for _, found in code:
+                table.add(found)
+            return table
+
+        def resolved(known: FileFacts, index: int) -> FileFacts | None:
+            """``known`` with its symbols resolved by its package's headers (``symbols``),
+            from every C++ file below the package's directory; None where one of them
+            has no facts."""
+            package = self.checks.package_of(index)
+            if package is None:
+                return known  # the run resolves nothing there either
+            table = constants_of(package)
+            return None if table is None else table.resolve(known, package)
+
+        @cache
+        def constants_then(directory: str) -> PackageConstants | None:
+            """The constants of the C++ files below a package's directory at the build:
+            those edited since as they were (``then_of``, once every edit is known),
+            those removed since too."""
+            code = code_below(directory)
+            if code is None:
+                return None
+            table = PackageConstants()
+            for path, found in code:
+                table.add(then_of.get(path, found))
+            for path, found in removed_code.items():
+                if path.startswith(f"{directory}/" if directory else ""):
+                    table.add(found)
+            return table
+
+        def resolved_alike(including: Iterable[str]) -> bool:
+            """Whether every file taking another file's constant, of a package holding a
+            file whose includes changed (``including``), resolves its names as the build
+            did, from the C++ files then (``constants_then``): an include added or taken
+            out seldom changes which header defines a constant, and where it does, its
+            names may change (the graph is built)."""
+            for display in including:
+                for package in package_files().enclosing(display):
+                    at = package.directory
+                    code, now, then = code_below(at), constants_of(at), constants_then(at)
+                    if code is None or now is None or then is None:
+                        return False
+                    for path, found in code:
+                        if not uses_constants(found):
+                            continue
+                        if package_files().package_of(path) != package:
+                            continue  # resolved in its own package's, below this one
+                        if now.resolve(found, at) != then.resolve(found, at):
+                            return False
+            return True
+
+        changed: list[tuple[str, FileFacts, FileFacts]] = []
+        taking: list[tuple[int, str, FileFacts]] = []  # code taking a constant: its facts then
+        tree_edits: list[str] = []
+        # Build files that build other programs now (as they were at the build), and code
+        # files added: their packages' programs are made again (``program_patch``).
+        building: dict[str, FileFacts] = {}
+        added_code: list[str] = []
+        pairs = zip(self.inputs.tags, built_from, strict=True)
+        for index, (now, then) in enumerate(pairs):
+            if now == then:
+                continue
+            display = files[index].display
+            if display in replay.specialised:
+                return None  # the graph read its bytes under an includer's arguments
+            if then == ADDED:
+                added = facts_at(index) if is_facts_key(now) else None
+                if added is not None and _new_code(added, found_by, replay.run_wide.service_types):
+                    added_code.append(display)  # its package's programs made again
+                    new_files.add(display)
+                    continue
+                came = None if added is None else _came_or_went(added, found_by, launch_files)
+                if came is None:
+                    return None
+                naming |= came[1]
+                if came[0] == _A_TREE:
+                    tree_edits.append(display)
+                if came[0] != _SAYS_NOTHING:
+                    new_files.add(display)
+                continue
+            before = _facts_by_tag(self.cache, then, display)
+            facts = facts_at(index) if is_facts_key(now) else None
+            if before is None or facts is None:
+                return None
+            # A launch or parameter file whose facts are where they were (a comment at the
+            # end) changes no tree; else the trees that read it are walked again.
+            if program_edit(before, facts):
+                building[display] = before  # its package's programs made again
+                continue
+            if uses_constants(before) or uses_constants(raw.get(index, facts)):
+                taking.append((index, display, before))  # resolved once every edit is known
+                continue
+            moved_only = same_places(before, facts)
+            if (launch_edit(before, facts) or parameter_edit(before, facts)) and not moved_only:
+                if not _patchable(before, facts, wiring_kept=True):
+                    return None
+                tree_edits.append(display)
+            elif _patchable(before, facts, wiring_kept=moved_only):
+                changed.append((display, before, facts))
+            else:
+                return None
+        then_of: dict[str, FileFacts] = {display: then for display, then, _ in changed}
+        then_of.update((display, before) for _, display, before in taking)
+        for display in added_code:
+            added = facts_at(slots[display])
+            if added is not None:
+                then_of[display] = _empty(added)
+        # A code file taking another file's constant, edited: its facts then and now with
+        # their names resolved from its package's headers then and now, as the build and
+        # the run resolve them, compared as any edit's; its own check, at the run's end,
+        # resolves them from those headers (``RunChecks.know_constants``).
+        for index, display, before in taking:
+            directory = self.checks.package_of(index)
+            now_raw = raw.get(index, arrived_facts.get(index))
+            if now_raw is None or files[index].language is not Language.CPP:
+                return None
+            if directory is None:
+                before_then, now_resolved = before, now_raw  # the run resolves none either
+            else:
+                table_then, table_now = constants_then(directory), constants_of(directory)
+                headers = code_below(directory)
+                if table_then is None or table_now is None or headers is None:
+                    return None
+                before_then = table_then.resolve(before, directory)
+                now_resolved = table_now.resolve(now_raw, directory)
+                if index in arrived_facts:
+                    self.checks.know_constants(found for _, found in headers)
+            loaded[index] = now_resolved
+            if not _patchable(before_then, now_resolved, resolved=True):
+                return None
+            changed.append((display, before_then, now_resolved))
+        including = [
+            display for display, then, now in changed if then.cpp_includes != now.cpp_includes
+        ]
+        for display in added_code:  # a header added may define what a file takes
+            if files[slots[display]].language is Language.CPP:
+                including.append(display)
+        for display, gone in removed_code.items():  # and one removed may have
+            if gone.language is Language.CPP:
+                including.append(display)
+        if including and not resolved_alike(including):
+            return None
+        naming -= {*tree_edits, *removed_trees}
+        walk = [*tree_edits, *sorted(naming)]  # the launch files whose trees are walked again
+        declaring: set[str] = set()  # code files whose parameters changed
+        renamed: set[str] = set()  # and those whose node name did (``patch.name_edit``)
+        edits = edits_of(changed, declaring, renamed)
+        if edits is None:
+            return None
+
+        def facts_of(display: str) -> FileFacts | None:
+            at = slots.get(display)
+            return None if at is None else facts_at(at)
+
+        # The build's whole graph (its parameters kept apart, ``same_facts.KeptLaunch``)
+        # for a patch that walks trees or gathers parameters again, or that keeps what it
+        # patched as the graph later runs patch (``REBASE_EDITS``).
+        kept: KeptLaunch | None = None
+        known: set[str] = set()  # the files the build had facts of (a skipped one has none)
+        # Some nodes' parameters gathered again
+        gathering = bool(declaring or depending or building or added_code or removed_code)
+        since = len(changed) + len(tree_edits) + len(removed_trees) + len(new_files)
+        since += len(building) + len(removed_code)
+        rebasing = self.may_rebase and since + len(depending) >= REBASE_EDITS
+        if walk or removed_trees or gathering or rebasing:
+            kept = same_facts.loaded_launch(
+                self.cache.load_launch_parts(place.key), stored.built_from
+            )
+            whole = None if kept is None else with_parameters(graph, kept.parameters)
+            if kept is None or whole is None:
+                return None
+            graph = whole
+            if depending:  # which nodes can meet (``Graph.can_meet``)
+                graph = replace(graph, companions=companions(named_once(packages)))
+            known = {
+                files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)
+            }
+            known |= new_files
+        launch_parts = None if kept is None else kept.parts  # as a build would leave them
+        programs: ProgramsAnew | None = None
+        if building or added_code or removed_code:
+            assert kept is not None
+            # What the build files compiled at the last run, where one builds other
+            # programs now (no file added or removed changes it), and now.
+            compiled = _compiled(replay.run_wide, arrived, self.checks.package_of, bool(building))
+            at_now = WorkspaceIndex.restored(
+                LazyFacts(known, facts_of), packages, kept.parts.executables
+            )
+            owners = [
+                package_files().package_of(path) for path in (*building, *added_code, *removed_code)
+            ]
+            if None in owners:
+                return None
+            programs = programs_anew(
+                kept.parts.programs,
+                kept.parts.executables,
+                kept.parts.unbuilt,
+                index=at_now,
+                packages=sorted(
+                    {owner for owner in owners if owner is not None}, key=_by_directory
+                ),
+                language_of=lambda path: files[slots[path]].language,
+                then=building,
+                added=added_code,
+                removed=removed_code.keys(),
+                compiled=compiled[1],
+                compiled_then=compiled[0],
+                is_test=_TestFiles(at_now, {}),
+                named_elsewhere=lambda path, own: (
+                    not found_by.builders(path) <= {shifts.digest(builder) for builder in own}
+                ),
+            )
+            if programs is None:
+                return None
+        specialised = replay.specialised
+        if walk or removed_trees or renamed or programs is not None:
+            assert kept is not None
+            if not naming <= known:
+                return None  # a launch file naming one that has no facts now
+            walked = self._walked(
+                graph,
+                parts=kept.parts,
+                packages=packages,
+                edited=walk,
+                removed=removed_trees,
+                code=renamed,
+                known=known,
+                facts_of=facts_of,
+                programs=programs,
+            )
+            if walked is None:
+                return None
+            # A file an edited include hands arguments to now is read under them: an
+            # edit of it is never replayed nor patched (the check above). One no longer
+            # read so stays in the set: its edits build, as they would have.
+            graph, launch_parts = walked[0]
+            specialised = specialised | walked[1]
+        patched: Graph | None = patch_graph(
+            graph,
+            edits,
+            facts_of,
+            package_files,
+            declaring=bool(declaring),
+        )
+        code_parts: CodeParameterParts | None = None
+        if patched is not None and (gathering or rebasing):
+            assert launch_parts is not None
+            kept_code = same_facts.loaded_code(
+                self.cache.load_code_parameters(place.key), stored.built_from
+            )
+            if kept_code is None:
+                return None
+            code_parts = kept_code.parts
+            if gathering:
+                code_edits = {
+                    display: (before, now) for display, before, now in changed if display in edits
+                }
+                for display in added_code:
+                    added = facts_at(slots[display])
+                    assert added is not None  # (``_new_code``)
+                    code_edits[display] = (_empty(added), added)
+                for display, gone in removed_code.items():
+                    code_edits[display] = (gone, _empty(gone))
+                gathered = parameters_patched(
+                    patched,
+                    launch_parts,
+                    code_parts,
+                    code_edits,
+                    facts=LazyFacts(known, facts_of),
+                    packages=packages,
+                    depending=depending,
+                    programs=programs,
+                    added=added_code,
+                    removed=removed_code.keys(),
+                )
+                if gathered is None:
+                    return None
+                patched, launch_parts, code_parts = gathered
+            else:  # the nodes' parameters moved with their code (``patched``)
+                moved = moved_code_parameters(launch_parts.parameters, edits)
+                launch_parts = None if moved is None else replace(launch_parts, parameters=moved)
+        if patched is None:
+            return None
+        # A rule that reads no name the patch changed has the built graph's findings, the
+        # places of the edited files moved (only places can have: its parameter uses');
+        # none where launch trees were walked again.
+        kept_codes, kept_found = (
+            (frozenset(), {})
+            if walk or removed_trees or gathering
+            else _kept_findings(stored.found, edits, self.rules, files)
+        )
+        fresh = [rule for rule in self.rules if rule.code not in kept_codes]
+        by_rule: dict[int, dict[str, list[Finding]]] = {}
+        for path, items in graph_findings(patched, fresh, self.settings).items():
+            at = slots.get(path)
+            if at is not None and at < replay.reported:
+                for rule, item in items:
+                    by_rule.setdefault(at, {}).setdefault(rule.code, []).append(item.finding)
+        for index, built in kept_found.items():
+            for code, finding in built:
+                by_rule.setdefault(index, {}).setdefault(code, []).append(finding)
+        # In the rules' order, as ``graph_findings`` lists them.
+        found = {
+            index: tuple((rule.code, f) for rule in self.rules for f in codes.get(rule.code, ()))
+            for index, codes in by_rule.items()
+        }
+        again = set(arrived_facts) | {
+            index
+            for index in found.keys() | replay.graph.keys()
+            if found.get(index, ()) != replay.graph.get(index, ())
+        }
+        # The files of a package depending on others are compared with the service types
+        # of those (RN204: ``RunChecks._typed``): checked again.
+        for package in packages:
+            if package.name in depending:
+                again.update(
+                    at
+                    for display in package_files().below(package.directory)
+                    if (at := slots[display]) < replay.reported
+                )
+        # A source rostest alone starts now, or starts no more, is judged again
+        # (``RunChecks.spare``).
+        if programs is not None:
+            again.update(
+                at for display in programs.rostest_anew if (at := slots[display]) < replay.reported
+            )
+        rest = list(self.gathered.facts(sorted(again - arrived_facts.keys())))
+        # A file taking another file's constant is checked with its names resolved from
+        # its package's headers (``RunChecks.finish``): the run took few of them.
+        resolving = {
+            directory
+            for index, facts, _, _ in rest
+            if uses_constants(facts) and (directory := self.checks.package_of(index)) is not None
+        }
+        for directory in sorted(resolving):
+            headers = code_below(directory)
+            if headers is None:
+                return None
+            self.checks.know_constants(found for _, found in headers)
+        for index, facts, data, verdict in rest:
+            self.checks.take(index, facts, data, verdict)
+        if rebasing and launch_parts is not None and code_parts is not None:
+            self.rebased = _Rebased(patched, launch_parts, code_parts, list(packages))
+        return Replayed(sorted(again), replace(replay, graph=found, specialised=specialised))
+
+    def _walked(
+        self,
+        whole: Graph,
+        *,
+        parts: LaunchParts,
+        packages: Sequence[Package],
+        edited: Sequence[str],
+        removed: Sequence[str],
+        code: Collection[str],
+        known: set[str],
+        facts_of: Callable[[str], FileFacts | None],
+        programs: ProgramsAnew | None,
+    ) -> tuple[tuple[Graph, LaunchParts], frozenset[str]] | None:
+        """The build's whole graph with the trees that read an ``edited`` launch or
+        parameter file walked again (``workspace.launch_patch``), and those of the
+        ``removed`` launch files gone, over every file the build had facts of and the
+        added launch files (``known``), with the launch parts a build would leave; and
+        the files the walk extracted again under an includer's arguments; None where it
+        cannot be."""
+        specialise = self.specialiser()
+        found = launch_patched(
+            whole,
+            parts,
+            edited,
+            facts=LazyFacts(known, facts_of),
+            packages=packages,
+            specialise=specialise,
+            prepare=specialise.prepare,
+            removed=removed,
+            code=code,
+            programs=programs,
+        )
+        return None if found is None else (found, specialise.specialised)
+
+
+def _depending_anew(
+    built: Sequence[Package], now: Sequence[Package]
+) -> tuple[list[Package], frozenset[str]] | None:
+    """The packages as they are ``now`` in the build's order (``built``), and the names
+    of those that depend on others than at the build; None where they differ in anything
+    else (the graph is built)."""
+    by_directory = {package.directory: package for package in now}
+    if len(by_directory) != len(now) or by_directory.keys() != {p.directory for p in built}:
+        return None
+    found: list[Package] = []
+    depending: set[str] = set()
+    for package in built:
+        anew = by_directory[package.directory]
+        if replace(anew, depends=package.depends) != package:
+            return None
+        if anew.depends != package.depends:
+            depending.add(package.name)
+        found.append(anew)
+    return found, frozenset(depending)
+
+
+_SAYS_NOTHING, _A_TREE, _SETTINGS = "says nothing", "a tree", "settings"
+
+
+def _came_or_went(
+    facts: FileFacts, found_by: shifts.Lookups, launch_files: Callable[[], list[str]]
+) -> tuple[str, set[str]] | None:
+    """What a file added or removed since the build (``shifts``) asks of its graph, and
+    the launch files whose trees are walked again for it: nothing, where it says nothing
+    and is found by no name; a tree of its own (``_a_tree_alone``); a parameter file's
+    settings, the trees of the launch files naming a file of its name walked again (of
+    ``launch_files``, the run's); None where the graph must be built."""
+    if found_by.adds_nothing(facts):
+        return _SAYS_NOTHING, set()
+    if facts.language is Language.PARAMETERS:
+        naming = found_by.naming_of(facts.path.rpartition("/")[2], launch_files())
+        return None if naming is None else (_SETTINGS, naming)
+    return (_A_TREE, set()) if _a_tree_alone(facts, found_by) else None
+
+
+def _new_code(
+    facts: FileFacts,
+    found_by: shifts.Lookups,
+    service_types: Collection[tuple[Generation | None, str]],
+) -> bool:
+    """Whether a file added or removed since the build (``shifts``) is code whose
+    package's programs may be made again for it (``program_patch``): code that says
+    something or is found by a name, holds none of the facts launch, build and parameter
+    files hold, takes no other file's constant, wires no name, names no source it
+    includes, and serves or calls services only of ``service_types`` (the run's, for a
+    file added; none, for one removed: another file's checks compare with those)."""
+    if facts.language not in CODE_LANGUAGES or found_by.adds_nothing(facts):
+        return False
+    types = {(facts.generation, spelling) for spelling in typed_services(facts)}
+    return (
+        not any(getattr(facts, field) for field in NOT_CODE_FIELDS)
+        and not facts.included_sources
+        and not facts.rejected_fixtures
+        and not wired_by(facts)
+        and not uses_constants(facts)
+        and types <= set(service_types)
+    )
+
+
+def _empty(facts: FileFacts) -> FileFacts:
+    """The facts of an empty file where ``facts``' is: what a file added had before."""
+    return FileFacts(facts.path, facts.language, facts.generation)
+
+
+def _compiled(
+    run_wide: RunWide,
+    arrived: Sequence[_Arrived],
+    package_of: Callable[[int], str | None],
+    then_too: bool,
+) -> tuple[BuiltSources | None, BuiltSources]:
+    """What the build files compiled at the last run (its ``RunWide``; ``then_too``:
+    else None), and now: with the files edited since (``arrived``) as they are."""
+    then = None
+    if then_too:
+        then = BuiltSources()
+        for facts, package in run_wide.built:
+            then.add(facts, package)
+    taken = [
+        (facts, package_of(index))
+        for index, facts, _, _ in arrived
+        if facts.compiled is not None or facts.included_sources
+    ]
+    return then, built_as_taken(run_wide, taken, {facts.path for _, facts, _, _ in arrived})
+
+
+def _by_directory(package: Package) -> str:
+    return package.directory
+
+
+def _a_tree_alone(facts: FileFacts, found_by: shifts.Lookups) -> bool:
+    """Whether a launch file added or removed (``shifts``) changes the graph only by a
+    tree of its own: nothing includes it (no launch file finds a file of its name), and
+    its facts hold nothing else the graph or the run's end reads (``launch_edit`` and
+    ``_patchable`` from or to the facts of an empty file)."""
+    empty = _empty(facts)
+    return (
+        not found_by.finds(facts.path)
+        and launch_edit(empty, facts)
+        and _patchable(empty, facts, wiring_kept=True)
+    )
+
+
+def _kept_findings(
+    found: same_facts.GraphFound,
+    edits: Mapping[str, Moved],
+    rules: Sequence[Rule],
+    files: Sequence[SourceFile],
+) -> tuple[frozenset[str], dict[int, list[tuple[str, Finding]]]]:
+    """The rules whose findings a patch keeps (``Rule.reads_code_names``) and those
+    findings, from the built graph's (``found``), with the edited files' places where they
+    are now; none where one of those places is no longer known."""
+    kept = frozenset(rule.code for rule in rules if not rule.reads_code_names)
+    moving = [move for display, spans in edits.items() if not (move := Moves(display, spans)).still]
+    try:
+        return kept, {
+            index: [
+                (code, moved_finding(finding, files[index].display, moving))
+                for code, finding in items
+                if code in kept
+            ]
+            for index, items in found.items()
+        }
+    except UnplacedError:
+        return frozenset(), {}
+
+
+def _patchable(
+    before: FileFacts, now: FileFacts, *, wiring_kept: bool = False, resolved: bool = False
+) -> bool:
+    """Whether what the run gathers from every file's facts (``RunWide``) and the checks
+    of other files read is the same before and after an edit, and the file's facts are
+    its own (no constant of another file in them; ``resolved``: the constants' values in
+    them, as the build and the run resolve them). ``wiring_kept``: a launch file may
+    wire names (RN202's), the same before and after; code may wire none."""
+    wiring = (
+        wired_by(before) == wired_by(now)
+        if wiring_kept
+        else not (wired_by(before) or wired_by(now))
+    )
+    return (
+        typed_services(before) == typed_services(now)
+        and wiring
+        and (resolved or not (uses_constants(before) or uses_constants(now)))
+    )
+
+
+def with_edited(kept: Sequence[int], edited_now: Sequence[int], edited: Sequence[int]) -> list[int]:
+    """A replay's files judged so (unbuilt, named by rostest; their indices), with the
+    edited files' judgements of this run in place of theirs, in discovery order."""
+    return sorted((set(kept) - set(edited)) | set(edited_now))
+
+
+def _replay_moved(
+    replay: Replay,
+    arrived: Sequence[tuple[int, FileFacts, bytes | None, Verdict | None]],
+    inputs: RunInputs,
+    *,
+    files: Sequence[SourceFile],
+    cache: FactsCache,
+    rules: Mapping[str, Rule],
+) -> Replay | None:
+    """``replay`` with the edited files' places where they are now, where the run may
+    take it: each edited file (``arrived``) has a facts key and leaves it true
+    (``Replay.moves``), and the rules of its graph findings are the run's (``rules``, by
+    code); else None."""
+    if not same_facts.codes_of(replay.graph) <= rules.keys():
+        return None
+    moves: list[Moves] = []
+    found_by: shifts.Lookups | None = None  # made for a file the replay's run did not have
+    for index, facts, _, _ in arrived:
+        old = replay.tags[index]
+        if inputs.facts_key(index) is None:
+            return None
+        if old == ADDED:  # (``shifts``)
+            found_by = found_by or replay.run_wide.lookups()
+            if not found_by.adds_nothing(facts):
+                return None
+            continue
+        if not is_facts_key(old):
+            return None
+        display = files[index].display
+        move = replay.moves(display, cache.load(old, display), facts)
+        if move is None:
+            return None
+        moves.append(move)
+    return replay.moved(moves, [source.display for source in files[: replay.reported]])
+
+
+def report_replayed(
+    replayed: Replayed,
+    *,
+    files: Sequence[SourceFile],
+    checks: RunChecks,
+    rules: Mapping[str, Rule],
+    settings: Settings,
+    registry: Registry,
+) -> None:
+    """The graph rules' findings of the replay in each edited reported file, made into
+    diagnostics under its new text and suppressions (``report_graph``'s part per file)."""
+    for index in replayed.edited:
+        stored = replayed.replay.graph.get(index, ())
+        facts = checks.facts_of(index)
+        if not stored or facts is None:
+            continue
+        source = files[index]
+        items = [
+            (rules[code], WorkspaceFinding(source.display, finding)) for code, finding in stored
+        ]
+        checks.per_file[index] = file_graph_findings(
+            items,
+            source,
+            facts,
+            checks.per_file[index],
+            suppressions=checks.suppressions_of.get(index, []),
+            settings=settings,
+            registry=registry,
+        )
