@@ -16,8 +16,8 @@ from typing import Any
 import pytest
 
 from roslint_names import cache as cache_module
-from roslint_names import digests as digests_module
 from roslint_names import checks, engine, generation, reading, run_inputs
+from roslint_names import digests as digests_module
 from roslint_names.config import Settings, settings_fingerprint
 from roslint_names.digests import ContentDigests
 from roslint_names.discover import SourceFile
