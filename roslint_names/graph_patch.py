@@ -398,8 +398,8 @@ class GraphPatch:
             return None if tag is None else self.cache.load(tag, files[index].display)
 
         # The files taking another file's constant are resolved as the run resolves them
-        # (``resolved``): as the build resolved them, where an edit changed what a file
-        # includes (``resolved_alike``, below).
+        # (``resolved``); where an edit changed what they take, as the build resolved
+        # them too (``resolved_anew``, below).
         def facts_at(index: int) -> FileFacts | None:
             if index in loaded:  # (an edited file's, resolved: below)
                 return loaded[index]
@@ -464,26 +464,31 @@ class GraphPatch:
                     table.add(found)
             return table
 
-        def resolved_alike(including: Iterable[str]) -> bool:
-            """Whether every file taking another file's constant, of a package holding a
-            file whose includes changed (``including``), resolves its names as the build
-            did, from the C++ files then (``constants_then``): an include added or taken
-            out seldom changes which header defines a constant, and where it does, its
-            names may change (the graph is built)."""
-            for display in including:
+        def resolved_anew(
+            reaching: Iterable[str], edited: Collection[str]
+        ) -> list[tuple[int, FileFacts, FileFacts]] | None:
+            """The files taking another file's constant, of a package holding a file that
+            may change what they take (``reaching``: its includes or constants changed,
+            or it came or went), not edited themselves (``edited``), whose names resolve
+            otherwise now than at the build: each one's index and facts resolved from
+            the package's C++ files then (``constants_then``) and now; None where one of
+            those files has no facts."""
+            found: dict[int, tuple[int, FileFacts, FileFacts]] = {}
+            for display in reaching:
                 for package in package_files().enclosing(display):
                     at = package.directory
                     code, now, then = code_below(at), constants_of(at), constants_then(at)
                     if code is None or now is None or then is None:
-                        return False
-                    for path, found in code:
-                        if not uses_constants(found):
+                        return None
+                    for path, taker in code:
+                        if not uses_constants(taker) or path in edited:
                             continue
                         if package_files().package_of(path) != package:
                             continue  # resolved in its own package's, below this one
-                        if now.resolve(found, at) != then.resolve(found, at):
-                            return False
-            return True
+                        before, after = then.resolve(taker, at), now.resolve(taker, at)
+                        if before != after:
+                            found[slots[path]] = (slots[path], before, after)
+            return [found[index] for index in sorted(found)]
 
         changed: list[tuple[str, FileFacts, FileFacts]] = []
         taking: list[tuple[int, str, FileFacts]] = []  # code taking a constant: its facts then
@@ -565,17 +570,36 @@ class GraphPatch:
             if not _patchable(before_then, now_resolved, resolved=True):
                 return None
             changed.append((display, before_then, now_resolved))
-        including = [
-            display for display, then, now in changed if then.cpp_includes != now.cpp_includes
+        # What the files taking a constant resolve may change where a file of their
+        # package changed what it includes or the constants it defines, or came or went.
+        reaching = [
+            display
+            for display, then, now in changed
+            if then.cpp_includes != now.cpp_includes or then.constants != now.constants
         ]
         for display in added_code:  # a header added may define what a file takes
             if files[slots[display]].language is Language.CPP:
-                including.append(display)
+                reaching.append(display)
         for display, gone in removed_code.items():  # and one removed may have
             if gone.language is Language.CPP:
-                including.append(display)
-        if including and not resolved_alike(including):
-            return None
+                reaching.append(display)
+        # The graph reads a header's constants only through the names of the files
+        # taking them: those whose names resolve otherwise now are edits of their own
+        # (their facts then and now resolved), checked again (``retaking``).
+        retaking: set[int] = set()
+        if reaching:
+            takers = resolved_anew(reaching, {display for display, _, _ in changed})
+            if takers is None:
+                return None
+            for taker, names_then, names_now in takers:
+                if not _patchable(names_then, names_now, resolved=True):
+                    return None
+                changed.append((files[taker].display, names_then, names_now))
+                retaking.add(taker)
+            changed = [
+                (display, replace(then, constants=now.constants), now)
+                for display, then, now in changed
+            ]
         naming -= {*tree_edits, *removed_trees}
         walk = [*tree_edits, *sorted(naming)]  # the launch files whose trees are walked again
         declaring: set[str] = set()  # code files whose parameters changed
@@ -597,7 +621,13 @@ class GraphPatch:
         gathering = bool(declaring or depending or building or added_code or removed_code)
         since = len(changed) + len(tree_edits) + len(removed_trees) + len(new_files)
         since += len(building) + len(removed_code)
-        rebasing = self.may_rebase and since + len(depending) >= REBASE_EDITS
+        # A file taking a constant that resolves otherwise than at the build is checked
+        # again by this run, not by the next ones, which check again only what they
+        # edit: what it patched is kept as a build keeps it, so that the graph each
+        # replay is patched from resolves every such file as the replay's run did.
+        if retaking and not self.may_rebase:
+            return None
+        rebasing = self.may_rebase and (since + len(depending) >= REBASE_EDITS or bool(retaking))
         if walk or removed_trees or gathering or rebasing:
             kept = same_facts.loaded_launch(
                 self.cache.load_launch_parts(place.key), stored.built_from
@@ -760,6 +790,8 @@ class GraphPatch:
             again.update(
                 at for display in programs.rostest_anew if (at := slots[display]) < replay.reported
             )
+        # A file taking a constant whose value changed is checked again under it.
+        again.update(taker for taker in retaking if taker < replay.reported)
         rest = list(self.gathered.facts(sorted(again - arrived_facts.keys())))
         # A file taking another file's constant is checked with its names resolved from
         # its package's headers (``RunChecks.finish``): the run took few of them.

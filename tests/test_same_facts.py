@@ -447,7 +447,7 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     # A header whose constant names a topic (no file takes it yet: patched, its package
     # resolving its names as before), and code taking it: the whole run resolves the
     # name. Then an include changed in that package: the code resolves its names as
-    # before (``graph_patch.GraphPatch``'s ``resolved_alike``), the graph is patched.
+    # before (``graph_patch.GraphPatch``'s ``resolved_anew``), the graph is patched.
     (TOPICS, None, TOPICS_HEADER, "patch"),
     (STATUS_SOURCE, None, STATUS_NODE, "build"),
     (MONITOR, "\n#include <fleet_bringup/units.hpp>\n", "", "patch"),
@@ -462,7 +462,8 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     ),
     # The file taking the constant edited: a comment, then a topic of its own added (its
     # names resolved from its package's headers then and now, ``graph_patch.GraphPatch``).
-    # Then the constant's value changed: what every file taking it names changes.
+    # Then the constant's value changed: what every file taking it names changes (each
+    # resolved then and now, an edit of its own, checked again).
     (STATUS_SOURCE, "", "\n// Reviewed with the fleet team.\n", "patch"),
     (
         STATUS_SOURCE,
@@ -471,7 +472,7 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
         "  rclcpp::spin(node);",
         "patch",
     ),
-    (TOPICS, '"dock_status"', '"dock_state"', "build"),
+    (TOPICS, '"dock_status"', '"dock_state"', "patch"),
     # A roscpp node added as a developer adds one: its executable first (no source yet:
     # the build keeps no program of it), then its source, then a launch file starting it;
     # then the source taken out (``workspace.program_patch``: the package's programs made
@@ -1013,15 +1014,16 @@ def test_a_damaged_file_list_is_written_again_by_the_next_run_over_those_files(
 NAMES = "src/fleet_names"  # a package of headers and their test: no node's code
 
 
-def test_an_include_that_gives_test_code_a_constant_is_built(
+def test_an_include_that_gives_test_code_a_constant_is_patched(
     run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str]
 ) -> None:
     """A header's include changed reaches a test through it: the constant the test's
     topic takes, which only the whole run resolves (``symbols``). No node's code is of
-    that package, so no parameter gathered again reads its files: the patch refuses
-    such an edit where a file of the package that takes a constant resolves it otherwise
-    now (``graph_patch.GraphPatch``'s ``resolved_alike``), or the test's illegal topic would
-    stay unreported."""
+    that package, so no parameter gathered again reads its files: the patch resolves
+    every file of the package that takes a constant then and now, and one that resolves
+    otherwise now is an edit of its own, checked again (``graph_patch.GraphPatch``'s
+    ``resolved_anew``), or the test's illegal topic would stay unreported. Then the
+    constant's value changed back, and its header taken out of the include again."""
     status = workspace / NAMES / "include/fleet_names/status.hpp"
     change(workspace / NAMES / "package.xml", None, AMENT_PACKAGE.format(name="fleet_names"))
     change(
@@ -1043,7 +1045,23 @@ def test_an_include_that_gives_test_code_a_constant_is_built(
     cached, fresh = outputs(run_cli, workspace, cache)
     assert "dock status" in fresh
     assert cached == fresh
-    assert taken == ["build", "build"]
+    assert taken == ["patch", "build"]
+    topics = workspace / NAMES / "include/fleet_names/topics.hpp"
+    header = topics.read_text(encoding="utf-8").replace('"dock status"', '"dock station"')
+    steps: list[tuple[Path, str | None, str | None]] = [
+        (topics, '"dock status"', '"dock_status"'),
+        (topics, '"dock_status"', '"dock state"'),
+        (topics, "", None),  # the header taken out, then brought back
+        (topics, None, header),
+        (status, "\n#include <fleet_names/topics.hpp>\n", ""),
+    ]
+    for step, (path, old, new) in enumerate(steps):
+        taken.clear()
+        change(path, old, new)
+        cached, fresh = outputs(run_cli, workspace, cache)
+        assert cached == fresh, (step, path, old, new)
+        assert taken == ["patch", "build"], (step, path, old, new)
+        assert ("dock state" in fresh, "dock station" in fresh) == (step == 1, step == 3), step
 
 
 DOCK_DRIVER = """#include <rclcpp/rclcpp.hpp>

@@ -30,12 +30,13 @@ and which C++ files are looked up by name: the code spanning it, and the code no
 ran at the build, is gathered again, and the code no node runs any more is dropped.
 
 ``parameters_patched`` gives the graph a build would, over facts whose names take
-other files' constants as the build's did (``graph_patch.GraphPatch``: where an include
-changed, its ``resolved_alike``); None (the caller builds) where a node of unknown name
-is handed a parameter file and its code's parameters change (the graph keeps those
-without the code they are of), or a file's facts cannot be loaded. It gives the parts a
-build would leave too (each node's code parameters, the lookups, spans and counts),
-which a run that keeps what it patched keeps (``graph_patch.REBASE_EDITS``).
+other files' constants as the run resolves them (``graph_patch.GraphPatch``: those that
+resolve otherwise than at the build are edits, its ``resolved_anew``); None (the caller
+builds) where a node of unknown name is handed a parameter file and its code's
+parameters change (the graph keeps those without the code they are of), or a file's
+facts cannot be loaded. It gives the parts a build would leave too (each node's code
+parameters, the lookups, spans and counts), which a run that keeps what it patched
+keeps (``graph_patch.REBASE_EDITS``).
 ``tests/test_parameter_patch.py`` compares patched graphs and parts with built ones.
 """
 
