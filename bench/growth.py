@@ -31,6 +31,11 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
   the parameters of nodes' code are gathered through changes (the classes' lookups),
   the parameters of the code spanning its package gathered again
   (``patch.gathering_edit``);
+- ``edit_constant``: the value of a string constant a header defines changed, in the
+  header whose constants the most C++ sources of its package take (moveit's
+  ``capability_names``): the files taking it resolve their names otherwise, each an
+  edit of its own (``graph_patch``'s ``resolved_anew``), and the run keeps what it
+  patched as a build keeps it;
 - ``edit_release``: a URL added to a package's manifest, which says nothing a run reads
   (its name, build type, dependencies, plugin descriptions): the last run's result;
 - ``edit_depend``: a dependency added to that manifest: which packages run together and
@@ -58,6 +63,7 @@ files do. Numbers are this machine's: the table says which.
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import tempfile
 import time
@@ -187,6 +193,7 @@ _EDITS = {
     "add_launch": ((".launch.xml", ".launch"), "<node", _NEW_LAUNCH, "beside"),
     "remove_file": ((".cpp",), "create_publisher", b"", "removed"),
     "edit_class": ((".cpp",), "create_publisher", _NEW_CLASS, "end"),
+    "edit_constant": ((".h", ".hpp"), "", b"_bench", "constant"),
     "edit_release": (("package.xml",), "<depend>", _NEW_MANIFEST_URL, "inside"),
     "edit_depend": (("package.xml",), "<depend>", _NEW_MANIFEST_DEPENDENCY, "inside"),
     "add_node": (("CMakeLists.txt",), "add_executable(", _NEW_EXECUTABLE, "node"),
@@ -226,6 +233,10 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
                     edited.write_bytes(text)
                 else:
                     edited.unlink()
+            elif where == "constant":
+                edited, value_end = taken_most(root / "src", suffixes)
+                data = edited.read_bytes()
+                _replace(edited, data[:value_end] + text + data[value_end:])
             elif where == "node":  # its source, then the executable that compiles it
                 edited = pick(root / "src", suffixes, marker)
                 generation = "ROS 2" if b"ament" in edited.read_bytes() else "ROS 1"
@@ -291,6 +302,38 @@ def named_most(workspace: Path, suffixes: tuple[str, ...], marker: str) -> Path:
     if not named:
         raise SystemExit(f"no {suffixes} file with {marker!r} in {workspace}")
     return named[0][1]
+
+
+# A string constant a header defines: ``static const std::string NAME = "value";``.
+_CONSTANT = re.compile(rb'const\s+std::string\s+([A-Z_][A-Z0-9_]*)\s*=\s*"[^"\n]*(")')
+
+
+def taken_most(workspace: Path, suffixes: tuple[str, ...]) -> tuple[Path, int]:
+    """The header whose string constant the most C++ sources of its package that include
+    it name (the first by path of those), and where the value of its first such constant ends: a
+    header whose value other files take (``symbols``), not one no file reads."""
+    best: tuple[int, str, Path, int] | None = None
+    for suffix in suffixes:
+        for header in sorted(workspace.rglob(f"*{suffix}")):
+            data = header.read_bytes() if header.is_file() else b""
+            found = {match.group(1): match.start(2) for match in _CONSTANT.finditer(data)}
+            package = next((p for p in header.parents if (p / "package.xml").is_file()), None)
+            if not found or package is None:
+                continue
+            sources = [
+                source
+                for path in package.rglob("*.cpp")
+                if path.is_file() and header.name.encode() in (source := path.read_bytes())
+            ]  # those that include it
+            for name, end in found.items():
+                word = re.compile(rb"\b%s\b" % name)
+                taking = sum(bool(word.search(source)) for source in sources)
+                key = (-taking, str(header), header, end)
+                if taking and (best is None or key[:2] < best[:2]):
+                    best = key
+    if best is None:
+        raise SystemExit(f"no {suffixes} file defines a constant a source takes in {workspace}")
+    return best[2], best[3]
 
 
 def _text(path: Path) -> str:
