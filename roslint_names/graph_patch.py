@@ -5,6 +5,7 @@ the last run of the same shape are kept (``shifts``)."""
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from functools import cache, lru_cache
@@ -88,12 +89,31 @@ def shifted_replay(
     if earlier is None:
         return None
     stands = base.depends == depends
-    if stands and renumbering.removed:
+    gone = [_facts_by_tag(cache, earlier.tags[at], path) for at, path in renumbering.removed]
+    if stands and gone:
         found_by = earlier.run_wide.lookups()
-        gone = (_facts_by_tag(cache, earlier.tags[at], path) for at, path in renumbering.removed)
         stands = all(facts is not None and found_by.adds_nothing(facts) for facts in gone)
     replay = earlier.renumbered(renumbering, len(files))
+    uses = _typed_uses_without(earlier.run_wide.typed_uses, gone)
+    if uses != earlier.run_wide.typed_uses:
+        replay = replace(replay, run_wide=replace(replay.run_wide, typed_uses=uses))
     return Shift(base.replay_at, renumbering, replay, stands)
+
+
+def _typed_uses_without(
+    uses: Mapping[tuple[Generation | None, str], int] | None, gone: Sequence[FileFacts | None]
+) -> Mapping[tuple[Generation | None, str], int] | None:
+    """A run's ``RunWide.typed_uses`` less the files removed since (``gone``: their facts
+    then); None where one's facts are not kept, or the last file using a type went: the
+    set the other files' RN204 compared with changed, which a patch does not follow."""
+    if uses is None or not gone:
+        return uses
+    counts = Counter(uses)
+    for facts in gone:
+        if facts is None:
+            return None
+        counts.subtract((facts.generation, spelling) for spelling in typed_services(facts))
+    return None if any(count <= 0 for count in counts.values()) else dict(counts)
 
 
 def _facts_by_tag(cache: FactsCache, tag: str, display: str) -> FileFacts | None:
@@ -357,6 +377,11 @@ class GraphPatch:
         found_by = replay.run_wide.lookups()
         for edited in arrived_facts.values():
             found_by.add(edited)
+        # Code may serve or call services of other types, where the set of types the
+        # files use stays the same (no other file's RN204 compares with another set):
+        # the counts after the edits since the replay's run, else None.
+        typed_uses = self._typed_uses_after(replay, arrived)
+        typed = typed_uses is not None
 
         def launch_files() -> list[str]:
             return [source.display for source in files if source.language in LAUNCH_LANGUAGES]
@@ -373,7 +398,7 @@ class GraphPatch:
         removed_code: dict[str, FileFacts] = {}
         for display, tag in stored.gone:
             gone = _facts_by_tag(self.cache, tag, display)
-            if gone is not None and _new_code(gone, found_by, frozenset()):
+            if gone is not None and _new_code(gone, found_by, None if typed else frozenset()):
                 removed_code[display] = gone
                 continue
             came = None if gone is None else _came_or_went(gone, found_by, launch_files)
@@ -506,7 +531,8 @@ class GraphPatch:
                 return None  # the graph read its bytes under an includer's arguments
             if then == ADDED:
                 added = facts_at(index) if is_facts_key(now) else None
-                if added is not None and _new_code(added, found_by, replay.run_wide.service_types):
+                types = None if typed else replay.run_wide.service_types
+                if added is not None and _new_code(added, found_by, types):
                     added_code.append(display)  # its package's programs made again
                     new_files.add(display)
                     continue
@@ -536,7 +562,7 @@ class GraphPatch:
                 if not _patchable(before, facts, wiring_kept=True):
                     return None
                 tree_edits.append(display)
-            elif _patchable(before, facts, wiring_kept=moved_only):
+            elif _patchable(before, facts, wiring_kept=moved_only, typed=typed):
                 changed.append((display, before, facts))
             else:
                 return None
@@ -567,7 +593,7 @@ class GraphPatch:
                 if index in arrived_facts:
                     self.checks.know_constants(found for _, found in headers)
             loaded[index] = now_resolved
-            if not _patchable(before_then, now_resolved, resolved=True):
+            if not _patchable(before_then, now_resolved, resolved=True, typed=typed):
                 return None
             changed.append((display, before_then, now_resolved))
         # What the files taking a constant resolve may change where a file of their
@@ -592,7 +618,7 @@ class GraphPatch:
             if takers is None:
                 return None
             for taker, names_then, names_now in takers:
-                if not _patchable(names_then, names_now, resolved=True):
+                if not _patchable(names_then, names_now, resolved=True, typed=typed):
                     return None
                 changed.append((files[taker].display, names_then, names_now))
                 retaking.add(taker)
@@ -809,7 +835,33 @@ class GraphPatch:
             self.checks.take(index, facts, data, verdict)
         if rebasing and launch_parts is not None and code_parts is not None:
             self.rebased = _Rebased(patched, launch_parts, code_parts, list(packages))
-        return Replayed(sorted(again), replace(replay, graph=found, specialised=specialised))
+        run_wide = replay.run_wide if not typed else replace(replay.run_wide, typed_uses=typed_uses)
+        patched_replay = replace(replay, graph=found, specialised=specialised, run_wide=run_wide)
+        return Replayed(sorted(again), patched_replay)
+
+    def _typed_uses_after(
+        self, replay: Replay, arrived: Sequence[_Arrived]
+    ) -> dict[tuple[Generation | None, str], int] | None:
+        """How many files serve or call a service of each type after the edits since the
+        replay's run (``arrived``: each file's facts then under its tag there, an added
+        one's none), where the set of those types is the replay's; else None."""
+        then = replay.run_wide.typed_uses
+        if then is None:
+            return None
+        counts = Counter(then)
+        files = self.gathered.files
+        for index, facts, _, _ in arrived:
+            tag = replay.tags[index]
+            if tag != ADDED:
+                before = _facts_by_tag(self.cache, tag, files[index].display)
+                if before is None:
+                    return None
+                counts.subtract((before.generation, t) for t in typed_services(before))
+            counts.update((facts.generation, spelling) for spelling in typed_services(facts))
+        if any(count < 0 for count in counts.values()):
+            return None
+        after = {key: count for key, count in counts.items() if count > 0}
+        return after if after.keys() == then.keys() else None
 
     def _walked(
         self,
@@ -889,14 +941,15 @@ def _came_or_went(
 def _new_code(
     facts: FileFacts,
     found_by: shifts.Lookups,
-    service_types: Collection[tuple[Generation | None, str]],
+    service_types: Collection[tuple[Generation | None, str]] | None,
 ) -> bool:
     """Whether a file added or removed since the build (``shifts``) is code whose
     package's programs may be made again for it (``program_patch``): code that says
     something or is found by a name, holds none of the facts launch, build and parameter
     files hold, takes no other file's constant, wires no name, names no source it
     includes, and serves or calls services only of ``service_types`` (the run's, for a
-    file added; none, for one removed: another file's checks compare with those)."""
+    file added; none, for one removed: another file's checks compare with those; None:
+    of any, where the run knows the set of types the files use stays the same)."""
     if facts.language not in CODE_LANGUAGES or found_by.adds_nothing(facts):
         return False
     types = {(facts.generation, spelling) for spelling in typed_services(facts)}
@@ -906,7 +959,7 @@ def _new_code(
         and not facts.rejected_fixtures
         and not wired_by(facts)
         and not uses_constants(facts)
-        and types <= set(service_types)
+        and (service_types is None or types <= set(service_types))
     )
 
 
@@ -978,20 +1031,27 @@ def _kept_findings(
 
 
 def _patchable(
-    before: FileFacts, now: FileFacts, *, wiring_kept: bool = False, resolved: bool = False
+    before: FileFacts,
+    now: FileFacts,
+    *,
+    wiring_kept: bool = False,
+    resolved: bool = False,
+    typed: bool = False,
 ) -> bool:
     """Whether what the run gathers from every file's facts (``RunWide``) and the checks
     of other files read is the same before and after an edit, and the file's facts are
     its own (no constant of another file in them; ``resolved``: the constants' values in
     them, as the build and the run resolve them). ``wiring_kept``: a launch file may
-    wire names (RN202's), the same before and after; code may wire none."""
+    wire names (RN202's), the same before and after; code may wire none. ``typed``: the
+    services' types may differ, the set of types the run's files use being the same
+    (``GraphPatch._typed_uses_after``)."""
     wiring = (
         wired_by(before) == wired_by(now)
         if wiring_kept
         else not (wired_by(before) or wired_by(now))
     )
     return (
-        typed_services(before) == typed_services(now)
+        (typed or typed_services(before) == typed_services(now))
         and wiring
         and (resolved or not (uses_constants(before) or uses_constants(now)))
     )

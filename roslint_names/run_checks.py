@@ -5,6 +5,7 @@ later run's replay then need."""
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from functools import partial
@@ -74,6 +75,8 @@ class RunChecks:
     _rejected: dict[str, set[str]] = field(default_factory=dict)  # package: fixture names
     _built: BuiltSources = field(default_factory=BuiltSources)
     _lookups: shifts.Lookups = field(default_factory=shifts.Lookups)  # ``RunWide``'s
+    # How many files serve or call a service of each type (``RunWide.typed_uses``)
+    _typed_uses: Counter[tuple[Generation | None, str]] | None = field(default_factory=Counter)
     _done: int = 0
 
     def __post_init__(self) -> None:
@@ -89,6 +92,8 @@ class RunChecks:
             self._all_facts[index] = facts
         types = typed_services(facts)
         self.service_types.update((facts.generation, spelling) for spelling in types)
+        if types and self._typed_uses is not None:
+            self._typed_uses.update((facts.generation, spelling) for spelling in types)
         self._constants.add(facts)
         if self.judge.wiring:
             self._wired.update(
@@ -265,6 +270,7 @@ class RunChecks:
             frozenset(self._lookups.names),
             {name: frozenset(by) for name, by in self._lookups.naming.items()},
             dict(self._lookups.named),
+            None if self._typed_uses is None else dict(+self._typed_uses),
         )
 
     def resume(self, replay: Replay, edited: Sequence[int], paths: Collection[str]) -> None:
@@ -285,6 +291,10 @@ class RunChecks:
         self._built = built_as_taken(run_wide, self._built.given(), paths)
         self._rejected = {package: set(names) for package, names in run_wide.rejected.items()}
         self._lookups.update(run_wide.looked_up, run_wide.naming, run_wide.named_sources)
+        # The replay's counts are of the files as they are now (a patch that changed
+        # them gives them so): the files taken were counted again by ``take``.
+        uses = run_wide.typed_uses
+        self._typed_uses = None if uses is None else Counter(uses)
 
     def know_constants(self, facts: Iterable[FileFacts]) -> None:
         """The constants and includes of files the run does not take (a replay's, a

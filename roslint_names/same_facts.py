@@ -79,6 +79,10 @@ class RunWide:
     looked_up: frozenset[str] = frozenset()
     naming: Mapping[str, frozenset[int]] = field(default_factory=dict)
     named_sources: Mapping[int, int] = field(default_factory=dict)  # source: build file
+    # How many files serve or call a service of each type (``typed_services``), which
+    # tells a patch whether an edit changes the set other files' RN204 compares with;
+    # None where that is not known (a file removed since whose facts are gone).
+    typed_uses: Mapping[tuple[Generation | None, str], int] | None = None
 
     def lookups(self) -> Lookups:
         found = Lookups()
@@ -176,6 +180,9 @@ class Replay:
             tuple(sorted(wide.looked_up)),
             tuple(sorted((name, tuple(sorted(by))) for name, by in wide.naming.items())),
             tuple(sorted(wide.named_sources.items())),
+            None
+            if wide.typed_uses is None
+            else tuple(sorted(wide.typed_uses.items(), key=lambda item: _by_text(item[0]))),
         )
 
     def renumbered(self, renumbering: Renumbering, reported: int) -> Replay:
@@ -196,8 +203,8 @@ class Replay:
         )
 
 
-_FORMAT = "replay 5"
-_FIELDS = 16  # of ``stored``
+_FORMAT = "replay 6"
+_FIELDS = 17  # of ``stored``
 
 
 def key(place_key: str, checks_key: str) -> str:
@@ -211,7 +218,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
     if not isinstance(value, tuple) or len(value) != _FIELDS:
         return None
     form, tags, kept_reported, found, graph, specialised, types, wired = value[:8]
-    built, rejected, skipped, unbuilt, rostest_named, looked_up, naming, named = value[8:]
+    built, rejected, skipped, unbuilt, rostest_named, looked_up, naming, named, uses = value[8:]
     if form != _FORMAT or kept_reported != reported or not _strings(tags) or len(tags) != files:
         return None
     try:
@@ -226,6 +233,11 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         type_pairs = frozenset((generation, str(spelling)) for generation, spelling in types)
         naming_map = {str(name): frozenset(by) for name, by in naming}
         named_map = {source: builder for source, builder in named}
+        uses_map = (
+            None
+            if uses is None
+            else {(generation, str(spelling)): count for (generation, spelling), count in uses}
+        )
     except (TypeError, ValueError):
         return None
     if not (
@@ -249,6 +261,13 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         and _indices(unbuilt, reported)
         and _indices(rostest_named, reported)
         and all(isinstance(generation, Generation | None) for generation, _ in type_pairs)
+        and (
+            uses_map is None
+            or all(
+                isinstance(generation, Generation | None) and isinstance(count, int) and count > 0
+                for (generation, _), count in uses_map.items()
+            )
+        )
     ):
         return None
     return Replay(
@@ -265,6 +284,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
             frozenset(looked_up),
             naming_map,
             named_map,
+            uses_map,
         ),
         skipped_pairs,
         unbuilt,

@@ -199,6 +199,24 @@ public:
 };
 }  // namespace fleet_bringup
 """
+DOCK_CLIENT = """void call_dock(rclcpp::Node & node)
+{
+  auto dock = node.create_client<std_srvs::srv::Trigger>("trigger");
+}
+"""
+PROBE_SOURCE = f"{FLEET}/src/dock_probe.cpp"
+PROBE_NODE = """#include <rclcpp/rclcpp.hpp>
+#include <std_srvs/srv/trigger.hpp>
+
+int main(int argc, char ** argv)
+{
+  rclcpp::init(argc, argv);
+  auto node = rclcpp::Node::make_shared("dock_probe");
+  auto dock = node->create_client<std_srvs::srv::Trigger>("dock");
+  rclcpp::spin(node);
+  return 0;
+}
+"""
 TOPICS = f"{FLEET}/include/fleet_bringup/topics.hpp"
 TOPICS_HEADER = """#pragma once
 #include <string>
@@ -331,6 +349,21 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
         "create_service<std_srvs::srv::Empty>",
         "build",
     ),
+    # A client of a type another file serves (the dock manager's Trigger), named after
+    # its type (RN204): the set of types the files use stays the same, patched
+    # (``RunWide.typed_uses``). Then of the type the monitor serves (Empty): patched;
+    # then of a type no file uses any more (SetBool): built; then of Trigger again,
+    # named otherwise: built (the last file using SetBool changed).
+    (MONITOR, "", f"\n{DOCK_CLIENT}", "patch"),
+    (MONITOR, 'std_srvs::srv::Trigger>("trigger"', 'std_srvs::srv::Empty>("trigger"', "patch"),
+    (MONITOR, 'std_srvs::srv::Empty>("trigger"', 'std_srvs::srv::SetBool>("trigger"', "build"),
+    (MONITOR, 'std_srvs::srv::SetBool>("trigger"', 'std_srvs::srv::Trigger>("docking"', "build"),
+    # A node calling the dock manager's service added, a header that says nothing,
+    # then the node taken out: files no run had, renumbered from the last run's, its
+    # count of Trigger's users less the file gone (``graph_patch._typed_uses_without``).
+    (PROBE_SOURCE, None, PROBE_NODE, "patch"),
+    (f"{FLEET}/include/fleet_bringup/probe.hpp", None, "#pragma once\n", "replay"),
+    (PROBE_SOURCE, "", None, "patch"),
     # The parameter file back, named by a launch file the build read: the trees that
     # read that file walked again find it. Then the launch file removed: its tree gone
     # (``launch_patch``, its ``removed``).
@@ -655,7 +688,7 @@ def test_a_damaged_replay_is_a_run_like_any(
 
 
 # One file, nothing found
-EMPTY = ("replay 5", ("k1",), 1, (), (), (), (), (), (), (), (), (), (), (), (), ())
+EMPTY = ("replay 6", ("k1",), 1, (), (), (), (), (), (), (), (), (), (), (), (), (), None)
 
 
 def test_an_empty_stored_replay_reads_back() -> None:
@@ -676,8 +709,10 @@ def test_an_empty_stored_replay_reads_back() -> None:
         ((*EMPTY[:8], (("x", None),), *EMPTY[9:]), 1),  # built sources that are not facts
         ((*EMPTY[:11], (3,), *EMPTY[12:]), 1),  # an unbuilt file that is not reported
         ((*EMPTY[:11], ("src/a.cpp",), *EMPTY[12:]), 1),  # one that is not an index
-        ((*EMPTY[:13], (7,), (), ()), 1),  # a name that is not a string
-        ((*EMPTY[:14], (("a.yaml", ("x",)),), ()), 1),  # a digest that is not one
+        ((*EMPTY[:13], (7,), (), (), None), 1),  # a name that is not a string
+        ((*EMPTY[:14], (("a.yaml", ("x",)),), (), None), 1),  # a digest that is not one
+        ((*EMPTY[:16], (((None, "std_srvs/Empty"), 0),)), 1),  # a type no file uses
+        ((*EMPTY[:16], (((7, "std_srvs/Empty"), 1),)), 1),  # a generation that is not one
     ],
 )
 def test_a_stored_replay_of_another_shape_is_none(value: object, files: int) -> None:
@@ -700,6 +735,7 @@ def test_a_stored_replay_reads_back_as_it_was() -> None:
             frozenset({"params.yaml", "talker"}),
             {"params.yaml": frozenset({7})},
             {1 << 63: 5, 7: shifts.SEVERAL},
+            {(Generation.ROS2, "std_srvs/srv/Trigger"): 2},
         ),
         skipped=(("src/a/big.cpp", "too large"),),
         unbuilt=(1,),
