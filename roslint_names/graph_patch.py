@@ -517,6 +517,7 @@ class GraphPatch:
 
         changed: list[tuple[str, FileFacts, FileFacts]] = []
         taking: list[tuple[int, str, FileFacts]] = []  # code taking a constant: its facts then
+        taking_added: set[int] = set()  # and such code added since the build
         tree_edits: list[str] = []
         # Build files that build other programs now (as they were at the build), and code
         # files added: their packages' programs are made again (``program_patch``).
@@ -532,7 +533,20 @@ class GraphPatch:
             if then == ADDED:
                 added = facts_at(index) if is_facts_key(now) else None
                 types = None if typed else replay.run_wide.service_types
-                if added is not None and _new_code(added, found_by, types):
+                # Code taking another file's constant: resolved as the run resolves it,
+                # from its package's C++ files now (its own check too).
+                if added is not None and uses_constants(added):
+                    home = self.checks.package_of(index)
+                    table = None if home is None else constants_of(home)
+                    headers = None if home is None else code_below(home)
+                    if home is not None and (table is None or headers is None):
+                        return None
+                    if home is not None and table is not None and headers is not None:
+                        added = table.resolve(added, home)
+                        self.checks.know_constants(found for _, found in headers)
+                    loaded[index] = added
+                    taking_added.add(index)
+                if added is not None and _new_code(added, found_by, types, resolved=True):
                     added_code.append(display)  # its package's programs made again
                     new_files.add(display)
                     continue
@@ -614,7 +628,8 @@ class GraphPatch:
         # (their facts then and now resolved), checked again (``retaking``).
         retaking: set[int] = set()
         if reaching:
-            takers = resolved_anew(reaching, {display for display, _, _ in changed})
+            known_now = {display for display, _, _ in changed} | set(added_code)
+            takers = resolved_anew(reaching, known_now)
             if takers is None:
                 return None
             for taker, names_then, names_now in takers:
@@ -650,10 +665,12 @@ class GraphPatch:
         # A file taking a constant that resolves otherwise than at the build is checked
         # again by this run, not by the next ones, which check again only what they
         # edit: what it patched is kept as a build keeps it, so that the graph each
-        # replay is patched from resolves every such file as the replay's run did.
-        if retaking and not self.may_rebase:
+        # replay is patched from resolves every such file as the replay's run did (and
+        # has every file taking one that was added: ``resolved_anew`` asks the build's).
+        taking_anew = bool(retaking or taking_added)
+        if taking_anew and not self.may_rebase:
             return None
-        rebasing = self.may_rebase and (since + len(depending) >= REBASE_EDITS or bool(retaking))
+        rebasing = self.may_rebase and (since + len(depending) >= REBASE_EDITS or taking_anew)
         if walk or removed_trees or gathering or rebasing:
             kept = same_facts.loaded_launch(
                 self.cache.load_launch_parts(place.key), stored.built_from
@@ -942,14 +959,17 @@ def _new_code(
     facts: FileFacts,
     found_by: shifts.Lookups,
     service_types: Collection[tuple[Generation | None, str]] | None,
+    *,
+    resolved: bool = False,
 ) -> bool:
     """Whether a file added or removed since the build (``shifts``) is code whose
     package's programs may be made again for it (``program_patch``): code that says
     something or is found by a name, holds none of the facts launch, build and parameter
-    files hold, takes no other file's constant, wires no name, names no source it
-    includes, and serves or calls services only of ``service_types`` (the run's, for a
-    file added; none, for one removed: another file's checks compare with those; None:
-    of any, where the run knows the set of types the files use stays the same)."""
+    files hold, takes no other file's constant (unless ``resolved``: its names were
+    resolved as the run resolves them, a file added), wires no name, names no source
+    it includes, and serves or calls services only of ``service_types`` (the run's, for
+    a file added; none, for one removed: another file's checks compare with those;
+    None: of any, where the run knows the set of types the files use stays the same)."""
     if facts.language not in CODE_LANGUAGES or found_by.adds_nothing(facts):
         return False
     types = {(facts.generation, spelling) for spelling in typed_services(facts)}
@@ -958,7 +978,7 @@ def _new_code(
         and not facts.included_sources
         and not facts.rejected_fixtures
         and not wired_by(facts)
-        and not uses_constants(facts)
+        and (resolved or not uses_constants(facts))
         and (service_types is None or types <= set(service_types))
     )
 

@@ -478,11 +478,12 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     (UNITS, None, REPORTING, "patch"),
     (DOCK, "public rclcpp::Node", "public rclcpp::Node, public fleet_bringup::Reporting", "patch"),
     # A header whose constant names a topic (no file takes it yet: patched, its package
-    # resolving its names as before), and code taking it: the whole run resolves the
-    # name. Then an include changed in that package: the code resolves its names as
-    # before (``graph_patch.GraphPatch``'s ``resolved_anew``), the graph is patched.
+    # resolving its names as before), and code taking it added: resolved as the whole
+    # run resolves it, patched (and kept as a build keeps it). Then an include changed
+    # in that package: the code resolves its names as before (``graph_patch.GraphPatch``'s
+    # ``resolved_anew``), the graph is patched.
     (TOPICS, None, TOPICS_HEADER, "patch"),
-    (STATUS_SOURCE, None, STATUS_NODE, "build"),
+    (STATUS_SOURCE, None, STATUS_NODE, "patch"),
     (MONITOR, "\n#include <fleet_bringup/units.hpp>\n", "", "patch"),
     # A parameter declared beside that code: the package's files are read as the run
     # reads them, the constant's name resolved (``graph_patch.GraphPatch``), and patched.
