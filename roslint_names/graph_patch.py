@@ -7,8 +7,8 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
-from dataclasses import dataclass, replace
-from functools import cache, lru_cache
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
 from typing import TYPE_CHECKING, NamedTuple
 
 from . import same_facts, shifts
@@ -423,8 +423,8 @@ class GraphPatch:
             return None if tag is None else self.cache.load(tag, files[index].display)
 
         # The files taking another file's constant are resolved as the run resolves them
-        # (``resolved``); where an edit changed what they take, as the build resolved
-        # them too (``resolved_anew``, below).
+        # (``_Constants.resolved``); where an edit changed what they take, as the build
+        # resolved them too (``_Constants.anew``).
         def facts_at(index: int) -> FileFacts | None:
             if index in loaded:  # (an edited file's, resolved: below)
                 return loaded[index]
@@ -433,87 +433,13 @@ class GraphPatch:
             known = stored_facts(index)
             if known is not None and uses_constants(known):
                 raw[index] = known
-                known = resolved(known, index)
+                known = constants.resolved(known, self.checks.package_of(index))
             loaded[index] = known
             return known
 
-        @cache
-        def code_below(directory: str) -> tuple[tuple[str, FileFacts], ...] | None:
-            """Every C++ file below a package's directory (display path) with its facts,
-            as ``symbols.PackageConstants`` reads them; None where one has no facts. Each
-            directory's once: the tables then and now, and the checks, read the same."""
-            code: list[tuple[str, FileFacts]] = []
-            for path in package_files().below(directory):
-                if files[slots[path]].language is not Language.CPP:
-                    continue
-                found = stored_facts(slots[path])
-                if found is None:
-                    return None
-                code.append((path, found))
-            return tuple(code)
-
-        @cache
-        def constants_of(directory: str) -> PackageConstants | None:
-            """The constants of the C++ files below a package's directory now."""
-            code = code_below(directory)
-            if code is None:
-                return None
-            table = PackageConstants()
-            for _, found in code:
-                table.add(found)
-            return table
-
-        def resolved(known: FileFacts, index: int) -> FileFacts | None:
-            """``known`` with its symbols resolved by its package's headers (``symbols``),
-            from every C++ file below the package's directory; None where one of them
-            has no facts."""
-            package = self.checks.package_of(index)
-            if package is None:
-                return known  # the run resolves nothing there either
-            table = constants_of(package)
-            return None if table is None else table.resolve(known, package)
-
-        @cache
-        def constants_then(directory: str) -> PackageConstants | None:
-            """The constants of the C++ files below a package's directory at the build:
-            those edited since as they were (``then_of``, once every edit is known),
-            those removed since too."""
-            code = code_below(directory)
-            if code is None:
-                return None
-            table = PackageConstants()
-            for path, found in code:
-                table.add(then_of.get(path, found))
-            for path, found in removed_code.items():
-                if path.startswith(f"{directory}/" if directory else ""):
-                    table.add(found)
-            return table
-
-        def resolved_anew(
-            reaching: Iterable[str], edited: Collection[str]
-        ) -> list[tuple[int, FileFacts, FileFacts]] | None:
-            """The files taking another file's constant, of a package holding a file that
-            may change what they take (``reaching``: its includes or constants changed,
-            or it came or went), not edited themselves (``edited``), whose names resolve
-            otherwise now than at the build: each one's index and facts resolved from
-            the package's C++ files then (``constants_then``) and now; None where one of
-            those files has no facts."""
-            found: dict[int, tuple[int, FileFacts, FileFacts]] = {}
-            for display in reaching:
-                for package in package_files().enclosing(display):
-                    at = package.directory
-                    code, now, then = code_below(at), constants_of(at), constants_then(at)
-                    if code is None or now is None or then is None:
-                        return None
-                    for path, taker in code:
-                        if not uses_constants(taker) or path in edited:
-                            continue
-                        if package_files().package_of(path) != package:
-                            continue  # resolved in its own package's, below this one
-                        before, after = then.resolve(taker, at), now.resolve(taker, at)
-                        if before != after:
-                            found[slots[path]] = (slots[path], before, after)
-            return [found[index] for index in sorted(found)]
+        # The constants of each package's C++ files at the build and now, by which the
+        # files taking one are resolved (``_Constants``).
+        constants = _Constants(files, slots, package_files, stored_facts, removed_code)
 
         changed: list[tuple[str, FileFacts, FileFacts]] = []
         taking: list[tuple[int, str, FileFacts]] = []  # code taking a constant: its facts then
@@ -537,8 +463,8 @@ class GraphPatch:
                 # from its package's C++ files now (its own check too).
                 if added is not None and uses_constants(added):
                     home = self.checks.package_of(index)
-                    table = None if home is None else constants_of(home)
-                    headers = None if home is None else code_below(home)
+                    table = None if home is None else constants.now(home)
+                    headers = None if home is None else constants.code_below(home)
                     if home is not None and (table is None or headers is None):
                         return None
                     if home is not None and table is not None and headers is not None:
@@ -580,7 +506,8 @@ class GraphPatch:
                 changed.append((display, before, facts))
             else:
                 return None
-        then_of: dict[str, FileFacts] = {display: then for display, then, _ in changed}
+        then_of = constants.then_of  # the edited files' facts at the build
+        then_of.update((display, then) for display, then, _ in changed)
         then_of.update((display, before) for _, display, before in taking)
         for display in added_code:
             added = facts_at(slots[display])
@@ -598,8 +525,8 @@ class GraphPatch:
             if directory is None:
                 before_then, now_resolved = before, now_raw  # the run resolves none either
             else:
-                table_then, table_now = constants_then(directory), constants_of(directory)
-                headers = code_below(directory)
+                table_then, table_now = constants.then(directory), constants.now(directory)
+                headers = constants.code_below(directory)
                 if table_then is None or table_now is None or headers is None:
                     return None
                 before_then = table_then.resolve(before, directory)
@@ -629,7 +556,7 @@ class GraphPatch:
         retaking: set[int] = set()
         if reaching:
             known_now = {display for display, _, _ in changed} | set(added_code)
-            takers = resolved_anew(reaching, known_now)
+            takers = constants.anew(reaching, known_now)
             if takers is None:
                 return None
             for taker, names_then, names_now in takers:
@@ -798,21 +725,7 @@ class GraphPatch:
             if walk or removed_trees or gathering
             else _kept_findings(stored.found, edits, self.rules, files)
         )
-        fresh = [rule for rule in self.rules if rule.code not in kept_codes]
-        by_rule: dict[int, dict[str, list[Finding]]] = {}
-        for path, items in graph_findings(patched, fresh, self.settings).items():
-            at = slots.get(path)
-            if at is not None and at < replay.reported:
-                for rule, item in items:
-                    by_rule.setdefault(at, {}).setdefault(rule.code, []).append(item.finding)
-        for index, built in kept_found.items():
-            for code, finding in built:
-                by_rule.setdefault(index, {}).setdefault(code, []).append(finding)
-        # In the rules' order, as ``graph_findings`` lists them.
-        found = {
-            index: tuple((rule.code, f) for rule in self.rules for f in codes.get(rule.code, ()))
-            for index, codes in by_rule.items()
-        }
+        found = self._graph_found(patched, slots, replay.reported, kept_codes, kept_found)
         again = set(arrived_facts) | {
             index
             for index in found.keys() | replay.graph.keys()
@@ -835,26 +748,59 @@ class GraphPatch:
             )
         # A file taking a constant whose value changed is checked again under it.
         again.update(taker for taker in retaking if taker < replay.reported)
-        rest = list(self.gathered.facts(sorted(again - arrived_facts.keys())))
-        # A file taking another file's constant is checked with its names resolved from
-        # its package's headers (``RunChecks.finish``): the run took few of them.
+        if not self._check_again(sorted(again - arrived_facts.keys()), constants):
+            return None
+        if rebasing and launch_parts is not None and code_parts is not None:
+            self.rebased = _Rebased(patched, launch_parts, code_parts, list(packages))
+        run_wide = replay.run_wide if not typed else replace(replay.run_wide, typed_uses=typed_uses)
+        patched_replay = replace(replay, graph=found, specialised=specialised, run_wide=run_wide)
+        return Replayed(sorted(again), patched_replay)
+
+    def _graph_found(
+        self,
+        patched: Graph,
+        slots: Mapping[str, int],
+        reported: int,
+        kept_codes: frozenset[str],
+        kept_found: Mapping[int, list[tuple[str, Finding]]],
+    ) -> dict[int, tuple[tuple[str, Finding], ...]]:
+        """The graph rules' findings in each reported file (its index, of ``reported``):
+        the patched graph's, but for the rules of ``kept_codes``, whose built findings
+        (``kept_found``) stand; in the rules' order, as ``graph_findings`` lists them."""
+        fresh = [rule for rule in self.rules if rule.code not in kept_codes]
+        by_rule: dict[int, dict[str, list[Finding]]] = {}
+        for path, items in graph_findings(patched, fresh, self.settings).items():
+            at = slots.get(path)
+            if at is not None and at < reported:
+                for rule, item in items:
+                    by_rule.setdefault(at, {}).setdefault(rule.code, []).append(item.finding)
+        for index, built in kept_found.items():
+            for code, finding in built:
+                by_rule.setdefault(index, {}).setdefault(code, []).append(finding)
+        return {
+            index: tuple((rule.code, f) for rule in self.rules for f in codes.get(rule.code, ()))
+            for index, codes in by_rule.items()
+        }
+
+    def _check_again(self, again: Sequence[int], constants: _Constants) -> bool:
+        """Hand the files at ``again`` (none edited) to the checks, a file taking another
+        file's constant with its package's headers known to them (``RunChecks.finish``
+        resolves its names from those: the run took few of them); False where a C++ file
+        of such a package has no facts."""
+        rest = list(self.gathered.facts(again))
         resolving = {
             directory
             for index, facts, _, _ in rest
             if uses_constants(facts) and (directory := self.checks.package_of(index)) is not None
         }
         for directory in sorted(resolving):
-            headers = code_below(directory)
+            headers = constants.code_below(directory)
             if headers is None:
-                return None
+                return False
             self.checks.know_constants(found for _, found in headers)
         for index, facts, data, verdict in rest:
             self.checks.take(index, facts, data, verdict)
-        if rebasing and launch_parts is not None and code_parts is not None:
-            self.rebased = _Rebased(patched, launch_parts, code_parts, list(packages))
-        run_wide = replay.run_wide if not typed else replace(replay.run_wide, typed_uses=typed_uses)
-        patched_replay = replace(replay, graph=found, specialised=specialised, run_wide=run_wide)
-        return Replayed(sorted(again), patched_replay)
+        return True
 
     def _typed_uses_after(
         self, replay: Replay, arrived: Sequence[_Arrived]
@@ -913,6 +859,107 @@ class GraphPatch:
             programs=programs,
         )
         return None if found is None else (found, specialise.specialised)
+
+
+@dataclass
+class _Constants:
+    """The constants the C++ files of each package define at the build and now, by which a
+    patch resolves the names of the files taking one as the build and the run do
+    (``symbols``): from every C++ file below the package's directory, each directory's
+    files read once (the tables then and now, and the checks, read the same)."""
+
+    files: Sequence[SourceFile]
+    slots: Mapping[str, int]  # each file's index by display path
+    package_files: Callable[[], PackageFiles]  # which package holds each file
+    stored_facts: Callable[[int], FileFacts | None]  # a file's facts as extracted
+    removed: Mapping[str, FileFacts]  # code files the build had and the run has not
+    # The edited files' facts at the build, by display path (once every edit is known)
+    then_of: dict[str, FileFacts] = field(default_factory=dict)
+    _below: dict[str, tuple[tuple[str, FileFacts], ...] | None] = field(default_factory=dict)
+    _now: dict[str, PackageConstants | None] = field(default_factory=dict)
+    _then: dict[str, PackageConstants | None] = field(default_factory=dict)
+
+    def code_below(self, directory: str) -> tuple[tuple[str, FileFacts], ...] | None:
+        """Every C++ file below a package's directory (display path) with its facts, as
+        ``symbols.PackageConstants`` reads them; None where one has no facts."""
+        if directory not in self._below:
+            self._below[directory] = self._read_below(directory)
+        return self._below[directory]
+
+    def _read_below(self, directory: str) -> tuple[tuple[str, FileFacts], ...] | None:
+        code: list[tuple[str, FileFacts]] = []
+        for path in self.package_files().below(directory):
+            at = self.slots[path]
+            if self.files[at].language is not Language.CPP:
+                continue
+            found = self.stored_facts(at)
+            if found is None:
+                return None
+            code.append((path, found))
+        return tuple(code)
+
+    def now(self, directory: str) -> PackageConstants | None:
+        """The constants of the C++ files below a package's directory now."""
+        if directory not in self._now:
+            code = self.code_below(directory)
+            self._now[directory] = None if code is None else _table(found for _, found in code)
+        return self._now[directory]
+
+    def then(self, directory: str) -> PackageConstants | None:
+        """The constants of the C++ files below a package's directory at the build: those
+        edited since as they were (``then_of``), those removed since too."""
+        if directory not in self._then:
+            code = self.code_below(directory)
+            prefix = f"{directory}/" if directory else ""
+            gone = (found for path, found in self.removed.items() if path.startswith(prefix))
+            self._then[directory] = (
+                None
+                if code is None
+                else _table([*(self.then_of.get(path, found) for path, found in code), *gone])
+            )
+        return self._then[directory]
+
+    def resolved(self, facts: FileFacts, directory: str | None) -> FileFacts | None:
+        """``facts`` with its symbols resolved by the headers of its package (display
+        directory; None: the run resolves nothing there either) as they are now; None
+        where a C++ file of it has no facts."""
+        if directory is None:
+            return facts
+        table = self.now(directory)
+        return None if table is None else table.resolve(facts, directory)
+
+    def anew(
+        self, reaching: Iterable[str], edited: Collection[str]
+    ) -> list[tuple[int, FileFacts, FileFacts]] | None:
+        """The files taking another file's constant, of a package holding a file that may
+        change what they take (``reaching``: its includes or constants changed, or it
+        came or went), not edited themselves (``edited``), whose names resolve otherwise
+        now than at the build: each one's index and facts resolved then and now; None
+        where a C++ file of those packages has no facts."""
+        found: dict[int, tuple[int, FileFacts, FileFacts]] = {}
+        package_files = self.package_files()
+        for display in reaching:
+            for package in package_files.enclosing(display):
+                at = package.directory
+                code, now, then = self.code_below(at), self.now(at), self.then(at)
+                if code is None or now is None or then is None:
+                    return None
+                for path, taker in code:
+                    if not uses_constants(taker) or path in edited:
+                        continue
+                    if package_files.package_of(path) != package:
+                        continue  # resolved in its own package's, below this one
+                    before, after = then.resolve(taker, at), now.resolve(taker, at)
+                    if before != after:
+                        found[self.slots[path]] = (self.slots[path], before, after)
+        return [found[index] for index in sorted(found)]
+
+
+def _table(facts: Iterable[FileFacts]) -> PackageConstants:
+    table = PackageConstants()
+    for found in facts:
+        table.add(found)
+    return table
 
 
 def _depending_anew(
