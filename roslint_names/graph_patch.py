@@ -396,10 +396,14 @@ class GraphPatch:
         # Code files the build had that the run has not, as they were: their packages'
         # programs are made again (``program_patch``).
         removed_code: dict[str, FileFacts] = {}
+        removed_taking: list[str] = []  # those taking another file's constant: resolved below
         for display, tag in stored.gone:
             gone = _facts_by_tag(self.cache, tag, display)
-            if gone is not None and _new_code(gone, found_by, None if typed else frozenset()):
+            types: frozenset[tuple[Generation | None, str]] | None = None if typed else frozenset()
+            if gone is not None and _new_code(gone, found_by, types, resolved=True):
                 removed_code[display] = gone
+                if uses_constants(gone):
+                    removed_taking.append(display)
                 continue
             came = None if gone is None else _came_or_went(gone, found_by, launch_files)
             if came is None:
@@ -458,7 +462,7 @@ class GraphPatch:
                 return None  # the graph read its bytes under an includer's arguments
             if then == ADDED:
                 added = facts_at(index) if is_facts_key(now) else None
-                types = None if typed else replay.run_wide.service_types
+                types = None if typed else frozenset(replay.run_wide.service_types)
                 # Code taking another file's constant: resolved as the run resolves it,
                 # from its package's C++ files now (its own check too).
                 if added is not None and uses_constants(added):
@@ -513,6 +517,15 @@ class GraphPatch:
             added = facts_at(slots[display])
             if added is not None:
                 then_of[display] = _empty(added)
+        # A code file taking another file's constant, removed: as the build resolved it,
+        # from its package's C++ files then.
+        for display in removed_taking:
+            owner = package_files().package_of(display)
+            if owner is not None:
+                table = constants.then(owner.directory)
+                if table is None:
+                    return None
+                removed_code[display] = table.resolve(removed_code[display], owner.directory)
         # A code file taking another file's constant, edited: its facts then and now with
         # their names resolved from its package's headers then and now, as the build and
         # the run resolve them, compared as any edit's; its own check, at the run's end,
@@ -1012,8 +1025,8 @@ def _new_code(
     """Whether a file added or removed since the build (``shifts``) is code whose
     package's programs may be made again for it (``program_patch``): code that says
     something or is found by a name, holds none of the facts launch, build and parameter
-    files hold, takes no other file's constant (unless ``resolved``: its names were
-    resolved as the run resolves them, a file added), wires no name, names no source
+    files hold, takes no other file's constant (unless ``resolved``: its names are
+    resolved as the build or the run resolves them), wires no name, names no source
     it includes, and serves or calls services only of ``service_types`` (the run's, for
     a file added; none, for one removed: another file's checks compare with those;
     None: of any, where the run knows the set of types the files use stays the same)."""

@@ -507,6 +507,9 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
         "patch",
     ),
     (TOPICS, '"dock_status"', '"dock_state"', "patch"),
+    # The code taking it taken out: as the build resolved it, its package's programs
+    # made again.
+    (STATUS_SOURCE, "", None, "patch"),
     # A roscpp node added as a developer adds one: its executable first (no source yet:
     # the build keeps no program of it), then its source, then a launch file starting it;
     # then the source taken out (``workspace.program_patch``: the package's programs made
