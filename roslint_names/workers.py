@@ -42,7 +42,7 @@ from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from types import FrameType, TracebackType
-from typing import TYPE_CHECKING, Any, Generic, TypeVar
+from typing import TYPE_CHECKING, Any, Generic, TypeVar, cast
 
 from .collection import THRESHOLDS
 
@@ -72,6 +72,9 @@ BUDGET_SECONDS = 10.0
 # should have stopped it at the budget, unless native code (a parser) holds it.
 KILL_GRACE = 0.5  # of the budget
 _POLL_SECONDS = 0.5  # how often the main process looks for a worker past its time
+# How long the main process waits for the workers' slots' lock, which a worker holds
+# only to write its slot: held longer, its holder died with it.
+_SLOTS_LOCK_SECONDS = 1.0
 _WATCH_PARENT_SECONDS = 0.5  # without a parent death signal: how often a worker looks
 
 
@@ -357,11 +360,20 @@ class Dispatcher(Generic[Item, Result]):
                 _kill(pid)
 
     def _busy(self) -> list[tuple[int, int, float]]:
-        """Each busy worker: its pid, its item's number, since when."""
+        """Each busy worker: its pid, its item's number, since when. A worker killed while
+        it held the slots' lock (one the pool terminated as another died) never releases
+        it: past ``_SLOTS_LOCK_SECONDS`` the slots are read without it (no live worker
+        writes them then: its death broke the pool), where waiting hung the run."""
         if self._slots is None:
             return []
-        with self._slots.get_lock():
-            values = self._slots[:]
+        lock = self._slots.get_lock()
+        if lock.acquire(timeout=_SLOTS_LOCK_SECONDS):
+            try:
+                values = self._slots[:]
+            finally:
+                lock.release()
+        else:
+            values = cast(list[float], self._slots.get_obj()[:])  # c_double reads as float
         return [
             (int(values[i]), int(values[i + 1]), values[i + 2])
             for i in range(0, len(values), 3)

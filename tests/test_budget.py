@@ -239,6 +239,22 @@ def _square_but_crash_on_seven(items: Iterable[int]) -> list[tuple[int, object]]
     return results
 
 
+def _square_but_die_holding_the_slots_lock_on_seven(
+    items: Iterable[int],
+) -> list[tuple[int, object]]:
+    """Seven kills its worker while the worker holds the lock of the slots the workers
+    mark their items in: as the pool terminates a worker that was marking its next item
+    when another died."""
+    results: list[tuple[int, object]] = []
+    for item in items:
+        if item == 7:
+            assert workers._SLOTS is not None  # this worker's, set by its initializer
+            workers._SLOTS.get_lock().acquire()
+            os.kill(os.getpid(), signal.SIGKILL)
+        results.append((item, item * item))
+    return results
+
+
 def dispatch_in_thread(work: Any, items: range) -> list[Any]:
     """Every result of a two-worker dispatcher over ``items``, or a failure after 30 s."""
     results: list[Any] = []
@@ -274,6 +290,17 @@ def test_a_worker_past_its_budget_is_killed_and_the_rest_goes_on(
 
 def test_a_worker_that_crashes_twice_on_one_item_gives_that_item_up() -> None:
     results = dispatch_in_thread(_square_but_crash_on_seven, range(30))
+    assert sorted(results, key=lambda result: result[0]) == [
+        (item, "the worker process extracting it died, twice" if item == 7 else item * item)
+        for item in range(30)
+    ]
+
+
+def test_a_worker_that_died_holding_the_slots_lock_hangs_nothing() -> None:
+    """The main process read the slots under their lock, which a dead worker never
+    releases: it waited for ever (the test above hung once in about twelve runs, in CI
+    too). It reads them without the lock past a second now, and the item is given up."""
+    results = dispatch_in_thread(_square_but_die_holding_the_slots_lock_on_seven, range(30))
     assert sorted(results, key=lambda result: result[0]) == [
         (item, "the worker process extracting it died, twice" if item == 7 else item * item)
         for item in range(30)
