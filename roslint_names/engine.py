@@ -473,6 +473,7 @@ def _lint(
             skipped,
             tuple(unbuilt_at),
             tuple(named_at),
+            checks.typed_files(),
         )
     per_file = one_per_decision(
         [found if shown[index] else [] for index, found in enumerate(checks.per_file)]

@@ -377,11 +377,15 @@ class GraphPatch:
         found_by = replay.run_wide.lookups()
         for edited in arrived_facts.values():
             found_by.add(edited)
-        # Code may serve or call services of other types, where the set of types the
-        # files use stays the same (no other file's RN204 compares with another set):
-        # the counts after the edits since the replay's run, else None.
+        # Code may serve or call services of other types, where the run knows how many
+        # files use each type after the edits since the replay's run; where that set of
+        # types changed, every file comparing with it is checked again (RN204).
         typed_uses = self._typed_uses_after(replay, arrived)
         typed = typed_uses is not None
+        types_changed = (
+            typed_uses is not None
+            and typed_uses.keys() != (replay.run_wide.typed_uses or {}).keys()
+        )
 
         def launch_files() -> list[str]:
             return [source.display for source in files if source.language in LAUNCH_LANGUAGES]
@@ -761,6 +765,10 @@ class GraphPatch:
             )
         # A file taking a constant whose value changed is checked again under it.
         again.update(taker for taker in retaking if taker < replay.reported)
+        # So is every file comparing with the service types the files use, where that
+        # set changed (a type new to the run, or the last use of one gone).
+        if types_changed:
+            again.update(replay.typed)
         if not self._check_again(sorted(again - arrived_facts.keys()), constants):
             return None
         if rebasing and launch_parts is not None and code_parts is not None:
@@ -820,7 +828,7 @@ class GraphPatch:
     ) -> dict[tuple[Generation | None, str], int] | None:
         """How many files serve or call a service of each type after the edits since the
         replay's run (``arrived``: each file's facts then under its tag there, an added
-        one's none), where the set of those types is the replay's; else None."""
+        one's none); None where the replay's counts or a file's facts then are not known."""
         then = replay.run_wide.typed_uses
         if then is None:
             return None
@@ -836,8 +844,7 @@ class GraphPatch:
             counts.update((facts.generation, spelling) for spelling in typed_services(facts))
         if any(count < 0 for count in counts.values()):
             return None
-        after = {key: count for key, count in counts.items() if count > 0}
-        return after if after.keys() == then.keys() else None
+        return {key: count for key, count in counts.items() if count > 0}
 
     def _walked(
         self,
@@ -1029,7 +1036,7 @@ def _new_code(
     resolved as the build or the run resolves them), wires no name, names no source
     it includes, and serves or calls services only of ``service_types`` (the run's, for
     a file added; none, for one removed: another file's checks compare with those;
-    None: of any, where the run knows the set of types the files use stays the same)."""
+    None: of any, where the run counts the files that use each type)."""
     if facts.language not in CODE_LANGUAGES or found_by.adds_nothing(facts):
         return False
     types = {(facts.generation, spelling) for spelling in typed_services(facts)}
@@ -1123,8 +1130,9 @@ def _patchable(
     its own (no constant of another file in them; ``resolved``: the constants' values in
     them, as the build and the run resolve them). ``wiring_kept``: a launch file may
     wire names (RN202's), the same before and after; code may wire none. ``typed``: the
-    services' types may differ, the set of types the run's files use being the same
-    (``GraphPatch._typed_uses_after``)."""
+    services' types may differ, the run counting the files that use each type (and
+    checking again those comparing with them where that set changes:
+    ``GraphPatch._typed_uses_after``)."""
     wiring = (
         wired_by(before) == wired_by(now)
         if wiring_kept

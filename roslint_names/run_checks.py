@@ -77,6 +77,7 @@ class RunChecks:
     _lookups: shifts.Lookups = field(default_factory=shifts.Lookups)  # ``RunWide``'s
     # How many files serve or call a service of each type (``RunWide.typed_uses``)
     _typed_uses: Counter[tuple[Generation | None, str]] | None = field(default_factory=Counter)
+    _typed_files: set[int] = field(default_factory=set)  # reported, serving or calling one
     _done: int = 0
 
     def __post_init__(self) -> None:
@@ -94,6 +95,8 @@ class RunChecks:
         self.service_types.update((facts.generation, spelling) for spelling in types)
         if types and self._typed_uses is not None:
             self._typed_uses.update((facts.generation, spelling) for spelling in types)
+        if types and index < self.reported:
+            self._typed_files.add(index)
         self._constants.add(facts)
         if self.judge.wiring:
             self._wired.update(
@@ -284,7 +287,12 @@ class RunChecks:
             if index not in mine:
                 self.per_file[index] = list(found)
         run_wide = replay.run_wide
-        self.service_types.update(run_wide.service_types)
+        # The types the files use as they are now, where the replay counts them (a patch
+        # may have changed that set: ``GraphPatch._typed_uses_after``); the run's own
+        # ``.srv`` files' are in already.
+        uses = run_wide.typed_uses
+        self.service_types.update(run_wide.service_types if uses is None else uses)
+        self._typed_files |= set(replay.typed) - mine
         self._wired.update(run_wide.wired)
         # The files taken by this run are in as they are now (a build file may compile
         # other sources: ``program_patch``), the others as the replay's run had them.
@@ -293,8 +301,11 @@ class RunChecks:
         self._lookups.update(run_wide.looked_up, run_wide.naming, run_wide.named_sources)
         # The replay's counts are of the files as they are now (a patch that changed
         # them gives them so): the files taken were counted again by ``take``.
-        uses = run_wide.typed_uses
         self._typed_uses = None if uses is None else Counter(uses)
+
+    def typed_files(self) -> tuple[int, ...]:
+        """The reported files that serve or call a typed service (``Replay.typed``)."""
+        return tuple(sorted(self._typed_files))
 
     def know_constants(self, facts: Iterable[FileFacts]) -> None:
         """The constants and includes of files the run does not take (a replay's, a

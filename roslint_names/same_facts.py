@@ -107,6 +107,9 @@ class Replay:
     # by rostest.
     unbuilt: tuple[int, ...] = ()
     rostest_named: tuple[int, ...] = ()
+    # The reported files (indices) that serve or call a typed service: checked again by a
+    # patch that changes the set of types they compare with (RN204).
+    typed: tuple[int, ...] = ()
 
     def edited(self, tags: Sequence[str]) -> list[int] | None:
         """The checked files whose facts keys differ from the replay's, none where nothing
@@ -177,6 +180,7 @@ class Replay:
             self.skipped,
             self.unbuilt,
             self.rostest_named,
+            self.typed,
             tuple(sorted(wide.looked_up)),
             tuple(sorted((name, tuple(sorted(by))) for name, by in wide.naming.items())),
             tuple(sorted(wide.named_sources.items())),
@@ -200,11 +204,12 @@ class Replay:
             self.skipped,
             tuple(sorted(then_of[index] for index in self.unbuilt if index in then_of)),
             tuple(sorted(then_of[index] for index in self.rostest_named if index in then_of)),
+            tuple(sorted(then_of[index] for index in self.typed if index in then_of)),
         )
 
 
-_FORMAT = "replay 6"
-_FIELDS = 17  # of ``stored``
+_FORMAT = "replay 7"
+_FIELDS = 18  # of ``stored``
 
 
 def key(place_key: str, checks_key: str) -> str:
@@ -218,7 +223,8 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
     if not isinstance(value, tuple) or len(value) != _FIELDS:
         return None
     form, tags, kept_reported, found, graph, specialised, types, wired = value[:8]
-    built, rejected, skipped, unbuilt, rostest_named, looked_up, naming, named, uses = value[8:]
+    built, rejected, skipped, unbuilt, rostest_named, typed = value[8:14]
+    looked_up, naming, named, uses = value[14:]
     if form != _FORMAT or kept_reported != reported or not _strings(tags) or len(tags) != files:
         return None
     try:
@@ -260,6 +266,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         and _ints(tuple(named_map.values()))
         and _indices(unbuilt, reported)
         and _indices(rostest_named, reported)
+        and _indices(typed, reported)
         and all(isinstance(generation, Generation | None) for generation, _ in type_pairs)
         and (
             uses_map is None
@@ -289,6 +296,7 @@ def loaded(value: object, files: int, reported: int) -> Replay | None:
         skipped_pairs,
         unbuilt,
         rostest_named,
+        typed,
     )
 
 

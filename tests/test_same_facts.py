@@ -341,23 +341,24 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     # node's name), and a node of fleet.launch.py started without a name (its code's).
     (MONITOR, "    odom_sub_ =", f"{OWN_STATUS}    odom_sub_ =", "patch"),
     (f"{FLEET}/launch/fleet.launch.py", '                name="batteryReporter",\n', "", "patch"),
-    # A service of another type: the service types every file is compared with (RN204)
-    # change, and the graph is built.
+    # A service of another type: the set of service types the files use (RN204)
+    # changes (SetBool gone, Empty new): every file comparing with it is checked again
+    # (``Replay.typed``), the graph patched.
     (
         MONITOR,
         "create_service<std_srvs::srv::SetBool>",
         "create_service<std_srvs::srv::Empty>",
-        "build",
+        "patch",
     ),
     # A client of a type another file serves (the dock manager's Trigger), named after
-    # its type (RN204): the set of types the files use stays the same, patched
-    # (``RunWide.typed_uses``). Then of the type the monitor serves (Empty): patched;
-    # then of a type no file uses any more (SetBool): built; then of Trigger again,
-    # named otherwise: built (the last file using SetBool changed).
+    # its type (RN204): the set of types the files use stays the same (``RunWide.
+    # typed_uses``). Then of the type the monitor serves (Empty); then of a type no
+    # file uses any more (SetBool); then of Trigger again, named otherwise (the last
+    # file using SetBool changed): each patched.
     (MONITOR, "", f"\n{DOCK_CLIENT}", "patch"),
     (MONITOR, 'std_srvs::srv::Trigger>("trigger"', 'std_srvs::srv::Empty>("trigger"', "patch"),
-    (MONITOR, 'std_srvs::srv::Empty>("trigger"', 'std_srvs::srv::SetBool>("trigger"', "build"),
-    (MONITOR, 'std_srvs::srv::SetBool>("trigger"', 'std_srvs::srv::Trigger>("docking"', "build"),
+    (MONITOR, 'std_srvs::srv::Empty>("trigger"', 'std_srvs::srv::SetBool>("trigger"', "patch"),
+    (MONITOR, 'std_srvs::srv::SetBool>("trigger"', 'std_srvs::srv::Trigger>("docking"', "patch"),
     # A node calling the dock manager's service added, a header that says nothing,
     # then the node taken out: files no run had, renumbered from the last run's, its
     # count of Trigger's users less the file gone (``graph_patch._typed_uses_without``).
@@ -401,7 +402,7 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
         "patch",
     ),
     # Code edited since: both patches, the launch trees' and the code's.
-    (RELAY, '<nav_msgs::Odometry>("odometry"', '<nav_msgs::Odometry>("odom"', "patch"),
+    (RELAY, '<nav_msgs::Odometry>("odometry"', '<nav_msgs::Odometry>("odom_in"', "patch"),
     # The node named as the other robot's base: a duplicate node name (RN301) in one tree.
     (BASE, 'name="spare_smoother"', 'name="velocity_smoother"', "patch"),
     # An include added: one more tree reads base.launch.
@@ -692,7 +693,7 @@ def test_a_damaged_replay_is_a_run_like_any(
 
 
 # One file, nothing found
-EMPTY = ("replay 6", ("k1",), 1, (), (), (), (), (), (), (), (), (), (), (), (), (), None)
+EMPTY = ("replay 7", ("k1",), 1, (), (), (), (), (), (), (), (), (), (), (), (), (), (), None)
 
 
 def test_an_empty_stored_replay_reads_back() -> None:
@@ -713,10 +714,11 @@ def test_an_empty_stored_replay_reads_back() -> None:
         ((*EMPTY[:8], (("x", None),), *EMPTY[9:]), 1),  # built sources that are not facts
         ((*EMPTY[:11], (3,), *EMPTY[12:]), 1),  # an unbuilt file that is not reported
         ((*EMPTY[:11], ("src/a.cpp",), *EMPTY[12:]), 1),  # one that is not an index
-        ((*EMPTY[:13], (7,), (), (), None), 1),  # a name that is not a string
-        ((*EMPTY[:14], (("a.yaml", ("x",)),), (), None), 1),  # a digest that is not one
-        ((*EMPTY[:16], (((None, "std_srvs/Empty"), 0),)), 1),  # a type no file uses
-        ((*EMPTY[:16], (((7, "std_srvs/Empty"), 1),)), 1),  # a generation that is not one
+        ((*EMPTY[:13], (3,), *EMPTY[14:]), 1),  # a typed file that is not reported
+        ((*EMPTY[:14], (7,), (), (), None), 1),  # a name that is not a string
+        ((*EMPTY[:15], (("a.yaml", ("x",)),), (), None), 1),  # a digest that is not one
+        ((*EMPTY[:17], (((None, "std_srvs/Empty"), 0),)), 1),  # a type no file uses
+        ((*EMPTY[:17], (((7, "std_srvs/Empty"), 1),)), 1),  # a generation that is not one
     ],
 )
 def test_a_stored_replay_of_another_shape_is_none(value: object, files: int) -> None:
@@ -743,6 +745,7 @@ def test_a_stored_replay_reads_back_as_it_was() -> None:
         ),
         skipped=(("src/a/big.cpp", "too large"),),
         unbuilt=(1,),
+        typed=(0,),
     )
     assert same_facts.loaded(replay.stored(), files=2, reported=2) == replay
     assert same_facts.loaded(replay.stored(), files=3, reported=2) is None
@@ -907,13 +910,11 @@ def test_a_launch_edit_without_its_launch_parts_is_a_build(
     if damage == "torn":
         parts.write_bytes(blob[:-40])
     else:  # the parts of the first build, under the key of the second's graph
-        # A service of another type: a build (``test_a_sequence_of_edits...``).
-        edit(
-            workspace / MONITOR,
-            "create_service<std_srvs::srv::SetBool>",
-            "create_service<std_srvs::srv::Empty>",
-        )
+        # A remap to another absolute name: what RN202 compares with changes, a build.
+        edit(workspace / LOCALIZATION, 'to="~scan"', 'to="/scan_wired"')
+        taken.clear()
         outputs(run_cli, workspace, cache)
+        assert taken == ["build", "build"]
         (now,) = cache.glob("*/launch-parts/*")
         now.write_bytes(blob)
     edit(workspace / BASE, 'name="battery_watch"', 'name="battery_guard"')
