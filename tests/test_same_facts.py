@@ -19,7 +19,7 @@ from roslint_names import cache as cache_module
 from roslint_names import engine, graph_patch, run_checks, same_facts, shifts
 from roslint_names import session as session_module
 from roslint_names.config import load_settings
-from roslint_names.model import FileFacts, Generation, Language
+from roslint_names.model import FileFacts, Generation, Kind, Language, NameUse, Role, Span
 from roslint_names.registry import load_registry
 from roslint_names.session import Session
 
@@ -723,6 +723,29 @@ def test_an_empty_stored_replay_reads_back() -> None:
 )
 def test_a_stored_replay_of_another_shape_is_none(value: object, files: int) -> None:
     assert same_facts.loaded(value, files=files, reported=1) is None
+
+
+def _serving(path: str, *types: str) -> FileFacts:
+    """A ROS 2 C++ file serving a service of each of ``types``."""
+    uses = tuple(
+        NameUse(Kind.SERVICE, "reset", Span(1, 1, 1, 8), Role.SERVE, "create_service", False, t)
+        for t in types
+    )
+    return FileFacts(path, Language.CPP, Generation.ROS2, names=uses)
+
+
+def test_a_renumbered_replay_counts_the_service_types_less_the_files_removed() -> None:
+    """``RunWide.typed_uses`` less the files removed since (``shifted_replay``): unknown
+    where a removed file's facts are not kept, or where it was the last to use a type
+    (the set other files' RN204 compared with changed: a build)."""
+    trigger, empty = (Generation.ROS2, "std_srvs/Trigger"), (Generation.ROS2, "std_srvs/Empty")
+    uses = {trigger: 2, empty: 1}
+    without = graph_patch._typed_uses_without
+    assert without(uses, []) == uses
+    assert without(None, [_serving("a.cpp", "std_srvs/Trigger")]) is None
+    assert without(uses, [None]) is None
+    assert without(uses, [_serving("a.cpp", "std_srvs/srv/Trigger")]) == {trigger: 1, empty: 1}
+    assert without(uses, [_serving("a.cpp", "std_srvs/Empty")]) is None
 
 
 def test_a_stored_replay_reads_back_as_it_was() -> None:
