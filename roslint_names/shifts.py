@@ -133,15 +133,13 @@ class Lookups:
         name = posixpath.basename(display)
         if name in self.names or name.rpartition(".")[0] in self.names:
             return True
-        if digest(display) in self.named:
-            return True
-        # A console_scripts module ``a/b.py`` may be the package ``a/b/__init__.py``.
-        return name == "__init__.py" and digest(f"{posixpath.dirname(display)}.py") in self.named
+        return bool(self.builders(display))
 
     def builders(self, display: str) -> set[int]:
         """The build files (digests of their display paths) whose executables name the
         file as a source; ``SEVERAL`` among them where more than one names it."""
         sources = [digest(display)]
+        # A console_scripts module ``a/b.py`` may be the package ``a/b/__init__.py``.
         if posixpath.basename(display) == "__init__.py":
             sources.append(digest(f"{posixpath.dirname(display)}.py"))
         return {self.named[source] for source in sources if source in self.named}
