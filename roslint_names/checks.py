@@ -411,6 +411,12 @@ def service_types_of(
     return frozenset(spelling for owner, spelling in types if owner in (generation, None))
 
 
+def typed_uses(facts: FileFacts) -> set[tuple[Generation | None, str]]:
+    """The service types the file serves or calls, as the run's set holds them: with the
+    file's generation (``typed_services``)."""
+    return {(facts.generation, spelling) for spelling in typed_services(facts)}
+
+
 def typed_services(facts: FileFacts) -> set[str]:
     """``package/Name`` of every service type the file serves or calls."""
     return {

@@ -12,7 +12,7 @@ from functools import lru_cache
 from typing import TYPE_CHECKING, NamedTuple
 
 from . import same_facts, shifts
-from .checks import file_graph_findings, graph_findings, typed_services
+from .checks import file_graph_findings, graph_findings, typed_services, typed_uses
 from .config import Settings
 from .discover import SourceFile
 from .gather import Gatherer, Specialiser, Verdict
@@ -112,7 +112,7 @@ def _typed_uses_without(
     for facts in gone:
         if facts is None:
             return None
-        counts.subtract((facts.generation, spelling) for spelling in typed_services(facts))
+        counts.subtract(typed_uses(facts))
     return None if any(count <= 0 for count in counts.values()) else dict(counts)
 
 
@@ -327,6 +327,8 @@ class GraphPatch:
     elsewhere_used: bool = False
     graph_from: GraphPlace | None = None  # where the graph it patched is, resolved
     rebased: _Rebased | None = None
+    # Package directories whose C++ files the checks know (``_know_headers``)
+    _headers_known: set[str] = field(default_factory=set)
 
     def __call__(self, replay: Replay, arrived: Sequence[_Arrived]) -> Replayed | None:
         """The replay patched from the graph kept where it was made; where that holds
@@ -401,10 +403,14 @@ class GraphPatch:
         # programs are made again (``program_patch``).
         removed_code: dict[str, FileFacts] = {}
         removed_taking: list[str] = []  # those taking another file's constant: resolved below
+        # The service types code added may use, and code removed (None: any, counted).
+        types_added = None if typed else replay.run_wide.service_types
+        types_removed: frozenset[tuple[Generation | None, str]] | None = (
+            None if typed else frozenset()
+        )
         for display, tag in stored.gone:
             gone = _facts_by_tag(self.cache, tag, display)
-            types: frozenset[tuple[Generation | None, str]] | None = None if typed else frozenset()
-            if gone is not None and _new_code(gone, found_by, types, resolved=True):
+            if gone is not None and _new_code(gone, found_by, types_removed, resolved=True):
                 removed_code[display] = gone
                 if uses_constants(gone):
                     removed_taking.append(display)
@@ -466,21 +472,16 @@ class GraphPatch:
                 return None  # the graph read its bytes under an includer's arguments
             if then == ADDED:
                 added = facts_at(index) if is_facts_key(now) else None
-                types = None if typed else frozenset(replay.run_wide.service_types)
                 # Code taking another file's constant: resolved as the run resolves it,
                 # from its package's C++ files now (its own check too).
                 if added is not None and uses_constants(added):
                     home = self.checks.package_of(index)
-                    table = None if home is None else constants.now(home)
-                    headers = None if home is None else constants.code_below(home)
-                    if home is not None and (table is None or headers is None):
+                    added = constants.resolved(added, home)
+                    if added is None or not self._know_headers(home, constants):
                         return None
-                    if home is not None and table is not None and headers is not None:
-                        added = table.resolve(added, home)
-                        self.checks.know_constants(found for _, found in headers)
                     loaded[index] = added
                     taking_added.add(index)
-                if added is not None and _new_code(added, found_by, types, resolved=True):
+                if added is not None and _new_code(added, found_by, types_added, resolved=True):
                     added_code.append(display)  # its package's programs made again
                     new_files.add(display)
                     continue
@@ -543,13 +544,12 @@ class GraphPatch:
                 before_then, now_resolved = before, now_raw  # the run resolves none either
             else:
                 table_then, table_now = constants.then(directory), constants.now(directory)
-                headers = constants.code_below(directory)
-                if table_then is None or table_now is None or headers is None:
+                if table_then is None or table_now is None:
                     return None
                 before_then = table_then.resolve(before, directory)
                 now_resolved = table_now.resolve(now_raw, directory)
-                if index in arrived_facts:
-                    self.checks.know_constants(found for _, found in headers)
+                if index in arrived_facts and not self._know_headers(directory, constants):
+                    return None
             loaded[index] = now_resolved
             if not _patchable(before_then, now_resolved, resolved=True, typed=typed):
                 return None
@@ -610,7 +610,7 @@ class GraphPatch:
         # again by this run, not by the next ones, which check again only what they
         # edit: what it patched is kept as a build keeps it, so that the graph each
         # replay is patched from resolves every such file as the replay's run did (and
-        # has every file taking one that was added: ``resolved_anew`` asks the build's).
+        # has every file taking one that was added: ``_Constants.anew`` asks the build's).
         taking_anew = bool(retaking or taking_added)
         if taking_anew and not self.may_rebase:
             return None
@@ -814,13 +814,23 @@ class GraphPatch:
             for index, facts, _, _ in rest
             if uses_constants(facts) and (directory := self.checks.package_of(index)) is not None
         }
-        for directory in sorted(resolving):
-            headers = constants.code_below(directory)
-            if headers is None:
-                return False
-            self.checks.know_constants(found for _, found in headers)
+        if not all(self._know_headers(directory, constants) for directory in sorted(resolving)):
+            return False
         for index, facts, data, verdict in rest:
             self.checks.take(index, facts, data, verdict)
+        return True
+
+    def _know_headers(self, directory: str | None, constants: _Constants) -> bool:
+        """Make the C++ files below a package's directory known to the checks, once, which
+        resolve the names of the files taking another file's constant that the run checks
+        from them (``RunChecks.know_constants``); False where one of them has no facts."""
+        if directory is None or directory in self._headers_known:
+            return True
+        headers = constants.code_below(directory)
+        if headers is None:
+            return False
+        self.checks.know_constants(found for _, found in headers)
+        self._headers_known.add(directory)
         return True
 
     def _typed_uses_after(
@@ -840,8 +850,8 @@ class GraphPatch:
                 before = _facts_by_tag(self.cache, tag, files[index].display)
                 if before is None:
                     return None
-                counts.subtract((before.generation, t) for t in typed_services(before))
-            counts.update((facts.generation, spelling) for spelling in typed_services(facts))
+                counts.subtract(typed_uses(before))
+            counts.update(typed_uses(facts))
         if any(count < 0 for count in counts.values()):
             return None
         return {key: count for key, count in counts.items() if count > 0}
@@ -1039,7 +1049,7 @@ def _new_code(
     None: of any, where the run counts the files that use each type)."""
     if facts.language not in CODE_LANGUAGES or found_by.adds_nothing(facts):
         return False
-    types = {(facts.generation, spelling) for spelling in typed_services(facts)}
+    types = typed_uses(facts)
     return (
         not any(getattr(facts, field) for field in NOT_CODE_FIELDS)
         and not facts.included_sources

@@ -20,6 +20,7 @@ from .checks import (
     rule_contexts,
     service_types_of,
     typed_services,
+    typed_uses,
     waits_for_the_run,
 )
 from .gather import Verdict
@@ -91,11 +92,11 @@ class RunChecks:
         the worker that extracted it judged it already (``FileChecks``)."""
         if self.keep_facts:
             self._all_facts[index] = facts
-        types = typed_services(facts)
-        self.service_types.update((facts.generation, spelling) for spelling in types)
-        if types and self._typed_uses is not None:
-            self._typed_uses.update((facts.generation, spelling) for spelling in types)
-        if types and index < self.reported:
+        uses = typed_uses(facts)
+        self.service_types.update(uses)
+        if uses and self._typed_uses is not None:
+            self._typed_uses.update(uses)
+        if uses and index < self.reported:
             self._typed_files.add(index)
         self._constants.add(facts)
         if self.judge.wiring:
