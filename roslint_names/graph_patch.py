@@ -589,7 +589,10 @@ class GraphPatch:
         walk = [*tree_edits, *sorted(naming)]  # the launch files whose trees are walked again
         declaring: set[str] = set()  # code files whose parameters changed
         renamed: set[str] = set()  # and those whose node name did (``patch.name_edit``)
-        edits = edits_of(changed, declaring, renamed)
+        # Code that started or stopped declaring endpoints: its package's programs are
+        # made again (code no launch file starts is a program where it declares some).
+        flipping: set[str] = set()
+        edits = edits_of(changed, declaring, renamed, flipping)
         if edits is None:
             return None
 
@@ -603,7 +606,8 @@ class GraphPatch:
         kept: KeptLaunch | None = None
         known: set[str] = set()  # the files the build had facts of (a skipped one has none)
         # Some nodes' parameters gathered again
-        gathering = bool(declaring or depending or building or added_code or removed_code)
+        remade = bool(building or added_code or removed_code or flipping)  # programs
+        gathering = bool(declaring or depending or remade)
         since = len(changed) + len(tree_edits) + len(removed_trees) + len(new_files)
         since += len(building) + len(removed_code)
         # A file taking a constant that resolves otherwise than at the build is checked
@@ -631,7 +635,7 @@ class GraphPatch:
             known |= new_files
         launch_parts = None if kept is None else kept.parts  # as a build would leave them
         programs: ProgramsAnew | None = None
-        if building or added_code or removed_code:
+        if remade:
             assert kept is not None
             # What the build files compiled at the last run, where one builds other
             # programs now (no file added or removed changes it), and now.
@@ -640,7 +644,8 @@ class GraphPatch:
                 LazyFacts(known, facts_of), packages, kept.parts.executables
             )
             owners = [
-                package_files().package_of(path) for path in (*building, *added_code, *removed_code)
+                package_files().package_of(path)
+                for path in (*building, *added_code, *removed_code, *flipping)
             ]
             if None in owners:
                 return None
@@ -656,6 +661,7 @@ class GraphPatch:
                 then=building,
                 added=added_code,
                 removed=removed_code.keys(),
+                flipped=flipping,
                 compiled=compiled[1],
                 compiled_then=compiled[0],
                 is_test=_TestFiles(at_now, {}),

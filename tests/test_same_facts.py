@@ -159,6 +159,12 @@ import math
 def heading(dx: float, dy: float) -> float:
     return math.atan2(dy, dx)
 """
+NODE_IMPORTS = "from rclpy.node import Node\nfrom std_msgs.msg import String\n"
+ANNOUNCE = """
+
+def announce(node: Node) -> None:
+    node.create_publisher(String, "geometry_ready", 1)
+"""
 BEACON = f"{FLEET}/fleet_bringup/beacon.py"
 BEACON_NODE = """import rclpy
 from rclpy.node import Node
@@ -264,6 +270,10 @@ int main(int argc, char ** argv)
 }
 """
 
+FILTER_ENDPOINTS = """  filtered = nh.advertise<nav_msgs::Odometry>("odom_filtered", 10);
+  ros::Subscriber odom = nh.subscribe("odom", 10, filter);
+"""
+
 # (file, text before, text after, what the run after it does: ``taken``): ``change``.
 STEPS: list[tuple[str, str | None, str | None, str]] = [
     # A comment below everything: the facts are the same.
@@ -299,6 +309,12 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     (HEADER, None, ANGLES, "replay"),
     (MODULE, None, GEOMETRY, "replay"),
     (MODULE, "import math\n", "import math\n\nTURN = math.pi\n", "replay"),
+    # The module starts declaring a publisher: code no launch file starts is a program
+    # of its own where it declares endpoints (``launch_parts.Programs``), its package's
+    # programs made again. Then it declares none again (it logs instead).
+    (MODULE, "import math\n", f"import math\n\n{NODE_IMPORTS}", "replay"),
+    (MODULE, "", ANNOUNCE, "patch"),
+    (MODULE, 'create_publisher(String, "geometry_ready", 1)', "get_logger().info(TURN)", "patch"),
     # A name changed: the RN401 pair is gone. A parameter file moved since the last
     # build: the tree that hands it to its node is walked again (its settings' places).
     (MONITOR, '"robot_pose"', '"robot_pose_estimate"', "patch"),
@@ -517,12 +533,17 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     # again, the trees starting a node of it walked again).
     (TURTLE_BUILD, "", "add_executable(odom_filter src/odom_filter.cpp)\n", "patch"),
     (FILTER_SOURCE, None, FILTER_NODE, "patch"),
+    # Its endpoints taken out: its program, which no launch file starts, is none of its
+    # own any more (the package's programs made again).
+    (FILTER_SOURCE, FILTER_ENDPOINTS, "", "patch"),
     (
         BASE,
         "</launch>",
         '  <node name="odom_filter" pkg="turtle_bringup" type="odom_filter"/>\n</launch>',
         "patch",
     ),
+    # And put back, the node launched now.
+    (FILTER_SOURCE, "  ros::spin();", f"{FILTER_ENDPOINTS}  ros::spin();", "patch"),
     (FILTER_SOURCE, "", None, "patch"),
 ]
 
@@ -581,6 +602,48 @@ def test_a_sequence_of_edits_each_kept_as_the_next_runs_graph_gives_what_a_fresh
         cached, fresh = outputs(run_cli, workspace, cache)
         assert cached == fresh, (step, relative, old, new)
     assert sum(kept) >= 20, kept
+
+
+THRESHOLD = '        self.threshold = self.declare_parameter("low_threshold", 0.2).value\n'
+REPORTER_ENDPOINTS = """        self.low_pub = self.create_publisher(Bool, "battery/low", 10)
+        self.create_subscription(BatteryState, "battery/state", self.on_state, 10)
+"""
+LOGGER = "src/turtle_bringup/scripts/pose_logger.py"  # installed, launched by none
+LOGGER_SUBSCRIPTION = "        rospy.Subscriber('turtle1/pose', Pose, self.on_pose, queue_size=1)\n"
+
+
+def test_code_that_starts_or_stops_declaring_endpoints_is_patched(
+    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str]
+) -> None:
+    """Code no launch file starts is a program of its own where it declares endpoints
+    (``launch_parts.Programs``): a file the build had that starts or stops declaring
+    any makes its package's programs again (``graph_patch.GraphPatch``'s ``flipping``),
+    the graph is patched: a module that starts, a launched node's code that stops (its
+    node runs on), a script no launch file starts that stops (its program gone), and
+    the last two starting again."""
+    change(workspace / MODULE, None, f"{GEOMETRY}\n{NODE_IMPORTS}")
+    cache = tmp_path / "cache"
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    steps = [
+        (MODULE, "", ANNOUNCE),
+        (REPORTER, REPORTER_ENDPOINTS, ""),
+        (LOGGER, LOGGER_SUBSCRIPTION, ""),
+        # Each starting again: the reporter as the build had it, the logger's topic
+        # another (as it was, the files would be those of the run after the first step).
+        (REPORTER, THRESHOLD, f"{THRESHOLD}{REPORTER_ENDPOINTS}"),
+        (
+            LOGGER,
+            "        rospy.Timer(",
+            LOGGER_SUBSCRIPTION.replace("turtle1/pose", "turtle2/pose") + "        rospy.Timer(",
+        ),
+    ]
+    for relative, old, new in steps:
+        taken.clear()
+        change(workspace / relative, old, new)
+        cached, fresh = outputs(run_cli, workspace, cache)
+        assert cached == fresh, relative
+        assert taken == ["patch", "build"], (relative, taken)
 
 
 def test_the_step_that_holds_a_graph_finding_shows_it_moved(

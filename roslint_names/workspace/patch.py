@@ -144,6 +144,7 @@ def edits_of(
     changed: Iterable[tuple[str, FileFacts, FileFacts]],
     declaring: set[str] | None = None,
     naming: set[str] | None = None,
+    flipping: set[str] | None = None,
 ) -> dict[str, Moved] | None:
     """``patched``'s edits for the files whose facts changed since the graph was made
     (display path, facts then and now): each a ``code_edit``, or the same facts in the same
@@ -151,9 +152,20 @@ def edits_of(
     None where one is neither. With ``declaring``, a ``gathering_edit`` is one too (a
     ``declaration_edit`` among them), its file added to ``declaring``; one that also
     changed the node name the code gives itself (a ``name_edit``) only with ``naming``,
-    the file added to both."""
+    the file added to both. With ``flipping``, code that starts or stops declaring
+    endpoints is an edit too, its file added to ``flipping``: the caller makes its
+    package's programs again (a program of code no launch file starts is one that
+    declares endpoints: ``launch_parts.Programs``)."""
     edits: dict[str, Moved] = {}
-    for display, then, now in changed:
+    for display, facts_then, facts_now in changed:
+        then, now = facts_then, facts_now
+        if (
+            flipping is not None
+            and then.language in CODE_LANGUAGES
+            and _has_endpoints(then) != _has_endpoints(now)
+        ):
+            flipping.add(display)  # compared as code_edit compares, its endpoints aside
+            then, now = _without_endpoints(then), _without_endpoints(now)
         moves = code_edit(then, now)
         if moves is None:
             moves = build_moves(then, now)

@@ -3,7 +3,9 @@
 A node added to a package is a source file added and an executable that compiles it
 added to the package's build file (``add_executable(probe src/probe.cpp)``, a
 ``console_scripts`` entry); a source may be added to a target, a file added that a
-launch file finds by its name (rosrun's rule, ``WorkspaceIndex.sources_of``). What such
+launch file finds by its name (rosrun's rule, ``WorkspaceIndex.sources_of``), code may
+start or stop declaring endpoints (code no launch file starts is a program of its own
+where it declares some: ``launch_parts.Programs``). What such
 edits change of what a build takes from every file is the package's own: which
 programs its build files make of which sources (``WorkspaceIndex.executables``, and the
 plugin names they register), which of its C++ sources no build compiles
@@ -108,6 +110,7 @@ def programs_anew(
     then: Mapping[str, FileFacts],
     added: Collection[str],
     removed: Collection[str] = (),
+    flipped: Collection[str] = (),
     compiled: BuiltSources,
     compiled_then: BuiltSources | None = None,
     is_test: Callable[[str], bool],
@@ -118,7 +121,8 @@ def programs_anew(
     from the last build's (``built``, ``executables``, ``unbuilt``) with those of the
     ``packages`` made again: their build files as they were at the build (``then``: the
     edited ones, by display path; the others as they are), the code files the build had
-    not (``added``) and those it had that the run has not (``removed``), what the run's
+    not (``added``), those it had that the run has not (``removed``) and those that
+    started or stopped declaring endpoints since (``flipped``), what the run's
     build files compile now (``compiled``) and at the last run (``compiled_then``; None
     where no build file changed) and which
     files are test code (``is_test``); None where that may reach past those packages
@@ -176,6 +180,7 @@ def programs_anew(
             facts=facts,
             added=added,
             removed=removed,
+            flipped=flipped,
             is_test=is_test,
             language_of=language_of,
         ),
@@ -247,24 +252,25 @@ def _programs(
     facts: Mapping[str, FileFacts],
     added: Collection[str],
     removed: Collection[str],
+    flipped: Collection[str],
     is_test: Callable[[str], bool],
     language_of: Callable[[str], Language],
 ) -> Programs:
     """``build._programs`` over the executables made again: a file that was a program's
-    source at the build keeps whether it declares endpoints (an edit that changes that
-    is no patch's: ``patch.code_edit``); another's is read from its facts."""
+    source at the build keeps whether it declares endpoints, but for those that started
+    or stopped since (``flipped``); another's is read from its facts."""
     lists = tuple(sources for _, sources in executables.programs)
     sources = {path for listed in lists for path in listed}
-    before = {path for listed in built.built for path in listed} - set(added)
+    before = {path for listed in built.built for path in listed} - set(added) - set(flipped)
     with_endpoints = {
         path
         for path in sources
         if (path in built.with_endpoints if path in before else _has_endpoints(facts[path]))
     }
-    single = set(built.single) - set(removed)
+    single = set(built.single) - set(removed) - set(flipped)
     single.update(
         path
-        for path in added
+        for path in (*added, *flipped)
         if language_of(path) in CODE_LANGUAGES and _has_endpoints(facts[path]) and not is_test(path)
     )
     return Programs(
