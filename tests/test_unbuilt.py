@@ -641,3 +641,41 @@ def test_what_a_build_file_leaves_open_is_looked_up_as_it_was_compared() -> None
                             path,
                             posixpath.basename(path),
                         )
+
+
+def test_what_targets_name_is_asked_of_the_build_files_that_may_name_it() -> None:
+    """``BuiltSources`` asks whether a target names a source of the build files above it
+    and of those naming files outside their directory, not of every build file read (a
+    patch asks about one package's sources): the same answers as the union of what every
+    read build file's targets name (``reference``), for targets that stay below their
+    directory, lead out of it (``../common``, an absolute path, ``.``), a package at the
+    run's root, below it, inside another, outside the current directory, and a build
+    file of no package."""
+    from roslint_names.workspace.index import join, parent
+
+    relatives = ("src/a.cpp", "../common/b.cpp", "sub/../c.cpp", "/opt/d.cpp", ".", "e.cpp")
+    for outer in ("", "ws", "/tmp/ws", "../ws"):
+        inner = join(outer, "inner")
+        files = [  # (package directory, build file, target sources, rostest sources)
+            (outer, join(outer, "CMakeLists.txt"), relatives[:3], relatives[5:]),
+            (outer, join(outer, "cmake/nodes.cmake"), relatives[3:5], ()),
+            (inner, join(inner, "CMakeLists.txt"), ("../src/f.cpp", "g.cpp"), ("src/a.cpp",)),
+            (inner, join(inner, "tools/CMakeLists.txt"), ("h.cpp",), ()),  # read by none
+            (None, join(outer, "loose/CMakeLists.txt"), ("../inner/g.cpp",), ("x.cpp",)),
+        ]
+        built = BuiltSources()
+        for package, path, paths, rostest in files:
+            compiled = CompiledSources(paths=paths, rostest=rostest)
+            built.add(FileFacts(path, Language.CMAKE, Generation.ROS2, compiled=compiled), package)
+        targets: set[str] = set()
+        rostest_named: set[str] = set()
+        reached = {f.path for package in (outer, inner) for f in built._reached_files(package)}
+        for package, path, paths, rostest in files:
+            if package is None or path in reached:
+                targets.update(join(parent(path), relative) for relative in paths)
+                rostest_named.update(join(parent(path), relative) for relative in rostest)
+        assert join(inner, "tools/CMakeLists.txt") not in reached
+        asked = {*targets, *rostest_named, join(inner, "tools/h.cpp"), join(outer, "zz.cpp")}
+        for path in sorted(asked):
+            reference = (path in targets, path in rostest_named)
+            assert built._named(path) == reference, (outer, path)
