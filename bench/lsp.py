@@ -43,12 +43,14 @@ from lsprotocol import types
 from pygls.lsp.client import LanguageClient
 from pygls.uris import from_fs_path
 
-# Isolated (``-I``): the package this interpreter has installed, never one the current
-# directory holds (``-c`` would put it first: a comparison of two installs run from a
-# checkout measured the checkout's code twice).
+# The package this interpreter has installed, never one the current directory holds
+# (``-c`` would put it first: a comparison of two installs run from a checkout measured
+# the checkout's code twice): ``-P`` leaves the directory out and keeps ``PYTHONPATH``
+# (a machine whose packages are a folder on it: ``-I`` ignored it, and the server could
+# not start there), ``-I`` before Python 3.11.
 CLI = [
     sys.executable,
-    "-I",
+    "-P" if sys.version_info >= (3, 11) else "-I",
     "-c",
     "import sys; from roslint_names.cli import main; sys.exit(main())",
 ]
