@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from collections import Counter
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import InitVar, dataclass, field, replace
 from functools import lru_cache
 from typing import TYPE_CHECKING, NamedTuple
 
@@ -362,7 +362,7 @@ class GraphPatch:
         codes = {rule.code for rule in self.rules}
         if not same_facts.codes_of(replay.graph, stored.found) <= codes:
             return None
-        built_from, graph = stored.tags, stored.graph
+        graph = stored.graph
         packages: Sequence[Package] = stored.packages
         depending: frozenset[str] = frozenset()  # packages depending on others since
         if stored.depends != self.depends():
@@ -371,8 +371,6 @@ class GraphPatch:
                 return None
             packages, depending = anew
         arrived_facts = {index: facts for index, facts, _, _ in arrived}
-        loaded: dict[int, FileFacts | None] = {}
-        raw: dict[int, FileFacts] = {}  # those of ``loaded`` whose names were resolved, as stored
         # Files the build did not have, or had and the run has not, say nothing and are
         # found by no name, the edited files' names too (``shifts``): then the build's
         # graph is theirs.
@@ -389,216 +387,37 @@ class GraphPatch:
             and typed_uses.keys() != (replay.run_wide.typed_uses or {}).keys()
         )
 
-        def launch_files() -> list[str]:
-            return [source.display for source in files if source.language in LAUNCH_LANGUAGES]
-
-        # Launch files added or removed that nothing includes: trees that come or go.
-        # Parameter files added or removed: the trees that read a launch file naming a
-        # file of that name are walked again (and the trees handed a removed one), as
-        # ``find_in_package`` may find another file by that name now.
-        new_files: set[str] = set()
-        removed_trees: list[str] = []
-        naming: set[str] = set()  # launch files that name a parameter file added or removed
-        # Code files the build had that the run has not, as they were: their packages'
-        # programs are made again (``program_patch``).
-        removed_code: dict[str, FileFacts] = {}
-        removed_taking: list[str] = []  # those taking another file's constant: resolved below
-        # The service types code added may use, and code removed (None: any, counted).
-        types_added = None if typed else replay.run_wide.service_types
-        types_removed: frozenset[tuple[Generation | None, str]] | None = (
-            None if typed else frozenset()
-        )
-        for display, tag in stored.gone:
-            gone = _facts_by_tag(self.cache, tag, display)
-            if gone is not None and _new_code(gone, found_by, types_removed, resolved=True):
-                removed_code[display] = gone
-                if uses_constants(gone):
-                    removed_taking.append(display)
-                continue
-            came = None if gone is None else _came_or_went(gone, found_by, launch_files)
-            if came is None:
-                return None
-            naming |= came[1]
-            if came[0] != _SAYS_NOTHING:
-                removed_trees.append(display)
-
         slots = {source.display: index for index, source in enumerate(files)}
         # Which package holds each file (the build's packages), for a patch that asks.
         package_files = lru_cache(maxsize=1)(
             lambda: PackageFiles([source.display for source in files], packages)
         )
-
-        def stored_facts(index: int) -> FileFacts | None:
-            """A file's facts as extracted (the edited files' of this run)."""
-            if index in arrived_facts:
-                return arrived_facts[index]
-            # By index: ``RunInputs.tags`` copies every file's key (0.08 s a patch).
-            tag = self.inputs.facts_key(index)
-            return None if tag is None else self.cache.load(tag, files[index].display)
-
-        # The files taking another file's constant are resolved as the run resolves them
-        # (``_Constants.resolved``); where an edit changed what they take, as the build
-        # resolved them too (``_Constants.anew``).
-        def facts_at(index: int) -> FileFacts | None:
-            if index in loaded:  # (an edited file's, resolved: below)
-                return loaded[index]
-            if index in arrived_facts:
-                return arrived_facts[index]
-            known = stored_facts(index)
-            if known is not None and uses_constants(known):
-                raw[index] = known
-                known = constants.resolved(known, self.checks.package_of(index))
-            loaded[index] = known
-            return known
-
-        # The constants of each package's C++ files at the build and now, by which the
-        # files taking one are resolved (``_Constants``).
-        constants = _Constants(files, slots, package_files, stored_facts, removed_code)
-
-        changed: list[tuple[str, FileFacts, FileFacts]] = []
-        taking: list[tuple[int, str, FileFacts]] = []  # code taking a constant: its facts then
-        taking_added: set[int] = set()  # and such code added since the build
-        tree_edits: list[str] = []
-        # Build files that build other programs now (as they were at the build), and code
-        # files added: their packages' programs are made again (``program_patch``).
-        building: dict[str, FileFacts] = {}
-        added_code: list[str] = []
-        pairs = zip(self.inputs.tags, built_from, strict=True)
-        for index, (now, then) in enumerate(pairs):
-            if now == then:
-                continue
-            display = files[index].display
-            if display in replay.specialised:
-                return None  # the graph read its bytes under an includer's arguments
-            if then == ADDED:
-                added = facts_at(index) if is_facts_key(now) else None
-                # Code taking another file's constant: resolved as the run resolves it,
-                # from its package's C++ files now (its own check too).
-                if added is not None and uses_constants(added):
-                    home = self.checks.package_of(index)
-                    added = constants.resolved(added, home)
-                    if added is None or not self._know_headers(home, constants):
-                        return None
-                    loaded[index] = added
-                    taking_added.add(index)
-                if added is not None and _new_code(added, found_by, types_added, resolved=True):
-                    added_code.append(display)  # its package's programs made again
-                    new_files.add(display)
-                    continue
-                came = None if added is None else _came_or_went(added, found_by, launch_files)
-                if came is None:
-                    return None
-                naming |= came[1]
-                if came[0] == _A_TREE:
-                    tree_edits.append(display)
-                if came[0] != _SAYS_NOTHING:
-                    new_files.add(display)
-                continue
-            before = _facts_by_tag(self.cache, then, display)
-            facts = facts_at(index) if is_facts_key(now) else None
-            if before is None or facts is None:
-                return None
-            # A launch or parameter file whose facts are where they were (a comment at the
-            # end) changes no tree; else the trees that read it are walked again.
-            if program_edit(before, facts):
-                building[display] = before  # its package's programs made again
-                continue
-            if uses_constants(before) or uses_constants(raw.get(index, facts)):
-                taking.append((index, display, before))  # resolved once every edit is known
-                continue
-            moved_only = same_places(before, facts)
-            if (launch_edit(before, facts) or parameter_edit(before, facts)) and not moved_only:
-                if not _patchable(before, facts, wiring_kept=True):
-                    return None
-                tree_edits.append(display)
-            elif _patchable(before, facts, wiring_kept=moved_only, typed=typed):
-                changed.append((display, before, facts))
-            else:
-                return None
-        then_of = constants.then_of  # the edited files' facts at the build
-        then_of.update((display, then) for display, then, _ in changed)
-        then_of.update((display, before) for _, display, before in taking)
-        for display in added_code:
-            added = facts_at(slots[display])
-            if added is not None:
-                then_of[display] = _empty(added)
-        # A code file taking another file's constant, removed: as the build resolved it,
-        # from its package's C++ files then.
-        for display in removed_taking:
-            owner = package_files().package_of(display)
-            if owner is not None:
-                table = constants.then(owner.directory)
-                if table is None:
-                    return None
-                removed_code[display] = table.resolve(removed_code[display], owner.directory)
-        # A code file taking another file's constant, edited: its facts then and now with
-        # their names resolved from its package's headers then and now, as the build and
-        # the run resolve them, compared as any edit's; its own check, at the run's end,
-        # resolves them from those headers (``RunChecks.know_constants``).
-        for index, display, before in taking:
-            directory = self.checks.package_of(index)
-            now_raw = raw.get(index, arrived_facts.get(index))
-            if now_raw is None or files[index].language is not Language.CPP:
-                return None
-            if directory is None:
-                before_then, now_resolved = before, now_raw  # the run resolves none either
-            else:
-                table_then, table_now = constants.then(directory), constants.now(directory)
-                if table_then is None or table_now is None:
-                    return None
-                before_then = table_then.resolve(before, directory)
-                now_resolved = table_now.resolve(now_raw, directory)
-                if index in arrived_facts and not self._know_headers(directory, constants):
-                    return None
-            loaded[index] = now_resolved
-            if not _patchable(before_then, now_resolved, resolved=True, typed=typed):
-                return None
-            changed.append((display, before_then, now_resolved))
-        # What the files taking a constant resolve may change where a file of their
-        # package changed what it includes or the constants it defines, or came or went.
-        reaching = [
-            display
-            for display, then, now in changed
-            if then.cpp_includes != now.cpp_includes or then.constants != now.constants
-        ]
-        for display in added_code:  # a header added may define what a file takes
-            if files[slots[display]].language is Language.CPP:
-                reaching.append(display)
-        for display, gone in removed_code.items():  # and one removed may have
-            if gone.language is Language.CPP:
-                reaching.append(display)
-        # The graph reads a header's constants only through the names of the files
-        # taking them: those whose names resolve otherwise now are edits of their own
-        # (their facts then and now resolved), checked again (``retaking``).
-        retaking: set[int] = set()
-        if reaching:
-            known_now = {display for display, _, _ in changed} | set(added_code)
-            takers = constants.anew(reaching, known_now)
-            if takers is None:
-                return None
-            for taker, names_then, names_now in takers:
-                if not _patchable(names_then, names_now, resolved=True, typed=typed):
-                    return None
-                changed.append((files[taker].display, names_then, names_now))
-                retaking.add(taker)
-            changed = [
-                (display, replace(then, constants=now.constants), now)
-                for display, then, now in changed
-            ]
-        naming -= {*tree_edits, *removed_trees}
-        walk = [*tree_edits, *sorted(naming)]  # the launch files whose trees are walked again
+        kinds = _Sorted()
+        facts = _RunFacts(
+            files,
+            slots,
+            arrived_facts,
+            self.inputs.facts_key,
+            self.cache,
+            self.checks.package_of,
+            package_files,
+            kinds.removed_code,
+        )
+        if not self._sort(kinds, replay, stored, facts, found_by=found_by, typed=typed):
+            return None
+        kinds.naming -= {*kinds.tree_edits, *kinds.removed_trees}
+        walk = [
+            *kinds.tree_edits,
+            *sorted(kinds.naming),
+        ]  # the launch files whose trees are walked again
         declaring: set[str] = set()  # code files whose parameters changed
         renamed: set[str] = set()  # and those whose node name did (``patch.name_edit``)
         # Code that started or stopped declaring endpoints: its package's programs are
         # made again (code no launch file starts is a program where it declares some).
         flipping: set[str] = set()
-        edits = edits_of(changed, declaring, renamed, flipping)
+        edits = edits_of(kinds.changed, declaring, renamed, flipping)
         if edits is None:
             return None
-
-        def facts_of(display: str) -> FileFacts | None:
-            at = slots.get(display)
-            return None if at is None else facts_at(at)
 
         # The build's whole graph (its parameters kept apart, ``same_facts.KeptLaunch``)
         # for a patch that walks trees or gathers parameters again, or that keeps what it
@@ -606,20 +425,27 @@ class GraphPatch:
         kept: KeptLaunch | None = None
         known: set[str] = set()  # the files the build had facts of (a skipped one has none)
         # Some nodes' parameters gathered again
-        remade = bool(building or added_code or removed_code or flipping)  # programs
+        remade = bool(
+            kinds.building or kinds.added_code or kinds.removed_code or flipping
+        )  # programs
         gathering = bool(declaring or depending or remade)
-        since = len(changed) + len(tree_edits) + len(removed_trees) + len(new_files)
-        since += len(building) + len(removed_code)
+        since = (
+            len(kinds.changed)
+            + len(kinds.tree_edits)
+            + len(kinds.removed_trees)
+            + len(kinds.new_files)
+        )
+        since += len(kinds.building) + len(kinds.removed_code)
         # A file taking a constant that resolves otherwise than at the build is checked
         # again by this run, not by the next ones, which check again only what they
         # edit: what it patched is kept as a build keeps it, so that the graph each
         # replay is patched from resolves every such file as the replay's run did (and
         # has every file taking one that was added: ``_Constants.anew`` asks the build's).
-        taking_anew = bool(retaking or taking_added)
+        taking_anew = bool(kinds.retaking or kinds.taking_added)
         if taking_anew and not self.may_rebase:
             return None
         rebasing = self.may_rebase and (since + len(depending) >= REBASE_EDITS or taking_anew)
-        if walk or removed_trees or gathering or rebasing:
+        if walk or kinds.removed_trees or gathering or rebasing:
             kept = same_facts.loaded_launch(
                 self.cache.load_launch_parts(place.key), stored.built_from
             )
@@ -632,20 +458,22 @@ class GraphPatch:
             known = {
                 files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)
             }
-            known |= new_files
+            known |= kinds.new_files
         launch_parts = None if kept is None else kept.parts  # as a build would leave them
         programs: ProgramsAnew | None = None
         if remade:
             assert kept is not None
             # What the build files compiled at the last run, where one builds other
             # programs now (no file added or removed changes it), and now.
-            compiled = _compiled(replay.run_wide, arrived, self.checks.package_of, bool(building))
+            compiled = _compiled(
+                replay.run_wide, arrived, self.checks.package_of, bool(kinds.building)
+            )
             at_now = WorkspaceIndex.restored(
-                LazyFacts(known, facts_of), packages, kept.parts.executables
+                LazyFacts(known, facts.of), packages, kept.parts.executables
             )
             owners = [
                 package_files().package_of(path)
-                for path in (*building, *added_code, *removed_code, *flipping)
+                for path in (*kinds.building, *kinds.added_code, *kinds.removed_code, *flipping)
             ]
             if None in owners:
                 return None
@@ -658,9 +486,9 @@ class GraphPatch:
                     {owner for owner in owners if owner is not None}, key=_by_directory
                 ),
                 language_of=lambda path: files[slots[path]].language,
-                then=building,
-                added=added_code,
-                removed=removed_code.keys(),
+                then=kinds.building,
+                added=kinds.added_code,
+                removed=kinds.removed_code.keys(),
                 flipped=flipping,
                 compiled=compiled[1],
                 compiled_then=compiled[0],
@@ -672,19 +500,19 @@ class GraphPatch:
             if programs is None:
                 return None
         specialised = replay.specialised
-        if walk or removed_trees or renamed or programs is not None:
+        if walk or kinds.removed_trees or renamed or programs is not None:
             assert kept is not None
-            if not naming <= known:
+            if not kinds.naming <= known:
                 return None  # a launch file naming one that has no facts now
             walked = self._walked(
                 graph,
                 parts=kept.parts,
                 packages=packages,
                 edited=walk,
-                removed=removed_trees,
+                removed=kinds.removed_trees,
                 code=renamed,
                 known=known,
-                facts_of=facts_of,
+                facts_of=facts.of,
                 programs=programs,
             )
             if walked is None:
@@ -697,7 +525,7 @@ class GraphPatch:
         patched: Graph | None = patch_graph(
             graph,
             edits,
-            facts_of,
+            facts.of,
             package_files,
             declaring=bool(declaring),
         )
@@ -712,25 +540,27 @@ class GraphPatch:
             code_parts = kept_code.parts
             if gathering:
                 code_edits = {
-                    display: (before, now) for display, before, now in changed if display in edits
+                    display: (before, now)
+                    for display, before, now in kinds.changed
+                    if display in edits
                 }
-                for display in added_code:
-                    added = facts_at(slots[display])
+                for display in kinds.added_code:
+                    added = facts.at(slots[display])
                     assert added is not None  # (``_new_code``)
                     code_edits[display] = (_empty(added), added)
-                for display, gone in removed_code.items():
+                for display, gone in kinds.removed_code.items():
                     code_edits[display] = (gone, _empty(gone))
                 gathered = parameters_patched(
                     patched,
                     launch_parts,
                     code_parts,
                     code_edits,
-                    facts=LazyFacts(known, facts_of),
+                    facts=LazyFacts(known, facts.of),
                     packages=packages,
                     depending=depending,
                     programs=programs,
-                    added=added_code,
-                    removed=removed_code.keys(),
+                    added=kinds.added_code,
+                    removed=kinds.removed_code.keys(),
                 )
                 if gathered is None:
                     return None
@@ -745,7 +575,7 @@ class GraphPatch:
         # none where launch trees were walked again.
         kept_codes, kept_found = (
             (frozenset(), {})
-            if walk or removed_trees or gathering
+            if walk or kinds.removed_trees or gathering
             else _kept_findings(stored.found, edits, self.rules, files)
         )
         found = self._graph_found(patched, slots, replay.reported, kept_codes, kept_found)
@@ -770,18 +600,189 @@ class GraphPatch:
                 at for display in programs.rostest_anew if (at := slots[display]) < replay.reported
             )
         # A file taking a constant whose value changed is checked again under it.
-        again.update(taker for taker in retaking if taker < replay.reported)
+        again.update(taker for taker in kinds.retaking if taker < replay.reported)
         # So is every file comparing with the service types the files use, where that
         # set changed (a type new to the run, or the last use of one gone).
         if types_changed:
             again.update(replay.typed)
-        if not self._check_again(sorted(again - arrived_facts.keys()), constants):
+        if not self._check_again(sorted(again - arrived_facts.keys()), facts.constants):
             return None
         if rebasing and launch_parts is not None and code_parts is not None:
             self.rebased = _Rebased(patched, launch_parts, code_parts, list(packages))
         run_wide = replay.run_wide if not typed else replace(replay.run_wide, typed_uses=typed_uses)
         patched_replay = replace(replay, graph=found, specialised=specialised, run_wide=run_wide)
         return Replayed(sorted(again), patched_replay)
+
+    def _sort(
+        self,
+        kinds: _Sorted,
+        replay: Replay,
+        stored: KeptGraph,
+        facts: _RunFacts,
+        *,
+        found_by: shifts.Lookups,
+        typed: bool,
+    ) -> bool:
+        """Sort the files edited, added and removed since the build (``stored``: its tags
+        and the files it had that the run has not) into ``kinds``, by what the patch
+        does with each; False where one cannot be patched. ``found_by``: what finds a
+        file by its name; ``typed``: the run counts the files using each service type."""
+        files = self.gathered.files
+        built_from = stored.tags
+        constants = facts.constants  # each package's, then and now
+
+        def launch_files() -> list[str]:
+            return [source.display for source in files if source.language in LAUNCH_LANGUAGES]
+
+        # Code files removed that take another file's constant: resolved below
+        removed_taking: list[str] = []
+        # The service types code added may use, and code removed (None: any, counted).
+        types_added = None if typed else replay.run_wide.service_types
+        types_removed: frozenset[tuple[Generation | None, str]] | None = (
+            None if typed else frozenset()
+        )
+        for display, tag in stored.gone:
+            gone = _facts_by_tag(self.cache, tag, display)
+            if gone is not None and _new_code(gone, found_by, types_removed, resolved=True):
+                kinds.removed_code[display] = gone
+                if uses_constants(gone):
+                    removed_taking.append(display)
+                continue
+            came = None if gone is None else _came_or_went(gone, found_by, launch_files)
+            if came is None:
+                return False
+            kinds.naming |= came[1]
+            if came[0] != _SAYS_NOTHING:
+                kinds.removed_trees.append(display)
+
+        taking: list[tuple[int, str, FileFacts]] = []  # code taking a constant: its facts then
+        pairs = zip(self.inputs.tags, built_from, strict=True)
+        for index, (now, then) in enumerate(pairs):
+            if now == then:
+                continue
+            display = files[index].display
+            if display in replay.specialised:
+                return False  # the graph read its bytes under an includer's arguments
+            if then == ADDED:
+                added = facts.at(index) if is_facts_key(now) else None
+                # Code taking another file's constant: resolved as the run resolves it,
+                # from its package's C++ files now (its own check too).
+                if added is not None and uses_constants(added):
+                    home = self.checks.package_of(index)
+                    added = constants.resolved(added, home)
+                    if added is None or not self._know_headers(home, constants):
+                        return False
+                    facts.loaded[index] = added
+                    kinds.taking_added.add(index)
+                if added is not None and _new_code(added, found_by, types_added, resolved=True):
+                    kinds.added_code.append(display)  # its package's programs made again
+                    kinds.new_files.add(display)
+                    continue
+                came = None if added is None else _came_or_went(added, found_by, launch_files)
+                if came is None:
+                    return False
+                kinds.naming |= came[1]
+                if came[0] == _A_TREE:
+                    kinds.tree_edits.append(display)
+                if came[0] != _SAYS_NOTHING:
+                    kinds.new_files.add(display)
+                continue
+            before = _facts_by_tag(self.cache, then, display)
+            found = facts.at(index) if is_facts_key(now) else None
+            if before is None or found is None:
+                return False
+            # A launch or parameter file whose facts are where they were (a comment at the
+            # end) changes no tree; else the trees that read it are walked again.
+            if program_edit(before, found):
+                kinds.building[display] = before  # its package's programs made again
+                continue
+            if uses_constants(before) or uses_constants(facts.raw.get(index, found)):
+                taking.append((index, display, before))  # resolved once every edit is known
+                continue
+            moved_only = same_places(before, found)
+            if (launch_edit(before, found) or parameter_edit(before, found)) and not moved_only:
+                if not _patchable(before, found, wiring_kept=True):
+                    return False
+                kinds.tree_edits.append(display)
+            elif _patchable(before, found, wiring_kept=moved_only, typed=typed):
+                kinds.changed.append((display, before, found))
+            else:
+                return False
+        then_of = constants.then_of  # the edited files' facts at the build
+        then_of.update((display, then) for display, then, _ in kinds.changed)
+        then_of.update((display, before) for _, display, before in taking)
+        for display in kinds.added_code:
+            added = facts.at(facts.slots[display])
+            if added is not None:
+                then_of[display] = _empty(added)
+        # A code file taking another file's constant, removed: as the build resolved it,
+        # from its package's C++ files then.
+        for display in removed_taking:
+            owner = facts.package_files().package_of(display)
+            if owner is not None:
+                table = constants.then(owner.directory)
+                if table is None:
+                    return False
+                kinds.removed_code[display] = table.resolve(
+                    kinds.removed_code[display], owner.directory
+                )
+        # A code file taking another file's constant, edited: its facts then and now with
+        # their names resolved from its package's headers then and now, as the build and
+        # the run resolve them, compared as any edit's; its own check, at the run's end,
+        # resolves them from those headers (``RunChecks.know_constants``).
+        for index, display, before in taking:
+            directory = self.checks.package_of(index)
+            now_raw = facts.raw.get(index, facts.arrived.get(index))
+            if now_raw is None or files[index].language is not Language.CPP:
+                return False
+            if directory is None:
+                before_then, now_resolved = before, now_raw  # the run resolves none either
+            else:
+                table_then, table_now = (
+                    constants.then(directory),
+                    constants.now(directory),
+                )
+                if table_then is None or table_now is None:
+                    return False
+                before_then = table_then.resolve(before, directory)
+                now_resolved = table_now.resolve(now_raw, directory)
+                if index in facts.arrived and not self._know_headers(directory, constants):
+                    return False
+            facts.loaded[index] = now_resolved
+            if not _patchable(before_then, now_resolved, resolved=True, typed=typed):
+                return False
+            kinds.changed.append((display, before_then, now_resolved))
+        # What the files taking a constant resolve may change where a file of their
+        # package changed what it includes or the constants it defines, or came or went.
+        reaching = [
+            display
+            for display, then, now in kinds.changed
+            if then.cpp_includes != now.cpp_includes or then.constants != now.constants
+        ]
+        for display in kinds.added_code:  # a header added may define what a file takes
+            if files[facts.slots[display]].language is Language.CPP:
+                reaching.append(display)
+        for display, gone in kinds.removed_code.items():  # and one removed may have
+            if gone.language is Language.CPP:
+                reaching.append(display)
+        # The graph reads a header's constants only through the names of the files
+        # taking them: those whose names resolve otherwise now are edits of their own
+        # (their facts then and now resolved), checked again (``retaking``).
+        if reaching:
+            known_now = {display for display, _, _ in kinds.changed} | set(kinds.added_code)
+            takers = constants.anew(reaching, known_now)
+            if takers is None:
+                return False
+            for taker, names_then, names_now in takers:
+                if not _patchable(names_then, names_now, resolved=True, typed=typed):
+                    return False
+                kinds.changed.append((files[taker].display, names_then, names_now))
+                kinds.retaking.add(taker)
+            kinds.changed = [
+                (display, replace(then, constants=now.constants), now)
+                for display, then, now in kinds.changed
+            ]
+        return True
 
     def _graph_found(
         self,
@@ -895,6 +896,85 @@ class GraphPatch:
             programs=programs,
         )
         return None if found is None else (found, specialise.specialised)
+
+
+@dataclass
+class _Sorted:
+    """The files edited, added and removed since the build, by what a patch does with
+    each (``GraphPatch._sort``)."""
+
+    # Files whose facts changed (``patch.edits_of``), with their facts then and now: a
+    # file taking another file's constant resolved as the build and the run resolve it,
+    # those resolving otherwise now than at the build among them (``retaking``).
+    changed: list[tuple[str, FileFacts, FileFacts]] = field(default_factory=list)
+    tree_edits: list[str] = field(default_factory=list)  # whose trees are walked again
+    # Launch files added or removed that nothing includes: trees that come or go.
+    # Parameter files added or removed: the trees that read a launch file naming a file
+    # of that name are walked again (and the trees handed a removed one), as
+    # ``find_in_package`` may find another file by that name now (``naming``).
+    removed_trees: list[str] = field(default_factory=list)
+    new_files: set[str] = field(default_factory=set)  # files added that say something
+    naming: set[str] = field(default_factory=set)
+    # Build files that build other programs now (as they were at the build), code files
+    # added, and those the build had that the run has not (as they were): their
+    # packages' programs are made again (``program_patch``).
+    building: dict[str, FileFacts] = field(default_factory=dict)
+    added_code: list[str] = field(default_factory=list)
+    removed_code: dict[str, FileFacts] = field(default_factory=dict)
+    retaking: set[int] = field(default_factory=set)  # checked again by the run
+    taking_added: set[int] = field(default_factory=set)  # code taking a constant, added
+
+
+@dataclass
+class _RunFacts:
+    """Each file's facts as a patch reads them: an edited file's as the run extracted
+    it, another's loaded from the cache when asked; a file taking another file's
+    constant resolved as the run resolves it (``_Constants.resolved``), or, edited,
+    as ``GraphPatch._sort`` resolved it."""
+
+    files: Sequence[SourceFile]
+    slots: Mapping[str, int]  # each file's index by display path
+    arrived: Mapping[int, FileFacts]  # the edited files' facts, by index
+    key_of: Callable[[int], str | None]  # a file's facts key (``RunInputs.facts_key``)
+    cache: FactsCache
+    package_of: Callable[[int], str | None]  # a file's package directory (``RunChecks``)
+    package_files: Callable[[], PackageFiles]  # which package holds each file
+    removed: InitVar[Mapping[str, FileFacts]]  # code files the build had, the run has not
+    loaded: dict[int, FileFacts | None] = field(default_factory=dict)
+    raw: dict[int, FileFacts] = field(default_factory=dict)  # of ``loaded``, as extracted
+    # The constants of each package's C++ files at the build and now
+    constants: _Constants = field(init=False)
+
+    def __post_init__(self, removed: Mapping[str, FileFacts]) -> None:
+        self.constants = _Constants(
+            self.files, self.slots, self.package_files, self.stored, removed
+        )
+
+    def stored(self, index: int) -> FileFacts | None:
+        """A file's facts as extracted (the edited files' of this run)."""
+        if index in self.arrived:
+            return self.arrived[index]
+        # By index: ``RunInputs.tags`` copies every file's key (0.08 s a patch).
+        tag = self.key_of(index)
+        return None if tag is None else self.cache.load(tag, self.files[index].display)
+
+    def at(self, index: int) -> FileFacts | None:
+        """A file's facts, resolved where it takes another file's constant."""
+        if index in self.loaded:  # (an edited file's, resolved: ``GraphPatch._sort``)
+            return self.loaded[index]
+        if index in self.arrived:
+            return self.arrived[index]
+        known = self.stored(index)
+        if known is not None and uses_constants(known):
+            self.raw[index] = known
+            known = self.constants.resolved(known, self.package_of(index))
+        self.loaded[index] = known
+        return known
+
+    def of(self, display: str) -> FileFacts | None:
+        """A file's facts by display path (``at``); None for a file the run has not."""
+        at = self.slots.get(display)
+        return None if at is None else self.at(at)
 
 
 @dataclass
