@@ -497,8 +497,8 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     # A header whose constant names a topic (no file takes it yet: patched, its package
     # resolving its names as before), and code taking it added: resolved as the whole
     # run resolves it, patched (and kept as a build keeps it). Then an include changed
-    # in that package: the code resolves its names as before (``graph_patch.GraphPatch``'s
-    # ``resolved_anew``), the graph is patched.
+    # in that package: the code resolves its names as before
+    # (``graph_patch._Constants.anew``), the graph is patched.
     (TOPICS, None, TOPICS_HEADER, "patch"),
     (STATUS_SOURCE, None, STATUS_NODE, "patch"),
     (MONITOR, "\n#include <fleet_bringup/units.hpp>\n", "", "patch"),
@@ -1148,9 +1148,9 @@ def test_an_include_that_gives_test_code_a_constant_is_patched(
     topic takes, which only the whole run resolves (``symbols``). No node's code is of
     that package, so no parameter gathered again reads its files: the patch resolves
     every file of the package that takes a constant then and now, and one that resolves
-    otherwise now is an edit of its own, checked again (``graph_patch.GraphPatch``'s
-    ``resolved_anew``), or the test's illegal topic would stay unreported. Then the
-    constant's value changed back, and its header taken out of the include again."""
+    otherwise now is an edit of its own, checked again (``graph_patch._Constants.anew``),
+    or the test's illegal topic would stay unreported. Then the constant's value changed
+    back, and its header taken out of the include again."""
     status = workspace / NAMES / "include/fleet_names/status.hpp"
     change(workspace / NAMES / "package.xml", None, AMENT_PACKAGE.format(name="fleet_names"))
     change(

@@ -31,7 +31,7 @@ ran at the build, is gathered again, and the code no node runs any more is dropp
 
 ``parameters_patched`` gives the graph a build would, over facts whose names take
 other files' constants as the run resolves them (``graph_patch.GraphPatch``: those that
-resolve otherwise than at the build are edits, its ``resolved_anew``); None (the caller
+resolve otherwise than at the build are edits, ``_Constants.anew``); None (the caller
 builds) where a node of unknown name is handed a parameter file and its code's
 parameters change (the graph keeps those without the code they are of), or a file's
 facts cannot be loaded. It gives the parts a build would leave too (each node's code

@@ -109,7 +109,7 @@ def _without_gathering(facts: FileFacts) -> FileFacts:
     and how (``parameters.ParameterSets``: its classes' bases, what it includes, the
     plugins and configs it loads, what leaves its names open), which the graph reads
     nowhere else (but for the constants a file's names take through includes, which
-    ``graph_patch.GraphPatch`` minds: ``resolved_anew``)."""
+    ``graph_patch._Constants.anew`` minds)."""
     return replace(
         facts,
         class_bases=(),
