@@ -104,8 +104,10 @@ def _typed_uses_without(
     uses: Mapping[tuple[Generation | None, str], int] | None, gone: Sequence[FileFacts | None]
 ) -> Mapping[tuple[Generation | None, str], int] | None:
     """A run's ``RunWide.typed_uses`` less the files removed since (``gone``: their facts
-    then); None where one's facts are not kept, or the last file using a type went: the
-    set the other files' RN204 compared with changed, which a patch does not follow."""
+    then); None where one's facts are not kept. A type whose last user went stays,
+    counted 0: the set of types the other files' RN204 compared with at that run is
+    the one a patch compares the set after its edits with, to check them again where
+    it changed (``GraphPatch._from``'s ``types_changed``)."""
     if uses is None or not gone:
         return uses
     counts = Counter(uses)
@@ -113,7 +115,7 @@ def _typed_uses_without(
         if facts is None:
             return None
         counts.subtract(typed_uses(facts))
-    return None if any(count <= 0 for count in counts.values()) else dict(counts)
+    return None if any(count < 0 for count in counts.values()) else dict(counts)
 
 
 def _facts_by_tag(cache: FactsCache, tag: str, display: str) -> FileFacts | None:
@@ -382,6 +384,8 @@ class GraphPatch:
         # types changed, every file comparing with it is checked again (RN204).
         typed_uses = self._typed_uses_after(replay, arrived)
         typed = typed_uses is not None
+        if not typed and 0 in (replay.run_wide.typed_uses or {}).values():
+            return None  # a type's last user removed: only its counts tell what changed
         types_changed = (
             typed_uses is not None
             and typed_uses.keys() != (replay.run_wide.typed_uses or {}).keys()

@@ -799,8 +799,8 @@ def _serving(path: str, *types: str) -> FileFacts:
 
 def test_a_renumbered_replay_counts_the_service_types_less_the_files_removed() -> None:
     """``RunWide.typed_uses`` less the files removed since (``shifted_replay``): unknown
-    where a removed file's facts are not kept, or where it was the last to use a type
-    (the set other files' RN204 compared with changed: a build)."""
+    where a removed file's facts are not kept; a type whose last user went counted 0 (the
+    set other files' RN204 compared with, which a patch compares its own with)."""
     trigger, empty = (Generation.ROS2, "std_srvs/Trigger"), (Generation.ROS2, "std_srvs/Empty")
     uses = {trigger: 2, empty: 1}
     without = graph_patch._typed_uses_without
@@ -808,7 +808,54 @@ def test_a_renumbered_replay_counts_the_service_types_less_the_files_removed() -
     assert without(None, [_serving("a.cpp", "std_srvs/Trigger")]) is None
     assert without(uses, [None]) is None
     assert without(uses, [_serving("a.cpp", "std_srvs/srv/Trigger")]) == {trigger: 1, empty: 1}
-    assert without(uses, [_serving("a.cpp", "std_srvs/Empty")]) is None
+    assert without(uses, [_serving("a.cpp", "std_srvs/Empty")]) == {trigger: 2, empty: 0}
+    assert without(uses, [_serving(path, "std_srvs/Empty") for path in ("a", "b")]) is None
+
+
+CHARGER = f"{FLEET}/src/charger.cpp"
+CHARGER_NODE = """#include <fleet_msgs/srv/charge_battery.hpp>
+#include <rclcpp/rclcpp.hpp>
+
+int main(int argc, char ** argv)
+{
+  rclcpp::init(argc, argv);
+  auto node = rclcpp::Node::make_shared("charger");
+  auto charge = node->create_service<fleet_msgs::srv::ChargeBattery>(
+    "charge",
+    [](const std::shared_ptr<fleet_msgs::srv::ChargeBattery::Request>,
+       std::shared_ptr<fleet_msgs::srv::ChargeBattery::Response>) {});
+  rclcpp::spin(node);
+  return 0;
+}
+"""
+CHARGE_CLIENT = """
+void call_charge(rclcpp::Node & node)
+{
+  node.create_client<std_srvs::srv::Trigger>("charge_battery");
+}
+"""
+
+
+def test_the_last_user_of_a_service_type_removed_is_patched(
+    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str]
+) -> None:
+    """A node serving the only ChargeBattery of the workspace, and the monitor calling a
+    Trigger named after that type (RN204). The node removed: the run's replay is the
+    last one renumbered past the file gone (``shifted_replay``), its count of
+    ChargeBattery's users 0; the patch finds the set of types changed and checks every
+    file comparing with it again: the RN204 goes, as in a fresh run."""
+    change(workspace / CHARGER, None, CHARGER_NODE)
+    change(workspace / MONITOR, "", CHARGE_CLIENT)
+    depends = "<exec_depend>nav2_amcl</exec_depend>"  # the types it may use: fleet_msgs'
+    change(workspace / FLEET_MANIFEST, depends, f"{depends}\n  <depend>fleet_msgs</depend>")
+    cache = tmp_path / "cache"
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh and "ChargeBattery" in fresh
+    taken.clear()
+    change(workspace / CHARGER, "", None)
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh and "ChargeBattery" not in fresh
+    assert taken == ["patch", "build"]
 
 
 def test_a_stored_replay_reads_back_as_it_was() -> None:
