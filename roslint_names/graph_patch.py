@@ -410,10 +410,8 @@ class GraphPatch:
         if not self._sort(kinds, replay, stored, facts, found_by=found_by, typed=typed):
             return None
         kinds.naming -= {*kinds.tree_edits, *kinds.removed_trees}
-        walk = [
-            *kinds.tree_edits,
-            *sorted(kinds.naming),
-        ]  # the launch files whose trees are walked again
+        # The launch files whose trees are walked again
+        walk = [*kinds.tree_edits, *sorted(kinds.naming)]
         declaring: set[str] = set()  # code files whose parameters changed
         renamed: set[str] = set()  # and those whose node name did (``patch.name_edit``)
         # Code that started or stopped declaring endpoints: its package's programs are
@@ -428,10 +426,8 @@ class GraphPatch:
         # patched as the graph later runs patch (``REBASE_EDITS``).
         kept: KeptLaunch | None = None
         known: set[str] = set()  # the files the build had facts of (a skipped one has none)
-        # Some nodes' parameters gathered again
-        remade = bool(
-            kinds.building or kinds.added_code or kinds.removed_code or flipping
-        )  # programs
+        # Some packages' programs made again, some nodes' parameters gathered again
+        remade = bool(kinds.building or kinds.added_code or kinds.removed_code or flipping)
         gathering = bool(declaring or depending or remade)
         since = (
             len(kinds.changed)
