@@ -2,7 +2,8 @@
 (``workspace.program_patch``, issue 30): each step adds a source, an executable to a
 build file or both, as a developer adds a node (a roscpp node and its
 ``add_executable``; a script a launch file finds by its name; an rclpy node no launch
-file starts; a source no build compiles), and the last build's graph with the
+file starts; a source no build compiles), or makes code start or stop declaring
+endpoints, and the last build's graph with the
 package's programs made again, the trees that start them walked again
 (``launch_patch``) and the parameters of its code gathered again (``parameter_patch``)
 must equal the graph built from every file's facts, and the parts too (a patched run may
@@ -22,10 +23,12 @@ from roslint_names.model import FileFacts, Generation, Language
 from roslint_names.workspace.build import _TestFiles
 from roslint_names.workspace.built import BuiltSources
 from roslint_names.workspace.graph import Graph
-from roslint_names.workspace.index import CODE_LANGUAGES, WorkspaceIndex
+from roslint_names.workspace.index import CODE_LANGUAGES, PackageFiles, WorkspaceIndex
 from roslint_names.workspace.launch_parts import CodeParameterParts, LaunchParts
 from roslint_names.workspace.launch_patch import LazyFacts, launch_edit, launch_patched
 from roslint_names.workspace.parameter_patch import parameters_patched
+from roslint_names.workspace.patch import edits_of
+from roslint_names.workspace.patch import patched as patch_graph
 from roslint_names.workspace.program_patch import program_edit, programs_anew
 
 CMAKE = "src/turtle_bringup/CMakeLists.txt"
@@ -170,6 +173,12 @@ if __name__ == "__main__":
     main()
 """
 
+FILTER_ENDPOINTS = """    odom_sub_ = nh_.subscribe("odom", 10, &OdomFilter::odomCallback, this);
+    filtered_pub_ = nh_.advertise<nav_msgs::Odometry>("odom_filtered", 10);
+"""
+DOCK_PUBLISHER = '        self.publisher = self.create_publisher(Bool, "dock/free", 1)\n'
+DOCK_LOG = '        self.get_logger().info("dock status up")\n'
+
 _Edit = tuple[str, str, str]  # a file, text in it, the text put in its place ("": appended)
 # Each step: the files added (None: removed), then the edits; patched from the step
 # before's build.
@@ -227,6 +236,13 @@ PATCHED: list[tuple[dict[str, str | None], list[_Edit]]] = [
     ({LEGACY: LEGACY_DRIVER}, []),
     # An rclpy node of a package without a build file that names it: a program of its own.
     ({DOCK_STATUS: DOCK_STATUS_NODE}, []),
+    # Code that stops declaring endpoints, then starts again (``patch.edits_of``'s
+    # flipping): the filter's program, which no launch file starts, and the rclpy node's
+    # program of its own go, then come back.
+    ({}, [(FILTER, FILTER_ENDPOINTS, "")]),
+    ({}, [(DOCK_STATUS, DOCK_PUBLISHER, DOCK_LOG)]),
+    ({}, [(FILTER, "  }\n\nprivate:", f"{FILTER_ENDPOINTS}  }}\n\nprivate:")]),
+    ({}, [(DOCK_STATUS, DOCK_LOG, DOCK_PUBLISHER)]),
     # Taken out again (``None``: the file removed): the rclpy node; the filter's second
     # source and its place in the target; the script a launch file starts by name; the
     # relay and its executable, whose node a launch file starts (it runs no code now).
@@ -294,13 +310,23 @@ class _Workspace(ExampleCopy):
         changed = [path for path in before if path in now and before[path] != now[path]]
         launch = [path for path in changed if launch_edit(before[path], now[path])]
         build = [path for path in changed if program_edit(before[path], now[path])]
-        if set(changed) - set(launch) - set(build):
+        edited_code = [path for path in changed if now[path].language in CODE_LANGUAGES]
+        # Code edits, as ``graph_patch.GraphPatch`` takes them: those that start or stop
+        # declaring endpoints make their packages' programs again (``flipping``).
+        declaring: set[str] = set()
+        flipping: set[str] = set()
+        edits = edits_of(
+            [(path, before[path], now[path]) for path in edited_code], declaring, set(), flipping
+        )
+        if edits is None or set(changed) - set(launch) - set(build) - set(edited_code):
             return None
         facts = LazyFacts(now.keys(), now.get)
         index = WorkspaceIndex.restored(facts, self.packages, parts.executables)
         added_code = [path for path in added if now[path].language in CODE_LANGUAGES]
         removed_code = [path for path in removed if before[path].language in CODE_LANGUAGES]
-        owners = {index.package_of(path) for path in (*build, *added_code, *removed_code)}
+        owners = {
+            index.package_of(path) for path in (*build, *added_code, *removed_code, *flipping)
+        }
         packages = sorted(
             (package for package in owners if package is not None), key=lambda p: p.directory
         )
@@ -319,6 +345,7 @@ class _Workspace(ExampleCopy):
             then={path: before[path] for path in build},
             added=added,
             removed=removed,
+            flipped=flipping,
             compiled=compiled,
             is_test=_TestFiles(index, {}),
             named_elsewhere=lambda path, own: any(
@@ -342,10 +369,20 @@ class _Workspace(ExampleCopy):
         )
         if walked is None:
             return None
-        edited = {path: (_empty(now[path]), now[path]) for path in added_code}
+        graph = patch_graph(
+            walked[0],
+            edits,
+            now.get,
+            lambda: PackageFiles(sorted(now), self.packages),
+            declaring=bool(declaring),
+        )
+        if graph is None:
+            return None
+        edited = {path: (before[path], now[path]) for path in edits}
+        edited.update({path: (_empty(now[path]), now[path]) for path in added_code})
         edited.update({path: (before[path], _empty(before[path])) for path in removed_code})
         return parameters_patched(
-            walked[0],
+            graph,
             walked[1],
             code,
             edited,
