@@ -3,11 +3,11 @@
 build file or both, as a developer adds a node (a roscpp node and its
 ``add_executable``; a script a launch file finds by its name; an rclpy node no launch
 file starts; a source no build compiles), or makes code start or stop declaring
-endpoints, and the last build's graph with the
-package's programs made again, the trees that start them walked again
-(``launch_patch``) and the parameters of its code gathered again (``parameter_patch``)
-must equal the graph built from every file's facts, and the parts too (a patched run may
-keep them as a build's). An edit that reaches past the package is refused."""
+endpoints; the last build's graph with the package's programs made again, the trees
+that start them walked again (``launch_patch``) and the parameters of its code gathered
+again (``parameter_patch``) must equal the graph built from every file's facts, and the
+parts too (a patched run may keep them as a build's). An edit that reaches past the
+package is refused."""
 
 from __future__ import annotations
 
