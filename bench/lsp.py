@@ -87,13 +87,19 @@ def latency(workspace: Path, edits: int, cache: Path | None = None) -> dict[str,
         return asyncio.run(_measure(workspace, home, edits))
 
 
-def pick(workspace: Path, suffixes: tuple[str, ...], marker: str) -> Path:
-    """A mid-sized file of the workspace with ``marker`` in it: what a developer edits."""
+def pick(
+    workspace: Path, suffixes: tuple[str, ...], marker: str, without: tuple[str, ...] = ()
+) -> Path:
+    """A mid-sized file of the workspace with ``marker`` in it, and none of ``without``:
+    what a developer edits."""
     found = sorted(
         path
         for suffix in suffixes
         for path in workspace.rglob(f"*{suffix}")
-        if path.is_file() and 2_000 < path.stat().st_size < 20_000 and marker in _text(path)
+        if path.is_file()
+        and 2_000 < path.stat().st_size < 20_000
+        and marker in (text := _text(path))
+        and not any(word in text for word in without)
     )
     if not found:
         raise SystemExit(f"no {suffixes} file with {marker!r} in {workspace}")
@@ -141,6 +147,7 @@ async def _measure(workspace: Path, home: Path, edits: int) -> dict[str, Any]:
         "python": pick(workspace, (".py",), "create_subscription"),
         "cpp-names": pick(workspace, (".cpp",), "create_publisher"),
         "cpp-class": pick(workspace, (".cpp",), "create_publisher"),
+        "cpp-endpoints": pick(workspace, (".cpp",), "rclcpp::Node", _ENDPOINT_CALLS),
     }
     client = _Client()
     await client.lsp.start_io(*SERVER, env={"XDG_CACHE_HOME": str(home), "PATH": ""})
@@ -225,11 +232,24 @@ def _renamed(text: str) -> str:
     return f"{text[: found.end(1)]}_bench{text[found.end(1) :]}"
 
 
+# What declares an endpoint in C++: a file with none of these, given a publisher, starts
+# declaring endpoints (``cpp-endpoints``).
+_ENDPOINT_CALLS = (
+    "create_publisher",
+    "create_subscription",
+    "create_service",
+    "create_client",
+    "create_server",
+    "advertise",
+    "subscribe",
+)
+
 # One edit each way, then the text as it was: a line that gives the document a finding
 # (in the middle: ``_edited``), a topic renamed (``_renamed``: the graph changes, and
-# the server patches it, ``workspace.patch``), or a class added (named as no class the
+# the server patches it, ``workspace.patch``), a class added (named as no class the
 # growth benchmark adds before it: a file's classes are known by name, and a second
-# class of one name changes nothing).
+# class of one name changes nothing), or a publisher in code that declared no endpoint
+# (code no launch file starts is a program of its own where it declares some).
 EDITS: dict[str, Callable[[str], str]] = {
     "launch": lambda text: _edited(
         text, '  <node name="bench-node" pkg="bench" type="bench_node"/>\n'
@@ -238,6 +258,10 @@ EDITS: dict[str, Callable[[str], str]] = {
     "python": lambda text: _edited(text, '# bench: "cmd vel"\n'),
     "cpp-names": _renamed,
     "cpp-class": lambda text: f"{text}\nclass LspProbe : public rclcpp::Node\n{{\n}};\n",
+    "cpp-endpoints": lambda text: (
+        f"{text}\nvoid lsp_probe(rclcpp::Node & node)\n{{\n"
+        '  node.create_publisher<std_msgs::msg::String>("lsp_probe", 1);\n}\n'
+    ),
 }
 
 
