@@ -31,6 +31,10 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
   the parameters of nodes' code are gathered through changes (the classes' lookups),
   the parameters of the code spanning its package gathered again
   (``patch.gathering_edit``);
+- ``edit_endpoints``: a publisher given to a C++ source of rclcpp code, no test, that
+  declared no endpoint (code no launch file starts is a program of its own where it declares some):
+  its package's programs made again (``patch.edits_of``'s ``flipping``), the trees that
+  start a node of it walked again;
 - ``edit_constant``: the value of a string constant a header defines changed, in the
   header whose constants the most C++ sources of its package take (moveit's
   ``capability_names``): the files taking it resolve their names otherwise, each an
@@ -168,6 +172,8 @@ int main(int argc, char ** argv)
 }
 """,
 }
+# What a C++ test holds: its code is no program of its own, declaring endpoints or not.
+_TESTS = ("TEST(", "TEST_F(", "gtest")
 # One edit each, in this order. The first three are comments: at the end, where they move
 # no name, or at the start, where it moves every name of the file; so that the run
 # measures what an edit costs, not what a new finding does. No word of a suppression in them
@@ -193,6 +199,7 @@ _EDITS = {
     "add_launch": ((".launch.xml", ".launch"), "<node", _NEW_LAUNCH, "beside"),
     "remove_file": ((".cpp",), "create_publisher", b"", "removed"),
     "edit_class": ((".cpp",), "create_publisher", _NEW_CLASS, "end"),
+    "edit_endpoints": ((".cpp",), "rclcpp::Node", _NEW_TOPIC, "endpoints"),
     "edit_constant": ((".h", ".hpp"), "", b"_bench", "constant"),
     "edit_release": (("package.xml",), "<depend>", _NEW_MANIFEST_URL, "inside"),
     "edit_depend": (("package.xml",), "<depend>", _NEW_MANIFEST_DEPENDENCY, "inside"),
@@ -201,7 +208,7 @@ _EDITS = {
 
 
 def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
-    from lsp import latency, pick  # pygls only where the language server is measured
+    from lsp import ENDPOINT_CALLS, latency, pick  # pygls only where the server is measured
 
     results: dict[str, Any] = {
         "machine": bench.machine(),
@@ -237,6 +244,9 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
                 edited, value_end = taken_most(root / "src", suffixes)
                 data = edited.read_bytes()
                 _replace(edited, data[:value_end] + text + data[value_end:])
+            elif where == "endpoints":
+                edited = pick(root / "src", suffixes, marker, (*ENDPOINT_CALLS, *_TESTS))
+                _add(edited, text, "end")
             elif where == "node":  # its source, then the executable that compiles it
                 edited = pick(root / "src", suffixes, marker)
                 generation = "ROS 2" if b"ament" in edited.read_bytes() else "ROS 1"

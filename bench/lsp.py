@@ -147,7 +147,7 @@ async def _measure(workspace: Path, home: Path, edits: int) -> dict[str, Any]:
         "python": pick(workspace, (".py",), "create_subscription"),
         "cpp-names": pick(workspace, (".cpp",), "create_publisher"),
         "cpp-class": pick(workspace, (".cpp",), "create_publisher"),
-        "cpp-endpoints": pick(workspace, (".cpp",), "rclcpp::Node", _ENDPOINT_CALLS),
+        "cpp-endpoints": pick(workspace, (".cpp",), "rclcpp::Node", ENDPOINT_CALLS),
     }
     client = _Client()
     await client.lsp.start_io(*SERVER, env={"XDG_CACHE_HOME": str(home), "PATH": ""})
@@ -234,7 +234,7 @@ def _renamed(text: str) -> str:
 
 # What declares an endpoint in C++: a file with none of these, given a publisher, starts
 # declaring endpoints (``cpp-endpoints``).
-_ENDPOINT_CALLS = (
+ENDPOINT_CALLS = (
     "create_publisher",
     "create_subscription",
     "create_service",
