@@ -49,7 +49,12 @@ from .workspace.patch import (
     with_parameters,
 )
 from .workspace.patch import patched as patch_graph
-from .workspace.program_patch import ProgramsAnew, program_edit, programs_anew
+from .workspace.program_patch import (
+    BUILD_LANGUAGES,
+    ProgramsAnew,
+    program_edit,
+    programs_anew,
+)
 
 if TYPE_CHECKING:
     from .cache import FactsCache  # imported by the caller that wants a cache
@@ -475,6 +480,12 @@ class GraphPatch:
                 package_files().package_of(path)
                 for path in (*kinds.building, *kinds.added_code, *kinds.removed_code, *flipping)
             ]
+            # A code file added or removed that another package's build file names: that
+            # package's programs are made again too.
+            builders = self._builders(found_by, [*kinds.added_code, *kinds.removed_code])
+            if None in owners or builders is None:
+                return None
+            owners.extend(package_files().package_of(path) for path in builders)
             if None in owners:
                 return None
             programs = programs_anew(
@@ -783,6 +794,23 @@ class GraphPatch:
                 for display, then, now in kinds.changed
             ]
         return True
+
+    def _builders(self, found_by: shifts.Lookups, code: Sequence[str]) -> list[str] | None:
+        """The build files (display paths) whose executables name one of the ``code``
+        files as a source (``shifts.Lookups.builders``); None where a file is named by
+        more than one, or by a build file the run has not."""
+        named = [builder for path in code for builder in found_by.builders(path)]
+        if not named:
+            return []
+        if shifts.SEVERAL in named:
+            return None
+        by_digest = {
+            shifts.digest(source.display): source.display
+            for source in self.gathered.files
+            if source.language in BUILD_LANGUAGES
+        }
+        found = [by_digest.get(builder) for builder in named]
+        return None if None in found else sorted({path for path in found if path is not None})
 
     def _graph_found(
         self,

@@ -40,6 +40,7 @@ PROBE = "src/turtle_bringup/src/probe_node.cpp"
 HEADING = "src/turtle_bringup/scripts/heading_logger.py"
 LEGACY = "src/turtle_bringup/src/legacy_driver.cpp"
 DOCK_STATUS = "src/fleet_bringup/fleet_bringup/dock_status.py"
+DOCK_PROBE = "src/fleet_bringup/src/dock_probe.cpp"
 
 ODOM_FILTER = """// Smooths the odometry the base publishes before the planners read it.
 #include <nav_msgs/Odometry.h>
@@ -266,7 +267,7 @@ REFUSED: list[tuple[dict[str, str | None], list[_Edit]]] = [
     # A source added to a package that another package's target names (fleet_bringup
     # holds no build file: turtle_bringup's is what names it).
     (
-        {"src/fleet_bringup/src/dock_probe.cpp": PROBE_NODE},
+        {DOCK_PROBE: PROBE_NODE},
         [(CMAKE, "", "add_executable(dock_probe ../fleet_bringup/src/dock_probe.cpp)\n")],
     ),
     # A target naming another package's source beside one of its own.
@@ -327,6 +328,15 @@ class _Workspace(ExampleCopy):
         owners = {
             index.package_of(path) for path in (*build, *added_code, *removed_code, *flipping)
         }
+        # The packages of the build files naming a source added or removed (as
+        # ``GraphPatch._builders`` finds them)
+        owners.update(
+            index.package_of(builder)
+            for facts in (before, now)
+            for builder, found in facts.items()
+            for path in (*added_code, *removed_code)
+            if _names(found, path)
+        )
         packages = sorted(
             (package for package in owners if package is not None), key=lambda p: p.directory
         )
@@ -452,6 +462,21 @@ def test_an_edit_past_the_package_is_refused(tmp_path: Path, step: int) -> None:
     now = workspace.built()
     assert now[0] != built[0]
     assert workspace.patched(built, now[3]) is None
+
+
+def test_a_source_another_package_s_build_file_names_is_patched(tmp_path: Path) -> None:
+    """turtle_bringup's build compiles a source of fleet_bringup (which has no build
+    file) before it is there: the source added, then taken out, makes the programs of
+    both packages again, the graph and parts a build's."""
+    workspace = _Workspace(tmp_path / "ws")
+    workspace.edit(CMAKE, "", "add_executable(dock_probe ../fleet_bringup/src/dock_probe.cpp)\n")
+    built = workspace.built()
+    for step in ({DOCK_PROBE: PROBE_NODE}, {DOCK_PROBE: None}):
+        workspace.step(step, [])
+        now = workspace.built()
+        assert now[0] != built[0]
+        assert workspace.patched(built, now[3]) == now[:3], step
+        built = now
 
 
 def test_a_built_source_once_unbuilt_is_refused(tmp_path: Path) -> None:

@@ -812,6 +812,32 @@ def test_a_renumbered_replay_counts_the_service_types_less_the_files_removed() -
     assert without(uses, [_serving(path, "std_srvs/Empty") for path in ("a", "b")]) is None
 
 
+def test_a_node_another_package_s_build_file_names_is_patched(
+    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str]
+) -> None:
+    """turtle_bringup's build compiles a node whose source is fleet_bringup's (which has
+    no build file): the source added, then taken out, makes the programs of both
+    packages again (``GraphPatch._builders``), as a fresh run has them."""
+    target = "add_executable(dock_probe ../fleet_bringup/src/dock_probe.cpp)\n"
+    change(workspace / TURTLE_BUILD, "", target)
+    cache = tmp_path / "cache"
+    cached, fresh = outputs(run_cli, workspace, cache)
+    assert cached == fresh
+    # Then a header that names nothing (the last run's findings, renumbered), so that the
+    # files are no earlier run's once the source is taken out again.
+    steps = [
+        (PROBE_SOURCE, None, PROBE_NODE, "patch"),
+        (HEADER, None, ANGLES, "replay"),
+        (PROBE_SOURCE, "", None, "patch"),
+    ]
+    for relative, old, new, how in steps:
+        taken.clear()
+        change(workspace / relative, old, new)
+        cached, fresh = outputs(run_cli, workspace, cache)
+        assert cached == fresh, relative
+        assert taken == [how, "build"], relative
+
+
 CHARGER = f"{FLEET}/src/charger.cpp"
 CHARGER_NODE = """#include <fleet_msgs/srv/charge_battery.hpp>
 #include <rclcpp/rclcpp.hpp>

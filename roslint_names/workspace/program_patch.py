@@ -19,7 +19,8 @@ such a package or plugin (``LaunchParts``' ``TreePart.started``, whatever code i
 are then walked again (``launch_patch``), and the parameters of the code spanning the
 package gathered again (``parameter_patch``). It is None (the caller builds) where the
 edit may reach past the package: a build file naming a source outside its package
-otherwise than at the build, a file added that another package's build file names, a
+otherwise than at the build, a file added or removed that a build file of a package
+not given names (``GraphPatch`` gives such packages too), a
 program or plugin of that name made by another package's build files too, a C++ file
 of the package that was there at the build built or not otherwise now (the parameter
 tables leave out code no build compiles).
