@@ -106,20 +106,25 @@ def shifted_replay(
 
 
 def _typed_uses_without(
-    uses: Mapping[tuple[Generation | None, str], int] | None, gone: Sequence[FileFacts | None]
+    uses: Mapping[tuple[Generation | None, str], int] | None,
+    gone: Iterable[FileFacts | None],
+    came: Iterable[FileFacts] = (),
 ) -> Mapping[tuple[Generation | None, str], int] | None:
-    """A run's ``RunWide.typed_uses`` less the files removed since (``gone``: their facts
-    then); None where one's facts are not kept. A type whose last user went stays,
-    counted 0: the set of types the other files' RN204 compared with at that run is
-    the one a patch compares the set after its edits with, to check them again where
-    it changed (``GraphPatch._from``'s ``types_changed``)."""
-    if uses is None or not gone:
-        return uses
+    """A run's ``RunWide.typed_uses`` less the files removed or edited since (``gone``:
+    their facts then) and with those added or edited (``came``: their facts now); None
+    where one's facts are not kept, or a count falls below 0. A type whose last user
+    went stays, counted 0: the set of types the other files' RN204 compared with at
+    that run is the one a patch compares the set after its edits with, to check them
+    again where it changed (``GraphPatch._from``'s ``types_changed``)."""
+    if uses is None:
+        return None
     counts = Counter(uses)
     for facts in gone:
         if facts is None:
             return None
         counts.subtract(typed_uses(facts))
+    for facts in came:
+        counts.update(typed_uses(facts))
     return None if any(count < 0 for count in counts.values()) else dict(counts)
 
 
@@ -476,16 +481,16 @@ class GraphPatch:
             at_now = WorkspaceIndex.restored(
                 LazyFacts(known, facts.of), packages, kept.parts.executables
             )
-            owners = [
-                package_files().package_of(path)
-                for path in (*kinds.building, *kinds.added_code, *kinds.removed_code, *flipping)
-            ]
             # A code file added or removed that another package's build file names: that
             # package's programs are made again too.
             builders = self._builders(found_by, [*kinds.added_code, *kinds.removed_code])
-            if None in owners or builders is None:
+            if builders is None:
                 return None
-            owners.extend(package_files().package_of(path) for path in builders)
+            edited_programs = (*kinds.building, *kinds.added_code, *kinds.removed_code)
+            owners = [
+                package_files().package_of(path)
+                for path in (*edited_programs, *flipping, *builders)
+            ]
             if None in owners:
                 return None
             programs = programs_anew(
@@ -877,19 +882,14 @@ class GraphPatch:
         then = replay.run_wide.typed_uses
         if then is None:
             return None
-        counts = Counter(then)
         files = self.gathered.files
-        for index, facts, _, _ in arrived:
-            tag = replay.tags[index]
-            if tag != ADDED:
-                before = _facts_by_tag(self.cache, tag, files[index].display)
-                if before is None:
-                    return None
-                counts.subtract(typed_uses(before))
-            counts.update(typed_uses(facts))
-        if any(count < 0 for count in counts.values()):
-            return None
-        return {key: count for key, count in counts.items() if count > 0}
+        before = (
+            _facts_by_tag(self.cache, replay.tags[index], files[index].display)
+            for index, _, _, _ in arrived
+            if replay.tags[index] != ADDED
+        )
+        counts = _typed_uses_without(then, before, (facts for _, facts, _, _ in arrived))
+        return None if counts is None else {key: n for key, n in counts.items() if n > 0}
 
     def _walked(
         self,
