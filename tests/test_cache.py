@@ -74,14 +74,15 @@ def check(run_cli: Any, tmp_path: Path) -> Callable[..., Any]:
 
 
 def pack(root: Path) -> Path:
-    [found] = root.glob("facts-v*/facts.pack")
+    """The one pack there is (of the sixteen a cache may hold)."""
+    [found] = root.glob("facts-v*/facts-?.pack")
     return found
 
 
 def records(root: Path) -> list[str]:
-    """The keys of the facts records (not the empty log's lines, not whole-run results)."""
-    packs = list(root.glob("facts-v*/facts.pack"))
-    return sorted(cache_module._index(packs[0].read_bytes())) if packs else []
+    """The keys of the facts records (not the logs' lines, not whole-run results)."""
+    packs = root.glob("facts-v*/facts-?.pack")
+    return sorted(key for found in packs for key in cache_module._index(found.read_bytes()))
 
 
 def forget_runs(root: Path) -> None:
@@ -93,7 +94,7 @@ def forget_runs(root: Path) -> None:
 
 def log_lines(root: Path) -> list[str]:
     return [
-        line for log in root.glob("facts-v*/empty.log") for line in log.read_text().splitlines()
+        line for log in root.glob("facts-v*/empty-?.log") for line in log.read_text().splitlines()
     ]
 
 
@@ -243,7 +244,10 @@ def test_past_the_limit_only_what_the_run_used_is_kept(  # noqa: PLR0917 - fixtu
     kept_in: Callable[[Path], list[str]] = {"records": records, "log_lines": log_lines}[stored]
     path = write(tmp_path / "ws", name, first)
     check()
-    path.write_text(second)
+    [first_key] = [found.split(" ")[0] for found in kept_in(private_cache)]
+    # A run rewrites only the packs and logs it reads or appends to: the old version's
+    # one only where the new version's key is in it too.
+    path.write_text(in_shard(name, second, first_key[0], generation_keyed(name, first, first_key)))
     check()
     assert len(kept_in(private_cache)) == 2  # the file's old version and its new one
     limit = cache_module.PACK_LIMIT
@@ -260,6 +264,59 @@ def test_past_the_limit_only_what_the_run_used_is_kept(  # noqa: PLR0917 - fixtu
     assert kept in kept_in(private_cache)
 
 
+def launch_key(name: str, text: str, generation: Generation) -> str:
+    """The key of a launch file of no package, linted with ``generation`` as fallback."""
+    cache = FactsCache(Path("never-created"))
+    return cache.key(text.encode(), name, Language.LAUNCH_XML, None, generation)
+
+
+def generation_keyed(name: str, text: str, key: str) -> Generation:
+    """The fallback generation the run keyed a launch file of no package with."""
+    [generation] = [found for found in Generation if launch_key(name, text, found) == key]
+    return generation
+
+
+def in_shard(name: str, text: str, shard: str, generation: Generation) -> str:
+    """``text`` with a comment after it that makes its key start with ``shard``: its
+    facts in that pack or log (``cache.SHARDS``)."""
+    candidates = (f"{text}<!-- {number} -->\n" for number in range(256))
+    return next(found for found in candidates if launch_key(name, found, generation)[0] == shard)
+
+
+def test_only_the_packs_and_logs_a_run_reads_or_appends_to_are_rewritten(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A run after an edit looks up a few keys: it reads their packs, not the others
+    (66 MB, 0.08 s to index at 8 copies of the benchmark's workspace), and rewrites only
+    those past the limit, with what it used."""
+    cache = FactsCache(tmp_path)
+    looked_up, stale, elsewhere = "a" + "1" * 39, "a" + "2" * 39, "b" + "1" * 39
+    empty = FileFacts("empty.py", Language.PYTHON, Generation.ROS2)
+    for key in (looked_up, stale, elsewhere):
+        cache.store(key, FACTS)
+        cache.store(key[::-1], empty)  # a log line each, in the shards "1" and "2"
+    cache.finish()
+    entries = {found.name: found for found in tmp_path.glob("facts-v*/*-?.*")}
+    assert sorted(entries) == ["empty-1.log", "empty-2.log", "facts-a.pack", "facts-b.pack"]
+    before = {name: found.stat() for name, found in entries.items()}
+    monkeypatch.setattr(cache_module, "PACK_LIMIT", 1)
+    fresh = FactsCache(tmp_path)
+    assert fresh.load(looked_up, FACTS.path) == FACTS
+    assert fresh.load(looked_up[::-1], "empty.py") == empty
+    # The key's log is looked in first: the one of "a" is read too (there is none).
+    assert sorted(fresh._records) == ["a"] and sorted(fresh._empty) == ["1", "a"]
+    fresh.finish()
+    assert records(tmp_path) == [looked_up, elsewhere]  # the stale one dropped
+    # The log of "1" past the limit: only the line the run used is left.
+    assert sorted(line.split(" ")[0] for line in log_lines(tmp_path)) == [
+        looked_up[::-1],
+        stale[::-1],
+    ]
+    for name in ("facts-b.pack", "empty-2.log"):  # neither read nor appended to
+        after = entries[name].stat()
+        assert (after.st_ino, after.st_size) == (before[name].st_ino, before[name].st_size)
+
+
 def test_a_pack_past_the_limit_that_the_run_used_whole_is_not_rewritten(
     check: Callable[..., Any],
     tmp_path: Path,
@@ -269,9 +326,15 @@ def test_a_pack_past_the_limit_that_the_run_used_whole_is_not_rewritten(
     """A workspace whose facts alone outgrow the limit (eight copies of the benchmark's
     workspace: a 104 MB pack) had its whole pack rewritten by every run."""
     workspace = tmp_path / "ws"
-    for robot in ("robot1", "robot2", "robot3"):
-        write(workspace, f"{robot}.launch", LAUNCH.replace("base-driver", f"{robot}-driver"))
+    write(workspace, "robot1.launch", LAUNCH.replace("base-driver", "robot1-driver"))
     check()
+    [key] = records(private_cache)
+    generation = generation_keyed("robot1.launch", (workspace / "robot1.launch").read_text(), key)
+    for robot in ("robot2", "robot3"):  # all three in one pack
+        text = LAUNCH.replace("base-driver", f"{robot}-driver")
+        write(workspace, f"{robot}.launch", in_shard(f"{robot}.launch", text, key[0], generation))
+    check()
+    assert len(records(private_cache)) == 3
     before = pack(private_cache).stat()
     monkeypatch.setattr(cache_module, "PACK_LIMIT", before.st_size // 2)
     forget_runs(private_cache)
@@ -321,18 +384,17 @@ def test_two_writers_racing_leave_a_valid_entry(tmp_path: Path) -> None:
     assert record is not None and data == record * 400  # every append whole, none lost
     lines = log_lines(tmp_path)
     assert len(lines) == 2 * 200  # every append whole, none lost
-    assert len(cache_module._read_log(str(next(tmp_path.glob("facts-v*/empty.log"))))) == 400
+    logs = tmp_path.glob("facts-v*/empty-?.log")
+    assert sum(len(cache_module._read_log(str(log))) for log in logs) == 400
 
 
 def test_a_torn_or_damaged_log_line_is_skipped(tmp_path: Path) -> None:
     cache = FactsCache(tmp_path)
-    keys = [
-        cache.key(bytes([n]), f"{n}.py", Language.PYTHON, None, Generation.ROS2) for n in range(4)
-    ]
+    keys = [f"c{number:039x}" for number in range(4)]  # one log's
     for key in keys:
         cache.store(key, FileFacts("x.py", Language.PYTHON, Generation.ROS2))
     cache.flush()
-    [log] = tmp_path.glob("facts-v*/empty.log")
+    [log] = tmp_path.glob("facts-v*/empty-c.log")
     first, second, third, fourth = log.read_bytes().splitlines(keepends=True)
     damaged = second.replace(b" python ", b" launch-xml ")  # checksum no longer matches
     log.write_bytes(first + b"garbage line\n" + damaged + b"\xff\xfe\n" + third + fourth[:-1])
@@ -597,6 +659,31 @@ def test_only_a_mapped_pack_s_pages_are_handed_back(tmp_path: Path) -> None:
     assert mapped[:10] == b"\0" * 10  # handed back, read again from the file
     mapped.close()
     assert cache_module._released(b"\0" * (2 * step), 0, 2 * step) == 0  # bytes: nothing
+
+
+def test_a_pack_under_a_step_is_handed_back_once_indexed(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A pack is a sixteenth of the facts (4 MB at 8 copies of the benchmark's
+    workspace): under a step, it was never handed back, and a run reading all sixteen
+    held 50 MB more."""
+    made = _records(12, 250_000)  # 3 MB
+    path = tmp_path / "facts-0.pack"
+    path.write_bytes(b"".join(record for _, record in made))
+    mapped = cache_module._map(str(path))
+    assert isinstance(mapped, mmap.mmap)
+    handed_back: list[int] = []
+    released = cache_module._released
+
+    def spied(pack: Any, start: int, position: int, **options: int) -> int:
+        handed_back.append(released(pack, start, position, **options))
+        return handed_back[-1]
+
+    monkeypatch.setattr(cache_module, "_released", spied)
+    assert len(cache_module._index(mapped)) == len(made)
+    size = path.stat().st_size
+    assert handed_back[-1] == size - size % mmap.PAGESIZE
+    mapped.close()
 
 
 def test_a_kept_graph_reads_back_as_it_was(tmp_path: Path) -> None:
