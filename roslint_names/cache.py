@@ -82,7 +82,7 @@ import time
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import IO, Any
+from typing import IO, Any, NamedTuple
 
 from . import __version__, model
 from .model import FileFacts, Generation, Language
@@ -191,9 +191,8 @@ class FactsCache:
     _records: dict[str, dict[str, tuple[int, int]]] = field(default_factory=dict, init=False)
     _pending_records: dict[str, list[bytes]] = field(default_factory=dict, init=False)
     _pending_bytes: int = field(default=0, init=False)
-    # Appended to by this run, by shard: the bytes (packs) and whether (logs).
-    _written_bytes: dict[str, int] = field(default_factory=dict, init=False)
-    _logged: set[str] = field(default_factory=set, init=False)
+    # Each pack and log read, by name: which file, and how much of it, this run read.
+    _read_as: dict[str, _Read | None] = field(default_factory=dict, init=False)
     _stored: dict[str, FileFacts] = field(default_factory=dict, init=False)  # not yet written
     _used: set[str] = field(default_factory=set, init=False)  # keys looked up or stored
 
@@ -291,13 +290,17 @@ class FactsCache:
         """The keys of the facts that hold nothing whose first digit is ``shard``, and
         what they hold: its log, read once."""
         if shard not in self._empty:
-            self._empty[shard] = _read_log(os.path.join(self.directory, _log_name(shard)))
+            name = _log_name(shard)
+            self._empty[shard], self._read_as[name] = _read_log_as(
+                os.path.join(self.directory, name)
+            )
         return self._empty[shard]
 
     def _pack_records(self, shard: str) -> dict[str, tuple[int, int]]:
         """Where each key of ``shard`` has its facts in its pack, the pack mapped once."""
         if shard not in self._records:
-            self._packs[shard] = _map(os.path.join(self.directory, _pack_name(shard)))
+            name = _pack_name(shard)
+            self._packs[shard], self._read_as[name] = _map_as(os.path.join(self.directory, name))
             self._records[shard] = _index(self._packs[shard])
         return self._records[shard]
 
@@ -476,14 +479,12 @@ class FactsCache:
             written = self._append(_log_name(shard), lines)
             # A short write (a full disk) leaves a torn last line, which readers skip.
             self.stats.written += lines[:written].count(b"\n")
-            self._logged.add(shard)
         pending_records, self._pending_records, self._pending_bytes = self._pending_records, {}, 0
         self._stored.clear()  # a worker process would otherwise hold all it extracted
         for shard, records in sorted(pending_records.items()):
             written = self._append(_pack_name(shard), b"".join(records))
             if written:
                 self.stats.written += len(records)
-                self._written_bytes[shard] = self._written_bytes.get(shard, 0) + written
 
     def _append(self, name: str, data: bytes) -> int:
         """Append ``data`` to ``name`` in one write; how many bytes were written."""
@@ -501,48 +502,46 @@ class FactsCache:
 
     def finish(self) -> None:
         """End of the run: write what is buffered; and where a pack or a log this run
-        appended to or read has outgrown its share of ``PACK_LIMIT`` and more than half
-        that share of it is what this run did not look up or store (older versions of
-        files, or other checkouts'), rewrite it with only what it used. Only an append
-        makes one larger: one no run appends to has been checked since it last grew. A
-        workspace whose facts alone outgrow the limit would otherwise have its packs
-        rewritten by every run."""
+        read has outgrown its share of ``PACK_LIMIT`` and more than half that share of
+        what the run read of it is what it did not look up, store or stand on (older
+        versions of files, or other checkouts'), rewrite it with what it used and what
+        was appended since the run read it (its workers' facts, another run's: new, not
+        stale; a cold run with workers that had read the packs early dropped all of
+        theirs). A pack or log no run reads is not checked: a run after an edit reads the
+        few it looks up in, and a workspace whose facts alone outgrow the limit would
+        otherwise have its packs rewritten by every run."""
         self.flush()
-        limit = PACK_LIMIT // len(SHARDS)
-        for shard in sorted(self._written_bytes.keys() | self._records.keys()):
-            pack = self.directory / _pack_name(shard)
-            size = _size(pack)
-            if size > limit and size - self._used_bytes(shard) > limit // 2:
-                data = _read_bytes(os.fspath(pack))
+        share = PACK_LIMIT // len(SHARDS)
+        for shard, records in sorted(self._records.items()):
+            used = {key: where for key, where in records.items() if key in self._used}
+            used_bytes = sum(end - start + _RECORD_HEADER for start, end in used.values())
+            tail = self._outgrown(_pack_name(shard), used_bytes, share)
+            if tail is not None:
+                pack = self._packs[shard]
                 kept = [
-                    data[start - _RECORD_HEADER : end]
-                    for key, (start, end) in sorted(_index(data).items())
-                    if key in self._used
+                    pack[start - _RECORD_HEADER : end] for _, (start, end) in sorted(used.items())
                 ]
-                if len(data) - sum(map(len, kept)) > limit // 2:
-                    self.write_atomically(pack, b"".join(kept))
-        for shard in sorted(self._logged | self._empty.keys()):
-            log = self.directory / _log_name(shard)
-            size = _size(log)
-            if size > limit:
-                lines = _read_log(os.fspath(log))
-                kept_lines = [
-                    _log_line(key, language, generation)
-                    for key, (language, generation) in sorted(lines.items())
-                    if key in self._used
-                ]
-                if size - sum(map(len, kept_lines)) > limit // 2:
-                    self.write_atomically(log, "".join(kept_lines).encode("ascii"))
+                self.write_atomically(self.directory / _pack_name(shard), b"".join(kept) + tail)
+        for shard, lines in sorted(self._empty.items()):
+            kept_lines = "".join(
+                _log_line(key, language, generation)
+                for key, (language, generation) in sorted(lines.items())
+                if key in self._used
+            ).encode("ascii")
+            tail = self._outgrown(_log_name(shard), len(kept_lines), share)
+            if tail is not None:
+                self.write_atomically(self.directory / _log_name(shard), kept_lines + tail)
 
-    def _used_bytes(self, shard: str) -> int:
-        """At least how many bytes of ``shard``'s pack this run used: the records it read
-        that it looked up, and those it wrote (without reading the pack again)."""
-        read = sum(
-            end - start + _RECORD_HEADER
-            for key, (start, end) in self._records.get(shard, {}).items()
-            if key in self._used
-        )
-        return read + self._written_bytes.get(shard, 0)
+    def _outgrown(self, name: str, used: int, share: int) -> bytes | None:
+        """What was appended to the pack or log ``name`` since this run read it, where it
+        is to be rewritten: past ``share`` and more than half of it what the run read of
+        it and did not use (``used`` bytes of it used). None where it is not, or where
+        another run rewrote it since (its inode)."""
+        read = self._read_as.get(name)
+        if read is None or read.size - used <= share // 2:
+            return None
+        tail = _appended_since(self.directory / name, read)
+        return None if tail is None or read.size + len(tail) <= share else tail
 
     def writable(self) -> bool:
         """Create this run's directory once; False (and a problem noted) when impossible."""
@@ -592,16 +591,43 @@ def _record(key: str, payload: bytes) -> bytes | None:
     return _RECORD + head + checksum + payload
 
 
+class _Read(NamedTuple):
+    """A pack or log as a run read it: which file (its inode), and its first ``size``
+    bytes (a pack's, a log's whole lines)."""
+
+    inode: int
+    size: int
+
+
 def _map(path: str) -> bytes | mmap.mmap:
     """The pack, mapped: a run reads the records it loads, not all of it (a run after an
     edit loads one file's facts or none from a 100 MB pack at 8 copies of the benchmark's
     workspace). The mapping is of the file as opened: a pack another run rewrites (a
     rename over it) or appends to meanwhile leaves it as it was."""
+    return _map_as(path)[0]
+
+
+def _map_as(path: str) -> tuple[bytes | mmap.mmap, _Read | None]:
+    """``_map``, and what was mapped (None: nothing)."""
     try:
         with open_regular(path) as stream:
-            return mmap.mmap(stream.fileno(), 0, access=mmap.ACCESS_READ)
+            mapped = mmap.mmap(stream.fileno(), 0, access=mmap.ACCESS_READ)
+            return mapped, _Read(os.fstat(stream.fileno()).st_ino, len(mapped))
     except (OSError, ValueError):  # absent, unreadable or empty: everything misses
-        return b""
+        return b"", None
+
+
+def _appended_since(path: Path, read: _Read) -> bytes | None:
+    """The bytes of the file at ``path`` past those a run ``read`` of it; None where it
+    is another file now (rewritten since) or cannot be read."""
+    try:
+        with open_regular(path) as stream:
+            if os.fstat(stream.fileno()).st_ino != read.inode:
+                return None
+            stream.seek(read.size)
+            return stream.read()
+    except OSError:
+        return None
 
 
 def _index(pack: bytes | mmap.mmap) -> dict[str, tuple[int, int]]:
@@ -738,11 +764,18 @@ _GENERATIONS = {str(generation.value): generation for generation in Generation}
 
 
 def _read_log(path: str) -> dict[str, tuple[Language, Generation]]:
+    return _read_log_as(path)[0]
+
+
+def _read_log_as(path: str) -> tuple[dict[str, tuple[Language, Generation]], _Read | None]:
+    """The keys of a log's lines and what each says, and what of it was read (None:
+    nothing)."""
     try:
         with open_regular(path) as stream:
             data = stream.read()
+            inode = os.fstat(stream.fileno()).st_ino
     except OSError:
-        return {}
+        return {}, None
     found: dict[str, tuple[Language, Generation]] = {}
     # The part after the last line break is a line still being written, or a torn one.
     for raw in data.split(b"\n")[:-1]:
@@ -757,7 +790,7 @@ def _read_log(path: str) -> dict[str, tuple[Language, Generation]]:
             and generation in _GENERATIONS
         ):
             found[key] = (_LANGUAGES[language], _GENERATIONS[generation])
-    return found
+    return found, _Read(inode, data.rfind(b"\n") + 1)
 
 
 def _encoded(value: object) -> Writer:

@@ -283,7 +283,7 @@ def in_shard(name: str, text: str, shard: str, generation: Generation) -> str:
     return next(found for found in candidates if launch_key(name, found, generation)[0] == shard)
 
 
-def test_only_the_packs_and_logs_a_run_reads_or_appends_to_are_rewritten(
+def test_only_the_packs_and_logs_a_run_reads_are_rewritten(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """A run after an edit looks up a few keys: it reads their packs, not the others
@@ -315,6 +315,45 @@ def test_only_the_packs_and_logs_a_run_reads_or_appends_to_are_rewritten(
     for name in ("facts-b.pack", "empty-2.log"):  # neither read nor appended to
         after = entries[name].stat()
         assert (after.st_ino, after.st_size) == (before[name].st_ino, before[name].st_size)
+
+
+def test_what_is_appended_after_a_run_read_a_pack_or_log_is_kept_when_it_is_rewritten(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A cold run's main process reads the packs and logs early (an included launch
+    file looked up under its includer's arguments) while its workers append every
+    file's facts: rewritten with what the main process used of what it read, the packs
+    lost all the workers had stored (15,253 files extracted again after the first edit
+    at 8 copies of the benchmark's workspace)."""
+    early, stale = "a" + "1" * 39, "a" + "2" * 39  # records of the pack "a"
+    early_line, stale_line = "1" + "a" * 39, "1" + "b" * 39  # lines of the log "1"
+    empty = FileFacts("empty.py", Language.PYTHON, Generation.ROS2)
+    first = FactsCache(tmp_path)
+    for key in (early, stale):
+        first.store(key, FACTS)
+    for key in (early_line, stale_line):
+        first.store(key, empty)
+    first.finish()
+    monkeypatch.setattr(cache_module, "PACK_LIMIT", 1)
+    main = FactsCache(tmp_path)
+    assert main.load(early, FACTS.path) == FACTS
+    assert main.load(early_line, "empty.py") == empty
+    worker = FactsCache(tmp_path)  # appends after the main process read
+    stored = [f"a{number:039x}" for number in range(3, 6)]
+    stored_lines = [f"1{number:039x}" for number in range(3, 6)]
+    for key, line_key in zip(stored, stored_lines, strict=True):
+        worker.store(key, FACTS)
+        worker.store(line_key, empty)
+    worker.flush()
+    main.finish()
+    assert records(tmp_path) == sorted([early, *stored])  # the stale one dropped
+    assert sorted(line.split(" ")[0] for line in log_lines(tmp_path)) == sorted(
+        [early_line, *stored_lines]
+    )
+    fresh = FactsCache(tmp_path)
+    assert all(fresh.load(key, FACTS.path) == FACTS for key in stored)
+    assert all(fresh.load(key, "empty.py") == empty for key in stored_lines)
+    assert fresh.stats.corrupt == 0
 
 
 def test_a_pack_past_the_limit_that_the_run_used_whole_is_not_rewritten(
