@@ -45,7 +45,7 @@ from .model import Diagnostic, FileFacts, Finding
 from .reading import read_file
 from .registry import Registry
 from .run_checks import Progress, RunChecks
-from .run_inputs import RunInputs
+from .run_inputs import RunInputs, is_facts_key
 from .same_facts import KeptGraph, KeptLaunch, Replay
 from .speculation import Speculation
 from .wiring import WIRING_SOURCES
@@ -488,6 +488,10 @@ def _lint(
         if shown[index] and source.display not in skipped_paths
     )
     if cache is not None:
+        if inputs is not None:
+            # Every checked file's facts are what the result stands on, loaded or not,
+            # extracted here or by a worker: kept where a pack is rewritten.
+            cache.stand_on(tag for tag in inputs.tags if is_facts_key(tag))
         cache.finish()  # the graph's specialised facts are still buffered
     kept_key = None
     if inputs is not None:

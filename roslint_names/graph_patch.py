@@ -263,13 +263,9 @@ def take_facts(
         else None
     )
     if moved is not None:
-        # Every file's facts are what the result stands on, loaded or not: kept by the
-        # pack's rewrite (``FactsCache.stand_on``).
-        cache.stand_on(tag for tag in inputs.tags if is_facts_key(tag))
         return Replayed(edited, moved)
     patched = None if patch is None else patch(replay, arrived)
     if patched is not None:
-        cache.stand_on(tag for tag in inputs.tags if is_facts_key(tag))
         return patched
     others = set(edited)
     rest = (index for index in range(len(gathered.files)) if index not in others)

@@ -18,6 +18,7 @@ from typing import Any
 import pytest
 from conftest import write
 
+from roslint_names import cache as cache_module
 from roslint_names import gather, reading, run_inputs, same_facts, workers
 from roslint_names.cache import FactsCache
 from roslint_names.gather import OnDisk
@@ -91,6 +92,37 @@ def test_output_bytes_do_not_depend_on_jobs_or_cache(
         assert result.stdout == reference.stdout
         assert result.exit_code == reference.exit_code
         assert result.stderr.splitlines()[1:] == reference.stderr.splitlines()[1:]
+
+
+@pytest.mark.usefixtures("small_chunks")
+def test_a_first_run_keeps_what_its_workers_extracted_when_it_rewrites_the_packs(
+    run_cli: Any, workspace: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A run stands on every checked file's facts, whichever process extracted them:
+    the main process of a first run read packs (the included launch file's arguments
+    looked up) after its workers had appended to them, and rewrote those past the limit
+    with what it had used alone (a fifth of the files extracted again after the first
+    edit at 8 copies of the benchmark's workspace)."""
+    monkeypatch.setattr(cache_module, "PACK_LIMIT", 1)  # every pack read is past it
+    finish = FactsCache.finish
+
+    def read_late(cache: FactsCache) -> None:  # every pack and log read after the workers
+        for shard in cache_module.SHARDS:
+            cache.load(shard * 40, "never.launch")
+        finish(cache)
+
+    monkeypatch.setattr(FactsCache, "finish", read_late)
+    arguments = ["check", "--format", "json", "--verbose", "--cache-dir", str(tmp_path / "c")]
+    cold = run_cli([*arguments, "--jobs", "2", "."], workspace)
+    assert "extracted by 2 worker processes" in cold.stderr.splitlines()[0]
+    for kept in (
+        *(tmp_path / "c").glob("facts-v*/runs"),
+        *(tmp_path / "c").glob("facts-v*/replays"),
+    ):
+        shutil.rmtree(kept)  # the next run loads every file's facts
+    warm = run_cli([*arguments, "--jobs", "1", "."], workspace)
+    assert re.search(r" (\d+) of \1 files from the cache, 0 extracted", warm.stderr), warm.stderr
+    assert warm.stdout == cold.stdout
 
 
 @pytest.mark.usefixtures("small_chunks", "old_tree")
