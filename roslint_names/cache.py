@@ -35,8 +35,9 @@ is first looked up (a pack mapped, its pages handed back as it is indexed, and a
 record's checksum verified when it is loaded). A line or record that is torn, truncated
 or fails its checksum is skipped (the pack is searched for the next marker), its file is
 extracted again and appended again; the last whole record of a key wins. Once a pack or
-a log outgrows its share of ``PACK_LIMIT``, the next run that appends to it or reads it
-rewrites it (atomically, by a rename) with only the records or lines that run used.
+a log outgrows its share of ``PACK_LIMIT``, the next run that reads it rewrites it
+(atomically, by a rename) with the records or lines that run used (every checked file's
+facts, loaded or not: ``stand_on``) and whatever was appended after it read it.
 
 Why pickle is safe enough here: entries are read with an unpickler that resolves no global
 but the fact classes and enums of ``roslint_names.model``. Unpickling can then only build
@@ -505,11 +506,10 @@ class FactsCache:
         read has outgrown its share of ``PACK_LIMIT`` and more than half that share of
         what the run read of it is what it did not look up, store or stand on (older
         versions of files, or other checkouts'), rewrite it with what it used and what
-        was appended since the run read it (its workers' facts, another run's: new, not
-        stale; a cold run with workers that had read the packs early dropped all of
-        theirs). A pack or log no run reads is not checked: a run after an edit reads the
-        few it looks up in, and a workspace whose facts alone outgrow the limit would
-        otherwise have its packs rewritten by every run."""
+        was appended since the run read it (another run's, or its workers' before the
+        run stood on them: new, not stale). A pack or log no run reads is not checked: a
+        run after an edit reads the few it looks up in, and a workspace whose facts alone
+        outgrow the limit would otherwise have its packs rewritten by every run."""
         self.flush()
         share = PACK_LIMIT // len(SHARDS)
         for shard, records in sorted(self._records.items()):
