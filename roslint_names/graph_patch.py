@@ -1183,11 +1183,7 @@ def _compiled(
 ) -> tuple[BuiltSources | None, BuiltSources]:
     """What the build files compiled at the last run (its ``RunWide``; ``then_too``:
     else None), and now: with the files edited since (``arrived``) as they are."""
-    then = None
-    if then_too:
-        then = BuiltSources()
-        for facts, package in run_wide.built:
-            then.add(facts, package)
+    then = BuiltSources.of(run_wide.built) if then_too else None
     taken = [
         (facts, package_of(index))
         for index, facts, _, _ in arrived

@@ -363,10 +363,7 @@ def built_as_taken(
     """What the build files compile: as the replay's run had them (``run_wide``), but
     for the files this run took (``paths``), as they are now (``taken``: those of them
     that compile or include sources, with their packages' directories)."""
-    built = BuiltSources()
-    for facts, package in run_wide.built:
-        if facts.path not in paths:
-            built.add(facts, package)
+    built = BuiltSources.of(given for given in run_wide.built if given[0].path not in paths)
     for facts, package in taken:
         built.add(facts, package)
     return built

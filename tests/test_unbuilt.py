@@ -667,6 +667,7 @@ def test_what_targets_name_is_asked_of_the_build_files_that_may_name_it() -> Non
         for package, path, paths, rostest in files:
             compiled = CompiledSources(paths=paths, rostest=rostest)
             built.add(FileFacts(path, Language.CMAKE, Generation.ROS2, compiled=compiled), package)
+        built._index()  # what ``unbuilt`` does first: the questions below are its parts
         targets: set[str] = set()
         rostest_named: set[str] = set()
         reached = {f.path for package in (outer, inner) for f in built._reached_files(package)}
@@ -679,3 +680,31 @@ def test_what_targets_name_is_asked_of_the_build_files_that_may_name_it() -> Non
         for path in sorted(asked):
             reference = (path in targets, path in rostest_named)
             assert built._named(path) == reference, (outer, path)
+
+
+def test_built_sources_index_what_was_added_when_asked() -> None:
+    """A run after an edit takes what the last run gathered (``of``) and most often asks
+    nothing of it: indexed only when asked, and again for what was added since."""
+    package = "turtle"
+    lists = FileFacts(
+        "turtle/CMakeLists.txt",
+        Language.CMAKE,
+        Generation.ROS2,
+        compiled=CompiledSources(paths=("src/teleop.cpp",)),
+    )
+    built = BuiltSources()
+    built.add(lists, package)
+    taken = BuiltSources.of(built.given())
+    assert taken._indexed == 0 and taken.given() == built.given()
+    for sources in (built, taken):
+        assert not sources.unbuilt("turtle/src/teleop.cpp", package)
+        assert sources.unbuilt("turtle/src/pose_logger.cpp", package)
+    assert taken._indexed == 1
+    tools = FileFacts(
+        "turtle/tools.cmake",
+        Language.CMAKE,
+        Generation.ROS2,
+        compiled=CompiledSources(paths=("src/pose_logger.cpp",)),
+    )
+    taken.add(tools, package)  # after a question: taken in at the next one
+    assert not taken.unbuilt("turtle/src/pose_logger.cpp", package)
