@@ -28,6 +28,7 @@ from functools import cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING, Generic, TypeVar, cast
 
+from . import walks
 from .cache import FactsCache
 from .collection import kept_for_the_run
 from .listings import DirectoryStatus, FileStatus, Listed, Listings
@@ -108,6 +109,7 @@ class _Sniff(Enum):
     CFG = "cfg"  # a dynamic_reconfigure config, or an INI file (CPPLINT.cfg, tox.cfg)
 
 
+_LANGUAGES = {language.value: language for language in Language}
 # What a kept listing says a name said (``listings``): the values of both enums, which differ.
 _SAID: dict[str, Language | _Sniff] = {said.value: said for said in (*Language, *_Sniff)}
 
@@ -412,7 +414,15 @@ def _discover(
             walked: list[tuple[str, Language | _Sniff]]
             listings = None
             if cache is not None:
-                listings = Listings.of(cache, os.fspath(absolute), exclude, exclude_root)
+                kept_at = Listings.path_of(cache, os.fspath(absolute), exclude, exclude_root)
+                above = [join_gitignore(ancestor) for ancestor in _repository_ancestors(absolute)]
+                kept = walks.taken(kept_at, prefix, above)
+                if kept is not None and _take_walked(found, *kept, without_manifest):
+                    if not kept[0]:
+                        notes.add(f"{given}: no file to lint in this directory")
+                    continue
+                listings = Listings(kept_at, cache)
+            noted = len(notes.lines)
             try:
                 walked = _walk_named(
                     absolute, rules, _by_name, notes, listings, without_manifest=without_manifest
@@ -421,8 +431,18 @@ def _discover(
                 reason = error.strerror or str(error)
                 raise DiscoveryError(f"{given}: cannot read directory: {reason}") from None
             lintable = [_add(found, path, by_name, prefix, listings) for path, by_name in walked]
-            if listings is not None:
+            if cache is not None and listings is not None:
                 listings.save()  # what the files' content said too
+                if len(notes.lines) == noted:  # a walk that warned warns again
+                    files = [
+                        found[path]
+                        for (path, _), added in zip(walked, lintable, strict=True)
+                        if added
+                    ]
+                    kept_files = [
+                        (file.location, file.display, file.language.value) for file in files
+                    ]
+                    walks.keep(cache, listings, prefix, kept_files)
             if not any(lintable):
                 notes.add(f"{given}: no file to lint in this directory")
         elif not rules.excluded_by_config(absolute, is_dir=False):
@@ -432,6 +452,30 @@ def _discover(
     # By display, then by path: two files may show alike (a name of Latin-1 bytes, shown
     # escaped, beside one spelling that escape), and the walk's order must not decide.
     return sorted(found.values(), key=lambda source: (source.display, source.location))
+
+
+def _take_walked(
+    found: dict[str, SourceFile],
+    files: list[walks.Found],
+    without: list[str],
+    without_manifest: set[str] | None,
+) -> bool:
+    """Add the files a kept walk found (``walks``); False, adding nothing, where what was
+    kept is not what a walk keeps."""
+    try:
+        taken = [SourceFile(path, display, _LANGUAGES[said]) for path, display, said in files]
+    except (KeyError, TypeError, ValueError):
+        return False
+    for source in taken:
+        found[source.location] = source
+    if without_manifest is not None:
+        without_manifest.update(without)
+    return True
+
+
+def join_gitignore(directory: Path) -> str:
+    """The ``.gitignore`` of a directory above a named one (``_walk_named``)."""
+    return os.path.join(directory, ".gitignore")
 
 
 def _named_status(given: Path, absolute: Path) -> tuple[int | None, str | None]:
@@ -585,7 +629,7 @@ def _walk_named(
     top = os.fspath(directory)
     ancestors = _repository_ancestors(directory)
     trusted = listings is not None and listings.trusts_ancestors(
-        [os.path.join(ancestor, ".gitignore") for ancestor in ancestors]
+        [join_gitignore(ancestor) for ancestor in ancestors]
     )
     pushed = sum(rules.enter(ancestor)[0] for ancestor in ancestors)
     found: list[tuple[str, _T]] = []
@@ -620,6 +664,7 @@ class _Walker(Generic[_T]):
         listing was made under. Only the named directory's listing raises ``OSError``."""
         status = None
         if self.listings is not None:
+            self.listings.walked += 1
             status = self.listings.directory_status(top)  # before listing: a change shows
             kept = self.listings.unchanged(top, status) if trusted else None
             if kept is not None and self._replay(top, kept):

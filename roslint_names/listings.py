@@ -62,8 +62,11 @@ class Listings:
     """The kept listings of one named directory's walk, and the new ones it makes."""
 
     def __init__(self, path: Path, cache: FactsCache) -> None:
+        self.path = path
         self._kept = Journaled(cache, path, KEPT, _ListingsUnpickler, _FORMAT)
         self.started = time.time_ns()  # before any status is taken
+        self.walked = 0  # directories the walk entered (``discover._Walker``)
+        self._sniffs = 0  # files whose content was asked what it says (``sniffed``)
         self._known: dict[str, Listed] = {}
         self._known_ancestors: tuple[tuple[str, FileStatus | None], ...] | None = None
         self._known_sniffed: dict[str, tuple[FileStatus, str]] = {}
@@ -79,9 +82,39 @@ class Listings:
         """The listings kept in ``cache`` for ``top`` walked under ``exclude`` by this
         code (the facts cache's directory is named by the extractors' code only: a walk
         that selects other files must not replay what an older one kept)."""
+        return cls(cls.path_of(cache, top, exclude, exclude_root), cache)
+
+    @staticmethod
+    def path_of(cache: FactsCache, top: str, exclude: Sequence[str], exclude_root: Path) -> Path:
+        """Where ``of`` keeps them."""
         identity = "\0".join([code_fingerprint(), top, os.fspath(exclude_root), *exclude])
         name = hashlib.blake2b(os.fsencode(identity), digest_size=8).hexdigest()
-        return cls(cache.directory / LISTINGS / name, cache)
+        return cache.directory / LISTINGS / name
+
+    def whole(
+        self,
+    ) -> (
+        tuple[
+            tuple[tuple[str, FileStatus | None], ...],
+            dict[str, Listed],
+            list[tuple[str, FileStatus]],
+        ]
+        | None
+    ):
+        """What this walk stood on, where it may be taken whole (``walks``): the
+        ``.gitignore`` files above it, every directory it entered, listed or replayed,
+        each with the status it was taken with (none too recent to vouch for it), none
+        holding a link followed, and every file whose content said its language with its
+        status. None otherwise."""
+        listed = self._listed
+        if self.walked != len(listed) or self._sniffs != len(self._sniffed):
+            return None
+        if any(status is None and os.path.lexists(path) for path, status in self._ancestors):
+            return None
+        if any(listing.status is None or listing.links for listing in listed.values()):
+            return None
+        sniffed = [(path, status) for path, (status, _) in self._sniffed.items()]
+        return self._ancestors, listed, sniffed
 
     def trusts_ancestors(self, gitignores: Sequence[str]) -> bool:
         """Record the status of the ``.gitignore`` files above the named directory; whether
@@ -122,6 +155,7 @@ class Listings:
 
     def sniffed(self, path: str) -> tuple[FileStatus | None, str | None]:
         """The file's status, and what its content said when it had that status."""
+        self._sniffs += 1
         status = self.file_status(path)
         kept = self._known_sniffed.get(path)
         if status is not None and kept is not None and kept[0] == status:

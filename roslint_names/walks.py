@@ -1,0 +1,124 @@
+"""A named directory's last walk kept whole: a re-run that finds every status the walk
+stood on as it was takes the files it found without walking.
+
+The listings (``listings``) spare a re-run the listing of directories that did not
+change, yet it still replays each of them, and decides each file again (77,000 at 8
+copies of the benchmark's workspace: 0.55 s a run, with loading and saving them). When
+nothing changed, every answer is the last one. So a walk that needed no warning, followed
+no symbolic link and could trust every status it took (``Listings.whole``) is kept with
+those statuses: of every directory walked (an entry added, removed or renamed changes its
+directory's), of each ``.gitignore`` in them and above the named directory (an edit of
+one leaves its directory alone), and of each file whose content said its language
+(``discover._Sniff``). A run that takes each of them again and finds it equal takes the
+files as they were found, shown as they were shown (the current directory is kept too),
+and the directories that hold no ``package.xml``. Anything else walks (and keeps what
+that walk found for the next run).
+
+The file is kept beside the listings, builtins only, read with an unpickler that resolves
+no class, written atomically through the facts cache; one that cannot be read is none.
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+from collections.abc import Sequence
+from functools import partial
+from pathlib import Path
+
+from .cache import BuiltinsUnpickler, FactsCache
+from .listings import KEPT, DirectoryStatus, FileStatus, Listings
+from .reading import open_regular, status_from
+
+_FORMAT = 1
+_SUFFIX = ".walked"
+_PROTOCOL = pickle.HIGHEST_PROTOCOL
+# A file found: where it is, how it is shown, its language (``Language``'s value).
+Found = tuple[str, str, str]
+
+
+def taken(
+    listings_path: Path, prefix: str, gitignores_above: Sequence[str]
+) -> tuple[list[Found], list[str]] | None:
+    """The files the kept walk found and the directories it found without a
+    ``package.xml``, if every status it stood on is as it was, the ``.gitignore`` files
+    above the named directory the same ones, and the current directory ``prefix``."""
+    kept = _read(listings_path.with_name(listings_path.name + _SUFFIX))
+    if kept is None:
+        return None
+    (kept_prefix, ancestors, directories, statuses, files_stood_on, without, found) = kept
+    if kept_prefix != prefix or [path for path, _ in ancestors] != list(gitignores_above):
+        return None
+    for path, status in ancestors:
+        if _file_status(path) != status:
+            return None
+    for directory, kept_status in zip(directories, statuses, strict=True):
+        try:
+            now = os.stat(directory)
+        except OSError:
+            return None
+        if (now.st_mtime_ns, now.st_ctime_ns, now.st_ino) != kept_status:
+            return None
+    for path, status in files_stood_on:
+        if _file_status(path) != status:
+            return None
+    return found, without
+
+
+def keep(cache: FactsCache, listings: Listings, prefix: str, found: list[Found]) -> None:
+    """Keep the walk ``listings`` made, which found ``found``, if it may be taken whole
+    (``Listings.whole``)."""
+    whole = listings.whole()
+    if whole is None:
+        return
+    ancestors, listed, sniffed = whole
+    directories = tuple(listed)
+    statuses = tuple(listing.status for listing in listed.values())
+    gitignores = [
+        (os.path.join(directory, ".gitignore"), listing.gitignore)
+        for directory, listing in listed.items()
+        if listing.gitignore is not None
+    ]
+    stood_on = (*gitignores, *sniffed)
+    without = [directory for directory, listing in listed.items() if not listing.manifest]
+    kept = (_FORMAT, prefix, ancestors, directories, statuses, stood_on, without, found)
+    path = listings.path.with_name(listings.path.name + _SUFFIX)
+    cache.write_newest(path, partial(pickle.dump, kept, protocol=_PROTOCOL), KEPT)
+
+
+def _file_status(path: str) -> FileStatus | None:
+    try:
+        return status_from(os.stat(path))
+    except OSError:
+        return None
+
+
+def _read(
+    path: Path,
+) -> (
+    tuple[
+        str,
+        tuple[tuple[str, FileStatus | None], ...],
+        tuple[str, ...],
+        tuple[DirectoryStatus, ...],
+        tuple[tuple[str, FileStatus], ...],
+        list[str],
+        list[Found],
+    ]
+    | None
+):
+    try:
+        with open_regular(path) as stream:
+            loaded = BuiltinsUnpickler(stream).load()
+    except Exception:  # absent, unreadable or damaged: the directory is walked
+        return None
+    if not (isinstance(loaded, tuple) and len(loaded) == 8 and loaded[0] == _FORMAT):
+        return None
+    _, prefix, ancestors, directories, statuses, stood_on, without, found = loaded
+    shapes = ((prefix, str), (ancestors, tuple), (directories, tuple), (statuses, tuple))
+    more = ((stood_on, tuple), (without, list), (found, list))
+    if not all(isinstance(value, kind) for value, kind in (*shapes, *more)):
+        return None
+    if len(directories) != len(statuses):
+        return None
+    return prefix, ancestors, directories, statuses, stood_on, without, found

@@ -1,0 +1,245 @@
+"""A named directory's last walk kept whole (``walks``): a re-run that finds every status
+it stood on as it was takes its files without walking, and any change that could change
+what a walk finds makes it walk: the tree of ``test_listings`` without its link."""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+import pytest
+from conftest import CATKIN_PACKAGE, write
+
+from roslint_names import discover as discover_module
+from roslint_names.cache import FactsCache
+from roslint_names.discover import discover
+from roslint_names.listings import LISTINGS, FileStatus, Listings
+from roslint_names.model import Language
+from tests.test_listings import (
+    BRINGUP,
+    RELAY,
+    TALKER,
+    _added,
+    _age,
+    _ignore_above,
+    _ignore_by_gitignore,
+    _marker,
+    _removed,
+    _renamed,
+    _replaced_by_directory,
+    _script_no_longer_python,
+    _xml_no_longer_launch,
+)
+
+Found = list[tuple[str, Language]]
+
+
+@pytest.fixture
+def workspace(tmp_path: Path, old_tree: None) -> Path:
+    """Two packages in one repository with its ``.gitignore``, a script without a suffix
+    and an XML file whose root decides; no link (a walk that follows one is walked
+    again each time)."""
+    root = tmp_path / "ws"
+    write(root, "src/CMakeLists.txt", "cmake_minimum_required(VERSION 3.0.2)\n")
+    repository = root / "src/chatter_ros"
+    (repository / ".git").mkdir(parents=True)
+    write(repository, ".gitignore", "*.orig\n")
+    write(repository, "chatter/package.xml", CATKIN_PACKAGE.format(name="chatter"))
+    write(repository, "chatter/CMakeLists.txt", "add_executable(talker src/talker.cpp)\n")
+    write(repository, "chatter/src/talker.cpp", TALKER)
+    write(repository, "chatter/scripts/relay", RELAY)
+    write(repository, "chatter/launch/nodes.xml", BRINGUP)
+    write(repository, "bringup/package.xml", CATKIN_PACKAGE.format(name="bringup"))
+    write(repository, "bringup/launch/robot.launch", BRINGUP)
+    _age(root)
+    return root
+
+
+@pytest.fixture
+def walked(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """The directories the walk enters, listed or replayed, in order."""
+    calls: list[str] = []
+    real = discover_module._Walker.walk
+
+    def counted(self: discover_module._Walker[object], top: str, **options: bool) -> None:
+        calls.append(top)
+        real(self, top, **options)
+
+    monkeypatch.setattr(discover_module._Walker, "walk", counted)
+    return calls
+
+
+def _found(
+    root: Path, cache: FactsCache | None, cwd: Path | None = None, warnings: list[str] | None = None
+) -> Found:
+    sources = discover([root], [], root, cwd or root, warnings, cache=cache)
+    return [(source.display, source.language) for source in sources]
+
+
+def _kept_walks(cache: FactsCache) -> list[Path]:
+    return sorted((cache.directory / LISTINGS).glob("*.walked"))
+
+
+def test_an_unchanged_tree_is_taken_whole(
+    workspace: Path, tmp_path: Path, walked: list[str]
+) -> None:
+    cache = FactsCache(tmp_path / "cache")
+    without: set[str] = set()
+    first = discover([workspace], [], workspace, workspace, cache=cache, without_manifest=without)
+    assert len(walked) == 9 and len(_kept_walks(cache)) == 1
+    walked.clear()
+    again: set[str] = set()
+    taken = discover(
+        [workspace],
+        [],
+        workspace,
+        workspace,
+        cache=FactsCache(tmp_path / "cache"),
+        without_manifest=again,
+    )
+    assert walked == []  # not a directory entered
+    assert taken == first and again == without
+    assert os.path.join(workspace, "src") in again
+    assert [(source.display, source.language) for source in taken] == _found(workspace, None)
+
+
+@pytest.mark.parametrize(
+    "change",
+    [
+        _ignore_by_gitignore,
+        _ignore_above,
+        _script_no_longer_python,
+        _xml_no_longer_launch,
+        _marker,
+        _added,
+        _removed,
+        _renamed,
+        _replaced_by_directory,
+    ],
+)
+def test_a_change_is_walked(
+    workspace: Path, tmp_path: Path, walked: list[str], change: Callable[[Path], None]
+) -> None:
+    before = _found(workspace, FactsCache(tmp_path / "cache"))
+    _found(workspace, FactsCache(tmp_path / "cache"))  # taken whole
+    change(workspace)
+    walked.clear()
+    # Twice: right after the change and once all of it is old, as the kept walk says it.
+    for aged in (False, True):
+        if aged:
+            _age(workspace)
+        after = _found(workspace, FactsCache(tmp_path / "cache"))
+        assert after == _found(workspace, None)
+        assert after != before
+    assert walked  # the first run after the change walked
+    walked.clear()
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == after
+    assert walked == []  # and kept what it found: taken whole again
+
+
+def test_a_gitignore_above_the_named_directory_is_checked(workspace: Path, tmp_path: Path) -> None:
+    package = workspace / "src/chatter_ros/chatter"
+    for _ in range(2):  # walked, then taken whole
+        first = _found(package, FactsCache(tmp_path / "cache"))
+    assert ("launch/nodes.xml", Language.LAUNCH_XML) in first
+    _ignore_above(workspace)
+    after = _found(package, FactsCache(tmp_path / "cache"))
+    assert after == _found(package, None)
+    assert ("launch/nodes.xml", Language.LAUNCH_XML) not in after
+
+
+def test_another_current_directory_shows_the_files_anew(workspace: Path, tmp_path: Path) -> None:
+    inside = workspace / "src"
+    for cwd in (workspace, inside, workspace, inside):
+        shown = _found(workspace, FactsCache(tmp_path / "cache"), cwd)
+        assert shown == _found(workspace, None, cwd)
+
+
+def test_a_walk_that_warned_or_followed_a_link_is_not_kept(workspace: Path, tmp_path: Path) -> None:
+    """A warning is said by every run; a link's target may change without its
+    directory."""
+    os.mkfifo(workspace / "src/chatter_ros/bringup/launch/pipe.launch")
+    _age(workspace)
+    cache = FactsCache(tmp_path / "cache")
+    warned: list[str] = []
+    first = _found(workspace, cache, warnings=warned)
+    assert any("pipe.launch" in line for line in warned)
+    assert _kept_walks(cache) == []
+    again: list[str] = []
+    assert _found(workspace, FactsCache(tmp_path / "cache"), warnings=again) == first
+    assert again == warned
+    (workspace / "src/chatter_ros/bringup/launch/pipe.launch").unlink()
+    target = workspace / "tools/talker.launch"
+    write(target.parent, target.name, BRINGUP)
+    os.symlink(target, workspace / "src/chatter_ros/bringup/launch/talker.launch")
+    _age(workspace)
+    linked = _found(workspace, FactsCache(tmp_path / "cache"))
+    assert ("src/chatter_ros/bringup/launch/talker.launch", Language.LAUNCH_XML) in linked
+    assert _kept_walks(cache) == []
+    target.unlink()  # its directory's status is as it was
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == _found(workspace, None)
+
+
+def test_a_tree_changed_just_now_is_not_kept_whole(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Within the racy window a status may hide a change made in the same clock tick."""
+    root = tmp_path / "ws"
+    write(root, "src/chatter/package.xml", CATKIN_PACKAGE.format(name="chatter"))
+    write(root, "src/chatter/src/talker.cpp", TALKER)
+    cache = FactsCache(tmp_path / "cache")
+    _found(root, cache)
+    assert _kept_walks(cache) == []
+    past = time.time() - 60
+    for directory, _, files in os.walk(root):
+        for name in files:
+            os.utime(os.path.join(directory, name), (past, past))
+        os.utime(directory, (past, past))
+    monkeypatch.setattr("roslint_names.reading.RACY_NANOSECONDS", 0)  # the change time too
+    _found(root, FactsCache(tmp_path / "cache"))
+    assert len(_kept_walks(cache)) == 1
+
+
+@pytest.mark.parametrize(
+    "damage", [b"\x80\x05not a pickle", b"\x80\x05cos\nsystem\n.", b"\x80\x05K\x01."]
+)
+def test_a_damaged_kept_walk_is_walked(
+    workspace: Path, tmp_path: Path, walked: list[str], damage: bytes
+) -> None:
+    cache = FactsCache(tmp_path / "cache")
+    first = _found(workspace, cache)
+    (kept,) = _kept_walks(cache)
+    kept.write_bytes(damage)
+    walked.clear()
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == first
+    assert walked
+
+
+def test_a_walk_that_warned_of_a_gitignore_warns_again(workspace: Path, tmp_path: Path) -> None:
+    gitignore = workspace / "src/chatter_ros/.gitignore"
+    gitignore.write_text("*.orig\n!\n", encoding="utf-8")
+    _age(workspace)
+    said = ["src/chatter_ros/.gitignore:2: invalid pattern '!' not applied: git does not accept it"]
+    for _ in range(3):  # listed, then replayed, not taken whole
+        warnings: list[str] = []
+        _found(workspace, FactsCache(tmp_path / "cache"), warnings=warnings)
+        assert warnings == said
+
+
+@pytest.mark.parametrize("untrusted", [".gitignore", "relay"])
+def test_a_walk_that_could_not_trust_a_file_s_status_is_not_kept(
+    workspace: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, untrusted: str
+) -> None:
+    """A ``.gitignore`` whose status is too recent to vouch for it leaves its directory's
+    listing unkept, a sniffed file's its verdict: the walk is not whole."""
+    real = Listings.file_status
+
+    def file_status(self: Listings, path: str) -> FileStatus | None:
+        return None if os.path.basename(path) == untrusted else real(self, path)
+
+    monkeypatch.setattr(Listings, "file_status", file_status)
+    cache = FactsCache(tmp_path / "cache")
+    assert _found(workspace, cache) == _found(workspace, None)
+    assert _kept_walks(cache) == []
