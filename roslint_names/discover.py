@@ -416,7 +416,7 @@ def _discover(
             if cache is not None:
                 kept_at = Listings.path_of(cache, os.fspath(absolute), exclude, exclude_root)
                 above = [join_gitignore(ancestor) for ancestor in _repository_ancestors(absolute)]
-                kept = walks.taken(kept_at, prefix, above)
+                kept = walks.taken(kept_at, prefix, above, _may_choose, _passed_over)
                 if kept is not None and _take_walked(found, *kept, without_manifest):
                     if not kept[0]:
                         notes.add(f"{given}: no file to lint in this directory")
@@ -471,6 +471,19 @@ def _take_walked(
     if without_manifest is not None:
         without_manifest.update(without)
     return True
+
+
+def _may_choose(file_name: str) -> bool:
+    """Whether a walk may choose a file of this name, or choose otherwise for it (a
+    ``.gitignore``, an ignore marker)."""
+    return (
+        _by_name(file_name) is not None or file_name == ".gitignore" or file_name in IGNORE_MARKERS
+    )
+
+
+def _passed_over(directory_name: str) -> bool:
+    """Whether a walk never enters a directory of this name, whatever ignores it."""
+    return directory_name in SKIPPED_DIRECTORIES
 
 
 def join_gitignore(directory: Path) -> str:

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import os
 import pickle
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from functools import partial
 from pathlib import Path
 
@@ -31,6 +31,9 @@ from .listings import KEPT, DirectoryStatus, FileStatus, Listings
 from .reading import open_regular, status_from
 
 _FORMAT = 1
+# Directories whose status changed since the kept walk that are looked at again, at most:
+# beyond, the named directory is walked.
+MOST_CHANGED = 16
 _SUFFIX = ".walked"
 _PROTOCOL = pickle.HIGHEST_PROTOCOL
 # A file found: where it is, how it is shown, its language (``Language``'s value).
@@ -38,11 +41,19 @@ Found = tuple[str, str, str]
 
 
 def taken(
-    listings_path: Path, prefix: str, gitignores_above: Sequence[str]
+    listings_path: Path,
+    prefix: str,
+    gitignores_above: Sequence[str],
+    may_choose: Callable[[str], bool],
+    passed_over: Callable[[str], bool],
 ) -> tuple[list[Found], list[str]] | None:
     """The files the kept walk found and the directories it found without a
     ``package.xml``, if every status it stood on is as it was, the ``.gitignore`` files
-    above the named directory the same ones, and the current directory ``prefix``."""
+    above the named directory the same ones, and the current directory ``prefix``. A few
+    directories whose status changed are looked at again (``_same_entries``: a file
+    replaced changes its directory's status, not what the walk finds). ``may_choose``:
+    whether a walk may choose a file of a name, or choose otherwise for it;
+    ``passed_over``: whether a walk never enters a directory of a name."""
     kept = _read(listings_path.with_name(listings_path.name + _SUFFIX))
     if kept is None:
         return None
@@ -52,17 +63,66 @@ def taken(
     for path, status in ancestors:
         if _file_status(path) != status:
             return None
+    changed: list[str] = []
     for directory, kept_status in zip(directories, statuses, strict=True):
         try:
             now = os.stat(directory)
         except OSError:
             return None
         if (now.st_mtime_ns, now.st_ctime_ns, now.st_ino) != kept_status:
-            return None
+            changed.append(directory)
+            if len(changed) > MOST_CHANGED:
+                return None
     for path, status in files_stood_on:
         if _file_status(path) != status:
             return None
+    if changed:
+        chosen = [*(path for path, _, _ in found), *(path for path, _ in files_stood_on)]
+        for directory in changed:
+            if not _same_entries(directory, directories, chosen, may_choose, passed_over):
+                return None
     return found, without
+
+
+def _same_entries(
+    directory: str,
+    directories: Sequence[str],
+    chosen: Sequence[str],
+    may_choose: Callable[[str], bool],
+    passed_over: Callable[[str], bool],
+) -> bool:
+    """Whether ``directory`` holds the subdirectories the kept walk entered and the
+    files it chose (or asked the content of, or whose ``.gitignore`` it read) in it, of
+    the same kinds, and no other entry the walk could enter or choose: then a walk finds
+    in it what the kept one found (the files' own statuses are checked apart)."""
+    base = directory.rstrip(os.sep) + os.sep
+
+    def names_below(paths: Sequence[str]) -> set[str]:
+        return {
+            path[len(base) :]
+            for path in paths
+            if path.startswith(base) and os.sep not in path[len(base) :]
+        }
+
+    entered, files = names_below(directories), names_below(chosen)
+    try:
+        entries = list(os.scandir(directory))
+    except OSError:
+        return False
+    for entry in entries:
+        name = entry.name
+        if entry.is_symlink():
+            if name in entered or name in files or may_choose(name):
+                return False
+        elif entry.is_dir():
+            if name not in entered and not passed_over(name):
+                return False  # one the walk enters, or one an ignore rule passes over
+            entered.discard(name)
+        elif name in files and entry.is_file():
+            files.discard(name)
+        elif name in files or may_choose(name):
+            return False  # a file the walk may choose, or one an ignore rule passes over
+    return not entered and not files
 
 
 def keep(cache: FactsCache, listings: Listings, prefix: str, found: list[Found]) -> None:

@@ -13,6 +13,7 @@ import pytest
 from conftest import CATKIN_PACKAGE, write
 
 from roslint_names import discover as discover_module
+from roslint_names import walks
 from roslint_names.cache import FactsCache
 from roslint_names.discover import discover
 from roslint_names.listings import LISTINGS, FileStatus, Listings
@@ -125,15 +126,15 @@ def test_a_change_is_walked(
     before = _found(workspace, FactsCache(tmp_path / "cache"))
     _found(workspace, FactsCache(tmp_path / "cache"))  # taken whole
     change(workspace)
-    walked.clear()
     # Twice: right after the change and once all of it is old, as the kept walk says it.
     for aged in (False, True):
         if aged:
             _age(workspace)
+        fresh = _found(workspace, None)
+        walked.clear()
         after = _found(workspace, FactsCache(tmp_path / "cache"))
-        assert after == _found(workspace, None)
-        assert after != before
-    assert walked  # the first run after the change walked
+        assert after == fresh != before
+        assert walked  # the change is walked (listed or replayed), not taken whole
     walked.clear()
     assert _found(workspace, FactsCache(tmp_path / "cache")) == after
     assert walked == []  # and kept what it found: taken whole again
@@ -243,3 +244,59 @@ def test_a_walk_that_could_not_trust_a_file_s_status_is_not_kept(
     cache = FactsCache(tmp_path / "cache")
     assert _found(workspace, cache) == _found(workspace, None)
     assert _kept_walks(cache) == []
+
+
+def _replaced(path: Path) -> None:
+    """``path`` written anew (an editor saving by a rename, git checking it out): its
+    directory's status changes, not what a walk finds there."""
+    text = path.read_bytes()
+    path.unlink()
+    path.write_bytes(text + b"\n")
+
+
+def test_a_file_replaced_is_taken_whole_with_its_directory_looked_at(
+    workspace: Path, tmp_path: Path, walked: list[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    first = _found(workspace, FactsCache(tmp_path / "cache"))
+    source = workspace / "src/chatter_ros/chatter/src"
+    _replaced(source / "talker.cpp")
+    write(source, "NOTES.md", "Not a file the walk chooses.\n")
+    (source / "__pycache__").mkdir()  # a directory no walk enters
+    assert _found(workspace, None) == first
+    walked.clear()
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == first
+    assert walked == []
+    monkeypatch.setattr(walks, "MOST_CHANGED", 0)  # past the directories looked at again
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == first
+    assert walked
+
+
+@pytest.mark.parametrize(
+    "entry",
+    [
+        "helper.cpp",  # a file the walk chooses
+        "relay",  # no suffix: its content decides
+        ".gitignore",  # ignores what it names
+        "COLCON_IGNORE",  # ignores everything below
+        "nested/",  # a directory it enters, or an ignore rule passes over
+        "talker.cpp",  # a chosen file gone
+        "link.launch@",  # a link: followed each time
+    ],
+)
+def test_a_directory_that_holds_other_entries_is_walked(
+    workspace: Path, tmp_path: Path, walked: list[str], entry: str
+) -> None:
+    _found(workspace, FactsCache(tmp_path / "cache"))
+    source = workspace / "src/chatter_ros/chatter/src"
+    if entry == "talker.cpp":
+        (source / entry).unlink()
+    elif entry.endswith("/"):
+        write(source / entry, "a.cpp", TALKER)
+    elif entry.endswith("@"):
+        os.symlink(workspace / "src/chatter_ros/bringup/launch/robot.launch", source / entry[:-1])
+    else:
+        write(source, entry, "#!/usr/bin/env python3\n" if entry == "relay" else "*.cpp\n")
+    fresh = _found(workspace, None)
+    walked.clear()
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == fresh
+    assert walked
