@@ -416,7 +416,7 @@ def _discover(
             if cache is not None:
                 kept_at = Listings.path_of(cache, os.fspath(absolute), exclude, exclude_root)
                 above = [join_gitignore(ancestor) for ancestor in _repository_ancestors(absolute)]
-                kept = walks.taken(kept_at, prefix, above, _may_choose, _passed_over)
+                kept = walks.taken(kept_at, prefix, above, _WALK)
                 if kept is not None and _take_walked(found, *kept, without_manifest):
                     if not kept[0]:
                         notes.add(f"{given}: no file to lint in this directory")
@@ -481,9 +481,18 @@ def _may_choose(file_name: str) -> bool:
     )
 
 
+def _said(path: str) -> str:
+    """The value of the language a file's name and content say, "" for none."""
+    language = _decide(path, _by_name(os.path.basename(path)))
+    return "" if language is None else language.value
+
+
 def _passed_over(directory_name: str) -> bool:
     """Whether a walk never enters a directory of this name, whatever ignores it."""
     return directory_name in SKIPPED_DIRECTORIES
+
+
+_WALK = walks.Walk(_may_choose, _passed_over, _said)
 
 
 def join_gitignore(directory: Path) -> str:

@@ -66,7 +66,10 @@ class Listings:
         self._kept = Journaled(cache, path, KEPT, _ListingsUnpickler, _FORMAT)
         self.started = time.time_ns()  # before any status is taken
         self.walked = 0  # directories the walk entered (``discover._Walker``)
-        self._sniffs = 0  # files whose content was asked what it says (``sniffed``)
+        # Files whose content was asked what it says (``sniffed``), and those of them whose
+        # status was too recent to vouch for what it said.
+        self._sniffs = 0
+        self._unsure: list[str] = []
         self._known: dict[str, Listed] = {}
         self._known_ancestors: tuple[tuple[str, FileStatus | None], ...] | None = None
         self._known_sniffed: dict[str, tuple[FileStatus, str]] = {}
@@ -97,23 +100,27 @@ class Listings:
         tuple[
             tuple[tuple[str, FileStatus | None], ...],
             dict[str, Listed],
-            list[tuple[str, FileStatus]],
+            list[tuple[str, FileStatus | None]],
         ]
         | None
     ):
         """What this walk stood on, where it may be taken whole (``walks``): the
         ``.gitignore`` files above it, every directory it entered, listed or replayed,
-        each with the status it was taken with (none too recent to vouch for it), none
-        holding a link followed, and every file whose content said its language with its
-        status. None otherwise."""
+        with the status it was taken with (None: too recent to vouch for it), none holding
+        a link followed, and every file whose content said its language, with its status
+        (None alike). None where a ``.gitignore`` above it had a status too recent, or a
+        directory was not kept (its ``.gitignore``'s status was)."""
         listed = self._listed
-        if self.walked != len(listed) or self._sniffs != len(self._sniffed):
+        if self.walked != len(listed) or self._sniffs != len(self._sniffed) + len(self._unsure):
             return None
         if any(status is None and os.path.lexists(path) for path, status in self._ancestors):
             return None
-        if any(listing.status is None or listing.links for listing in listed.values()):
+        if any(listing.links for listing in listed.values()):
             return None
-        sniffed = [(path, status) for path, (status, _) in self._sniffed.items()]
+        sniffed: list[tuple[str, FileStatus | None]] = [
+            (path, status) for path, (status, _) in self._sniffed.items()
+        ]
+        sniffed.extend((path, None) for path in self._unsure)
         return self._ancestors, listed, sniffed
 
     def trusts_ancestors(self, gitignores: Sequence[str]) -> bool:
@@ -157,6 +164,8 @@ class Listings:
         """The file's status, and what its content said when it had that status."""
         self._sniffs += 1
         status = self.file_status(path)
+        if status is None:
+            self._unsure.append(path)
         kept = self._known_sniffed.get(path)
         if status is not None and kept is not None and kept[0] == status:
             self._sniffed[path] = kept

@@ -4,15 +4,20 @@ stood on as it was takes the files it found without walking.
 The listings (``listings``) spare a re-run the listing of directories that did not
 change, yet it still replays each of them, and decides each file again (77,000 at 8
 copies of the benchmark's workspace: 0.55 s a run, with loading and saving them). When
-nothing changed, every answer is the last one. So a walk that needed no warning, followed
-no symbolic link and could trust every status it took (``Listings.whole``) is kept with
-those statuses: of every directory walked (an entry added, removed or renamed changes its
-directory's), of each ``.gitignore`` in them and above the named directory (an edit of
-one leaves its directory alone), and of each file whose content said its language
+nothing changed, every answer is the last one. So a walk that needed no warning and
+followed no symbolic link (``Listings.whole``) is kept with the statuses it stood on: of
+every directory walked (an entry added, removed or renamed changes its directory's), of
+each ``.gitignore`` in them and above the named directory (an edit of one leaves its
+directory alone), and of each file whose content said its language
 (``discover._Sniff``). A run that takes each of them again and finds it equal takes the
 files as they were found, shown as they were shown (the current directory is kept too),
-and the directories that hold no ``package.xml``. Anything else walks (and keeps what
-that walk found for the next run).
+and the directories that hold no ``package.xml``. A status too recent to vouch for what
+it saw (``reading.is_racy``) is kept as none. Up to ``MOST_CHANGED`` directories of
+another status (or none) are looked at again: the walk is taken where they hold the
+entries it chose and no other it could (a file saved by a rename, or checked out anew,
+changes its directory's status, not what a walk finds); a sniffed file of another status
+is asked again what its content says. Anything else walks, and keeps what it found for
+the next run.
 
 The file is kept beside the listings, builtins only, read with an unpickler that resolves
 no class, written atomically through the facts cache; one that cannot be read is none.
@@ -25,6 +30,7 @@ import pickle
 from collections.abc import Callable, Sequence
 from functools import partial
 from pathlib import Path
+from typing import NamedTuple
 
 from .cache import BuiltinsUnpickler, FactsCache
 from .listings import KEPT, DirectoryStatus, FileStatus, Listings
@@ -40,20 +46,27 @@ _PROTOCOL = pickle.HIGHEST_PROTOCOL
 Found = tuple[str, str, str]
 
 
+class Walk(NamedTuple):
+    """How a walk chooses (``discover``'s), for what a kept walk stood on that changed."""
+
+    may_choose: Callable[[str], bool]  # a file of a name, or chooses otherwise for it
+    passed_over: Callable[[str], bool]  # never enters a directory of a name
+    said: Callable[[str], str]  # a file's language by its name and content ("": none)
+
+
 def taken(
     listings_path: Path,
     prefix: str,
     gitignores_above: Sequence[str],
-    may_choose: Callable[[str], bool],
-    passed_over: Callable[[str], bool],
+    walk: Walk,
 ) -> tuple[list[Found], list[str]] | None:
     """The files the kept walk found and the directories it found without a
     ``package.xml``, if every status it stood on is as it was, the ``.gitignore`` files
     above the named directory the same ones, and the current directory ``prefix``. A few
     directories whose status changed are looked at again (``_same_entries``: a file
-    replaced changes its directory's status, not what the walk finds). ``may_choose``:
-    whether a walk may choose a file of a name, or choose otherwise for it;
-    ``passed_over``: whether a walk never enters a directory of a name."""
+    replaced changes its directory's status, not what the walk finds), and a file whose
+    content said its language is asked again where its status changed, both as ``walk``
+    chooses."""
     kept = _read(listings_path.with_name(listings_path.name + _SUFFIX))
     if kept is None:
         return None
@@ -69,17 +82,24 @@ def taken(
             now = os.stat(directory)
         except OSError:
             return None
-        if (now.st_mtime_ns, now.st_ctime_ns, now.st_ino) != kept_status:
-            changed.append(directory)
+        if kept_status is None or (now.st_mtime_ns, now.st_ctime_ns, now.st_ino) != kept_status:
+            changed.append(directory)  # or its status was too recent to vouch for it
             if len(changed) > MOST_CHANGED:
                 return None
+    languages: dict[str, str] | None = None
     for path, status in files_stood_on:
-        if _file_status(path) != status:
+        if status is not None and _file_status(path) == status:
+            continue
+        if os.path.basename(path) == ".gitignore":
+            return None  # what it ignores may have changed: walked
+        if languages is None:
+            languages = {location: language for location, _, language in found}
+        if walk.said(path) != languages.get(path, ""):
             return None
     if changed:
         chosen = [*(path for path, _, _ in found), *(path for path, _ in files_stood_on)]
         for directory in changed:
-            if not _same_entries(directory, directories, chosen, may_choose, passed_over):
+            if not _same_entries(directory, directories, chosen, walk):
                 return None
     return found, without
 
@@ -88,8 +108,7 @@ def _same_entries(
     directory: str,
     directories: Sequence[str],
     chosen: Sequence[str],
-    may_choose: Callable[[str], bool],
-    passed_over: Callable[[str], bool],
+    walk: Walk,
 ) -> bool:
     """Whether ``directory`` holds the subdirectories the kept walk entered and the
     files it chose (or asked the content of, or whose ``.gitignore`` it read) in it, of
@@ -112,15 +131,15 @@ def _same_entries(
     for entry in entries:
         name = entry.name
         if entry.is_symlink():
-            if name in entered or name in files or may_choose(name):
+            if name in entered or name in files or walk.may_choose(name):
                 return False
         elif entry.is_dir():
-            if name not in entered and not passed_over(name):
+            if name not in entered and not walk.passed_over(name):
                 return False  # one the walk enters, or one an ignore rule passes over
             entered.discard(name)
         elif name in files and entry.is_file():
             files.discard(name)
-        elif name in files or may_choose(name):
+        elif name in files or walk.may_choose(name):
             return False  # a file the walk may choose, or one an ignore rule passes over
     return not entered and not files
 
@@ -160,8 +179,8 @@ def _read(
         str,
         tuple[tuple[str, FileStatus | None], ...],
         tuple[str, ...],
-        tuple[DirectoryStatus, ...],
-        tuple[tuple[str, FileStatus], ...],
+        tuple[DirectoryStatus | None, ...],
+        tuple[tuple[str, FileStatus | None], ...],
         list[str],
         list[Found],
     ]

@@ -15,6 +15,7 @@ from conftest import CATKIN_PACKAGE, write
 
 from roslint_names import discover as discover_module
 from roslint_names import listings as listings_module
+from roslint_names import walks
 from roslint_names.cache import FactsCache
 from roslint_names.discover import discover
 from roslint_names.listings import LISTINGS
@@ -40,6 +41,12 @@ BRINGUP = """<launch>
 </launch>
 """
 RELAY = "#!/usr/bin/env python3\nimport rospy\nrospy.init_node('relay')\n"
+
+
+@pytest.fixture(autouse=True)
+def walked_each_time(monkeypatch: pytest.MonkeyPatch) -> None:
+    """No walk taken whole (``walks``, its own tests): these test what a walk lists."""
+    monkeypatch.setattr(walks, "taken", lambda *_: None)
 
 
 @pytest.fixture

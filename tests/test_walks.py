@@ -5,7 +5,6 @@ what a walk finds makes it walk: the tree of ``test_listings`` without its link.
 from __future__ import annotations
 
 import os
-import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -183,24 +182,21 @@ def test_a_walk_that_warned_or_followed_a_link_is_not_kept(workspace: Path, tmp_
     assert _found(workspace, FactsCache(tmp_path / "cache")) == _found(workspace, None)
 
 
-def test_a_tree_changed_just_now_is_not_kept_whole(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    """Within the racy window a status may hide a change made in the same clock tick."""
+def test_a_tree_changed_just_now_is_looked_at_again(tmp_path: Path, walked: list[str]) -> None:
+    """Within the racy window a status may hide a change made in the same clock tick: the
+    walk is kept without it, and each such directory's entries are looked at again."""
     root = tmp_path / "ws"
     write(root, "src/chatter/package.xml", CATKIN_PACKAGE.format(name="chatter"))
     write(root, "src/chatter/src/talker.cpp", TALKER)
     cache = FactsCache(tmp_path / "cache")
-    _found(root, cache)
-    assert _kept_walks(cache) == []
-    past = time.time() - 60
-    for directory, _, files in os.walk(root):
-        for name in files:
-            os.utime(os.path.join(directory, name), (past, past))
-        os.utime(directory, (past, past))
-    monkeypatch.setattr("roslint_names.reading.RACY_NANOSECONDS", 0)  # the change time too
-    _found(root, FactsCache(tmp_path / "cache"))
+    first = _found(root, cache)
     assert len(_kept_walks(cache)) == 1
+    walked.clear()
+    assert _found(root, FactsCache(tmp_path / "cache")) == first
+    assert walked == []
+    write(root, "src/chatter/src/listener.cpp", TALKER)  # within the same tick, maybe
+    fresh = _found(root, None)
+    assert _found(root, FactsCache(tmp_path / "cache")) == fresh != first
 
 
 @pytest.mark.parametrize(
@@ -229,21 +225,43 @@ def test_a_walk_that_warned_of_a_gitignore_warns_again(workspace: Path, tmp_path
         assert warnings == said
 
 
-@pytest.mark.parametrize("untrusted", [".gitignore", "relay"])
-def test_a_walk_that_could_not_trust_a_file_s_status_is_not_kept(
-    workspace: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, untrusted: str
+def test_a_walk_that_could_not_trust_a_gitignore_s_status_is_not_kept(
+    workspace: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """A ``.gitignore`` whose status is too recent to vouch for it leaves its directory's
-    listing unkept, a sniffed file's its verdict: the walk is not whole."""
+    listing unkept: the walk is not whole."""
     real = Listings.file_status
 
     def file_status(self: Listings, path: str) -> FileStatus | None:
-        return None if os.path.basename(path) == untrusted else real(self, path)
+        return None if os.path.basename(path) == ".gitignore" else real(self, path)
 
     monkeypatch.setattr(Listings, "file_status", file_status)
     cache = FactsCache(tmp_path / "cache")
     assert _found(workspace, cache) == _found(workspace, None)
     assert _kept_walks(cache) == []
+
+
+def test_a_sniffed_file_whose_status_changed_is_asked_again(
+    workspace: Path, tmp_path: Path, walked: list[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Its status too recent to vouch for what it said, or another now: what its content
+    says is asked again, and the walk taken whole where it says the same."""
+    real = Listings.file_status
+
+    def file_status(self: Listings, path: str) -> FileStatus | None:
+        return None if os.path.basename(path) == "relay" else real(self, path)
+
+    with monkeypatch.context() as patched:
+        patched.setattr(Listings, "file_status", file_status)
+        first = _found(workspace, FactsCache(tmp_path / "cache"))
+    relay = workspace / "src/chatter_ros/chatter/scripts/relay"
+    relay.write_text(RELAY + "rospy.spin()\n", encoding="utf-8")  # still Python
+    walked.clear()
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == first
+    assert walked == []
+    relay.write_text("#!/bin/bash\nrosrun chatter talker\n", encoding="utf-8")
+    fresh = _found(workspace, None)
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == fresh != first
 
 
 def _replaced(path: Path) -> None:
