@@ -417,8 +417,10 @@ def _discover(
                 kept_at = Listings.path_of(cache, os.fspath(absolute), exclude, exclude_root)
                 above = [join_gitignore(ancestor) for ancestor in _repository_ancestors(absolute)]
                 kept = walks.taken(kept_at, prefix, above, _WALK)
-                if kept is not None and _take_walked(found, *kept, without_manifest):
-                    if not kept[0]:
+                if kept is not None and kept.again:
+                    kept = _walked_again(kept, absolute, exclude, exclude_root, prefix)
+                if kept is not None and _take_walked(found, kept, without_manifest):
+                    if not kept.found:
                         notes.add(f"{given}: no file to lint in this directory")
                     continue
                 listings = Listings(kept_at, cache)
@@ -455,22 +457,69 @@ def _discover(
 
 
 def _take_walked(
-    found: dict[str, SourceFile],
-    files: list[walks.Found],
-    without: list[str],
-    without_manifest: set[str] | None,
+    found: dict[str, SourceFile], kept: walks.Taken, without_manifest: set[str] | None
 ) -> bool:
     """Add the files a kept walk found (``walks``); False, adding nothing, where what was
     kept is not what a walk keeps."""
     try:
-        taken = [SourceFile(path, display, _LANGUAGES[said]) for path, display, said in files]
+        taken = [SourceFile(path, shown, _LANGUAGES[said]) for path, shown, said in kept.found]
     except (KeyError, TypeError, ValueError):
         return False
     for source in taken:
         found[source.location] = source
     if without_manifest is not None:
-        without_manifest.update(without)
+        without_manifest.update(kept.without_manifest)
     return True
+
+
+def _walked_again(
+    kept: walks.Taken, top: Path, exclude: Sequence[str], exclude_root: Path, prefix: str
+) -> walks.Taken | None:
+    """``kept`` with the directories it names to walk again walked, under the ignore
+    rules above each as the kept walk read them (those of the repository above ``top``,
+    the kept ``.gitignore`` files from ``top`` down) and its own; None where that walk
+    warned or chose a link (the whole is walked then, and says so)."""
+    notes = _Notes(prefix, [])
+    chosen: list[tuple[str, Language | _Sniff]] = []
+    without: set[str] = set()
+    gitignores = set(kept.gitignores)
+    for directory in kept.again:
+        rules = _IgnoreRules(exclude, exclude_root, notes)
+        for ancestor in _repository_ancestors(top):
+            rules.enter(ancestor)
+        for above in _directories_down_to(os.fspath(top), directory):
+            if join_gitignore(Path(above)) in gitignores:
+                rules.enter(above)
+        walker = _Walker(rules, _by_name, chosen, notes, None, without)
+        walker.walk(directory, trusted=False)
+    if notes.lines or any(os.path.islink(path) for path, _ in chosen):
+        return None
+    files: list[walks.Found] = []
+    for path, by_name in chosen:
+        language = by_name if isinstance(by_name, Language) else _decide(path, by_name)
+        if language is not None:
+            files.append((path, _displayed(path, prefix), language.value))
+    bases = tuple(directory.rstrip(os.sep) + os.sep for directory in kept.again)
+
+    def outside(path: str) -> bool:
+        return path not in kept.again and not path.startswith(bases)
+
+    return walks.Taken(
+        [found for found in kept.found if outside(found[0])] + files,
+        [directory for directory in kept.without_manifest if outside(directory)] + sorted(without),
+        [],
+        kept.gitignores,
+    )
+
+
+def _directories_down_to(top: str, directory: str) -> list[str]:
+    """The directories from ``top`` down to the one holding ``directory``, outermost
+    first (none where ``directory`` is ``top``)."""
+    relative = os.path.relpath(directory, top)
+    if relative == os.curdir:
+        return []
+    parts = relative.split(os.sep)[:-1]
+    return [os.path.join(top, *parts[:count]) for count in range(len(parts) + 1)]
 
 
 def _may_choose(file_name: str) -> bool:

@@ -46,6 +46,17 @@ _PROTOCOL = pickle.HIGHEST_PROTOCOL
 Found = tuple[str, str, str]
 
 
+class Taken(NamedTuple):
+    """What a kept walk found, and where to walk again."""
+
+    found: list[Found]
+    without_manifest: list[str]  # the directories it found no ``package.xml`` in
+    # Directories that hold other entries than the walk chose now (none below another):
+    # walked again, what the kept walk found below them left out.
+    again: list[str]
+    gitignores: list[str]  # the ``.gitignore`` files in the directories it walked
+
+
 class Walk(NamedTuple):
     """How a walk chooses (``discover``'s), for what a kept walk stood on that changed."""
 
@@ -59,7 +70,7 @@ def taken(
     prefix: str,
     gitignores_above: Sequence[str],
     walk: Walk,
-) -> tuple[list[Found], list[str]] | None:
+) -> Taken | None:
     """The files the kept walk found and the directories it found without a
     ``package.xml``, if every status it stood on is as it was, the ``.gitignore`` files
     above the named directory the same ones, and the current directory ``prefix``. A few
@@ -96,12 +107,26 @@ def taken(
             languages = {location: language for location, _, language in found}
         if walk.said(path) != languages.get(path, ""):
             return None
+    again: list[str] = []
     if changed:
         chosen = [*(path for path, _, _ in found), *(path for path, _ in files_stood_on)]
-        for directory in changed:
-            if not _same_entries(directory, directories, chosen, walk):
-                return None
-    return found, without
+        again = [
+            directory
+            for directory in changed
+            if not _same_entries(directory, directories, chosen, walk)
+        ]
+    gitignores = [path for path, _ in files_stood_on if os.path.basename(path) == ".gitignore"]
+    return Taken(found, without, _topmost(again), gitignores)
+
+
+def _topmost(directories: list[str]) -> list[str]:
+    """``directories`` less those below another of them."""
+    ordered = sorted(directories)
+    return [
+        directory
+        for index, directory in enumerate(ordered)
+        if not any(directory.startswith(other.rstrip(os.sep) + os.sep) for other in ordered[:index])
+    ]
 
 
 def _same_entries(

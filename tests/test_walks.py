@@ -318,3 +318,27 @@ def test_a_directory_that_holds_other_entries_is_walked(
     walked.clear()
     assert _found(workspace, FactsCache(tmp_path / "cache")) == fresh
     assert walked
+
+
+def test_only_the_directories_that_hold_other_entries_are_walked_again(
+    workspace: Path, tmp_path: Path, walked: list[str]
+) -> None:
+    """Under the ignore rules the kept walk read above them: the repository's
+    ``.gitignore`` ignores ``skip_*.cpp`` in a directory walked again."""
+    gitignore = workspace / "src/chatter_ros/.gitignore"
+    gitignore.write_text("*.orig\nskip_*.cpp\n", encoding="utf-8")
+    _age(workspace)
+    first = _found(workspace, FactsCache(tmp_path / "cache"))
+    source = workspace / "src/chatter_ros/chatter/src"
+    write(source, "listener.cpp", TALKER)
+    write(source, "skip_me.cpp", TALKER)
+    write(source / "nested", "probe.cpp", TALKER)
+    (workspace / "src/chatter_ros/bringup/launch/robot.launch").unlink()
+    fresh = _found(workspace, None)
+    assert ("src/chatter_ros/chatter/src/listener.cpp", Language.CPP) in fresh
+    assert ("src/chatter_ros/chatter/src/nested/probe.cpp", Language.CPP) in fresh
+    assert not any("skip_me" in shown for shown, _ in fresh)
+    walked.clear()
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == fresh != first
+    launch = os.path.join(workspace, "src/chatter_ros/bringup/launch")
+    assert sorted(walked) == sorted([launch, os.fspath(source), os.fspath(source / "nested")])
