@@ -54,10 +54,19 @@ def workspace(tmp_path: Path, old_tree: None) -> Path:
     """A catkin workspace as ``catkin_init_workspace`` leaves it (``src/CMakeLists.txt`` a
     link to catkin's top-level file), one repository with its ``.gitignore``, two
     packages, a script without a suffix and an XML file whose root decides."""
-    root = tmp_path / "ws"
-    write(root, "catkin/toplevel.cmake", "cmake_minimum_required(VERSION 3.0.2)\n")
-    (root / "src").mkdir(parents=True)
-    os.symlink(root / "catkin/toplevel.cmake", root / "src/CMakeLists.txt")
+    return chatter_workspace(tmp_path / "ws", linked_toplevel=True)
+
+
+def chatter_workspace(root: Path, *, linked_toplevel: bool) -> Path:
+    """The ``workspace`` at ``root``; its ``src/CMakeLists.txt`` a file of its own
+    unless ``linked_toplevel``."""
+    toplevel = "cmake_minimum_required(VERSION 3.0.2)\n"
+    if linked_toplevel:
+        write(root, "catkin/toplevel.cmake", toplevel)
+        (root / "src").mkdir(parents=True)
+        os.symlink(root / "catkin/toplevel.cmake", root / "src/CMakeLists.txt")
+    else:
+        write(root, "src/CMakeLists.txt", toplevel)
     repository = root / "src/chatter_ros"
     (repository / ".git").mkdir(parents=True)
     write(repository, ".gitignore", "*.orig\n")
@@ -189,21 +198,21 @@ def _replaced_by_directory(root: Path) -> None:
     write(relay.parent, "relay/talker.py", RELAY)
 
 
-@pytest.mark.parametrize(
-    "change",
-    [
-        _remove_link_target,
-        _ignore_by_gitignore,
-        _ignore_above,
-        _script_no_longer_python,
-        _xml_no_longer_launch,
-        _marker,
-        _added,
-        _removed,
-        _renamed,
-        _replaced_by_directory,
-    ],
+# Every kind of change but a link's (``_remove_link_target``).
+CHANGES = (
+    _ignore_by_gitignore,
+    _ignore_above,
+    _script_no_longer_python,
+    _xml_no_longer_launch,
+    _marker,
+    _added,
+    _removed,
+    _renamed,
+    _replaced_by_directory,
 )
+
+
+@pytest.mark.parametrize("change", [_remove_link_target, *CHANGES])
 def test_a_re_run_finds_what_a_fresh_walk_finds(
     workspace: Path, tmp_path: Path, change: Callable[[Path], None]
 ) -> None:
@@ -219,11 +228,18 @@ def test_a_re_run_finds_what_a_fresh_walk_finds(
 
 
 def test_a_gitignore_above_the_named_directory_is_checked(workspace: Path, tmp_path: Path) -> None:
+    gitignore_above_is_checked(workspace, tmp_path / "cache", runs_before=1)
+
+
+def gitignore_above_is_checked(workspace: Path, cache: Path, runs_before: int) -> None:
+    """A package of ``workspace`` named, run ``runs_before`` times with the cache at
+    ``cache``, then the repository's ``.gitignore`` above it edited in place."""
     package = workspace / "src/chatter_ros/chatter"
-    first = _found(package, FactsCache(tmp_path / "cache"))
-    assert ("launch/nodes.xml", Language.LAUNCH_XML) in first
+    for _ in range(runs_before):
+        first = _found(package, FactsCache(cache))
+        assert ("launch/nodes.xml", Language.LAUNCH_XML) in first
     _ignore_above(workspace)
-    after = _found(package, FactsCache(tmp_path / "cache"))
+    after = _found(package, FactsCache(cache))
     assert after == _found(package, None)
     assert ("launch/nodes.xml", Language.LAUNCH_XML) not in after
 

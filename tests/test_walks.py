@@ -19,18 +19,12 @@ from roslint_names.listings import LISTINGS, FileStatus, Listings
 from roslint_names.model import Language
 from tests.test_listings import (
     BRINGUP,
+    CHANGES,
     RELAY,
     TALKER,
-    _added,
     _age,
-    _ignore_above,
-    _ignore_by_gitignore,
-    _marker,
-    _removed,
-    _renamed,
-    _replaced_by_directory,
-    _script_no_longer_python,
-    _xml_no_longer_launch,
+    chatter_workspace,
+    gitignore_above_is_checked,
 )
 
 Found = list[tuple[str, Language]]
@@ -38,23 +32,9 @@ Found = list[tuple[str, Language]]
 
 @pytest.fixture
 def workspace(tmp_path: Path, old_tree: None) -> Path:
-    """Two packages in one repository with its ``.gitignore``, a script without a suffix
-    and an XML file whose root decides; no link (a walk that follows one is walked
+    """``test_listings``' workspace without its link (a walk that follows one is walked
     again each time)."""
-    root = tmp_path / "ws"
-    write(root, "src/CMakeLists.txt", "cmake_minimum_required(VERSION 3.0.2)\n")
-    repository = root / "src/chatter_ros"
-    (repository / ".git").mkdir(parents=True)
-    write(repository, ".gitignore", "*.orig\n")
-    write(repository, "chatter/package.xml", CATKIN_PACKAGE.format(name="chatter"))
-    write(repository, "chatter/CMakeLists.txt", "add_executable(talker src/talker.cpp)\n")
-    write(repository, "chatter/src/talker.cpp", TALKER)
-    write(repository, "chatter/scripts/relay", RELAY)
-    write(repository, "chatter/launch/nodes.xml", BRINGUP)
-    write(repository, "bringup/package.xml", CATKIN_PACKAGE.format(name="bringup"))
-    write(repository, "bringup/launch/robot.launch", BRINGUP)
-    _age(root)
-    return root
+    return chatter_workspace(tmp_path / "ws", linked_toplevel=False)
 
 
 @pytest.fixture
@@ -105,20 +85,7 @@ def test_an_unchanged_tree_is_taken_whole(
     assert [(source.display, source.language) for source in taken] == _found(workspace, None)
 
 
-@pytest.mark.parametrize(
-    "change",
-    [
-        _ignore_by_gitignore,
-        _ignore_above,
-        _script_no_longer_python,
-        _xml_no_longer_launch,
-        _marker,
-        _added,
-        _removed,
-        _renamed,
-        _replaced_by_directory,
-    ],
-)
+@pytest.mark.parametrize("change", CHANGES)
 def test_a_change_is_walked(
     workspace: Path, tmp_path: Path, walked: list[str], change: Callable[[Path], None]
 ) -> None:
@@ -140,14 +107,7 @@ def test_a_change_is_walked(
 
 
 def test_a_gitignore_above_the_named_directory_is_checked(workspace: Path, tmp_path: Path) -> None:
-    package = workspace / "src/chatter_ros/chatter"
-    for _ in range(2):  # walked, then taken whole
-        first = _found(package, FactsCache(tmp_path / "cache"))
-    assert ("launch/nodes.xml", Language.LAUNCH_XML) in first
-    _ignore_above(workspace)
-    after = _found(package, FactsCache(tmp_path / "cache"))
-    assert after == _found(package, None)
-    assert ("launch/nodes.xml", Language.LAUNCH_XML) not in after
+    gitignore_above_is_checked(workspace, tmp_path / "cache", runs_before=2)  # then whole
 
 
 def test_another_current_directory_shows_the_files_anew(workspace: Path, tmp_path: Path) -> None:
