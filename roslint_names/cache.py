@@ -513,6 +513,8 @@ class FactsCache:
         self.flush()
         share = PACK_LIMIT // len(SHARDS)
         for shard, records in sorted(self._records.items()):
+            if not self._may_have_outgrown(_pack_name(shard), share):
+                continue
             used = {key: where for key, where in records.items() if key in self._used}
             used_bytes = sum(end - start + _RECORD_HEADER for start, end in used.values())
             tail = self._outgrown(_pack_name(shard), used_bytes, share)
@@ -523,6 +525,8 @@ class FactsCache:
                 ]
                 self.write_atomically(self.directory / _pack_name(shard), b"".join(kept) + tail)
         for shard, lines in sorted(self._empty.items()):
+            if not self._may_have_outgrown(_log_name(shard), share):
+                continue
             kept_lines = "".join(
                 _log_line(key, language, generation)
                 for key, (language, generation) in sorted(lines.items())
@@ -531,6 +535,13 @@ class FactsCache:
             tail = self._outgrown(_log_name(shard), len(kept_lines), share)
             if tail is not None:
                 self.write_atomically(self.directory / _log_name(shard), kept_lines + tail)
+
+    def _may_have_outgrown(self, name: str, share: int) -> bool:
+        """Whether this run read more than half ``share`` of the pack or log ``name``:
+        else nothing it did not use can pass half the share, and what it used is not
+        worked out (every log line of a first run formatted again)."""
+        read = self._read_as.get(name)
+        return read is not None and read.size > share // 2
 
     def _outgrown(self, name: str, used: int, share: int) -> bytes | None:
         """What was appended to the pack or log ``name`` since this run read it, where it
@@ -599,16 +610,12 @@ class _Read(NamedTuple):
     size: int
 
 
-def _map(path: str) -> bytes | mmap.mmap:
-    """The pack, mapped: a run reads the records it loads, not all of it (a run after an
-    edit loads one file's facts or none from a 100 MB pack at 8 copies of the benchmark's
-    workspace). The mapping is of the file as opened: a pack another run rewrites (a
-    rename over it) or appends to meanwhile leaves it as it was."""
-    return _map_as(path)[0]
-
-
 def _map_as(path: str) -> tuple[bytes | mmap.mmap, _Read | None]:
-    """``_map``, and what was mapped (None: nothing)."""
+    """The pack, mapped, and what was mapped (None: nothing): a run reads the records it
+    loads, not all of it (a run after an edit loads one file's facts or none from a 100
+    MB pack at 8 copies of the benchmark's workspace). The mapping is of the file as
+    opened: a pack another run rewrites (a rename over it) or appends to meanwhile leaves
+    it as it was."""
     try:
         with open_regular(path) as stream:
             mapped = mmap.mmap(stream.fileno(), 0, access=mmap.ACCESS_READ)
@@ -728,14 +735,6 @@ def _size(path: Path) -> int:
         return 0
 
 
-def _read_bytes(path: str) -> bytes:
-    try:
-        with open_regular(path) as stream:
-            return stream.read()
-    except OSError:  # absent (nothing stored yet) or unreadable: everything misses
-        return b""
-
-
 def _shard_of(key: str) -> str | None:
     """The shard a key's facts are kept in: its first hex digit (None: not a key)."""
     shard = key[:1]
@@ -761,10 +760,6 @@ def _line_checksum(record: str) -> str:
 
 _LANGUAGES = {language.value: language for language in Language}
 _GENERATIONS = {str(generation.value): generation for generation in Generation}
-
-
-def _read_log(path: str) -> dict[str, tuple[Language, Generation]]:
-    return _read_log_as(path)[0]
 
 
 def _read_log_as(path: str) -> tuple[dict[str, tuple[Language, Generation]], _Read | None]:

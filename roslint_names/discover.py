@@ -483,12 +483,13 @@ def _walked_again(
     chosen: list[tuple[str, Language | _Sniff]] = []
     without: set[str] = set()
     gitignores = set(kept.gitignores)
+    ancestors = _repository_ancestors(top)
     for directory in kept.again:
         rules = _IgnoreRules(exclude, exclude_root, notes)
-        for ancestor in _repository_ancestors(top):
+        for ancestor in ancestors:
             rules.enter(ancestor)
         for above in _directories_down_to(os.fspath(top), directory):
-            if join_gitignore(Path(above)) in gitignores:
+            if join_gitignore(above) in gitignores:
                 rules.enter(above)
         walker = _Walker(rules, _by_name, chosen, notes, None, without)
         walker.walk(directory, trusted=False)
@@ -544,7 +545,7 @@ def _passed_over(directory_name: str) -> bool:
 _WALK = walks.Walk(_may_choose, _passed_over, _said)
 
 
-def join_gitignore(directory: Path) -> str:
+def join_gitignore(directory: str | Path) -> str:
     """The ``.gitignore`` of a directory above a named one (``_walk_named``)."""
     return os.path.join(directory, ".gitignore")
 

@@ -424,7 +424,7 @@ def test_two_writers_racing_leave_a_valid_entry(tmp_path: Path) -> None:
     lines = log_lines(tmp_path)
     assert len(lines) == 2 * 200  # every append whole, none lost
     logs = tmp_path.glob("facts-v*/empty-?.log")
-    assert sum(len(cache_module._read_log(str(log))) for log in logs) == 400
+    assert sum(len(cache_module._read_log_as(str(log))[0]) for log in logs) == 400
 
 
 def test_a_torn_or_damaged_log_line_is_skipped(tmp_path: Path) -> None:
@@ -665,7 +665,7 @@ def test_a_mapped_pack_indexes_and_loads_as_its_bytes(tmp_path: Path, damage: st
     data = b"".join(records)
     path = tmp_path / "facts.pack"
     path.write_bytes(data)
-    mapped = cache_module._map(str(path))
+    mapped = cache_module._map_as(str(path))[0]
     assert isinstance(mapped, mmap.mmap)
     indexed = cache_module._index(mapped)
     assert indexed == cache_module._index(data)
@@ -688,7 +688,7 @@ def test_a_mapped_pack_indexes_and_loads_as_its_bytes(tmp_path: Path, damage: st
 def test_only_a_mapped_pack_s_pages_are_handed_back(tmp_path: Path) -> None:
     path = tmp_path / "facts.pack"
     path.write_bytes(b"\0" * (10 * 1024 * 1024))
-    mapped = cache_module._map(str(path))
+    mapped = cache_module._map_as(str(path))[0]
     assert isinstance(mapped, mmap.mmap)
     step = cache_module._RELEASED_EVERY
     assert cache_module._released(mapped, 0, step - 1) == 0  # not yet a step indexed
@@ -709,7 +709,7 @@ def test_a_pack_under_a_step_is_handed_back_once_indexed(
     made = _records(12, 250_000)  # 3 MB
     path = tmp_path / "facts-0.pack"
     path.write_bytes(b"".join(record for _, record in made))
-    mapped = cache_module._map(str(path))
+    mapped = cache_module._map_as(str(path))[0]
     assert isinstance(mapped, mmap.mmap)
     handed_back: list[int] = []
     released = cache_module._released
