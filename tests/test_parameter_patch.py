@@ -110,6 +110,23 @@ class SonarDockSensor : public fleet_bringup::DockSensor
 }  // namespace fleet_sensors
 """,
 }
+# The dock manager started under a name the launch file is handed: a node of unknown
+# name keeps of its parameter file what its code may take (``UnnamedReceiver``), which
+# an edit of that code changes.
+RECEIVING_FILES = {
+    "src/fleet_bringup/launch/docking.launch.xml": """<launch>
+  <arg name="dock_name"/>
+  <node pkg="fleet_bringup" exec="dock_manager" name="$(var dock_name)">
+    <param from="$(find-pkg-share fleet_bringup)/config/dock.yaml"/>
+  </node>
+</launch>
+""",
+    "src/fleet_bringup/config/dock.yaml": """/**:
+  ros__parameters:
+    dock_frame: charging_dock
+    approach_speed: 0.2
+""",
+}
 # The edits that make the dock manager one, and the fleet monitor report through a class
 # no file defines yet (before the first build).
 SETUP = [
@@ -255,12 +272,11 @@ _Parts = tuple[Graph, LaunchParts, CodeParameterParts]
 _Step = tuple[str, _Parts, _Parts | None]
 
 
-@pytest.fixture(scope="module")
-def steps(tmp_path_factory: pytest.TempPathFactory) -> list[_Step]:
+def _steps(root: Path, extra: dict[str, str]) -> list[_Step]:
     """Each step: the file edited, the graph and the parts built after it, and those
     patched."""
-    workspace = _Workspace(tmp_path_factory.mktemp("parameter_patch") / "ws")
-    workspace.add(EXTRA_FILES)
+    workspace = _Workspace(root)
+    workspace.add(extra)
     for edit in SETUP:
         workspace.edit(*edit)
     last = workspace.built()
@@ -273,12 +289,47 @@ def steps(tmp_path_factory: pytest.TempPathFactory) -> list[_Step]:
     return found
 
 
+@pytest.fixture(scope="module")
+def steps(tmp_path_factory: pytest.TempPathFactory) -> list[_Step]:
+    return _steps(tmp_path_factory.mktemp("parameter_patch") / "ws", EXTRA_FILES)
+
+
+@pytest.fixture(scope="module")
+def received_steps(tmp_path_factory: pytest.TempPathFactory) -> list[_Step]:
+    """The steps where a launch file hands the dock manager a parameter file and a name
+    the linter does not know."""
+    root = tmp_path_factory.mktemp("parameter_patch_received") / "ws"
+    return _steps(root, {**EXTRA_FILES, **RECEIVING_FILES})
+
+
 @pytest.mark.parametrize("step", range(len(PATCHED)))
 def test_a_patched_graph_and_its_parts_are_the_built_ones(steps: list[_Step], step: int) -> None:
     """The parts too: the parameters of each node's code, the lookups, the spans and
     the counts, which a patched run keeps as the next runs' (``engine``'s
     ``REBASE_EDITS``)."""
     assert_patched(steps, step)
+
+
+@pytest.mark.parametrize("step", range(len(PATCHED)))
+def test_a_node_of_unknown_name_handed_a_parameter_file_keeps_its_code_s_parameters_now(
+    received_steps: list[_Step], step: int
+) -> None:
+    """What it may take of the file is its code's parameters as the edit left them
+    (``parameter_patch._receivers``): patched, where the graph was built before."""
+    assert_patched(received_steps, step)
+
+
+def test_the_dock_manager_s_edits_change_what_its_parameter_file_s_receiver_takes(
+    received_steps: list[_Step],
+) -> None:
+    graphs = [built[0] for _, built, _ in received_steps]
+    changed = {
+        received_steps[step][0]
+        for step, (before, now) in enumerate(pairwise(graphs), start=1)
+        if before.unnamed_parameter_files != now.unnamed_parameter_files
+    }
+    assert graphs[0].unnamed_parameter_files
+    assert {DOCK, MANAGED} <= changed
 
 
 def test_the_steps_change_what_code_declares(steps: list[_Step]) -> None:

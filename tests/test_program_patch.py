@@ -479,6 +479,58 @@ def test_a_source_another_package_s_build_file_names_is_patched(tmp_path: Path) 
         built = now
 
 
+WATCHDOG = "src/turtle_bringup/src/watchdog.cpp"
+# A node of a program not built yet, started under a name the includer hands over,
+# with a parameter file: it keeps what its code may take of the file (none yet).
+WATCHDOG_LAUNCH = {
+    "src/turtle_bringup/launch/watchdog.launch": """<launch>
+  <!-- One watchdog per base, named by the launch file that includes this one. -->
+  <arg name="watchdog_name"/>
+  <node name="$(arg watchdog_name)" pkg="turtle_bringup" type="watchdog">
+    <rosparam command="load" file="$(find turtle_bringup)/config/watchdog.yaml"/>
+  </node>
+</launch>
+""",
+    "src/turtle_bringup/config/watchdog.yaml": "timeout: 2.0\nodom_topic: odom\n",
+}
+WATCHDOG_NODE = """// Stops the base when its odometry goes quiet.
+#include <nav_msgs/Odometry.h>
+#include <ros/ros.h>
+
+int main(int argc, char ** argv)
+{
+  ros::init(argc, argv, "watchdog");
+  ros::NodeHandle private_nh("~");
+  double timeout = private_nh.param("timeout", 2.0);
+  ros::spin();
+  return 0;
+}
+"""
+
+
+def test_a_node_of_unknown_name_takes_the_parameters_of_its_program_made_anew(
+    tmp_path: Path,
+) -> None:
+    """The program of a node handed a parameter file under a name the linter does not
+    know is added, then taken out: what the node may take of the file is its code's
+    parameters, gathered by the parameter patch (``parameter_patch._receivers``), where
+    the graph was built before."""
+    workspace = _Workspace(tmp_path / "ws")
+    workspace.add(WATCHDOG_LAUNCH)
+    built = workspace.built()
+    added = (
+        {WATCHDOG: WATCHDOG_NODE},
+        [(CMAKE, "", "add_executable(watchdog src/watchdog.cpp)\n")],
+    )
+    removed = ({WATCHDOG: None}, [(CMAKE, "add_executable(watchdog src/watchdog.cpp)\n", "")])
+    for files, edits in (added, removed):
+        workspace.step(files, edits)
+        now = workspace.built()
+        assert now[0].unnamed_parameter_files != built[0].unnamed_parameter_files
+        assert workspace.patched(built, now[3]) == now[:3], files
+        built = now
+
+
 def test_a_built_source_once_unbuilt_is_refused(tmp_path: Path) -> None:
     """The parameter tables leave out code no build compiles: a source the build had
     that a target names now changes them past what the patch follows."""

@@ -340,11 +340,10 @@ def _patched(
     for root in roots:
         for path, receiver in unnamed_of[root] if root in unnamed_of else parts.trees[root].unnamed:
             receivers.setdefault(path, set()).add(receiver)
+    # A receiver of code made anew is handed its parameters by the parameter patch too.
     unnamed = unnamed_receivers(receivers, parameters.of)
-    if parameters.missing or any(
-        sources in parameters.later for found in receivers.values() for _, sources in found
-    ):
-        return None  # a receiver keeps its code's parameters without the code
+    if parameters.missing:
+        return None
     all_nodes = _unique([*kept, *finished], NodeInstance.sort_key)
     walked_parts = {
         root: TreePart(

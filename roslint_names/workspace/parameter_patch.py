@@ -31,12 +31,12 @@ ran at the build, is gathered again, and the code no node runs any more is dropp
 
 ``parameters_patched`` gives the graph a build would, over facts whose names take
 other files' constants as the run resolves them (``graph_patch.GraphPatch``: those that
-resolve otherwise than at the build are edits, ``_Constants.anew``); None (the caller
-builds) where a node of unknown name is handed a parameter file and its code's
-parameters change (the graph keeps those without the code they are of), or a file's
-facts cannot be loaded. It gives the parts a build would leave too (each node's code
-parameters, the lookups, spans and counts), which a run that keeps what it patched
-keeps (``graph_patch.REBASE_EDITS``).
+resolve otherwise than at the build are edits, ``_Constants.anew``), a node of unknown
+name handed a parameter file with what its code may take of it as gathered now (the
+graph keeps those parameters without the code they are of: the trees' parts say which);
+None (the caller builds) where a file's facts cannot be loaded. It gives the parts a
+build would leave too (each node's code parameters, the lookups, spans and counts),
+which a run that keeps what it patched keeps (``graph_patch.REBASE_EDITS``).
 ``tests/test_parameter_patch.py`` compares patched graphs and parts with built ones.
 """
 
@@ -46,14 +46,15 @@ import posixpath
 from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import replace
 
-from roslint_names.model import FileFacts, Language, replaced
-from roslint_names.workspace.build import _TestFiles
-from roslint_names.workspace.graph import Graph
+from roslint_names.model import FileFacts, Generation, Language, replaced
+from roslint_names.workspace.build import _TestFiles, unnamed_receivers
+from roslint_names.workspace.graph import Graph, UnnamedReceiver
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
 from roslint_names.workspace.launch_parts import CodeParameterParts, LaunchParts
 from roslint_names.workspace.launch_patch import UnknownFactsError
 from roslint_names.workspace.parameters import (
     DeclarationCounts,
+    NodeParameters,
     ParameterSets,
     ParameterTables,
     file_declarations,
@@ -117,24 +118,16 @@ def parameters_patched(
         for sources, spans in code.spans.items()
         if not spans.isdisjoint(reached) and removed_set.isdisjoint(sources)  # (none runs it)
     ]
-    if programs is not None:  # and the code the build had no node of
-        spanning.extend(
-            sorted({node.sources for node in graph.nodes if node.sources not in code.spans})
-        )
+    if programs is not None:  # and the code the build had no node of (nor receiver)
+        received = (sources for part in parts.trees.values() for _, (_, sources) in part.unnamed)
+        ran = {node.sources for node in graph.nodes}.union(received)
+        spanning.extend(sorted(sources for sources in ran if sources not in code.spans))
     if not spanning:
         fresh = {}
     else:
         try:
             fresh = {sources: sets.of(sources) for sources in spanning}
         except UnknownFactsError:  # a file the patch cannot load: the graph is built
-            return None
-        # A receiver of a parameter file keeps its code's parameters without the code.
-        stale = [parts.parameters[sources] for sources in spanning if sources in parts.parameters]
-        if any(
-            receiver.parameters in stale
-            for receivers in graph.unnamed_parameter_files.values()
-            for receiver in receivers
-        ):
             return None
     nodes = tuple(
         replaced(node, code_parameters=fresh[node.sources])
@@ -150,11 +143,40 @@ def parameters_patched(
         ran.update(sources for part in parts.trees.values() for _, (_, sources) in part.unnamed)
         parameters = {sources: found for sources, found in parameters.items() if sources in ran}
         spans = {sources: found for sources, found in spans.items() if sources in ran}
+    receivers = graph.unnamed_parameter_files
+    if fresh or programs is not None:
+        # A node of unknown name handed a parameter file keeps its code's parameters
+        # (``UnnamedReceiver``), not which code they are of: the trees' parts say that.
+        found = _receivers(parts, parameters)
+        if found is None:
+            return None
+        receivers = found
     return (
-        replace(graph, nodes=nodes, parameter_declarations=counts.declarations()),
+        replace(
+            graph,
+            nodes=nodes,
+            parameter_declarations=counts.declarations(),
+            unnamed_parameter_files=receivers,
+        ),
         replace(parts, parameters=parameters),
         CodeParameterParts(lookups, spans, counts),
     )
+
+
+def _receivers(
+    parts: LaunchParts, parameters: Mapping[tuple[str, ...], NodeParameters]
+) -> dict[str, tuple[UnnamedReceiver, ...]] | None:
+    """``Graph.unnamed_parameter_files`` as a build makes it (``unnamed_receivers``):
+    each parameter file handed to a node of unknown name, with the parameters of that
+    node's code as ``parameters`` (the code's, by its sources) say; None where they say
+    none of a receiver's code."""
+    handed: dict[str, set[tuple[Generation, tuple[str, ...]]]] = {}
+    for root in parts.roots:
+        for path, receiver in parts.trees[root].unnamed:
+            handed.setdefault(path, set()).add(receiver)
+    if any(sources not in parameters for found in handed.values() for _, sources in found):
+        return None
+    return unnamed_receivers(handed, parameters.__getitem__)
 
 
 def _by_name(
