@@ -23,6 +23,7 @@ MONITOR = "src/fleet_bringup/src/fleet_monitor.cpp"  # ROS 2, launched by fleet.
 RECORDER = "src/fleet_bringup/fleet_bringup/pose_recorder.py"
 RELAY = "src/turtle_bringup/src/odom_relay.cpp"  # ROS 1, launched in robot namespaces
 DOCK = "src/fleet_bringup/src/dock_manager.cpp"
+SMOOTHER = "src/turtle_bringup/src/velocity_smoother.cpp"  # ROS 1, base.launch starts it
 
 # (file, text before, text after); each step's graph is patched from the step before's.
 PATCHED = [
@@ -41,6 +42,9 @@ PATCHED = [
     # ROS 1: a name through the node's handle, launched in each robot's namespace.
     (RELAY, 'advertise<nav_msgs::Odometry>("odom"', 'advertise<nav_msgs::Odometry>("odometry"'),
     (RELAY, "nh.subscribe(odom_topic_", 'private_nh.subscribe("wheel_odom"'),
+    # ROS 1 code robots.launch starts twice under one name (robot2's base included
+    # twice): both namesakes resolved again.
+    (SMOOTHER, '"/mobile_base/commands/velocity"', '"mobile_base/commands/velocity"'),
     # Python: the subscription renamed to what the monitor publishes now.
     (RECORDER, '"Robot_Pose"', '"robot_pose_estimate"'),
     # A comment: the facts are those of the step before.
@@ -117,20 +121,18 @@ def test_an_edit_of_more_than_endpoints_is_refused(
     assert code_edit(before[relative], after[relative]) is None
 
 
-@pytest.mark.parametrize(("sources", "refused"), [((MONITOR, DOCK), True), ((DOCK,), False)])
-def test_two_nodes_of_one_name_in_one_tree_running_one_file_are_refused(
-    tmp_path: Path, sources: tuple[str, ...], refused: bool
+def test_two_nodes_of_one_name_in_one_tree_running_one_file_are_both_patched(
+    steps: list[tuple[str, Graph, Graph | None]],
 ) -> None:
-    """Whose endpoints are whose is known by the node's name, tree and code: not where
-    two namesakes run the edited file."""
-    workspace = _Workspace(tmp_path / "ws")
-    graph, facts = workspace.built()
-    node = next(node for node in graph.nodes if MONITOR in node.sources)
-    twin = replace(node, sources=sources)
-    doubled = replace(graph, nodes=(*graph.nodes, twin))
-    moves = code_edit(facts[MONITOR], facts[MONITOR])
-    assert moves is not None
-    assert (workspace.patched(doubled, {MONITOR: moves}, facts) is None) is refused
+    """Whose endpoints are whose is known by the node's name, tree and code: where two
+    namesakes run the edited file, both are resolved again (``patch._touched``), their
+    endpoints there all made anew (the step is ``test_a_patched_graph_is_the_built_graph``'s)."""
+    step = next(index for index, (relative, _, _) in enumerate(steps) if relative == SMOOTHER)
+    _, built, patch = steps[step]
+    running = [node for node in built.nodes if SMOOTHER in node.sources]
+    names = [(node.name, node.root) for node in running]
+    assert len(set(names)) < len(names), "no two namesakes run the edited file"
+    assert patch == built
 
 
 def _findings(graph: Graph, rule: Rule) -> list[object]:

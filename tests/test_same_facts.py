@@ -430,14 +430,14 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     ),
     # Code no launch file started, started in five trees: a program of its own no more;
     # its code was edited since the last build, and it runs twice under one name in
-    # robots.launch's tree (robot2 is included twice): the code patch cannot tell the
-    # two apart, the graph is built. Then the only node of other code taken out: a
+    # robots.launch's tree (robot2 is included twice): the code patch resolves both
+    # namesakes again (``patch._touched``). Then the only node of other code taken out: a
     # program of its own again.
     (
         BASE,
         "</launch>",
         '  <node name="relay" pkg="turtle_bringup" type="odom_relay"/>\n</launch>',
-        "build",
+        "patch",
     ),
     (
         BASE,
@@ -493,7 +493,9 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     ),
     (MONITOR, "", "\nclass MonitorProbe : public rclcpp::Node\n{\n};\n", "patch"),
     (UNITS, None, REPORTING, "patch"),
-    (DOCK, "public rclcpp::Node", "public rclcpp::Node, public fleet_bringup::Reporting", "patch"),
+    # A base class added: the graph is built, for teleop.launch, which robots.launch
+    # includes under its arguments, was edited since the last build (its include).
+    (DOCK, "public rclcpp::Node", "public rclcpp::Node, public fleet_bringup::Reporting", "build"),
     # A header whose constant names a topic (no file takes it yet: patched, its package
     # resolving its names as before), and code taking it added: resolved as the whole
     # run resolves it, patched (and kept as a build keeps it). Then an include changed

@@ -23,7 +23,7 @@ builds. ``tests/test_graph_patch.py`` compares patched graphs with built ones.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Collection, Iterable, Mapping
 from dataclasses import replace
 
 from roslint_names.model import ENDPOINT_ROLES, FileFacts, Language, Role, Span, replaced
@@ -303,24 +303,15 @@ def _patched(
     *,
     declaring: bool,
 ) -> Graph | None:
-    touched = [node for node in graph.nodes if not edits.keys().isdisjoint(node.sources)]
+    touched = _touched(graph, edits.keys())
     if not touched:
         return graph
-    # An endpoint is its node's by the node's name and tree and by the code it is in: two
-    # nodes of one name in one tree running the same file cannot be told apart.
-    namesakes: dict[tuple[str, str], list[NodeInstance]] = {}
-    for node in graph.nodes:
-        namesakes.setdefault((node.name, node.root), []).append(node)
     renewed: dict[int, NodeInstance] = {}
     fresh: list[Endpoint] = []
     for node in touched:
         instance = _instance_of(node)
         code = [facts for path in node.sources if (facts := facts_of(path)) is not None]
-        shared = any(
-            other is not node and not set(other.sources).isdisjoint(node.sources)
-            for other in namesakes[node.name, node.root]
-        )
-        if shared or instance is None or len(code) != len(node.sources):
+        if instance is None or len(code) != len(node.sources):
             return None
         names = _resolve_code(code, instance, node.remaps, node.root, node.reach)
         if names.parameters != node.parameters and not declaring:
@@ -355,6 +346,27 @@ def _patched(
         endpoints=_unique([*endpoints, *fresh], Endpoint.sort_key),
         unnamed_parameter_files=receivers,
     )
+
+
+def _touched(graph: Graph, edited: Collection[str]) -> list[NodeInstance]:
+    """The nodes running an edited file, and their namesakes that share code with one:
+    an endpoint is its node's by the node's name and tree and by the code it is in, so
+    two nodes of one name in one tree running one file (a launch file included twice
+    under one namespace) cannot be told apart: both are resolved again, their endpoints
+    in that code all made anew."""
+    edited_set = set(edited)
+    namesakes: dict[tuple[str, str], list[NodeInstance]] = {}
+    for node in graph.nodes:
+        namesakes.setdefault((node.name, node.root), []).append(node)
+    touched = {id(node): node for node in graph.nodes if not edited_set.isdisjoint(node.sources)}
+    waiting = list(touched.values())
+    while waiting:
+        node = waiting.pop()
+        for other in namesakes[node.name, node.root]:
+            if id(other) not in touched and not set(other.sources).isdisjoint(node.sources):
+                touched[id(other)] = other
+                waiting.append(other)
+    return [node for node in graph.nodes if id(node) in touched]
 
 
 def _instance_of(node: NodeInstance) -> _Instance | None:
