@@ -399,7 +399,7 @@ def _lint(
             patch=patch,
             stands=shifted is None or shifted.stands,
         )
-        workers = dispatcher.workers  # that extracted the files (specialisations may start some)
+        workers = gathered.workers  # that extracted the files
         if inputs is not None and not fresh and run_key is None:
             run_key = inputs.key_last()
         if replayed is not None:

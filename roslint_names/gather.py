@@ -580,6 +580,9 @@ class Gatherer:
     ahead: Ahead | None = None
     extracted: int = 0
     cached: int = 0
+    # The worker processes started by the time files were extracted (a patch's
+    # specialisations may start some after: those extracted none of the files)
+    workers: int = 0
     _skipped: dict[int, tuple[str, str]] = field(default_factory=dict)  # by file index
     _extracting: dict[int, _Item] = field(default_factory=dict)  # sent to extraction
     _unread: bool | None = None  # once asked: workers read the files (``Unread``)
@@ -594,6 +597,7 @@ class Gatherer:
     ) -> Iterator[tuple[int, FileFacts, bytes | None, Verdict | None]]:
         """Those of the files at ``indices`` of ``files``, or of all of them, the heaviest
         first (``_heaviest_first``) in chunks that spread them over every worker."""
+        extracted = self.extracted
         if self.ahead is not None and (indices is not None or not self._read_where_extracted()):
             self.ahead = None  # no extraction of every file for its work to go beside
         if indices is None:
@@ -611,6 +615,8 @@ class Gatherer:
         if self.ahead is not None:
             self.ahead.stop()  # what it sent still comes back, through ``finish``
         yield from self._told(self._arrived(self.dispatcher.finish()))
+        if self.extracted > extracted:
+            self.workers = max(self.workers, self.dispatcher.workers)
 
     def _told(
         self, gathered: Iterable[tuple[int, FileFacts, bytes | None, Verdict | None]]

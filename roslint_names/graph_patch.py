@@ -673,8 +673,10 @@ class GraphPatch:
             if now == then:
                 continue
             display = files[index].display
-            if display in replay.specialised:
-                return False  # the graph read its bytes under an includer's arguments
+            # Read under an includer's arguments by the graph (its bytes, not its facts)
+            specialised = display in replay.specialised
+            if then == ADDED and specialised:
+                return False
             if then == ADDED:
                 added = facts.at(index) if is_facts_key(now) else None
                 # Code taking another file's constant: resolved as the run resolves it,
@@ -703,6 +705,15 @@ class GraphPatch:
             found = facts.at(index) if is_facts_key(now) else None
             if before is None or found is None:
                 return False
+            if specialised:
+                # The trees that read it are walked again, which read it so again: where
+                # its facts moved too, the places the graph keeps of it are of that read.
+                if not (launch_edit(before, found) or parameter_edit(before, found)):
+                    return False
+                if not _patchable(before, found, wiring_kept=True):
+                    return False
+                kinds.tree_edits.append(display)
+                continue
             # A launch or parameter file whose facts are where they were (a comment at the
             # end) changes no tree; else the trees that read it are walked again.
             if program_edit(before, found):

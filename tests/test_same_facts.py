@@ -453,7 +453,8 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
         "patch",
     ),
     # teleop.launch included with an argument: a root no more, and read under it; an
-    # edit of it then builds the graph (it is never patched from its own facts).
+    # edit of it then walks again the trees that read it (never patched from its own
+    # facts: they read it under the argument again).
     (
         f"{TURTLE_LAUNCH}/multi_robot.launch",
         "</launch>",
@@ -462,7 +463,7 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
         "  </include>\n</launch>",
         "patch",
     ),
-    (TELEOP, 'name="teleop"', 'name="teleop_keyboard"', "build"),
+    (TELEOP, 'name="teleop"', 'name="teleop_keyboard"', "patch"),
     # The parameter file's key made to match the node in any namespace (RN405 fixed),
     # then a setting added: the tree that hands it to the node is walked again.
     (PARAMETERS, "waypoint_follower:\n", "/**/waypoint_follower:\n", "patch"),
@@ -493,9 +494,7 @@ STEPS: list[tuple[str, str | None, str | None, str]] = [
     ),
     (MONITOR, "", "\nclass MonitorProbe : public rclcpp::Node\n{\n};\n", "patch"),
     (UNITS, None, REPORTING, "patch"),
-    # A base class added: the graph is built, for teleop.launch, which robots.launch
-    # includes under its arguments, was edited since the last build (its include).
-    (DOCK, "public rclcpp::Node", "public rclcpp::Node, public fleet_bringup::Reporting", "build"),
+    (DOCK, "public rclcpp::Node", "public rclcpp::Node, public fleet_bringup::Reporting", "patch"),
     # A header whose constant names a topic (no file takes it yet: patched, its package
     # resolving its names as before), and code taking it added: resolved as the whole
     # run resolves it, patched (and kept as a build keeps it). Then an include changed
@@ -664,19 +663,20 @@ def test_the_step_that_holds_a_graph_finding_shows_it_moved(
     assert '"RN407"' in after and '"RN002"' in after
 
 
-def test_an_edit_of_a_launch_file_included_with_arguments_builds_the_graph(
-    run_cli: Any, workspace: Path, tmp_path: Path, replayed: list[list[int]]
+def test_an_edit_of_a_launch_file_included_with_arguments_walks_the_trees_that_read_it(
+    run_cli: Any, workspace: Path, tmp_path: Path, taken: list[str]
 ) -> None:
     """A launch file extracted again under its includer's arguments is read for that,
     not only for its facts: an edit of it is never replayed, even one its own facts do
-    not show."""
+    not show; the trees that read it are walked again, reading it so again."""
     cache = tmp_path / "cache"
     (workspace / TURTLE_LAUNCH / "robot7.launch").write_text(ROBOT7, encoding="utf-8")
     outputs(run_cli, workspace, cache)
     edit(workspace / TELEOP, "</launch>", "</launch>\n<!-- one robot's teleop -->")
+    taken.clear()
     cached, fresh = outputs(run_cli, workspace, cache)
     assert cached == fresh
-    assert not replayed
+    assert taken == ["patch", "build"]
 
 
 LEGACY = """#include <ros/ros.h>
