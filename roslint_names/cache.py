@@ -86,7 +86,7 @@ from pathlib import Path
 from typing import IO, Any, NamedTuple
 
 from . import __version__, model
-from .model import FileFacts, Generation, Language
+from .model import LANGUAGE_OF_VALUE, FileFacts, Generation, Language
 from .reading import content_digest, open_regular
 
 FORMAT_VERSION = 2  # 2: facts in one pack; whole-run results; digests
@@ -758,7 +758,6 @@ def _line_checksum(record: str) -> str:
     return hashlib.blake2b(record.encode("ascii"), digest_size=4).hexdigest()
 
 
-_LANGUAGES = {language.value: language for language in Language}
 _GENERATIONS = {str(generation.value): generation for generation in Generation}
 
 
@@ -781,10 +780,10 @@ def _read_log_as(path: str) -> tuple[dict[str, tuple[Language, Generation]], _Re
         record = f"{key} {language} {generation}"
         if (
             checksum == _line_checksum(record)
-            and language in _LANGUAGES
+            and language in LANGUAGE_OF_VALUE
             and generation in _GENERATIONS
         ):
-            found[key] = (_LANGUAGES[language], _GENERATIONS[generation])
+            found[key] = (LANGUAGE_OF_VALUE[language], _GENERATIONS[generation])
     return found, _Read(inode, data.rfind(b"\n") + 1)
 
 

@@ -32,7 +32,7 @@ from . import walks
 from .cache import FactsCache
 from .collection import kept_for_the_run
 from .listings import DirectoryStatus, FileStatus, Listed, Listings
-from .model import Language
+from .model import LANGUAGE_OF_VALUE, Language
 from .reading import NotRegularFileError, open_regular
 
 if TYPE_CHECKING:
@@ -109,7 +109,6 @@ class _Sniff(Enum):
     CFG = "cfg"  # a dynamic_reconfigure config, or an INI file (CPPLINT.cfg, tox.cfg)
 
 
-_LANGUAGES = {language.value: language for language in Language}
 # What a kept listing says a name said (``listings``): the values of both enums, which differ.
 _SAID: dict[str, Language | _Sniff] = {said.value: said for said in (*Language, *_Sniff)}
 
@@ -462,7 +461,9 @@ def _take_walked(
     """Add the files a kept walk found (``walks``); False, adding nothing, where what was
     kept is not what a walk keeps."""
     try:
-        taken = [SourceFile(path, shown, _LANGUAGES[said]) for path, shown, said in kept.found]
+        taken = [
+            SourceFile(path, shown, LANGUAGE_OF_VALUE[said]) for path, shown, said in kept.found
+        ]
     except (KeyError, TypeError, ValueError):
         return False
     for source in taken:

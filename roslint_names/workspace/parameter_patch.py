@@ -120,8 +120,8 @@ def parameters_patched(
     ]
     if programs is not None:  # and the code the build had no node of (nor receiver)
         received = (sources for part in parts.trees.values() for _, (_, sources) in part.unnamed)
-        ran = {node.sources for node in graph.nodes}.union(received)
-        spanning.extend(sorted(sources for sources in ran if sources not in code.spans))
+        running = {node.sources for node in graph.nodes}.union(received)
+        spanning.extend(sorted(sources for sources in running if sources not in code.spans))
     if not spanning:
         fresh = {}
     else:
