@@ -327,7 +327,7 @@ class FactsCache:
             if self._pending_lines >= _LOG_BATCH:
                 self.flush()
             return
-        record = _record(key, pickle.dumps(facts, protocol=pickle.HIGHEST_PROTOCOL))
+        record = _record(key, model.dumps(facts))
         if record is None:
             return  # not a key this cache makes: nothing could find it again
         self._stored[key] = facts
@@ -795,7 +795,7 @@ def _encoded(value: object) -> Writer:
     def write(stream: IO[bytes]) -> None:
         stream.write(_MAGIC + bytes(_CHECKSUM_BYTES))  # the checksum's place: written last
         digest = hashlib.blake2b(digest_size=_CHECKSUM_BYTES)
-        pickle.dump(value, _Hashing(stream, digest), protocol=pickle.HIGHEST_PROTOCOL)
+        model.dump(value, _Hashing(stream, digest))
         stream.seek(len(_MAGIC))
         stream.write(digest.digest())
 

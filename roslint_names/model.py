@@ -6,12 +6,15 @@ cacheable and comparable. Nothing in this module parses, reads files or prints.
 
 from __future__ import annotations
 
+import copyreg
+import io
+import pickle
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, fields
 from enum import Enum
 from operator import attrgetter
 from types import MemberDescriptorType
-from typing import Any, TypeVar, cast
+from typing import Any, Protocol, TypeVar, cast
 
 
 class Kind(str, Enum):
@@ -212,13 +215,62 @@ def replaced(value: _C, /, **changes: object) -> _C:
 
 def _values(instance: Any) -> tuple[object, ...]:
     """The values of a dataclass's fields, in ``__init__``'s order."""
-    getter = _GETTERS.get(type(instance))
+    return _getter(type(instance))(instance)
+
+
+def _getter(cls: type[Any]) -> Callable[[Any], tuple[object, ...]]:
+    getter = _GETTERS.get(cls)
     if getter is None:
-        names = [item.name for item in fields(instance)]
+        names = [item.name for item in fields(cls)]
         several = attrgetter(*names)
         getter = several if len(names) > 1 else lambda value: (several(value),)
-        _GETTERS[type(instance)] = getter
-    return getter(instance)
+        _GETTERS[cls] = getter
+    return getter
+
+
+class _Reducers(dict[type, Callable[[Any], tuple[Any, ...]]]):
+    """A pickler's dispatch table: a Compact value reduced in one call to what its
+    ``__reduce__`` gives (the same bytes), without the three lookups a ``__reduce__``
+    makes (a quarter to a third of the time pickling the kept graph); any other class
+    as the default table (``copyreg``) says. Asked once per class, for the first value
+    of it: each reduction is made when asked."""
+
+    def __missing__(self, cls: type) -> Callable[[Any], tuple[Any, ...]]:
+        if isinstance(cls, type) and issubclass(cls, Compact):
+            rebuilt, getter = rebuilder(cls), _getter(cls)
+
+            def reduce(value: Any) -> tuple[Any, ...]:
+                return (rebuilt, getter(value))
+
+            self[cls] = reduce
+            return reduce
+        found = copyreg.dispatch_table.get(cls)
+        if found is None:
+            raise KeyError(cls)
+        return cast(Callable[[Any], tuple[Any, ...]], found)
+
+
+_REDUCERS = _Reducers()
+
+
+class Writable(Protocol):
+    """Where ``dump`` writes: a file, or what writes through to one (``cache._Hashing``)."""
+
+    def write(self, data: bytes, /) -> object: ...
+
+
+def dump(value: object, stream: Writable) -> None:
+    """``pickle.dump`` at the highest protocol, Compact values reduced fast (``_Reducers``)."""
+    pickler = pickle.Pickler(stream, protocol=pickle.HIGHEST_PROTOCOL)
+    pickler.dispatch_table = _REDUCERS
+    pickler.dump(value)
+
+
+def dumps(value: object) -> bytes:
+    """``dump`` into bytes."""
+    stream = io.BytesIO()
+    dump(value, stream)
+    return stream.getvalue()
 
 
 @dataclass(frozen=True, order=True, slots=True)

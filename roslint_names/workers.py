@@ -45,6 +45,7 @@ from types import FrameType, TracebackType
 from typing import TYPE_CHECKING, Any, Generic, TypeVar, cast
 
 from .collection import THRESHOLDS
+from .model import dumps
 
 if TYPE_CHECKING:
     from concurrent.futures import Future, ProcessPoolExecutor
@@ -525,7 +526,7 @@ def _run(chunk: list[tuple[int, Any]]) -> bytes:
     """The chunk's results, pickled here: the main process unpickles them itself
     (``_unpickled``), where a failure names the chunk (``Dispatcher._unreceived``)."""
     assert _WORK is not None, "worker used before its initializer ran"
-    return pickle.dumps(_WORK(_marked(chunk)), protocol=pickle.HIGHEST_PROTOCOL)
+    return dumps(_WORK(_marked(chunk)))
 
 
 def _marked(chunk: list[tuple[int, Any]]) -> Iterator[Any]:
