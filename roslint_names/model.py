@@ -232,8 +232,8 @@ class _Reducers(dict[type, Callable[[Any], tuple[Any, ...]]]):
     """A pickler's dispatch table: a Compact value reduced in one call to what its
     ``__reduce__`` gives (the same bytes), without the three lookups a ``__reduce__``
     makes (a quarter to a third of the time pickling the kept graph); any other class
-    as the default table (``copyreg``) says. Asked once per class, for the first value
-    of it: each reduction is made when asked."""
+    as the default table (``copyreg``) says. Pickle asks it for each value of a class
+    it does not pickle itself; a class's reduction is made the first time."""
 
     def __missing__(self, cls: type) -> Callable[[Any], tuple[Any, ...]]:
         if isinstance(cls, type) and issubclass(cls, Compact):
