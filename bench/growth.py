@@ -49,6 +49,11 @@ copies keep theirs), then measured with the real CLI, one cache for the whole se
   mid-sized ``CMakeLists.txt`` and an executable compiling it added there (what the
   package builds changes: its programs made again, ``workspace.program_patch``, the
   trees that start a node of it walked again);
+- ``edit_included``: a node added to the launch file other launch files include, with
+  arguments, most often (Autoware's ``pointcloud_container.launch.xml`` on the
+  benchmark's workspace): the graph read it under those arguments, and the trees that
+  read it are walked again, reading it so again (at 8 copies the includes name a
+  package eight folders claim: a launch edit as ``edit_graph``'s);
 - ``identical_after_edits``: whether the last edited run printed what a run with an
   empty cache prints over the same tree (a stale cache must never change a result);
 - ``commit``: pre-commit's run, naming the edited C++ source and launch file, the
@@ -204,6 +209,7 @@ _EDITS = {
     "edit_release": (("package.xml",), "<depend>", _NEW_MANIFEST_URL, "inside"),
     "edit_depend": (("package.xml",), "<depend>", _NEW_MANIFEST_DEPENDENCY, "inside"),
     "add_node": (("CMakeLists.txt",), "add_executable(", _NEW_EXECUTABLE, "node"),
+    "edit_included": ((".launch.xml",), "<node", _NEW_NODE, "included"),
 }
 
 
@@ -240,6 +246,9 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
                     edited.write_bytes(text)
                 else:
                     edited.unlink()
+            elif where == "included":
+                edited = included_most(root / "src", marker)
+                _add(edited, text, "inside")
             elif where == "constant":
                 edited, value_end = taken_most(root / "src", suffixes)
                 data = edited.read_bytes()
@@ -260,7 +269,7 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
             runs[name] = bench.cli(root, arguments, cache)
             results.setdefault("edited", {})[name] = edited.relative_to(root).as_posix()
         fresh = bench.cli(root, arguments, scratch / "fresh-cache")
-        results["identical_after_edits"] = fresh.stdout == runs["add_node"].stdout
+        results["identical_after_edits"] = fresh.stdout == runs[list(_EDITS)[-1]].stdout
         # pre-commit's run: the files of a commit named, the C++ source among them given
         # another topic (the run over the workspace underneath, its graph patched).
         named = [results["edited"]["edit_names"], results["edited"]["edit_graph"]]
@@ -312,6 +321,31 @@ def named_most(workspace: Path, suffixes: tuple[str, ...], marker: str) -> Path:
     if not named:
         raise SystemExit(f"no {suffixes} file with {marker!r} in {workspace}")
     return named[0][1]
+
+
+# An include of a launch file, with what it holds (its arguments, where it hands some)
+_INCLUDE = re.compile(r'<include\s+file="([^"]+)"\s*>(.*?)</include>', re.DOTALL)
+
+
+def included_most(workspace: Path, marker: str) -> Path:
+    """The launch XML file with ``marker`` in it whose name the includes that hand
+    arguments name most often (the first by path of those): one the graph reads under
+    its includers' arguments."""
+    named: dict[str, int] = {}
+    launch = sorted(path for path in workspace.rglob("*.launch.xml") if path.is_file())
+    for path in launch:
+        for include in _INCLUDE.finditer(_text(path)):
+            if "<arg " in include.group(2):
+                name = include.group(1).rsplit("/", 1)[-1]
+                named[name] = named.get(name, 0) + 1
+    found = sorted(
+        (-named[path.name], path)
+        for path in launch
+        if named.get(path.name) and marker in _text(path)
+    )
+    if not found:
+        raise SystemExit(f"no launch file included with arguments in {workspace}")
+    return found[0][1]
 
 
 # A string constant a header defines: ``static const std::string NAME = "value";``.
