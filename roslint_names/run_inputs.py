@@ -28,7 +28,7 @@ from array import array
 from collections.abc import Sequence
 from functools import cached_property
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 from .config import Settings, settings_fingerprint
 from .digests import ContentDigests
@@ -40,6 +40,7 @@ from .reading import (
     UNTAKEN,
     Read,
     Status,
+    Statuses,
     Taken,
     Untaken,
     content_digest,
@@ -98,7 +99,7 @@ class RunInputs:
         self._tags: list[str] = [""] * len(checked)
         self._contents: list[str | None] = []  # per checked file: its digest, as keyed first
         self._keyed_first = False
-        self._statuses: list[Status | None] = []  # of ``_status_files``, as first taken
+        self._statuses = Statuses()  # of ``_status_files``, as first taken
         self.changed = False  # a file read differs from what the run was keyed by
         self.place_key: str | None = None  # once keyed: ``_place``
         # A run that reports every file it checks, keyed by ``_place``: its place but for
@@ -135,7 +136,7 @@ class RunInputs:
         where it has none); None before they were taken."""
         if len(self._statuses) < len(self._checked):
             return None
-        return [0 if status is None else status[0] for status in self._statuses]
+        return self._statuses.sizes()
 
     def key_first(self) -> str | None:
         """The run's key before anything is extracted, when an earlier run of this
@@ -147,7 +148,10 @@ class RunInputs:
             return None
         else:
             checked = len(self._checked)
-            taken: Sequence[Status | Untaken | None] = self._statuses or [UNTAKEN] * checked
+            # A run's own statuses are none kept as changed (no False among them).
+            taken = cast(Sequence[Status | Untaken | None], self._statuses)
+            if not taken:
+                taken = [UNTAKEN] * checked
             paths = [source.location for source in self._checked]
             maximum = self._settings.max_file_size
             summaries = self._digests.summaries(paths, maximum, taken[:checked])
@@ -171,13 +175,15 @@ class RunInputs:
         self._tags = list(keying.tags)
         self._contents = [None] * checked
         # The ``.srv`` files' statuses follow the checked files' (``_kept_place``).
-        pairs = zip(self._statuses[:checked], keying.file_statuses, strict=False)
-        for index, (status, kept) in enumerate(pairs):
-            if status is None or status != kept:
-                source = self._checked[index]
-                summary = self._digests.summary(source.location, maximum, status)
-                self._tags[index] = self._tag(source, *summary)
-                self._contents[index] = summary[0]
+        statuses = self._statuses
+        for index in statuses.unvouched(keying.file_statuses, checked):
+            status = statuses[index]
+            if isinstance(status, bool):
+                continue  # a run's own statuses hold none kept as changed
+            source = self._checked[index]
+            summary = self._digests.summary(source.location, maximum, status)
+            self._tags[index] = self._tag(source, *summary)
+            self._contents[index] = summary[0]
 
     def known_key(self, index: int) -> str | None:
         """The facts key of checked file ``index`` as ``key_first`` found it, if any."""
@@ -234,25 +240,29 @@ class RunInputs:
         self._digests.save()
         if kept_key is None or self.changed:
             return
-        statuses = self._digests.statuses
+        taken = self._digests.statuses  # of the files this run keyed
         files = self._status_files
+        if self.place_key is None:
+            return
         if self._carried:  # the statuses the run was keyed by, less those taken again
-            statuses = dict(zip(files, self._statuses, strict=True)) | statuses
-        if all(path in statuses for path in files) and self.place_key is not None:
-            file_statuses = [statuses[path] for path in files]
-            keying = (self._tags, self.place_key, self._packages.lookups(), self.shape_key)
-            packages = self._packages.statuses
-            self._kept.keep(
-                self._identity,
-                kept_key,
-                file_statuses,
-                packages,
-                keying,
-                manifests=self._packages.manifests,
-                shape=self._shape,
-                files=self._where_files,
-                checked=len(self._checked),
-            )
+            again = {index: taken[path] for index, path in enumerate(files) if path in taken}
+            file_statuses = self._statuses.replaced(again)
+        elif all(path in taken for path in files):
+            file_statuses = Statuses.of(taken[path] for path in files)
+        else:
+            return
+        keying = (self._tags, self.place_key, self._packages.lookups(), self.shape_key)
+        self._kept.keep(
+            self._identity,
+            kept_key,
+            file_statuses,
+            self._packages.statuses,
+            keying,
+            manifests=self._packages.manifests,
+            shape=self._shape,
+            files=self._where_files,
+            checked=len(self._checked),
+        )
 
     # Both below are asked at the start of the run and again at its end: made once.
     @cached_property

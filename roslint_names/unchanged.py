@@ -47,6 +47,7 @@ import hashlib
 import io
 import os
 import pickle
+import sys
 import time
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -56,14 +57,15 @@ from typing import TYPE_CHECKING, NamedTuple
 
 from .cache import BuiltinsUnpickler, FactsCache
 from .generation import is_package_manifest
-from .reading import Status, is_racy, open_regular, racy_from, status_of
+from .reading import Status, Statuses, is_racy, open_regular, racy_from, status_of
 
 if TYPE_CHECKING:
     from .generation import KeptLookups
 
 KEYS = "keys"  # their directory in the facts cache: one file per workspace, and its files
 KEPT = 64
-_FORMAT = 5
+# 6: the files' statuses packed (``reading.Statuses``), in this machine's byte order
+_FORMAT = f"6 {sys.byteorder}"
 _FILES_FORMAT = 1
 MOST_SHIFTED = 64  # checked files added or removed past which a run is keyed file by file
 _PROTOCOL = pickle.HIGHEST_PROTOCOL
@@ -73,7 +75,7 @@ _PROTOCOL = pickle.HIGHEST_PROTOCOL
 class Keying:
     """What an earlier run of the same identity was keyed from and by."""
 
-    file_statuses: list[Status | bool | None]  # as ``KeptKey.keep`` stores them
+    file_statuses: Statuses  # as ``KeptKey.keep`` stores them
     package_statuses: dict[str, Status | None]
     tags: list[str]  # the facts key of each checked file, or why it has none ("": unknown)
     place_key: str | None  # None: an earlier run over other files (``KeptKey.keying``)
@@ -114,11 +116,11 @@ class KeptKey:
         self._packages_stand: bool | None = None  # once asked: their statuses are as kept
         self._differing: list[tuple[str, Status | str | None]] = []  # those not, as kept
 
-    def key(self, identity: str, statuses: Sequence[Status | None]) -> str | None:
+    def key(self, identity: str, statuses: Statuses) -> str | None:
         """The kept key, if it was kept for ``identity`` and every status it was kept with
         is the status now (``statuses``: the files', in the order they were kept)."""
         kept = self._load()
-        if kept is None or kept.identity != identity or list(statuses) != kept.file_statuses:
+        if kept is None or kept.identity != identity or statuses != kept.file_statuses:
             return None
         return kept.key if self._packages_as_kept(kept) else None
 
@@ -199,7 +201,7 @@ class KeptKey:
         ):
             return None
         return Keying(
-            [statuses[then] if then >= 0 else None for then in previous] + statuses[kept_checked:],
+            statuses.taking([*previous, *range(kept_checked, len(statuses))]),
             keying.package_statuses,
             [keying.tags[then] if then >= 0 else "" for then in previous],
             None,
@@ -231,7 +233,7 @@ class KeptKey:
         self,
         identity: str,
         key: str,
-        file_statuses: Sequence[Status | None],
+        file_statuses: Statuses,
         package_statuses: Mapping[str, Status | None],
         keying: tuple[Sequence[str], str, KeptLookups, str | None],
         *,
@@ -267,11 +269,8 @@ class KeptKey:
             self._cache.write_newest(
                 self._files_path, partial(pickle.dump, listed, protocol=_PROTOCOL), KEPT
             )
-        recent = racy_from(self.started)  # ``_racy`` of each, without a call each
-        trusted = [
-            False if s is not None and (s[1] >= recent or s[2] >= recent) else s
-            for s in file_statuses
-        ]
+        # ``_racy`` of each, without a call each
+        trusted = file_statuses.changed_from(racy_from(self.started)).to_bytes()
         tags, place_key, lookups, shape_key = keying
         made_of = pickle.dumps((list(tags), lookups, shape_key), _PROTOCOL)
         paths = tuple(package_statuses)
@@ -350,7 +349,7 @@ class KeptKey:
         shapes: tuple[type | tuple[type, ...], ...] = (
             str,
             str,
-            list,
+            bytes,
             tuple,
             list,
             list,
@@ -360,7 +359,10 @@ class KeptKey:
         )
         if not all(map(isinstance, loaded[1:], shapes)):
             return None
-        kept = _Kept(*loaded[1:])
+        statuses = Statuses.from_bytes(loaded[3])
+        if statuses is None:
+            return None
+        kept = _Kept(loaded[1], loaded[2], statuses, *loaded[4:])
         if not len(kept.package_paths) == len(kept.package_statuses) == len(kept.package_digests):
             return None
         return kept
@@ -369,7 +371,7 @@ class KeptKey:
 class _Kept(NamedTuple):
     identity: str
     key: str
-    file_statuses: list[Status | bool | None]
+    file_statuses: Statuses
     package_paths: tuple[str, ...]
     package_statuses: list[Status | str | None]  # a digest where the status was too recent
     package_digests: list[str | None]  # what each says (``PackageGenerations.manifests``)

@@ -1264,3 +1264,63 @@ def test_the_identity_tells_apart_which_files_are_checked_and_named(tmp_path: Pa
     }
     assert len(others) == 5 and whole not in others
     assert identity([1, 2], [0, 1, 2], copies=True) == identity([1, 2], [0, 1, 2], copies=True)
+
+
+def _statuses_workspace(root: Path, count: int) -> list[str]:
+    """``count`` source files of a package, and one path that is none."""
+    package = root / "src" / "probe"
+    write(package, "package.xml", AMENT_PACKAGE.format(name="probe"))
+    paths = [
+        str(write(package, f"src/node_{index}.cpp", f"// node {index}\nint main() {{}}\n"))
+        for index in range(count)
+    ]
+    return [*paths, str(package / "src" / "absent.cpp")]
+
+
+def test_packed_statuses_are_the_statuses_of_each_file(tmp_path: Path) -> None:
+    """``reading.Statuses``: each file's ``status_of`` (None where it has none), sliced,
+    taken by index, replaced and written as bytes and read again unchanged."""
+    paths = _statuses_workspace(tmp_path, 600)
+    statuses = reading.statuses_of(paths)
+    expected = [reading.status_of(path) for path in paths]
+    assert list(statuses) == expected and len(statuses) == len(paths)
+    assert [statuses[index] for index in (0, 599, 600, -1)] == [
+        expected[0],
+        expected[599],
+        None,
+        None,
+    ]
+    assert list(statuses[598:]) == expected[598:] and statuses[598:] == statuses[598:601]
+    assert statuses.sizes() == [0 if status is None else status[0] for status in expected]
+    assert list(statuses.taking([600, 3, -1])) == [None, expected[3], None]
+    assert list(statuses.replaced({3: None, 600: (1, 2, 3, 4)})) == [
+        *expected[:3],
+        None,
+        *expected[4:600],
+        (1, 2, 3, 4),
+    ]
+    assert reading.Statuses.from_bytes(statuses.to_bytes()) == statuses
+    assert reading.Statuses.from_bytes(statuses.to_bytes()[:-1]) is None
+    assert reading.Statuses.of(expected) == statuses
+
+
+def test_packed_statuses_name_the_files_a_run_keys_again(tmp_path: Path) -> None:
+    """``Statuses.unvouched``: those of another status than kept (one edited in a block of
+    files otherwise as kept, one kept as changed) and those without one, even where a
+    whole block is as kept; and only the first ``count``. ``changed_from``: a status too
+    recent is kept as changed, nothing else."""
+    paths = _statuses_workspace(tmp_path, 600)
+    kept = reading.statuses_of(paths)
+    time.sleep(0.05)  # past the clock tick the files were written in
+    edited = Path(paths[300])
+    os.utime(edited, ns=(0, 1_000_000_000))  # another modification time, the same bytes
+    now = reading.statuses_of(paths)
+    assert list(now.unvouched(kept, len(paths))) == [300, 600]
+    assert list(now.unvouched(kept, 300)) == []
+    status = now[300]
+    assert isinstance(status, tuple)
+    changed = now.changed_from(status[2])  # its change time: later than every write
+    assert [index for index, found in enumerate(changed) if found is False] == [300]
+    assert changed[299] == now[299] and changed[600] is None
+    assert list(now.unvouched(changed, len(paths))) == [300, 600]
+    assert now.changed_from(time.time_ns() + 10**9) == now
