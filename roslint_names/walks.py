@@ -34,7 +34,7 @@ from typing import NamedTuple
 
 from .cache import BuiltinsUnpickler, FactsCache
 from .listings import KEPT, DirectoryStatus, FileStatus, Listings
-from .reading import open_regular, status_from
+from .reading import open_regular, status_of
 
 _FORMAT = 1
 # Directories whose status changed since the kept walk that are looked at again, at most:
@@ -85,7 +85,7 @@ def taken(
     if kept_prefix != prefix or [path for path, _ in ancestors] != list(gitignores_above):
         return None
     for path, status in ancestors:
-        if _file_status(path) != status:
+        if status_of(path) != status:
             return None
     changed: list[str] = []
     for directory, kept_status in zip(directories, statuses, strict=True):
@@ -99,7 +99,7 @@ def taken(
                 return None
     languages: dict[str, str] | None = None
     for path, status in files_stood_on:
-        if status is not None and _file_status(path) == status:
+        if status is not None and status_of(path) == status:
             continue
         if os.path.basename(path) == ".gitignore":
             return None  # what it ignores may have changed: walked
@@ -188,13 +188,6 @@ def keep(cache: FactsCache, listings: Listings, prefix: str, found: list[Found])
     kept = (_FORMAT, prefix, ancestors, directories, statuses, stood_on, without, found)
     path = listings.path.with_name(listings.path.name + _SUFFIX)
     cache.write_newest(path, partial(pickle.dump, kept, protocol=_PROTOCOL), KEPT)
-
-
-def _file_status(path: str) -> FileStatus | None:
-    try:
-        return status_from(os.stat(path))
-    except OSError:
-        return None
 
 
 def _read(

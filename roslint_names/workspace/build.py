@@ -451,6 +451,17 @@ def linked_files(nodes: Iterable[NodeInstance], loads: Iterable[ParameterFileUse
     return sorted(linked)
 
 
+def receivers_by_file(
+    unnamed: Iterable[Unnamed],
+) -> dict[str, set[tuple[Generation, tuple[str, ...]]]]:
+    """Each parameter file handed to a node of unknown name, with the generation and code
+    of each such node (``TreePart.unnamed``'s pairs, of one tree or many), once each."""
+    receivers: dict[str, set[tuple[Generation, tuple[str, ...]]]] = {}
+    for path, receiver in unnamed:
+        receivers.setdefault(path, set()).add(receiver)
+    return receivers
+
+
 def unnamed_receivers(
     unnamed: Mapping[str, Iterable[tuple[Generation, tuple[str, ...]]]],
     parameters_of: Callable[[tuple[str, ...]], NodeParameters],

@@ -33,7 +33,7 @@ from __future__ import annotations
 from collections.abc import Callable, Collection, Iterator, Mapping, Sequence
 from dataclasses import replace
 
-from roslint_names.model import FileFacts, Generation, Language, replaced
+from roslint_names.model import FileFacts, Language, replaced
 from roslint_names.workspace.build import (
     _group_loads,
     _has_endpoints,
@@ -45,6 +45,7 @@ from roslint_names.workspace.build import (
     launched_sources_of,
     linked_files,
     mentions,
+    receivers_by_file,
     started_program,
     unnamed_receivers,
 )
@@ -336,10 +337,11 @@ def _patched(
         )
         for node in nodes
     ]
-    receivers: dict[str, set[tuple[Generation, tuple[str, ...]]]] = {}
-    for root in roots:
-        for path, receiver in unnamed_of[root] if root in unnamed_of else parts.trees[root].unnamed:
-            receivers.setdefault(path, set()).add(receiver)
+    receivers = receivers_by_file(
+        unnamed
+        for root in roots
+        for unnamed in (unnamed_of[root] if root in unnamed_of else parts.trees[root].unnamed)
+    )
     # A receiver of code made anew is handed its parameters by the parameter patch too.
     unnamed = unnamed_receivers(receivers, parameters.of)
     if parameters.missing:

@@ -46,8 +46,8 @@ import posixpath
 from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import replace
 
-from roslint_names.model import FileFacts, Generation, Language, replaced
-from roslint_names.workspace.build import _TestFiles, unnamed_receivers
+from roslint_names.model import FileFacts, Language, replaced
+from roslint_names.workspace.build import _TestFiles, receivers_by_file, unnamed_receivers
 from roslint_names.workspace.graph import Graph, UnnamedReceiver
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
 from roslint_names.workspace.launch_parts import CodeParameterParts, LaunchParts
@@ -118,6 +118,7 @@ def parameters_patched(
         for sources, spans in code.spans.items()
         if not spans.isdisjoint(reached) and removed_set.isdisjoint(sources)  # (none runs it)
     ]
+    running: set[tuple[str, ...]] | None = None  # the code a node runs, programs made anew
     if programs is not None:  # and the code the build had no node of (nor receiver)
         received = (sources for part in parts.trees.values() for _, (_, sources) in part.unnamed)
         running = {node.sources for node in graph.nodes}.union(received)
@@ -138,11 +139,9 @@ def parameters_patched(
     counts = _declarations(code.counts, edited)
     spans = {**code.spans, **{sources: sets.spans.get(sources, frozenset()) for sources in fresh}}
     parameters = {**parts.parameters, **fresh}
-    if programs is not None:  # code no node runs any more: a build gathers none of it
-        ran = {node.sources for node in nodes}
-        ran.update(sources for part in parts.trees.values() for _, (_, sources) in part.unnamed)
-        parameters = {sources: found for sources, found in parameters.items() if sources in ran}
-        spans = {sources: found for sources, found in spans.items() if sources in ran}
+    if running is not None:  # code no node runs any more: a build gathers none of it
+        parameters = {sources: found for sources, found in parameters.items() if sources in running}
+        spans = {sources: found for sources, found in spans.items() if sources in running}
     receivers = graph.unnamed_parameter_files
     if fresh or programs is not None:
         # A node of unknown name handed a parameter file keeps its code's parameters
@@ -170,10 +169,9 @@ def _receivers(
     each parameter file handed to a node of unknown name, with the parameters of that
     node's code as ``parameters`` (the code's, by its sources) say; None where they say
     none of a receiver's code."""
-    handed: dict[str, set[tuple[Generation, tuple[str, ...]]]] = {}
-    for root in parts.roots:
-        for path, receiver in parts.trees[root].unnamed:
-            handed.setdefault(path, set()).add(receiver)
+    handed = receivers_by_file(
+        unnamed for root in parts.roots for unnamed in parts.trees[root].unnamed
+    )
     if any(sources not in parameters for found in handed.values() for _, sources in found):
         return None
     return unnamed_receivers(handed, parameters.__getitem__)
