@@ -175,6 +175,34 @@ def test_rclcpp_component() -> None:
     assert use(facts, "navigate_to_pose").api == "rclcpp_action::create_server"
 
 
+def test_types_brought_in_by_using_declarations_are_resolved() -> None:
+    facts = extract(
+        """#include <rclcpp/rclcpp.hpp>
+#include <std_srvs/srv/set_bool.hpp>
+#include <std_srvs/srv/trigger.hpp>
+
+using std_srvs::srv::SetBool;
+using namespace std_srvs::srv;  // brings in Trigger, but names no type itself
+
+class Relay : public rclcpp::Node
+{
+public:
+  Relay() : rclcpp::Node("relay")
+  {
+    enable_ = create_service<SetBool>("enable", nullptr);
+    reset_ = create_service<Trigger>("reset", nullptr);
+  }
+
+private:
+  rclcpp::Service<SetBool>::SharedPtr enable_;
+  rclcpp::Service<Trigger>::SharedPtr reset_;
+};
+"""
+    )
+    assert use(facts, "enable").type_name == "std_srvs::srv::SetBool"
+    assert use(facts, "reset").type_name == "Trigger"
+
+
 def test_lifecycle_node() -> None:
     facts = fixture("lifecycle_talker.cpp")
     assert uses(facts) == [

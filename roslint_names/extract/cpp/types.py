@@ -1,7 +1,9 @@
 """Interface types: read from template arguments, callbacks, aliases and variables.
 
 A type alias of the file (``using NavigateToPose = nav2_msgs::action::NavigateToPose;``,
-``typedef``) is replaced by what it stands for.
+``typedef``) is replaced by what it stands for, as is a name a using-declaration brings
+in (``using std_srvs::srv::SetBool;``). A using-directive (``using namespace
+std_srvs::srv;``) names no type: what it brings in is left as spelled.
 
 The message and service types of roscpp's untemplated calls come from the callbacks a
 subscriber or server is given.
@@ -130,7 +132,8 @@ class Types:
 
 
 def _aliased(word: Node) -> Node | None:
-    """The type an alias declaration gives ``word``, if ``word`` is the alias's name."""
+    """The type an alias declaration gives ``word``, if ``word`` is the alias's name, or
+    the qualified name a using-declaration brings ``word`` in by."""
     parent = word.parent
     if parent is None:
         return None
@@ -138,7 +141,17 @@ def _aliased(word: Node) -> Node | None:
         return parent.child_by_field_name("type")
     if parent.type == "type_definition" and word in parent.children_by_field_name("declarator"):
         return parent.child_by_field_name("type")
-    return None
+    # ``std_srvs::srv::SetBool`` nests as std_srvs::(srv::SetBool): up through the names.
+    named: Node = word
+    while parent is not None and parent.type == "qualified_identifier":
+        if parent.child_by_field_name("name") != named:
+            return None
+        named, parent = parent, parent.parent
+    if named is word or parent is None or parent.type != "using_declaration":
+        return None
+    if any(child.type == "namespace" for child in parent.children):
+        return None  # ``using namespace``: no type
+    return named
 
 
 def _target(source: Source, callback: Node) -> Node | None:
