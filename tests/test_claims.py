@@ -413,3 +413,59 @@ def test_rn205_leaves_the_frames_of_code_that_only_broadcasts_alone(
         ("src/robot_base/src/follower.cpp", 15),
         ("src/robot_base/src/odometry.cpp", 14),
     ]
+
+
+# slam_toolbox's merge_maps_kinematic.cpp, reduced: a node that publishes maps and
+# broadcasts where each submap sits, the transforms filled field by field.
+MAP_MERGER_NODE = """#include <memory>
+#include <string>
+
+#include "geometry_msgs/msg/transform_stamped.hpp"
+#include "nav_msgs/msg/occupancy_grid.hpp"
+#include "rclcpp/rclcpp.hpp"
+#include "tf2_ros/transform_broadcaster.h"
+
+class MergeMaps : public rclcpp::Node
+{
+public:
+  MergeMaps()
+  : Node("map_merging")
+  {
+    map_pub_ = create_publisher<nav_msgs::msg::OccupancyGrid>("map", 1);
+    broadcaster_ = std::make_unique<tf2_ros::TransformBroadcaster>(*this);
+  }
+
+  void addSubmap(int id)
+  {
+    geometry_msgs::msg::TransformStamped msg;
+    msg.child_frame_id = "/map_" + std::to_string(id);
+    msg.header.frame_id = "/map";
+    msg.header.stamp = now();
+    broadcaster_->sendTransform(msg);
+  }
+
+  void publishMap(nav_msgs::msg::OccupancyGrid & grid)
+  {
+    grid.header.frame_id = "/map";
+    map_pub_->publish(grid);
+  }
+
+private:
+  rclcpp::Publisher<nav_msgs::msg::OccupancyGrid>::SharedPtr map_pub_;
+  std::unique_ptr<tf2_ros::TransformBroadcaster> broadcaster_;
+};
+"""
+
+
+def test_rn205_leaves_a_transform_handed_to_send_transform_alone(
+    run_cli: Any, tmp_path: Any
+) -> None:
+    """tf2 strips the slash of a transform it stores (``BufferCore::setTransformImpl``):
+    the frames set on the message the function hands to ``sendTransform`` work; the same
+    frame stamped on a published map does not (rviz looks the header's frame up)."""
+    write(tmp_path, "src/map_merging/src/merge_maps.cpp", MAP_MERGER_NODE)
+    write_package(tmp_path / "src" / "map_merging", 2, name="map_merging")
+    result = run_cli(["check", "--format", "json", "--select", "RN205", "src"], tmp_path)
+    assert [(f["path"], f["line"]) for f in result.findings()] == [
+        ("src/map_merging/src/merge_maps.cpp", 30),
+    ]

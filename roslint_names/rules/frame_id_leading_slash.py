@@ -51,13 +51,17 @@ _STATIC_BROADCASTERS = frozenset(
     }
 )
 # Frames only sent, by the API the extractors name them with: ROS 1 Python tf's
-# TransformBroadcaster.sendTransform(translation, rotation, time, child, parent), and the
-# two frames a launch file gives static_transform_publisher as arguments
-# (extract/launch/static_transform.py's FRAME_API and CHILD_FRAME_API). tf2's
-# setTransform strips the slash on the receiving side.
+# TransformBroadcaster.sendTransform(translation, rotation, time, child, parent), the
+# header and child frames of a C++ message handed to sendTransform in the function that
+# sets them (extract/cpp/apis.py's SENT_FRAME_FIELD), and the two frames a launch file
+# gives static_transform_publisher as arguments (extract/launch/static_transform.py's
+# FRAME_API and CHILD_FRAME_API). tf2's setTransform strips the slash on the receiving
+# side.
 _BROADCAST_APIS = frozenset(
     {
         "tf sendTransform",
+        "sendTransform frame_id",
+        "sendTransform child_frame_id",
         "static_transform_publisher frame_id",
         "static_transform_publisher child_frame_id",
     }

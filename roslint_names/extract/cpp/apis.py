@@ -160,6 +160,10 @@ FRAME_FUNCTIONS = frozenset(
     }
 )
 FRAME_FIELDS = frozenset({"frame_id", "child_frame_id"})
+# The API a header or child frame field is named with when the message it is set on is
+# handed to a tf broadcaster's ``sendTransform`` in the same function (``t.header.frame_id =
+# "odom"; broadcaster.sendTransform(t)``): a transform broadcast, whose slash tf2 strips.
+SENT_FRAME_FIELD = {word: f"sendTransform {word}" for word in FRAME_FIELDS}
 # (argument indexes holding frames) per constructed tf type
 FRAME_CONSTRUCTIONS = {"StampedTransform": (2, 3), "Stamped": (2,)}
 ACTIONLIB = {"SimpleActionServer": Role.ACTION_SERVE, "ActionServer": Role.ACTION_SERVE}

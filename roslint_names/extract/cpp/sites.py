@@ -37,6 +37,7 @@ from .apis import (
     ROS1_PARAMETER_FUNCTIONS,
     ROS1_PARAMETERS,
     ROS2_PARAMETERS,
+    SENT_FRAME_FIELD,
     SERVICE_FUNCTIONS,
     SERVICE_WRAPPERS,
     WAIT_FOR_MESSAGE,
@@ -61,6 +62,10 @@ from .source import (
 from .types import Types
 from .values import Folder, Value
 from .variables import statement_holding
+
+# A call of a tf broadcaster's ``sendTransform``: ``broadcaster.sendTransform``,
+# ``tf_broadcaster_->sendTransform``, ``this->broadcaster_->sendTransform``.
+_SEND_TRANSFORM = re.compile(r"(?:^|[.>:\s])sendTransform$")
 
 
 class Sites:
@@ -467,7 +472,35 @@ class Sites:
             return
         value = self.folder.fold(right)
         if not value.dynamic and value.text:  # "" clears the field, it names no frame
-            self.emit(Kind.FRAME, Role.FRAME, word, value)
+            api = SENT_FRAME_FIELD[word] if self._sent_as_transform(access) else word
+            self.emit(Kind.FRAME, Role.FRAME, api, value)
+
+    def _sent_as_transform(self, access: Node) -> bool:
+        """Whether the message variable whose field ``access`` is (``t.header.frame_id``,
+        ``t.child_frame_id``) is handed to a ``sendTransform`` call in the same function:
+        a tf broadcaster's (slam_toolbox's ``merge_maps_kinematic.cpp`` fills a
+        ``TransformStamped`` so, in a node that also publishes maps)."""
+        root = access
+        while root.type == "field_expression":
+            inner = root.child_by_field_name("argument")
+            if inner is None:
+                return False
+            root = inner
+        functions = enclosing_functions(access)
+        if root.type != "identifier" or not functions:
+            return False
+        body = functions[0]
+        for word in self.source.occurrences(self.source.text(root)):
+            if not body.start_byte <= word.start_byte < body.end_byte:
+                continue
+            listed = word.parent
+            call = None if listed is None else listed.parent
+            if listed is None or listed.type != "argument_list" or call is None:
+                continue
+            callee = call.child_by_field_name("function")
+            if callee is not None and _SEND_TRANSFORM.search(self.source.text(callee)):
+                return True
+        return False
 
     def _template_type(self, call: Call) -> str | None:
         return self._first_type(call.template)
