@@ -124,6 +124,9 @@ class ParameterTrait(str, Enum):
     PLUGINS = "plugins"  # loads pluginlib plugins, which declare on the node they are given
     GENERATED = "generated"  # generate_parameter_library: declared by generated code
     DYNAMIC_RECONFIGURE = "dynamic-reconfigure"  # serves a .cfg's parameters (ROS 1)
+    # holds a filters::FilterChain, which declares ``filterN.name``/``.type`` and whose
+    # filters declare ``filterN.params.*`` on the node
+    FILTER_CHAIN = "filter-chain"
 
 
 class Severity(str, Enum):

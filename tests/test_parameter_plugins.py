@@ -299,3 +299,98 @@ def test_a_node_of_unknown_name_keeps_only_what_its_code_takes(
     allowing = SAVER_CPP.format(options=".allow_undeclared_parameters(true)")
     write(directory, "src/map_saver.cpp", allowing)
     assert found_names(run_cli, tmp_path) == []
+
+
+# laser_filters' scan_to_scan_filter_chain (ros2 branch), reduced: a filters library chain
+# declares each filterN.name and filterN.type, its filters their filterN.params.*
+# (ros/filters include/filters/filter_chain.hpp, load_chain_config; filter_base.hpp,
+# FilterBase::getParamImpl); the node's own reads are its own.
+
+CHAIN_CMAKE = """\
+cmake_minimum_required(VERSION 3.8)
+project(scan_filtering)
+find_package(ament_cmake REQUIRED)
+find_package(rclcpp REQUIRED)
+find_package(filters REQUIRED)
+find_package(sensor_msgs REQUIRED)
+add_executable(scan_to_scan_filter_chain src/scan_to_scan_filter_chain.cpp)
+ament_target_dependencies(scan_to_scan_filter_chain rclcpp filters sensor_msgs)
+install(TARGETS scan_to_scan_filter_chain DESTINATION lib/${PROJECT_NAME})
+install(DIRECTORY config launch DESTINATION share/${PROJECT_NAME})
+ament_package()
+"""
+
+CHAIN_CPP = """\
+#include <memory>
+#include <string>
+
+#include "filters/filter_chain.hpp"
+#include "rclcpp/rclcpp.hpp"
+#include "sensor_msgs/msg/laser_scan.hpp"
+
+class ScanToScanFilterChain
+{
+public:
+  explicit ScanToScanFilterChain(rclcpp::Node::SharedPtr node)
+  : node_(node), filter_chain_("sensor_msgs::msg::LaserScan")
+  {
+    filter_chain_.configure(
+      "", node_->get_node_logging_interface(), node_->get_node_parameters_interface());
+    node_->declare_parameter("output_frame", std::string("laser"));
+    node_->get_parameter_or("tf_message_filter_tolerance", tolerance_, 0.03);
+    output_ = node_->create_publisher<sensor_msgs::msg::LaserScan>("scan_filtered", 10);
+  }
+
+private:
+  rclcpp::Node::SharedPtr node_;
+  filters::FilterChain<sensor_msgs::msg::LaserScan> filter_chain_;
+  rclcpp::Publisher<sensor_msgs::msg::LaserScan>::SharedPtr output_;
+  double tolerance_;
+};
+
+int main(int argc, char ** argv)
+{
+  rclcpp::init(argc, argv);
+  auto node = rclcpp::Node::make_shared("scan_to_scan_filter_chain");
+  ScanToScanFilterChain chain(node);
+  rclcpp::spin(node);
+  return 0;
+}
+"""
+
+CHAIN_PARAMS = """\
+scan_to_scan_filter_chain:
+  ros__parameters:
+    output_frmae: laser_filtered
+    filter1:
+      name: angle
+      type: laser_filters/LaserScanAngularBoundsFilter
+      params:
+        lower_angle: -1.52
+        upper_angle: 1.52
+"""
+
+CHAIN_LAUNCH = """\
+<launch>
+  <node pkg="scan_filtering" exec="scan_to_scan_filter_chain"
+        name="scan_to_scan_filter_chain">
+    <param from="$(find-pkg-share scan_filtering)/config/angular_filter.yaml"/>
+  </node>
+</launch>
+"""
+
+
+def test_a_filter_chain_declares_its_filters_and_nothing_else(run_cli: Any, tmp_path: Path) -> None:
+    """Every ``filter1.`` entry is the chain's, as its 52 entries in laser_filters'
+    examples are (each was reported); a misspelt name of the node's own is still
+    reported, and so is its read of a name nothing declares."""
+    directory = ament_package(tmp_path, "scan_filtering", CHAIN_CMAKE)
+    write(directory, "src/scan_to_scan_filter_chain.cpp", CHAIN_CPP)
+    write(directory, "config/angular_filter.yaml", CHAIN_PARAMS)
+    write(directory, "launch/filter.launch.xml", CHAIN_LAUNCH)
+    params = "src/scan_filtering/config/angular_filter.yaml"
+    assert found_names(run_cli, tmp_path) == [(params, 3, "output_frmae")]
+    undeclared = findings_of(run_cli, tmp_path, "RN407")
+    assert [(f["path"], f["line"]) for f in undeclared] == [
+        ("src/scan_filtering/src/scan_to_scan_filter_chain.cpp", 17),
+    ]

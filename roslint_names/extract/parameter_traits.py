@@ -28,6 +28,12 @@ _PLUGINS = re.compile(
     rb"\bClassLoader\s*<|\bcreate(?:Shared|Unique|Unmanaged)Instance\b"
     rb"|\bregisterFromPlugin\b"  # BehaviorTree.CPP's: nav2's tree nodes read the ROS node's
 )
+# The filters library's chains: ros/filters (ros2) include/filters/filter_chain.hpp,
+# ``impl::load_chain_config``, declares each ``filterN.name`` and ``filterN.type`` under
+# the prefix ``configure`` is given, and loads the filters through a pluginlib
+# ``ClassLoader``; each declares its ``filterN.params.*`` (``FilterBase::getParamImpl``,
+# filter_base.hpp). laser_filters' scan_to_scan_filter_chain holds one.
+_FILTER_CHAIN = re.compile(rb"\b(?:MultiChannel)?FilterChain\s*<")
 # generate_parameter_library's generated ParamListener declares a YAML file's parameters.
 _GENERATED = re.compile(rb"\bParamListener\b|\bgenerate_parameter_library\b")
 # A ROS 1 dynamic_reconfigure server: the parameters its .cfg file generates.
@@ -56,6 +62,7 @@ _TRAITS = (
     (b"Instance", _PLUGINS, ParameterTrait.PLUGINS),
     (b"ClassLoader", _PLUGINS, ParameterTrait.PLUGINS),
     (b"registerFromPlugin", _PLUGINS, ParameterTrait.PLUGINS),
+    (b"FilterChain", _FILTER_CHAIN, ParameterTrait.FILTER_CHAIN),
     (b"ParamListener", _GENERATED, ParameterTrait.GENERATED),
     (b"generate_parameter_library", _GENERATED, ParameterTrait.GENERATED),
     (b"dynamic_reconfigure", _DYNAMIC_RECONFIGURE, ParameterTrait.DYNAMIC_RECONFIGURE),

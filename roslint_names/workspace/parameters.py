@@ -33,6 +33,18 @@ rclpy's ``TimeSource.attach_node`` in ``rclpy/time_source.py``) and
 ``node_interfaces/node_type_descriptions.cpp``, rclpy's ``TypeDescriptionService``), and
 the ``qos_overrides.`` parameters rclcpp declares for a publisher or subscription that
 allows QoS overrides (``rclcpp/detail/qos_parameters.hpp``).
+
+A ROS 2 node whose code holds a filters library chain (``filters::FilterChain<T>``,
+``MultiChannelFilterChain<T>``) declares what the chain does: ros/filters' (ros2)
+``impl::load_chain_config`` (``include/filters/filter_chain.hpp``) declares ``filterN.name``
+and ``filterN.type`` under the prefix ``configure`` is given, for N from 1 until one is
+unset, and each filter it loads declares its own ``filterN.params.*``
+(``FilterBase::getParamImpl``, ``filter_base.hpp``). The prefix is not read: a name with
+such a part at any depth counts as declared, and the node's other names stay judged
+(laser_filters' ``scan_to_scan_filter_chain`` reads ``tf_message_filter_target_frame``
+without declaring it). ROS 1's chain reads a list under the name it is given and its
+filters read theirs below it: a ROS 1 node holding one may read names the linter does
+not know, as one loading plugins does.
 """
 
 from __future__ import annotations
@@ -150,6 +162,9 @@ class NodeParameters:
     # The dynamic_reconfigure ``.cfg`` files whose parameters the code's servers read
     # (their names are in ``read``).
     reconfigure: tuple[str, ...] = ()
+    # The code holds a filters library chain (ROS 2): it declares ``filterN.name``,
+    # ``filterN.type`` and ``filterN.params.*`` under some prefix (module docstring).
+    filter_chain: bool = False
 
     @property
     def complete(self) -> bool:
@@ -162,7 +177,10 @@ class NodeParameters:
         return all(cause is Incomplete.RUN_TIME_READ for cause in self.incomplete)
 
     def declares(self, name: str) -> bool:
-        """Whether the code (or its client library) may declare ``name``."""
+        """Whether the code (or its client library, or a filter chain it holds) may
+        declare ``name``."""
+        if self.filter_chain and _FILTER_CHAIN_NAME.search(name):
+            return True
         return declared_by(name, self.declared, self.declared_suffixes)
 
     def may_declare(self, name: str) -> bool:
@@ -181,6 +199,8 @@ class NodeParameters:
 
 # The parameters of a node whose code the workspace does not hold
 NO_CODE = NodeParameters(incomplete=(Incomplete.NO_CODE,))
+# What a filters library chain declares on its node (module docstring), under any prefix
+_FILTER_CHAIN_NAME = re.compile(r"(?:^|\.)filter[1-9][0-9]*\.(?:name$|type$|params\.)")
 
 
 def declared_by(name: str, names: Iterable[str], suffixes: Iterable[str]) -> bool:
@@ -561,6 +581,7 @@ class ParameterSets:
             literals=tuple(sorted(names.literals)),
             declared_constants=tuple(sorted(names.constants)),
             reconfigure=tuple(sorted(configs)),
+            filter_chain=names.filter_chain,
         ), read
 
     def _file_names(self, path: str) -> tuple[_Names, frozenset[Incomplete]] | None:
@@ -570,9 +591,15 @@ class ParameterSets:
         if path in self._names_memo:
             return self._names_memo[path]
         facts = self._index.facts[path]
-        causes = {_TRAIT_CAUSES[trait] for trait in facts.parameter_traits}
+        traits = facts.parameter_traits
+        causes = {_TRAIT_CAUSES[trait] for trait in traits if trait in _TRAIT_CAUSES}
         names = _Names()
         names.add(facts, causes)
+        if ParameterTrait.FILTER_CHAIN in traits:
+            if facts.generation is Generation.ROS1:
+                causes.add(Incomplete.PLUGINS)  # names below one the linter does not read
+            else:
+                names.filter_chain = True
         names.literals.update(facts.unexplained_literals)
         found = None if names.empty and not causes else (names, frozenset(causes))
         self._names_memo[path] = found
@@ -833,6 +860,7 @@ class _Names:
         self.read_prefixes: set[str] = set()
         self.literals: set[str] = set()
         self.constants: set[str] = set()
+        self.filter_chain = False  # ``NodeParameters.filter_chain``
 
     def _sets(self) -> tuple[set[str], ...]:
         return (
@@ -847,7 +875,7 @@ class _Names:
 
     @property
     def empty(self) -> bool:
-        return not any(self._sets())
+        return not self.filter_chain and not any(self._sets())
 
     def join(self, other: _Names) -> None:
         """Add what ``other`` gathered. Each set by name, not through ``_sets``: called
@@ -860,6 +888,7 @@ class _Names:
         self.read_prefixes |= other.read_prefixes
         self.literals |= other.literals
         self.constants |= other.constants
+        self.filter_chain = self.filter_chain or other.filter_chain
 
     def add_declarations(self, facts: FileFacts) -> None:
         for use in _parameter_uses(facts):
