@@ -42,9 +42,7 @@ unset, and each filter it loads declares its own ``filterN.params.*``
 (``FilterBase::getParamImpl``, ``filter_base.hpp``). The prefix is not read: a name with
 such a part at any depth counts as declared, and the node's other names stay judged
 (laser_filters' ``scan_to_scan_filter_chain`` reads ``tf_message_filter_target_frame``
-without declaring it). ROS 1's chain reads a list under the name it is given and its
-filters read theirs below it: a ROS 1 node holding one may read names the linter does
-not know, as one loading plugins does.
+without declaring it).
 """
 
 from __future__ import annotations
@@ -595,11 +593,10 @@ class ParameterSets:
         causes = {_TRAIT_CAUSES[trait] for trait in traits if trait in _TRAIT_CAUSES}
         names = _Names()
         names.add(facts, causes)
-        if ParameterTrait.FILTER_CHAIN in traits:
-            if facts.generation is Generation.ROS1:
-                causes.add(Incomplete.PLUGINS)  # names below one the linter does not read
-            else:
-                names.filter_chain = True
+        # ROS 1's chain reads the list under the name it is given: a string the code
+        # holds, which counts as read (``literals``).
+        if ParameterTrait.FILTER_CHAIN in traits and facts.generation is not Generation.ROS1:
+            names.filter_chain = True
         names.literals.update(facts.unexplained_literals)
         found = None if names.empty and not causes else (names, frozenset(causes))
         self._names_memo[path] = found
