@@ -22,7 +22,7 @@ from tree_sitter import Node
 
 from roslint_names.model import Span
 
-from .source import Source, field
+from .source import Source, field, field_root
 
 _EXPECTING = re.compile(
     rb"\b(?:\w+_)?(?:EXPECT|ASSERT)_(?:ANY_)?THROW(?:_EQ)?\b"
@@ -106,9 +106,8 @@ def _field_set(source: Source, statement: Node) -> str | None:
     target = field(assignment, "left")
     if target is None or target.type != "field_expression":
         return None
-    while target is not None and target.type == "field_expression":
-        target = field(target, "argument")
-    return None if target is None or target.type != "identifier" else source.text(target)
+    root = field_root(target)
+    return None if root is None or root.type != "identifier" else source.text(root)
 
 
 def _identifiers(source: Source, node: Node) -> frozenset[str]:

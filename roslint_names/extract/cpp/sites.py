@@ -55,6 +55,7 @@ from .source import (
     compact,
     contains,
     enclosing_functions,
+    field_root,
     is_field,
     template_types,
     unparenthesized,
@@ -62,10 +63,6 @@ from .source import (
 from .types import Types
 from .values import Folder, Value
 from .variables import statement_holding
-
-# A call of a tf broadcaster's ``sendTransform``: ``broadcaster.sendTransform``,
-# ``tf_broadcaster_->sendTransform``, ``this->broadcaster_->sendTransform``.
-_SEND_TRANSFORM = re.compile(r"(?:^|[.>:\s])sendTransform$")
 
 
 class Sites:
@@ -480,25 +477,19 @@ class Sites:
         ``t.child_frame_id``) is handed to a ``sendTransform`` call in the same function:
         a tf broadcaster's (slam_toolbox's ``merge_maps_kinematic.cpp`` fills a
         ``TransformStamped`` so, in a node that also publishes maps)."""
-        root = access
-        while root.type == "field_expression":
-            inner = root.child_by_field_name("argument")
-            if inner is None:
-                return False
-            root = inner
+        root = field_root(access)
         functions = enclosing_functions(access)
-        if root.type != "identifier" or not functions:
+        if root is None or root.type != "identifier" or not functions:
             return False
-        body = functions[0]
-        for word in self.source.occurrences(self.source.text(root)):
+        body, variable = functions[0], self.source.text(root)
+        for word in self.source.occurrences("sendTransform"):
             if not body.start_byte <= word.start_byte < body.end_byte:
                 continue
-            listed = word.parent
-            call = None if listed is None else listed.parent
-            if listed is None or listed.type != "argument_list" or call is None:
-                continue
-            callee = call.child_by_field_name("function")
-            if callee is not None and _SEND_TRANSFORM.search(self.source.text(callee)):
+            call = call_named_by(self.source, word)
+            if call is not None and any(
+                argument.type == "identifier" and self.source.text(argument) == variable
+                for argument in call.arguments
+            ):
                 return True
         return False
 

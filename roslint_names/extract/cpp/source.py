@@ -191,6 +191,15 @@ def is_field(parent: Node | None, name: str, child: Node) -> bool:
     return parent is not None and parent.child_by_field_name(name) == child
 
 
+def field_root(node: Node) -> Node | None:
+    """What a chain of field accesses starts from: ``msg`` of ``msg.header.frame_id``
+    (``node`` itself where it is no field access)."""
+    root: Node | None = node
+    while root is not None and root.type == "field_expression":
+        root = root.child_by_field_name("argument")
+    return root
+
+
 def arguments(node: Node | None) -> list[Node]:
     """The argument expressions of an ``argument_list`` or ``initializer_list``."""
     if node is None:
