@@ -977,6 +977,7 @@ class _RunFacts:
     removed: InitVar[Mapping[str, FileFacts]]  # code files the build had, the run has not
     loaded: dict[int, FileFacts | None] = field(default_factory=dict)
     raw: dict[int, FileFacts] = field(default_factory=dict)  # of ``loaded``, as extracted
+    _extracted: dict[int, FileFacts | None] = field(default_factory=dict)  # ``stored``'s
     # The constants of each package's C++ files at the build and now
     constants: _Constants = field(init=False)
 
@@ -986,12 +987,18 @@ class _RunFacts:
         )
 
     def stored(self, index: int) -> FileFacts | None:
-        """A file's facts as extracted (the edited files' of this run)."""
+        """A file's facts as extracted (the edited files' of this run), loaded once: the
+        constants of a package read every C++ file below it, and its parameters read the
+        same files again (two copies of 2,000 files' facts, 40 MB at 8 copies, before)."""
         if index in self.arrived:
             return self.arrived[index]
+        if index in self._extracted:
+            return self._extracted[index]
         # By index: ``RunInputs.tags`` copies every file's key (0.08 s a patch).
         tag = self.key_of(index)
-        return None if tag is None else self.cache.load(tag, self.files[index].display)
+        found = None if tag is None else self.cache.load(tag, self.files[index].display)
+        self._extracted[index] = found
+        return found
 
     def at(self, index: int) -> FileFacts | None:
         """A file's facts, resolved where it takes another file's constant."""
