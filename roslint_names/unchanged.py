@@ -53,7 +53,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
-from typing import TYPE_CHECKING, NamedTuple
+from typing import IO, TYPE_CHECKING, NamedTuple
 
 from .cache import BuiltinsUnpickler, FactsCache
 from .generation import is_package_manifest
@@ -64,8 +64,9 @@ if TYPE_CHECKING:
 
 KEYS = "keys"  # their directory in the facts cache: one file per workspace, and its files
 KEPT = 64
-# 6: the files' statuses packed (``reading.Statuses``), in this machine's byte order
-_FORMAT = f"6 {sys.byteorder}"
+# 6: the files' statuses packed (``reading.Statuses``), in this machine's byte order; 7:
+# what the key is made of pickled after the rest, not inside it (``keep``)
+_FORMAT = f"7 {sys.byteorder}"
 _FILES_FORMAT = 1
 MOST_SHIFTED = 64  # checked files added or removed past which a run is keyed file by file
 _PROTOCOL = pickle.HIGHEST_PROTOCOL
@@ -272,22 +273,18 @@ class KeptKey:
         # ``_racy`` of each, without a call each
         trusted = file_statuses.changed_from(racy_from(self.started)).to_bytes()
         tags, place_key, lookups, shape_key = keying
-        made_of = pickle.dumps((list(tags), lookups, shape_key), _PROTOCOL)
         paths = tuple(package_statuses)
-        kept = (
-            _FORMAT,
-            identity,
-            key,
-            trusted,
-            paths,
-            kept_statuses,
-            digests,
-            place_key,
-            made_of,
-            shape,
-        )
-        # Pickled into the file: 12 MB at 77,000 files, the peak of a run that patched.
-        self._cache.write_newest(self._path, partial(pickle.dump, kept, protocol=_PROTOCOL), KEPT)
+        kept = (_FORMAT, identity, key, trusted, paths, kept_statuses, digests, place_key, shape)
+        made_of = (list(tags), lookups, shape_key)
+
+        # Pickled into the file, what the key is made of after the rest (``_read``): 12 MB
+        # at 81,000 files, pickled into bytes first, then into the file, was 13 to 19 MB
+        # more at the peak of a run that patched the graph.
+        def write(stream: IO[bytes]) -> None:
+            pickle.dump(kept, stream, protocol=_PROTOCOL)
+            pickle.dump(made_of, stream, protocol=_PROTOCOL)
+
+        self._cache.write_newest(self._path, write, KEPT)
 
     def _racy(self, status: Status) -> bool:
         return is_racy(status[1], status[2], self.started)
@@ -342,9 +339,10 @@ class KeptKey:
         try:
             with open_regular(self._path) as stream:
                 loaded = BuiltinsUnpickler(stream).load()
+                made_of = stream.read()  # the pickle after it (``keep``), read when taken up
         except Exception:  # absent, unreadable or damaged: the run is keyed file by file
             return None
-        if not (isinstance(loaded, tuple) and len(loaded) == 10 and loaded[0] == _FORMAT):
+        if not (isinstance(loaded, tuple) and len(loaded) == 9 and loaded[0] == _FORMAT):
             return None
         shapes: tuple[type | tuple[type, ...], ...] = (
             str,
@@ -354,7 +352,6 @@ class KeptKey:
             list,
             list,
             str,
-            bytes,
             (str, type(None)),
         )
         if not all(map(isinstance, loaded[1:], shapes)):
@@ -362,7 +359,10 @@ class KeptKey:
         statuses = Statuses.from_bytes(loaded[3])
         if statuses is None:
             return None
-        kept = _Kept(loaded[1], loaded[2], statuses, *loaded[4:])
+        _, identity, key, _, paths, package_statuses, digests, place_key, shape = loaded
+        kept = _Kept(
+            identity, key, statuses, paths, package_statuses, digests, place_key, made_of, shape
+        )
         if not len(kept.package_paths) == len(kept.package_statuses) == len(kept.package_digests):
             return None
         return kept
