@@ -737,7 +737,8 @@ def _released(
         position = len(pack)
     if not isinstance(pack, mmap.mmap) or position - released < at_least:
         return released
-    end = position - position % mmap.PAGESIZE
+    # To a page's start, but at the pack's end: its last page, partly the pack's, too.
+    end = position if position == len(pack) else position - position % mmap.PAGESIZE
     if hasattr(pack, "madvise") and end > released:
         pack.madvise(mmap.MADV_DONTNEED, released, end - released)
     return end
