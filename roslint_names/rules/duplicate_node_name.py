@@ -35,7 +35,9 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
         # or standalone, simulation or hardware): only unconditional starts count.
         if node.launched_at and not node.conditional:
             started[(node.root, node.name)].append(node)
-    # One finding per launch site: a copied include duplicates every node it starts.
+    # One finding per launch site: a copied include duplicates every node it starts. The
+    # first start of a name is the one the others copy: each copy is reported, where its
+    # name or namespace is changed, and the first is named beside it (one decision each).
     at: dict[Location, dict[str, list[Location]]] = defaultdict(dict)
     roots: dict[Location, str] = {}
     twice = [(key, nodes) for key, nodes in started.items() if len(nodes) > 1]
@@ -46,8 +48,11 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
             if not others:
                 continue
             location = _blame(node, others[0])
+            earlier = [_blame(other, node) for other in others]
+            if min(earlier) > location:
+                continue  # the first start: reported beside its copies
             roots.setdefault(location, root)
-            at[location].setdefault(name, [_blame(other, node) for other in others])
+            at[location].setdefault(name, earlier)
     for location, names in sorted(at.items()):
         related = sorted({(o, "also started here") for others in names.values() for o in others})
         listed = _listed(sorted(names))
