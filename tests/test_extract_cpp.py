@@ -288,6 +288,30 @@ def test_message_filters_subscriber() -> None:
     ]
 
 
+def test_a_subscribe_of_one_argument_names_no_topic() -> None:
+    """autoware_pointcloud_preprocessor's filter.cpp, reduced: its own
+    ``Filter::subscribe(filter_name)`` was read as a topic named ``""`` (an RN101
+    error); roscpp's and message_filters' subscribe take two arguments or more."""
+    facts = extract(
+        "#include <rclcpp/rclcpp.hpp>\n"
+        "#include <message_filters/subscriber.h>\n"
+        "class Filter : public rclcpp::Node {\n"
+        "  void subscribe() {\n"
+        '    std::string filter_name = "";\n'
+        "    subscribe(filter_name);\n"
+        "  }\n"
+        "  void subscribe(const std::string & filter_name) {\n"
+        '    sub_input_filter_.subscribe(this, "input", rmw_qos_profile_sensor_data);\n'
+        "    sub_input_filter_.subscribe();\n"
+        "  }\n"
+        "  message_filters::Subscriber<sensor_msgs::msg::PointCloud2> sub_input_filter_;\n"
+        "};\n"
+    )
+    assert [(kind, role, value) for kind, role, value, _ in uses(facts)] == [
+        (TOPIC, Role.SUBSCRIBE, "input"),
+    ]
+
+
 # ---------------------------------------------------------------------------------------
 # Handle namespaces
 

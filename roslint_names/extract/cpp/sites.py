@@ -282,8 +282,15 @@ class Sites:
 
     def subscribe(self, call: Call) -> None:
         """``nh.subscribe(name, queue, callback)``; message_filters' ``sub.subscribe(nh,
-        name, queue)`` takes the handle first."""
+        name, queue)`` takes the handle first. A call of fewer arguments names no topic:
+        roscpp's ``NodeHandle::subscribe`` takes a queue size and a callback after the
+        name, or one ``SubscribeOptions`` (``options``); message_filters'
+        ``Subscriber::subscribe()`` subscribes again to the topic it was given (ros/ros_comm
+        ``node_handle.h``, ros2/message_filters ``subscriber.h``). Autoware's
+        ``pointcloud_preprocessor::Filter::subscribe(filter_name)`` is its own."""
         values = call.arguments
+        if len(values) < 2:
+            return
         index = 0
         if (
             len(values) >= 2
