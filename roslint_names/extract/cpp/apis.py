@@ -128,6 +128,16 @@ ROS2_PARAMETERS = {
     "auto_declare": ParameterSite(
         0, 1, "controller_interface::ControllerInterfaceBase::auto_declare", _DECLARE, minimum=2
     ),
+    # Autoware's free function (node, name): the node's value of the parameter, which it
+    # declares unless the node has it (autoware_utils, include/autoware_utils/ros/
+    # parameter.hpp; autoware_universe_utils' getOrDeclareParameter before it, 815 and 1
+    # calls in autoware.universe)
+    "get_or_declare_parameter": ParameterSite(
+        1, None, "autoware_utils::get_or_declare_parameter", _DECLARE, minimum=2
+    ),
+    "getOrDeclareParameter": ParameterSite(
+        1, None, "autoware::universe_utils::getOrDeclareParameter", _DECLARE, minimum=2
+    ),
 }
 # nav2's declare_or_get_parameter: a member (name, default) of nav2::LifecycleNode, or free
 # (node, name[, default]) and (logger, parameters interface, name, default) in

@@ -86,6 +86,7 @@ MARKERS: dict[str, bytes | None] = {
     },
     "rclcpp::Parameter": rb"\b",
     "auto_declare": rb"\b",  # ros2_control's controllers
+    "getOrDeclareParameter": rb"\s*[<(]",  # Autoware's (get_or_declare_parameter: above)
     "frame_id": rb"\s*=[^=]",  # frame_id = "map", not frame_id == "map"
     **dict.fromkeys(("lookupTransform", "canTransform", "waitForTransform"), None),
     **dict.fromkeys(f"transform{what}" for what in ("Pose", "Point", "Vector", "Quaternion")),

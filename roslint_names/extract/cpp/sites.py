@@ -810,6 +810,8 @@ _DECLARING_APIS = frozenset(
         DECLARE_OR_GET,
         PLUGIN_TYPE,
         "auto_declare",
+        "get_or_declare_parameter",
+        "getOrDeclareParameter",
     }
 )
 
