@@ -138,9 +138,6 @@ def _build(
     unbuilt = memory.piece("unbuilt", BUILD_FIELDS, lambda: unbuilt_sources(index))
     launched_sources: set[str] = set(unbuilt)
     trees = LaunchTrees(index, specialise, prepare, memory)
-    # parameter file -> the code (and generation) of each node of unknown name it is
-    # handed to
-    unnamed: dict[str, set[tuple[Generation, tuple[str, ...]]]] = {}
     # Keyed by the tree and the node's place in it, not by the launched node: hashing
     # one hashes all it holds. A tree walked again starts nodes that are new objects.
     started = memory.reads("launched")
@@ -163,8 +160,6 @@ def _build(
         if instance.node is not None:
             nodes.append(instance.node)
             endpoints.extend(instance.endpoints)
-        for path, receiver in instance.unnamed:
-            unnamed.setdefault(path, set()).add(receiver)
         tree_unnamed.setdefault(launched.root, []).extend(instance.unnamed)
     unlaunched = memory.reads("unlaunched")
     programs = memory.piece(
@@ -176,6 +171,9 @@ def _build(
         node, found_endpoints = unlaunched[sources][0]
         nodes.append(node)
         endpoints.extend(found_endpoints)
+    # parameter file -> the code (and generation) of each node of unknown name it is
+    # handed to
+    unnamed = receivers_by_file(pair for pairs in tree_unnamed.values() for pair in pairs)
     rooted_loads = _group_loads(index, trees)
     loads = [use for _, use in rooted_loads]
     blocks = {path: index.facts[path].parameter_blocks for path in linked_files(nodes, loads)}
