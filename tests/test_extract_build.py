@@ -116,9 +116,28 @@ def test_register_node_makes_a_program_and_a_plugin() -> None:
     assert rows(facts) == [
         # made by the file's own function: custom_executable(parameters list_parameters_async)
         ("program", "list_parameters_async", ("src/parameters/list_parameters_async.cpp",)),
-        ("plugin", "demo_nodes_cpp::Talker", ("src/topics/talker.cpp",)),
+        # listener.cpp is named after no class the file registers: the library's code
+        # beside the class's own, as a helper would be; listener_best_effort.cpp is not
+        # the talker's (``plugin_sources``)
+        (
+            "plugin",
+            "demo_nodes_cpp::Talker",
+            (
+                "src/topics/talker.cpp",
+                "src/topics/listener.cpp",
+                "include/demo_nodes_cpp/visibility_control.h",
+            ),
+        ),
         ("program", "talker", library),
-        ("plugin", "demo_nodes_cpp::ListenerBestEffort", ("src/topics/listener_best_effort.cpp",)),
+        (
+            "plugin",
+            "demo_nodes_cpp::ListenerBestEffort",
+            (
+                "src/topics/listener.cpp",
+                "src/topics/listener_best_effort.cpp",
+                "include/demo_nodes_cpp/visibility_control.h",
+            ),
+        ),
         ("program", "listener_best_effort", library),
         # no file is named after the class: every source of the library
         ("plugin", "demo_nodes_cpp::ContentFilteringPublisher", library),
@@ -179,7 +198,12 @@ def test_nav2_executable_gets_its_core_library_sources() -> None:
             "controller_server",
             ("src/main.cpp", "src/parameter_handler.cpp", "src/controller_server.cpp"),
         ),
-        ("plugin", "nav2_controller::ControllerServer", ("src/controller_server.cpp",)),
+        # the parameter handler is the server's: it declares the server's parameters
+        (
+            "plugin",
+            "nav2_controller::ControllerServer",
+            ("src/parameter_handler.cpp", "src/controller_server.cpp"),
+        ),
     ]
     assert span(facts, "controller_server") == Span(29, 16, 29, 34)  # ${executable_name}
     assert span(facts, "nav2_controller::ControllerServer", PLUGIN) == Span(49, 50, 49, 85)
@@ -622,10 +646,12 @@ def test_register_node_with_unknown_parts() -> None:
         ("pkg::ImageViewNode", ("src/image_view_component.cpp",)),
         ("pkg::AMCLNode", ("src/amcl_node.cpp",)),
         ("pkg::sub::Listener", ("src/Listener.cpp",)),
+        # underscores aside: PointCloudMapLoaderNode is point_cloud_map_loader_node
+        ("pkg::PointCloudMapLoaderNode", ("src/pointcloud_map_loader_node.cpp",)),
         ("pkg::Relay", None),  # nothing named after it: the whole library
     ],
 )
-def test_plugin_sources_are_the_files_named_after_the_class(
+def test_plugin_sources_are_the_files_named_after_the_class_and_the_helpers(
     plugin: str, expected: tuple[str, ...] | None
 ) -> None:
     library = (
@@ -634,12 +660,44 @@ def test_plugin_sources_are_the_files_named_after_the_class(
         "src/image_view_component.cpp",
         "src/amcl_node.cpp",
         "src/Listener.cpp",
+        "src/pointcloud_map_loader_node.cpp",
+        "src/utils.cpp",
+        "src/parameter_handler.cpp",
     )
+    others = [other for other in ("pkg::Talker", "pkg::sub::Listener") if other != plugin]
     facts = of_cmake(
         f"add_library(lib SHARED {' '.join(library)})\n"
         f'rclcpp_components_register_nodes(lib "{plugin}")\n'
+        f"add_library(other SHARED src/other.cpp)\n"
+        f"rclcpp_components_register_nodes(other {' '.join(others)})\n"
     )
-    assert sources(facts, plugin, PLUGIN) == (expected or library)
+    # The helpers run in whichever component calls them; the files named after another
+    # class registered in the file, or as another node (``*_node``, ``*_component``),
+    # hold that one.
+    helpers = ("src/utils.cpp", "src/parameter_handler.cpp")
+    found = sources(facts, plugin, PLUGIN)
+    if expected is None:
+        assert found == library
+    else:
+        assert found == tuple(path for path in library if path in (*expected, *helpers))
+
+
+def test_a_library_of_one_component_runs_its_helpers_in_it() -> None:
+    """autoware.universe's reaction_analyzer: the node reads its parameters and publishes
+    through ``TopicPublisher`` and ``SubscriberBase``, files of its library that name no
+    class; they are the node's code, not a program of their own."""
+    facts = of_cmake(
+        "ament_auto_add_library(reaction_analyzer SHARED\n"
+        "  include/reaction_analyzer_node.hpp src/reaction_analyzer_node.cpp\n"
+        "  include/subscriber.hpp src/subscriber.cpp\n"
+        "  include/topic_publisher.hpp src/topic_publisher.cpp)\n"
+        "rclcpp_components_register_node(reaction_analyzer\n"
+        '  PLUGIN "reaction_analyzer::ReactionAnalyzerNode"\n'
+        "  EXECUTABLE reaction_analyzer_exe)\n"
+    )
+    assert sources(facts, "reaction_analyzer::ReactionAnalyzerNode", PLUGIN) == sources(
+        facts, "reaction_analyzer_exe"
+    )
 
 
 def test_installed_scripts() -> None:

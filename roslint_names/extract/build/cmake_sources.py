@@ -65,20 +65,35 @@ def _snake(name: str) -> str:
 
 
 def _forms(name: str) -> set[str]:
-    """``name`` in snake_case, also without a ``_component``/``_node`` suffix."""
+    """``name`` in snake_case, also without a ``_component``/``_node`` suffix, with the
+    underscores dropped: ``PointCloudMapLoaderNode`` is ``pointcloud_map_loader_node.cpp``."""
     snake = _snake(name)
     forms = {snake}
     forms.update(snake.removesuffix(suffix) for suffix in _SUFFIXES if snake.endswith(suffix))
     forms.discard("")
-    return forms
+    return {form.replace("_", "") for form in forms}
 
 
-def plugin_sources(plugin: str, sources: Sequence[str]) -> tuple[str, ...]:
-    """The library sources that hold component class ``plugin`` (``pkg::Talker`` ->
-    ``talker.cpp``, ``talker_component.hpp``), or all of them when no file is named after
-    the class."""
+def plugin_sources(
+    plugin: str, sources: Sequence[str], registered: Iterable[str] = ()
+) -> tuple[str, ...]:
+    """The library sources that hold component class ``plugin`` and the code it runs:
+    the files named after the class (``pkg::Talker`` -> ``talker.cpp``,
+    ``talker_component.hpp``), and the helpers beside them (``utils.cpp``, a
+    ``parameter_handler.cpp`` given the node): files named neither after another class
+    ``registered`` in the build file nor as another node's (``*_node.cpp``,
+    ``*_component.cpp``). All of the library when no file is named after the class."""
     wanted = _forms(plugin.rsplit("::", 1)[-1])
-    matching = tuple(
-        path for path in sources if _forms(posixpath.splitext(posixpath.basename(path))[0]) & wanted
+    others: set[str] = set()
+    for other in registered:
+        others.update(_forms(other.rsplit("::", 1)[-1]))
+    others -= wanted
+    stems = {path: posixpath.splitext(posixpath.basename(path))[0] for path in sources}
+    named = {path for path, stem in stems.items() if _forms(stem) & wanted}
+    if not named:
+        return tuple(sources)
+    return tuple(
+        path
+        for path, stem in stems.items()
+        if path in named or not (_forms(stem) & others or _snake(stem).endswith(_SUFFIXES))
     )
-    return matching or tuple(sources)

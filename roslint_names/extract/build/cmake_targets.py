@@ -101,7 +101,8 @@ class Targets:
             found.append(Executable(program.text, ExecutableKind.PROGRAM, sources, program.span))
         if registration.plugin is not None:
             plugin = registration.plugin
-            matching = plugin_sources(plugin.text, sources)
+            registered = [item.plugin.text for item in self._registrations if item.plugin]
+            matching = plugin_sources(plugin.text, sources, registered)
             found.append(Executable(plugin.text, ExecutableKind.PLUGIN, matching, plugin.span))
         return found
 
