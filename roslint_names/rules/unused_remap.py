@@ -85,10 +85,12 @@ def check_workspace(graph: Graph, context: RuleContext) -> Iterator[WorkspaceFin
     del context
     verdicts: dict[Location, list[tuple[bool, NodeRemap, NodeInstance]]] = defaultdict(list)
     for node in graph.nodes:
-        if not node.uses_complete or "::" in (node.executable or ""):
-            # Code we cannot see all of: a remap may rename what we miss. A component
-            # plugin's names are spread over its library (autoware's planners), which
-            # the build files do not tie to the class.
+        if not node.uses_complete or node.derives_elsewhere or "::" in (node.executable or ""):
+            # Code we cannot see all of: a remap may rename what we miss. A base class of
+            # another package's code may use the name (autoware's ground filters
+            # subscribe ``input`` through ``pointcloud_preprocessor::Filter``). A
+            # component plugin's names are spread over its library (autoware's
+            # planners), which the build files do not tie to the class.
             continue
         if not node.uses and not node.parameters:
             continue  # code that shows no name at all: it uses APIs we do not know

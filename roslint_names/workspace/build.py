@@ -398,7 +398,12 @@ class _Finished:
             and kept[1].parameter_settings == settings
         ):
             return kept[1]
-        finished = replaced(node, code_parameters=parameters, parameter_settings=settings)
+        finished = replaced(
+            node,
+            code_parameters=parameters,
+            parameter_settings=settings,
+            derives_elsewhere=parameters.derives_elsewhere,
+        )
         self._known[id(node)] = (node, finished)
         return finished
 

@@ -158,6 +158,9 @@ class NodeInstance(Compact):
     parameters: tuple[str, ...] = ()
     # What the node's code declares and reads, and whether that is all (RN407).
     code_parameters: NodeParameters | None = None
+    # ``code_parameters.derives_elsewhere``, kept where the graph keeps no parameters
+    # (``patch.for_patching``): code runs in the node whose names it does not show (RN404).
+    derives_elsewhere: bool = False
     conditional: bool = False  # started under a condition the linter cannot decide
     named_at_launch: bool = False  # the launch file gives its name, not its code
     # The parameter files the launch hands it (ROS 1: loads into its private namespace).

@@ -332,8 +332,9 @@ def _patched(
     finished = [
         replaced(
             node,
-            code_parameters=parameters.of(node.sources),
+            code_parameters=(code := parameters.of(node.sources)),
             parameter_settings=_with_group_loads(node, rooted, blocks),
+            derives_elsewhere=code.derives_elsewhere,
         )
         for node in nodes
     ]

@@ -131,7 +131,11 @@ def parameters_patched(
         except UnknownFactsError:  # a file the patch cannot load: the graph is built
             return None
     nodes = tuple(
-        replaced(node, code_parameters=fresh[node.sources])
+        replaced(
+            node,
+            code_parameters=fresh[node.sources],
+            derives_elsewhere=fresh[node.sources].derives_elsewhere,
+        )
         if node.sources in fresh and node.code_parameters is not None
         else node
         for node in graph.nodes

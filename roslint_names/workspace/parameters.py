@@ -163,6 +163,12 @@ class NodeParameters:
     # The code holds a filters library chain (ROS 2): it declares ``filterN.name``,
     # ``filterN.type`` and ``filterN.params.*`` under some prefix (module docstring).
     filter_chain: bool = False
+    # A class of the code derives from one of another package's code, or from one the
+    # workspace does not define (but a client library's node and harmless library
+    # classes): code that runs in the node and may use names of its own (autoware's
+    # ground filters subscribe ``input`` through ``pointcloud_preprocessor::Filter``).
+    # Made from what decides which code is followed (bases, includes), as the rest is.
+    derives_elsewhere: bool = False
 
     @property
     def complete(self) -> bool:
@@ -552,6 +558,10 @@ class ParameterSets:
         # declarations may be the node's too. Only declarations: what it reads, or leaves
         # open, is another node's business.
         packages = sorted({p.name for path in sources if (p := self._index.package_of(path))})
+        elsewhere = unknown_base or any(
+            (owner := self._index.package_of(path)) is not None and owner.name not in packages
+            for path in bases
+        )
         self.spans[sources] = frozenset(
             (p.name if (p := self._index.package_of(path)) else "") for path in (*sources, *bases)
         ) | frozenset(packages)
@@ -580,6 +590,7 @@ class ParameterSets:
             declared_constants=tuple(sorted(names.constants)),
             reconfigure=tuple(sorted(configs)),
             filter_chain=names.filter_chain,
+            derives_elsewhere=elsewhere,
         ), read
 
     def _file_names(self, path: str) -> tuple[_Names, frozenset[Incomplete]] | None:
