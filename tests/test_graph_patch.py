@@ -186,3 +186,30 @@ def test_the_rules_run_over_a_patched_graph_read_nothing_it_does_not_keep(tmp_pa
             assert _findings(kept, rule) == found, rule.code
     blind = [rule for rule in rules if not rule.reads_code_names]
     assert any(_findings(kept, rule) != _findings(graph, rule) for rule in blind)
+
+
+def test_the_kept_graph_holds_each_name_and_reach_once(tmp_path: Path) -> None:
+    """Each file's facts bring their own copy of a name (a package's, once per node of
+    it; a node's, once more in each of its endpoints): the graph the CLI keeps
+    (``for_patching``) pickles one of each, and equals the graph it was made from but
+    for what it leaves out."""
+    workspace = _Workspace(tmp_path / "ws")
+    graph, _ = workspace.built()
+    kept = for_patching(graph)
+    assert len({id(node.reach) for node in graph.nodes}) > len({node.reach for node in graph.nodes})
+    for found in (graph, kept):
+        names = {node.name: node.name for node in found.nodes}
+        shared = [endpoint.node is names[endpoint.node] for endpoint in found.endpoints]
+        packages = {}
+        for node in found.nodes:
+            packages.setdefault(node.package, set()).add(id(node.package))
+        reaches = {node.reach: set() for node in found.nodes}
+        for node in found.nodes:
+            reaches[node.reach].add(id(node.reach))
+        once = all(shared) and all(len(ids) == 1 for ids in (*packages.values(), *reaches.values()))
+        assert once is (found is kept)
+    stripped = tuple(
+        replace(node, code_parameters=None, parameter_settings=(), parameter_files=())
+        for node in graph.nodes
+    )
+    assert kept.nodes == stripped and kept.endpoints == graph.endpoints
