@@ -55,7 +55,7 @@ from .workspace.graph import Graph
 from .workspace.index import Package
 from .workspace.interfaces import service_definitions
 from .workspace.launch_parts import CodeParameterParts, LaunchParts
-from .workspace.patch import for_patching, parameter_part
+from .workspace.patch import for_patching, kept_parts
 
 if TYPE_CHECKING:
     from .cache import FactsCache  # imported by the caller that wants a cache
@@ -550,7 +550,7 @@ def _lint(
                     )
                     cache.store_graph(kept_at, kept_graph.stored())
                     if launch_parts is not None:
-                        kept_launch = KeptLaunch(inputs.tags, parameter_part(graph), launch_parts)
+                        kept_launch = KeptLaunch(inputs.tags, *kept_parts(graph, launch_parts))
                         cache.store_launch_parts(kept_at, kept_launch.stored())
                     if code_parts is not None:
                         kept_code = same_facts.KeptCode(inputs.tags, code_parts)

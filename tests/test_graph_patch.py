@@ -17,7 +17,14 @@ from roslint_names.model import FileFacts
 from roslint_names.rule import Rule, RuleContext
 from roslint_names.workspace.graph import Graph
 from roslint_names.workspace.index import PackageFiles
-from roslint_names.workspace.patch import Moved, code_edit, for_patching, patched
+from roslint_names.workspace.patch import (
+    Moved,
+    code_edit,
+    for_patching,
+    kept_parts,
+    parameter_part,
+    patched,
+)
 
 MONITOR = "src/fleet_bringup/src/fleet_monitor.cpp"  # ROS 2, launched by fleet.launch.py
 RECORDER = "src/fleet_bringup/fleet_bringup/pose_recorder.py"
@@ -213,3 +220,20 @@ def test_the_kept_graph_holds_each_name_and_reach_once(tmp_path: Path) -> None:
         for node in graph.nodes
     )
     assert kept.nodes == stripped and kept.endpoints == graph.endpoints
+
+
+def test_the_kept_launch_parts_hold_each_name_once(tmp_path: Path) -> None:
+    """What the CLI keeps beside the graph for a launch patch (``kept_parts``): equal to
+    what the build left, each program a tree starts and each name a launch file sets
+    one object."""
+    graph, parts, _, _ = _Workspace(tmp_path / "ws").built_parts()
+    kept_part, kept_launch = kept_parts(graph, parts)
+    assert kept_part == parameter_part(graph) and kept_launch == parts
+
+    def copies(found: list[str]) -> int:
+        return len({id(name) for name in found}) - len(set(found))
+
+    for launch, part in ((parts, parameter_part(graph)), (kept_launch, kept_part)):
+        started = [name for tree in launch.trees.values() for pair in tree.started for name in pair]
+        settings = [setting.name for _, kept, _ in part.nodes for setting in kept]
+        assert (copies(started) + copies(settings) == 0) is (launch is kept_launch)
