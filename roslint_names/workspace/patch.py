@@ -199,9 +199,10 @@ def for_patching(graph: Graph) -> Graph:
     read. What the CLI keeps of a build (``same_facts.KeptGraph``): a third of its bytes,
     loaded by every run that patches it. Equal names, and equal reaches, are one object
     each (``_One``): each file's facts brought its own (a package's name, once per node
-    of it; a node's name, once more in each of its endpoints), 150,000 more objects to
-    pickle at 8 copies of the benchmark's workspace, whose pickler's memo, past 349,000,
-    doubles to 16 MB (the peak of a run that keeps a rebased graph), and to load."""
+    of it; a node's name, once more in each of its endpoints): 117,000 of the 391,000
+    objects pickled at 8 copies of the benchmark's workspace, whose pickler's memo, past
+    349,000, doubles to 16 MB (the peak of a run that keeps a rebased graph), and loaded
+    by every patched run."""
     one = _One()
     nodes = tuple(
         replaced(
