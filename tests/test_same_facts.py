@@ -15,6 +15,7 @@ from typing import Any
 
 import pytest
 from conftest import AMENT_PACKAGE
+from test_unused_remap_bases import ground_filter, pointcloud_filters
 
 from roslint_names import cache as cache_module
 from roslint_names import engine, graph_patch, run_checks, same_facts, shifts
@@ -1494,3 +1495,38 @@ def test_a_file_checked_again_resolves_its_names_from_its_package_s_headers(
     assert cached == fresh
     codes = [f["code"] for f in json.loads(cached)["findings"] if f["path"] == STATUS_SOURCE]
     assert codes == ["RN203", "RN403"]
+
+
+@pytest.mark.usefixtures("old_tree")
+def test_a_base_class_that_stops_declaring_endpoints_is_followed_after_an_edit(
+    run_cli: Any, tmp_path: Path, taken: list[str]
+) -> None:
+    """Whether the base class's code of another package declares endpoints decides; an
+    edit that flips it gathers again the code spanning its package (``patch.edits_of``'s
+    ``flipping``, ``parameter_patch``): the run after it patches the last graph and
+    prints what a run without a cache prints, each time."""
+    root = tmp_path / "ws"
+    launch = ground_filter(root, own_base=False)
+    pointcloud_filters(root)
+    cache = tmp_path / "cache"
+
+    def judged() -> list[tuple[str, int]]:
+        cached, fresh = outputs(run_cli, root, cache)
+        assert cached == fresh
+        found = json.loads(cached)["findings"]
+        return sorted((f["path"], f["line"]) for f in found if f["code"] == "RN404")
+
+    assert judged() == []
+    filter_cpp = root / "src/pointcloud_filters/src/filter.cpp"
+    publish = 'pub_output_ = create_publisher<sensor_msgs::msg::PointCloud2>("output", 10);'
+    subscribe = (
+        "sub_input_ = create_subscription<sensor_msgs::msg::PointCloud2>(\n"
+        '    "input", 10, [this](const sensor_msgs::msg::PointCloud2 & msg) { filter(msg); });'
+    )
+    edit(filter_cpp, f"{publish}\n  {subscribe}", "(void)name;")
+    assert judged() == [(launch, 3), (launch, 4), (launch, 5)]
+    # back, a comment beside (else the first run's stored result serves it)
+    edit(filter_cpp, "(void)name;", f"// Both again.\n  {publish}\n  {subscribe}")
+    assert judged() == []
+    # each cached run, then its run without a cache (built)
+    assert taken == ["build", "build", "patch", "build", "patch", "build"]

@@ -61,7 +61,12 @@ from roslint_names.workspace.parameter_settings import (
     launch_settings,
     ordered,
 )
-from roslint_names.workspace.parameters import NodeParameters, ParameterSets, ParameterTables
+from roslint_names.workspace.parameters import (
+    NodeParameters,
+    ParameterSets,
+    ParameterTables,
+    has_endpoints,
+)
 
 _EDGES = {
     Role.PUBLISH: EdgeKind.PUBLISH,
@@ -698,8 +703,8 @@ def _programs(index: WorkspaceIndex, tests: _TestFiles, code: Sequence[str]) -> 
     return Programs(
         tuple(tuple(sources) for sources in built),
         frozenset(path for path in built_files if tests(path)),
-        frozenset(path for path in built_files if _has_endpoints(index.facts[path])),
-        tuple(path for path in code if _has_endpoints(index.facts[path]) and not tests(path)),
+        frozenset(path for path in built_files if has_endpoints(index.facts[path])),
+        tuple(path for path in code if has_endpoints(index.facts[path]) and not tests(path)),
     )
 
 
@@ -806,13 +811,9 @@ def _is_test_launch(tests: _TestFiles, path: str) -> bool:
     return name.endswith(".test") or name.startswith("test_") or tests(path)
 
 
-def _has_endpoints(facts: FileFacts) -> bool:
-    return any(use.role in ENDPOINT_ROLES for use in facts.names)
-
-
 # What ``_programs`` reads of each file besides where it is: the build's programs, which
 # files are code, and which of those declare endpoints.
-_PROGRAM_FIELDS: tuple[Field, ...] = ("executables", "language", _has_endpoints)
+_PROGRAM_FIELDS: tuple[Field, ...] = ("executables", "language", has_endpoints)
 
 
 # ---------------------------------------------------------------------------------------

@@ -36,7 +36,6 @@ from dataclasses import replace
 from roslint_names.model import FileFacts, Language, replaced
 from roslint_names.workspace.build import (
     _group_loads,
-    _has_endpoints,
     _launched_instance,
     _TestFiles,
     _unique,
@@ -63,7 +62,12 @@ from roslint_names.workspace.launch_tree import (
     Prepare,
     Specialise,
 )
-from roslint_names.workspace.parameters import NO_CODE, NodeParameters, ParameterTables
+from roslint_names.workspace.parameters import (
+    NO_CODE,
+    NodeParameters,
+    ParameterTables,
+    has_endpoints,
+)
 from roslint_names.workspace.program_patch import ProgramsAnew
 
 # What a launch file's facts may not change for its trees alone to be walked again: what
@@ -111,7 +115,7 @@ def launch_edit(before: FileFacts, now: FileFacts) -> bool:
     read it (module docstring)."""
     if before.language not in LAUNCH_LANGUAGES or now.language is not before.language:
         return False
-    if now.generation is not before.generation or _has_endpoints(before) != _has_endpoints(now):
+    if now.generation is not before.generation or has_endpoints(before) != has_endpoints(now):
         return False
     return all(getattr(before, field) == getattr(now, field) for field in _OTHER_FIELDS)
 

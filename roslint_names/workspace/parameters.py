@@ -57,6 +57,7 @@ from functools import cache
 from typing import Any
 
 from roslint_names.model import (
+    ENDPOINT_ROLES,
     EventKind,
     FileFacts,
     Generation,
@@ -163,11 +164,14 @@ class NodeParameters:
     # The code holds a filters library chain (ROS 2): it declares ``filterN.name``,
     # ``filterN.type`` and ``filterN.params.*`` under some prefix (module docstring).
     filter_chain: bool = False
-    # A class of the code derives from one of another package's code, or from one the
-    # workspace does not define (but a client library's node and harmless library
-    # classes): code that runs in the node and may use names of its own (autoware's
-    # ground filters subscribe ``input`` through ``pointcloud_preprocessor::Filter``).
-    # Made from what decides which code is followed (bases, includes), as the rest is.
+    # A class of the code derives from one the workspace does not define (but a client
+    # library's node and harmless library classes), or from one of another package whose
+    # code followed for the node declares endpoints: code that runs in the node and uses
+    # names of its own (autoware's ground filters subscribe ``input`` through
+    # ``pointcloud_preprocessor::Filter``). Made from what decides which code is followed
+    # (bases, includes: a gathering edit) and whether a file declares endpoints (an edit
+    # that flips it makes its package's programs again, and gathers the code spanning it:
+    # ``parameter_patch``).
     derives_elsewhere: bool = False
 
     @property
@@ -558,10 +562,15 @@ class ParameterSets:
         # declarations may be the node's too. Only declarations: what it reads, or leaves
         # open, is another node's business.
         packages = sorted({p.name for path in sources if (p := self._index.package_of(path))})
-        elsewhere = unknown_base or any(
-            (owner := self._index.package_of(path)) is not None and owner.name not in packages
-            for path in bases
-        )
+        # The base classes' code of other packages: where they are defined and the files
+        # of the same stem that implement them (``Filter::Filter`` in ``filter.cpp``).
+        beyond = [
+            found
+            for path in sorted(bases)
+            if (owner := self._index.package_of(path)) is not None and owner.name not in packages
+            for found in (path, *self._implementations(path))
+        ]
+        elsewhere = unknown_base or any(has_endpoints(self._index.facts[path]) for path in beyond)
         self.spans[sources] = frozenset(
             (p.name if (p := self._index.package_of(path)) else "") for path in (*sources, *bases)
         ) | frozenset(packages)
@@ -577,7 +586,7 @@ class ParameterSets:
                 if not use.dynamic and use.access is not None
             )
         )
-        read = self._memory.read(tuple({*sources, *own, *configs}), tuple(packages))
+        read = self._memory.read(tuple({*sources, *own, *configs, *beyond}), tuple(packages))
         return NodeParameters(
             declared=tuple(sorted(names.declared)),
             read=tuple(sorted(names.read)),
@@ -1091,6 +1100,13 @@ _HARMLESS_BASES = re.compile(
     r"|(?:object|Exception|Enum|IntEnum|Thread|threading\.Thread|unittest\.TestCase)$"
     r"|\w*(?:Error|Exception)$"
 )
+
+
+def has_endpoints(facts: FileFacts) -> bool:
+    """Whether a file declares endpoints: a program of code no launch file starts is one
+    that does (``build._programs``), and an edit that flips it makes its package's
+    programs again (``patch.edits_of``)."""
+    return any(use.role in ENDPOINT_ROLES for use in facts.names)
 
 
 def _harmless(base: str) -> bool:

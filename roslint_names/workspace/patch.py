@@ -30,7 +30,6 @@ from typing import TypeVar, cast
 from roslint_names.model import ENDPOINT_ROLES, FileFacts, Language, Role, Span, replaced
 from roslint_names.moves import UnplacedError, moved_spans
 from roslint_names.workspace.build import (
-    _has_endpoints,
     _Instance,
     _resolve_code,
     _unique,
@@ -39,7 +38,7 @@ from roslint_names.workspace.build import (
 from roslint_names.workspace.graph import Endpoint, Graph, Location, NodeInstance
 from roslint_names.workspace.index import CODE_LANGUAGES, PackageFiles
 from roslint_names.workspace.launch_parts import LaunchParts, ParameterPart
-from roslint_names.workspace.parameters import NodeParameters, ParameterUse
+from roslint_names.workspace.parameters import NodeParameters, ParameterUse, has_endpoints
 
 _T = TypeVar("_T")
 
@@ -74,7 +73,7 @@ def code_edit(before: FileFacts, now: FileFacts) -> Moved | None:
         return None
     if any(getattr(facts, field) for facts in (before, now) for field in NOT_CODE_FIELDS):
         return None
-    if _has_endpoints(before) != _has_endpoints(now):
+    if has_endpoints(before) != has_endpoints(now):
         return None
     return moved_spans(_without_endpoints(before), _without_endpoints(now))
 
@@ -165,7 +164,7 @@ def edits_of(
         if (
             flipping is not None
             and then.language in CODE_LANGUAGES
-            and _has_endpoints(then) != _has_endpoints(now)
+            and has_endpoints(then) != has_endpoints(now)
         ):
             flipping.add(display)  # compared as code_edit compares, its endpoints aside
             then, now = _without_endpoints(then), _without_endpoints(now)

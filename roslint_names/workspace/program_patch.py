@@ -35,7 +35,6 @@ from typing import TypeVar
 
 from roslint_names.model import FileFacts, Language
 from roslint_names.moves import moved_spans
-from roslint_names.workspace.build import _has_endpoints
 from roslint_names.workspace.built import BuiltSources
 from roslint_names.workspace.index import (
     CODE_LANGUAGES,
@@ -46,6 +45,7 @@ from roslint_names.workspace.index import (
     parent,
 )
 from roslint_names.workspace.launch_parts import Programs, TreePart
+from roslint_names.workspace.parameters import has_endpoints
 from roslint_names.workspace.patch import same_places
 
 BUILD_LANGUAGES = frozenset({Language.CMAKE, Language.SETUP_PY, Language.SETUP_CFG})
@@ -266,13 +266,13 @@ def _programs(
     with_endpoints = {
         path
         for path in sources
-        if (path in built.with_endpoints if path in before else _has_endpoints(facts[path]))
+        if (path in built.with_endpoints if path in before else has_endpoints(facts[path]))
     }
     single = set(built.single) - set(removed) - set(flipped)
     single.update(
         path
         for path in (*added, *flipped)
-        if language_of(path) in CODE_LANGUAGES and _has_endpoints(facts[path]) and not is_test(path)
+        if language_of(path) in CODE_LANGUAGES and has_endpoints(facts[path]) and not is_test(path)
     )
     return Programs(
         lists,
