@@ -403,12 +403,7 @@ class _Finished:
             and kept[1].parameter_settings == settings
         ):
             return kept[1]
-        finished = replaced(
-            node,
-            code_parameters=parameters,
-            parameter_settings=settings,
-            derives_elsewhere=parameters.derives_elsewhere,
-        )
+        finished = with_code_parameters(node, parameters, parameter_settings=settings)
         self._known[id(node)] = (node, finished)
         return finished
 
@@ -416,6 +411,20 @@ class _Finished:
         """Forget the nodes this build did not finish: gone, or built again."""
         for key in [key for key in self._known if key not in self._used]:
             del self._known[key]
+
+
+def with_code_parameters(
+    node: NodeInstance, parameters: NodeParameters, **changes: object
+) -> NodeInstance:
+    """``node`` with its code's parameters (and ``changes``), and what they say of code
+    that runs in it from elsewhere (``NodeInstance.derives_elsewhere``, which the graph
+    keeps where it keeps no parameters)."""
+    return replaced(
+        node,
+        code_parameters=parameters,
+        derives_elsewhere=parameters.derives_elsewhere,
+        **changes,
+    )
 
 
 class _TestFiles:

@@ -33,7 +33,7 @@ from __future__ import annotations
 from collections.abc import Callable, Collection, Iterator, Mapping, Sequence
 from dataclasses import replace
 
-from roslint_names.model import FileFacts, Language, replaced
+from roslint_names.model import FileFacts, Language
 from roslint_names.workspace.build import (
     _group_loads,
     _launched_instance,
@@ -47,6 +47,7 @@ from roslint_names.workspace.build import (
     receivers_by_file,
     started_program,
     unnamed_receivers,
+    with_code_parameters,
 )
 from roslint_names.workspace.graph import (
     Endpoint,
@@ -334,11 +335,10 @@ def _patched(
     # by the parameter patch (``parameter_patch``), which the caller runs then.
     parameters = _Parameters(parts.parameters, later=programs is not None)
     finished = [
-        replaced(
+        with_code_parameters(
             node,
-            code_parameters=(code := parameters.of(node.sources)),
+            parameters.of(node.sources),
             parameter_settings=_with_group_loads(node, rooted, blocks),
-            derives_elsewhere=code.derives_elsewhere,
         )
         for node in nodes
     ]

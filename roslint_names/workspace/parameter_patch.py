@@ -46,8 +46,13 @@ import posixpath
 from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import replace
 
-from roslint_names.model import FileFacts, Language, replaced
-from roslint_names.workspace.build import _TestFiles, receivers_by_file, unnamed_receivers
+from roslint_names.model import FileFacts, Language
+from roslint_names.workspace.build import (
+    _TestFiles,
+    receivers_by_file,
+    unnamed_receivers,
+    with_code_parameters,
+)
 from roslint_names.workspace.graph import Graph, UnnamedReceiver
 from roslint_names.workspace.index import CODE_LANGUAGES, Package, WorkspaceIndex
 from roslint_names.workspace.launch_parts import CodeParameterParts, LaunchParts
@@ -131,11 +136,7 @@ def parameters_patched(
         except UnknownFactsError:  # a file the patch cannot load: the graph is built
             return None
     nodes = tuple(
-        replaced(
-            node,
-            code_parameters=fresh[node.sources],
-            derives_elsewhere=fresh[node.sources].derives_elsewhere,
-        )
+        with_code_parameters(node, fresh[node.sources])
         if node.sources in fresh and node.code_parameters is not None
         else node
         for node in graph.nodes

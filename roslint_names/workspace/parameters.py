@@ -566,7 +566,7 @@ class ParameterSets:
         # of the same stem that implement them (``Filter::Filter`` in ``filter.cpp``).
         beyond = [
             found
-            for path in sorted(bases)
+            for path in bases
             if (owner := self._index.package_of(path)) is not None and owner.name not in packages
             for found in (path, *self._implementations(path))
         ]

@@ -292,13 +292,8 @@ class Sites:
         if len(values) < 2:
             return
         index = 0
-        if (
-            len(values) >= 2
-            and self.folder.fold(values[0]).dynamic
-            and (
-                self.handles.is_handle_expression(values[0])
-                or not self.folder.fold(values[1]).dynamic
-            )
+        if self.folder.fold(values[0]).dynamic and (
+            self.handles.is_handle_expression(values[0]) or not self.folder.fold(values[1]).dynamic
         ):
             index = 1
         api = "message_filters::Subscriber::subscribe" if index else "ros::NodeHandle::subscribe"
