@@ -13,7 +13,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from conftest import AMENT_PACKAGE, write
+from conftest import ament_package, findings_of, line_places, write
 
 FILTER_HPP = """\
 #pragma once
@@ -110,13 +110,10 @@ def ground_filter(root: Path, *, own_base: bool) -> str:
     """The ground filter's package; its base class in it (``own_base``), else in
     ``pointcloud_filters``. Returns the launch file's path."""
     package = "src/ground_filter"
-    write(root, f"{package}/package.xml", AMENT_PACKAGE.format(name="ground_filter"))
-    write(
+    ament_package(
         root,
-        f"{package}/CMakeLists.txt",
-        "cmake_minimum_required(VERSION 3.5)\nproject(ground_filter)\n"
-        "find_package(ament_cmake REQUIRED)\n"
-        "add_executable(ray_ground_filter src/node.cpp)\nament_package()\n",
+        "ground_filter",
+        _cmake("ground_filter", "add_executable(ray_ground_filter src/node.cpp)"),
     )
     if own_base:
         include, base = "ground_filter/filter.hpp", "Filter"
@@ -140,22 +137,25 @@ def ground_filter(root: Path, *, own_base: bool) -> str:
 
 def pointcloud_filters(root: Path) -> None:
     package = "src/pointcloud_filters"
-    write(root, f"{package}/package.xml", AMENT_PACKAGE.format(name="pointcloud_filters"))
-    write(
+    ament_package(
         root,
-        f"{package}/CMakeLists.txt",
-        "cmake_minimum_required(VERSION 3.5)\nproject(pointcloud_filters)\n"
-        "find_package(ament_cmake REQUIRED)\n"
-        "add_library(filter SHARED src/filter.cpp)\nament_package()\n",
+        "pointcloud_filters",
+        _cmake("pointcloud_filters", "add_library(filter SHARED src/filter.cpp)"),
     )
     write(root, f"{package}/include/pointcloud_filters/filter.hpp", FILTER_HPP)
     write(root, f"{package}/src/filter.cpp", FILTER_CPP)
 
 
+def _cmake(project: str, target: str) -> str:
+    """A package's CMakeLists.txt building ``target``, one command."""
+    return (
+        f"cmake_minimum_required(VERSION 3.5)\nproject({project})\n"
+        f"find_package(ament_cmake REQUIRED)\n{target}\nament_package()\n"
+    )
+
+
 def unused_remaps(run_cli: Any, root: Path) -> list[tuple[str, int]]:
-    result = run_cli(["check", "--format", "json", "--select", "RN404", "."], root)
-    assert result.exit_code in (0, 1), result.stderr
-    return sorted((f["path"], f["line"]) for f in result.findings())
+    return line_places(findings_of(run_cli, root, "RN404"))
 
 
 def test_a_base_class_of_another_package_leaves_the_node_unjudged(
