@@ -109,11 +109,15 @@ def taken(
             return None
     again: list[str] = []
     if changed:
-        chosen = [*(path for path, _, _ in found), *(path for path, _ in files_stood_on)]
+        bases = [directory.rstrip(os.sep) + os.sep for directory in changed]
+        entered = _names_in(bases, directories)
+        chosen = _names_in(
+            bases, [*(path for path, _, _ in found), *(path for path, _ in files_stood_on)]
+        )
         again = [
             directory
-            for directory in changed
-            if not _same_entries(directory, directories, chosen, walk)
+            for directory, base in zip(changed, bases, strict=True)
+            if not _same_entries(directory, entered[base], chosen[base], walk)
         ]
     gitignores = [path for path, _ in files_stood_on if os.path.basename(path) == ".gitignore"]
     return Taken(found, without, _topmost(again), gitignores)
@@ -129,26 +133,26 @@ def _topmost(directories: list[str]) -> list[str]:
     ]
 
 
-def _same_entries(
-    directory: str,
-    directories: Sequence[str],
-    chosen: Sequence[str],
-    walk: Walk,
-) -> bool:
-    """Whether ``directory`` holds the subdirectories the kept walk entered and the
-    files it chose (or asked the content of, or whose ``.gitignore`` it read) in it, of
-    the same kinds, and no other entry the walk could enter or choose: then a walk finds
-    in it what the kept one found (the files' own statuses are checked apart)."""
-    base = directory.rstrip(os.sep) + os.sep
+def _names_in(bases: Sequence[str], paths: Sequence[str]) -> dict[str, set[str]]:
+    """The names of the entries among ``paths`` right in each directory of ``bases``
+    (each ending in a separator), by base: one pass over the paths, where a pass for
+    each directory looked at again cost a re-run 0.013 s per directory at 8 copies of the
+    benchmark's workspace (109,000 paths), up to ``MOST_CHANGED`` of them."""
+    below: dict[str, set[str]] = {base: set() for base in bases}
+    for path in paths:
+        cut = path.rfind(os.sep) + 1
+        names = below.get(path[:cut])
+        if names is not None:
+            names.add(path[cut:])
+    return below
 
-    def names_below(paths: Sequence[str]) -> set[str]:
-        return {
-            path[len(base) :]
-            for path in paths
-            if path.startswith(base) and os.sep not in path[len(base) :]
-        }
 
-    entered, files = names_below(directories), names_below(chosen)
+def _same_entries(directory: str, entered: set[str], files: set[str], walk: Walk) -> bool:
+    """Whether ``directory`` holds the subdirectories the kept walk entered (``entered``,
+    by name) and the files it chose (or asked the content of, or whose ``.gitignore`` it
+    read) in it (``files``), of the same kinds, and no other entry the walk could enter
+    or choose: then a walk finds in it what the kept one found (the files' own statuses
+    are checked apart). Takes the sets, and empties them."""
     try:
         entries = list(os.scandir(directory))
     except OSError:
