@@ -432,6 +432,9 @@ class GraphPatch:
         # patched as the graph later runs patch (``REBASE_EDITS``).
         kept: KeptLaunch | None = None
         known: set[str] = set()  # the files the build had facts of (a skipped one has none)
+        # Their facts, for the programs made, the trees walked and the parameters gathered
+        # again: one mapping, whose order is sorted and whose facts are loaded once.
+        known_facts = LazyFacts(known, facts.of)
         # Some packages' programs made again, some nodes' parameters gathered again
         remade = bool(kinds.building or kinds.added_code or kinds.removed_code or flipping)
         gathering = bool(declaring or depending or remade)
@@ -465,6 +468,7 @@ class GraphPatch:
                 files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)
             }
             known |= kinds.new_files
+            known_facts = LazyFacts(known, facts.of)
         launch_parts = None if kept is None else kept.parts  # as a build would leave them
         programs: ProgramsAnew | None = None
         if remade:
@@ -474,9 +478,7 @@ class GraphPatch:
             compiled = _compiled(
                 replay.run_wide, arrived, self.checks.package_of, bool(kinds.building)
             )
-            at_now = WorkspaceIndex.restored(
-                LazyFacts(known, facts.of), packages, kept.parts.executables
-            )
+            at_now = WorkspaceIndex.restored(known_facts, packages, kept.parts.executables)
             # A code file added or removed that another package's build file names: that
             # package's programs are made again too.
             builders = self._builders(found_by, [*kinds.added_code, *kinds.removed_code])
@@ -523,8 +525,7 @@ class GraphPatch:
                 edited=walk,
                 removed=kinds.removed_trees,
                 code=renamed,
-                known=known,
-                facts_of=facts.of,
+                facts=known_facts,
                 programs=programs,
             )
             if walked is None:
@@ -567,7 +568,7 @@ class GraphPatch:
                     launch_parts,
                     code_parts,
                     code_edits,
-                    facts=LazyFacts(known, facts.of),
+                    facts=known_facts,
                     packages=packages,
                     depending=depending,
                     programs=programs,
@@ -907,14 +908,13 @@ class GraphPatch:
         edited: Sequence[str],
         removed: Sequence[str],
         code: Collection[str],
-        known: set[str],
-        facts_of: Callable[[str], FileFacts | None],
+        facts: LazyFacts,
         programs: ProgramsAnew | None,
     ) -> tuple[tuple[Graph, LaunchParts], frozenset[str]] | None:
         """The build's whole graph with the trees that read an ``edited`` launch or
         parameter file walked again (``workspace.launch_patch``), and those of the
         ``removed`` launch files gone, over every file the build had facts of and the
-        added launch files (``known``), with the launch parts a build would leave; and
+        added launch files (``facts``), with the launch parts a build would leave; and
         the files the walk extracted again under an includer's arguments; None where it
         cannot be."""
         specialise = self.specialiser()
@@ -922,7 +922,7 @@ class GraphPatch:
             whole,
             parts,
             edited,
-            facts=LazyFacts(known, facts_of),
+            facts=facts,
             packages=packages,
             specialise=specialise,
             prepare=specialise.prepare,

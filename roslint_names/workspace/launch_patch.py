@@ -89,6 +89,9 @@ class LazyFacts(Mapping[str, FileFacts]):
         self._paths = paths  # a set: asked whether it holds a path, seldom walked
         self._load = load
         self._loaded: dict[str, FileFacts] = {}
+        # Sorted when first walked, once: 0.04 to 0.09 s at 8 copies of the benchmark's
+        # workspace (81,000 paths), and a patch walks them for each index it makes.
+        self._order: list[str] | None = None
 
     def __getitem__(self, path: str) -> FileFacts:
         found = self._loaded.get(path)
@@ -105,7 +108,9 @@ class LazyFacts(Mapping[str, FileFacts]):
         return path in self._paths
 
     def __iter__(self) -> Iterator[str]:
-        return iter(sorted(self._paths))
+        if self._order is None:
+            self._order = sorted(self._paths)
+        return iter(self._order)
 
     def __len__(self) -> int:
         return len(self._paths)
