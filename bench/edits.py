@@ -1,0 +1,329 @@
+"""Random edit sequences on a copy of a workspace: after each step, the run that patches or
+replays the last one and a run without a cache must print the same bytes (issue 30: a
+stale cache must never change a result).
+
+    python bench/edits.py WORKSPACE [--seed N] [--steps K] [--out DIR]
+
+The workspace is copied (hard links, as ``growth`` does: an edit replaces the edited file,
+the original keeps its bytes; the workspace must not be written to while the sequence
+runs) into a temporary directory, with a cache of its own. Each
+step makes one to three edits chosen at random (the seed makes a sequence again), of the
+kinds a ROS developer makes and the cache's incremental paths take apart:
+
+- a name in a C++ or Python call that declares an endpoint or a parameter, changed to a
+  valid name or an invalid one (``graph_patch``: nodes' code patched);
+- a node's ``name``, a group's ``ns`` or a remap's ``from`` or ``to`` in a launch file
+  changed, or a remap added to a node (``launch_patch``: trees walked again);
+- a key of a ROS 2 parameter file renamed (``launch_patch``: the trees handed it);
+- a dependency added to or dropped from a ``package.xml`` (the packages patched);
+- an executable of a ``CMakeLists.txt`` renamed (``program_patch``: programs made again);
+- a launch file or C++ source removed, a file copied beside itself, or moved (renamed
+  in its directory: ``shifts``, the replay renumbered);
+- an earlier edit of a file undone (a replay of a run long ago taken up again).
+
+Then the CLI runs twice, ``--format json``: with the cache, and with ``--no-cache``. A
+step whose outputs or exit codes differ is written to ``--out`` (both outputs and the
+edits so far); the sequence goes on from an emptied cache. Exit 1 when a step differed or
+a run crashed, 0 otherwise. The summary says how many steps changed the output at all: a
+sequence whose edits change nothing tests nothing.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import random
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+from collections.abc import Callable
+from pathlib import Path
+
+from growth import grown
+
+# Names the edits write: valid ones, and ones a rule reports (RN101 to RN203).
+VALID_NAMES = ("cmd_vel", "odom", "scan", "chatter", "map", "foo/bar", "/abs_topic", "image_raw")
+INVALID_NAMES = ("Bad-Name", "trailing/", "1abc", "a//b", "Cmd_Vel", "a/b/c/d/e/f/g", "~private")
+_STRING = re.compile(r'"([A-Za-z_/~][A-Za-z0-9_/]*)"')
+_CPP_CALLS = re.compile(
+    r"(create_(publisher|subscription|service|client)|advertise|subscribe|serviceClient"
+    r"|advertiseService|declare_parameter|get_parameter|param)[<(].*\""
+)
+_PYTHON_CALLS = re.compile(
+    r"create_(publisher|subscription|service|client)|Publisher\(|Subscriber\(|remappings"
+    r"|declare_parameter|get_param"
+)
+_DEPEND = re.compile(r"\n\s*<(build_|exec_|build_export_|test_)?depend>[^<]*</\w*depend>")
+_ATTRIBUTE_OF = {"name": "node", "ns": "(?:node|group)", "from": "remap", "to": "remap"}
+
+
+class EditSequence:
+    """The edits of one seeded sequence, on the workspace at ``root``: each remembers the
+    bytes it replaced, so that a later step can undo it."""
+
+    def __init__(self, root: Path, seed: int) -> None:
+        self.root = root
+        self.random = random.Random(seed)
+        self.original: dict[Path, bytes | None] = {}  # None: the file was not there
+
+    def step(self) -> list[str]:
+        """One to three edits; what each did, a line each."""
+        done: list[str] = []
+        for _ in range(self.random.choice((1, 1, 1, 2, 3))):
+            edit = None
+            while edit is None:
+                edit = self.random.choice(self._edits())()
+            done.append(edit)
+        return done
+
+    def _edits(self) -> list[Callable[[], str | None]]:
+        return [
+            lambda: self._string((".cpp", ".hpp", ".h"), _CPP_CALLS),
+            lambda: self._string((".py",), _PYTHON_CALLS),
+            lambda: self._attribute(self.random.choice(sorted(_ATTRIBUTE_OF))),
+            self._remap,
+            self._parameter_key,
+            self._depend,
+            self._executable,
+            lambda: self._remove((".launch", ".launch.xml", ".launch.py", ".cpp")),
+            lambda: self._copy((".launch", ".launch.xml", ".cpp", ".yaml")),
+            lambda: self._move((".cpp", ".launch.xml", ".launch.py", ".yaml")),
+            self._undo,
+            self._undo,
+        ]
+
+    def _files(self, suffixes: tuple[str, ...], holding: str | re.Pattern[str] = "") -> list[Path]:
+        found: list[Path] = []
+        for directory, names, files in os.walk(self.root):
+            names[:] = sorted(name for name in names if not name.startswith("."))
+            for name in sorted(files):
+                path = Path(directory) / name
+                if name.endswith(suffixes) and (
+                    not holding
+                    or (
+                        holding.search(_text(path))
+                        if isinstance(holding, re.Pattern)
+                        else holding in _text(path)
+                    )
+                ):
+                    found.append(path)
+        return found
+
+    def _name(self) -> str:
+        names = INVALID_NAMES if self.random.random() < 0.4 else VALID_NAMES
+        return self.random.choice(names)
+
+    def _write(self, path: Path, data: bytes | None) -> None:
+        """``path`` given ``data`` (None: removed), its first bytes remembered; a new file
+        renamed over the old, which keeps its bytes for the workspace it is linked from."""
+        if path not in self.original:
+            self.original[path] = path.read_bytes() if path.exists() else None
+        if data is None:
+            path.unlink()
+            return
+        replacement = path.with_name(f".{path.name}.edit")
+        replacement.write_bytes(data)
+        os.replace(replacement, path)
+
+    def _shown(self, path: Path) -> str:
+        return path.relative_to(self.root).as_posix()
+
+    def _string(self, suffixes: tuple[str, ...], calls: re.Pattern[str]) -> str | None:
+        candidates = self._files(suffixes, calls)
+        if not candidates:
+            return None
+        path = self.random.choice(candidates)
+        lines = _text(path).split("\n")
+        found = [at for at, line in enumerate(lines) if calls.search(line) and _STRING.search(line)]
+        if not found:
+            return None
+        at = self.random.choice(found)
+        name = self._name()
+        lines[at] = _STRING.sub(f'"{name}"', lines[at], count=1)
+        self._write(path, "\n".join(lines).encode())
+        return f"{self._shown(path)}:{at + 1}: a name in a call made {name!r}"
+
+    def _attribute(self, attribute: str) -> str | None:
+        element = _ATTRIBUTE_OF[attribute]
+        pattern = re.compile(rf'<{element}\b[^>]*?\b{attribute}="([^"$]*)"')
+        candidates = self._files((".launch", ".launch.xml", ".test"), pattern)
+        if not candidates:
+            return None
+        path = self.random.choice(candidates)
+        text = _text(path)
+        value = self.random.choice(list(pattern.finditer(text)))
+        name = self._name()
+        self._write(path, (text[: value.start(1)] + name + text[value.end(1) :]).encode())
+        return f"{self._shown(path)}: a {attribute}= made {name!r}"
+
+    def _remap(self) -> str | None:
+        opening = re.compile(r"<node\b[^>]*[^/]>")
+        candidates = self._files((".launch", ".launch.xml"), opening)
+        if not candidates:
+            return None
+        path = self.random.choice(candidates)
+        text = _text(path)
+        node = self.random.choice(list(opening.finditer(text)))
+        remap = f'\n<remap from="{self._name()}" to="{self._name()}"/>'
+        self._write(path, (text[: node.end()] + remap + text[node.end() :]).encode())
+        return f"{self._shown(path)}: a remap added: {remap.strip()}"
+
+    def _parameter_key(self) -> str | None:
+        candidates = self._files((".yaml",), "ros__parameters")
+        if not candidates:
+            return None
+        path = self.random.choice(candidates)
+        lines = _text(path).split("\n")
+        keys = [at for at, line in enumerate(lines) if re.match(r"^\s+[a-z_]+:\s*\S", line)]
+        if not keys:
+            return None
+        at = self.random.choice(keys)
+        lines[at] = re.sub(r"^(\s+)([a-z_]+):", r"\1\2_renamed:", lines[at])
+        self._write(path, "\n".join(lines).encode())
+        return f"{self._shown(path)}:{at + 1}: a parameter key renamed"
+
+    def _depend(self) -> str | None:
+        path = self.random.choice(self._files(("package.xml",)))
+        text = _text(path)
+        depends = list(_DEPEND.finditer(text))
+        if depends and self.random.random() < 0.5:
+            gone = self.random.choice(depends)
+            self._write(path, (text[: gone.start()] + text[gone.end() :]).encode())
+            return f"{self._shown(path)}: a dependency dropped"
+        other = self.random.choice(("rclcpp", "roscpp", "nav_msgs", "std_srvs"))
+        at = text.rfind("</package>")
+        if at < 0:
+            return None
+        self._write(path, (text[:at] + f"  <depend>{other}</depend>\n" + text[at:]).encode())
+        return f"{self._shown(path)}: a dependency on {other} added"
+
+    def _executable(self) -> str | None:
+        target = re.compile(r"add_executable\(\s*(\w+)")
+        candidates = self._files(("CMakeLists.txt",), target)
+        if not candidates:
+            return None
+        path = self.random.choice(candidates)
+        text = _text(path)
+        found = self.random.choice(list(target.finditer(text)))
+        renamed = text[: found.end(1)] + "_renamed" + text[found.end(1) :]
+        self._write(path, renamed.encode())
+        return f"{self._shown(path)}: executable {found.group(1)} renamed"
+
+    def _remove(self, suffixes: tuple[str, ...]) -> str | None:
+        candidates = self._files(suffixes)
+        if not candidates:
+            return None
+        path = self.random.choice(candidates)
+        self._write(path, None)
+        return f"{self._shown(path)}: removed"
+
+    def _copy(self, suffixes: tuple[str, ...]) -> str | None:
+        candidates = self._files(suffixes)
+        if not candidates:
+            return None
+        path = self.random.choice(candidates)
+        stem = path.name.split(".")[0]
+        copy = path.with_name(path.name.replace(stem, f"{stem}_copy{len(self.original)}", 1))
+        if copy.exists():
+            return None
+        self._write(copy, path.read_bytes())
+        return f"{self._shown(path)}: copied to {copy.name}"
+
+    def _move(self, suffixes: tuple[str, ...]) -> str | None:
+        candidates = self._files(suffixes)
+        if not candidates:
+            return None
+        path = self.random.choice(candidates)
+        moved = path.with_name(f"moved_{path.name}")
+        if moved.exists():
+            return None
+        data = path.read_bytes()
+        self._write(moved, data)
+        self._write(path, None)
+        return f"{self._shown(path)}: moved to {moved.name}"
+
+    def _undo(self) -> str | None:
+        edited = [path for path, data in sorted(self.original.items()) if _now(path) != data]
+        if not edited:
+            return None
+        path = self.random.choice(edited)
+        first = self.original[path]
+        if first is None:
+            path.unlink()
+        else:
+            self._write(path, first)
+        return f"{self._shown(path)}: back as it was"
+
+
+def _now(path: Path) -> bytes | None:
+    return path.read_bytes() if path.exists() else None
+
+
+def _text(path: Path) -> str:
+    try:
+        return path.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return ""
+
+
+def _lint(root: Path, cache: Path, *options: str) -> tuple[int, bytes, bytes]:
+    """The CLI over ``root``, ``--format json``: exit code, output, errors."""
+    environment = dict(os.environ, XDG_CACHE_HOME=str(cache))
+    command = [sys.executable, "-m", "roslint_names", "--format", "json", *options, "."]
+    done = subprocess.run(command, cwd=root, env=environment, capture_output=True, check=False)
+    return done.returncode, done.stdout, done.stderr
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("workspace", type=Path)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--steps", type=int, default=40)
+    parser.add_argument("--out", type=Path, default=Path("edits-differ"))
+    parser.add_argument(
+        "--into", type=Path, help="make the copy and its cache here and keep them (a new directory)"
+    )
+    options = parser.parse_args()
+    if options.into is not None:
+        options.into.mkdir(parents=True)
+    with tempfile.TemporaryDirectory(prefix="roslint-names-edits-") as temporary:
+        scratch = temporary if options.into is None else options.into
+        root = Path(scratch) / "workspace"
+        grown(options.workspace.resolve(), 1, root)
+        cache = Path(scratch) / "cache"
+        sequence = EditSequence(root, options.seed)
+        last = _lint(root, cache)[1]
+        differed = crashed = changed = 0
+        edits: list[str] = []
+        for step in range(options.steps):
+            done = sequence.step()
+            edits.extend(f"{step}: {edit}" for edit in done)
+            cached, fresh = _lint(root, cache), _lint(root, cache, "--no-cache")
+            same = cached[:2] == fresh[:2]
+            moved = fresh[1] != last
+            changed += moved
+            last = fresh[1]
+            mark = "same" if same else "DIFFERENT"
+            print(f"{step:3} {mark:9} {'changed' if moved else '':7} {'; '.join(done)}", flush=True)
+            if fresh[0] not in (0, 1) or cached[0] not in (0, 1):
+                crashed += 1
+                print((cached[2] + fresh[2]).decode(errors="replace")[-2000:])
+            if not same:
+                differed += 1
+                options.out.mkdir(parents=True, exist_ok=True)
+                (options.out / f"{options.seed}-{step}-cached.json").write_bytes(cached[1])
+                (options.out / f"{options.seed}-{step}-no-cache.json").write_bytes(fresh[1])
+                (options.out / f"{options.seed}-{step}-edits.txt").write_text("\n".join(edits))
+                shutil.rmtree(cache, ignore_errors=True)  # the next steps from a clean start
+                _lint(root, cache)
+        print(
+            f"{options.steps} steps (seed {options.seed}): {changed} changed the output, "
+            f"{differed} printed otherwise with the cache than without, {crashed} crashed"
+        )
+    return 1 if differed or crashed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
