@@ -111,6 +111,11 @@ class EditSequence:
                     found.append(path)
         return found
 
+    def _pick(self, suffixes: tuple[str, ...], holding: str | re.Pattern[str] = "") -> Path | None:
+        """One of the files ``_files`` finds, at random; None where there is none."""
+        candidates = self._files(suffixes, holding)
+        return self.random.choice(candidates) if candidates else None
+
     def _name(self) -> str:
         names = INVALID_NAMES if self.random.random() < 0.4 else VALID_NAMES
         return self.random.choice(names)
@@ -131,10 +136,9 @@ class EditSequence:
         return path.relative_to(self.root).as_posix()
 
     def _string(self, suffixes: tuple[str, ...], calls: re.Pattern[str]) -> str | None:
-        candidates = self._files(suffixes, calls)
-        if not candidates:
+        path = self._pick(suffixes, calls)
+        if path is None:
             return None
-        path = self.random.choice(candidates)
         lines = _text(path).split("\n")
         found = [at for at, line in enumerate(lines) if calls.search(line) and _STRING.search(line)]
         if not found:
@@ -148,10 +152,9 @@ class EditSequence:
     def _attribute(self, attribute: str) -> str | None:
         element = _ATTRIBUTE_OF[attribute]
         pattern = re.compile(rf'<{element}\b[^>]*?\b{attribute}="([^"$]*)"')
-        candidates = self._files((".launch", ".launch.xml", ".test"), pattern)
-        if not candidates:
+        path = self._pick((".launch", ".launch.xml", ".test"), pattern)
+        if path is None:
             return None
-        path = self.random.choice(candidates)
         text = _text(path)
         value = self.random.choice(list(pattern.finditer(text)))
         name = self._name()
@@ -160,10 +163,9 @@ class EditSequence:
 
     def _remap(self) -> str | None:
         opening = re.compile(r"<node\b[^>]*[^/]>")
-        candidates = self._files((".launch", ".launch.xml"), opening)
-        if not candidates:
+        path = self._pick((".launch", ".launch.xml"), opening)
+        if path is None:
             return None
-        path = self.random.choice(candidates)
         text = _text(path)
         node = self.random.choice(list(opening.finditer(text)))
         remap = f'\n<remap from="{self._name()}" to="{self._name()}"/>'
@@ -171,10 +173,9 @@ class EditSequence:
         return f"{self._shown(path)}: a remap added: {remap.strip()}"
 
     def _parameter_key(self) -> str | None:
-        candidates = self._files((".yaml",), "ros__parameters")
-        if not candidates:
+        path = self._pick((".yaml",), "ros__parameters")
+        if path is None:
             return None
-        path = self.random.choice(candidates)
         lines = _text(path).split("\n")
         keys = [at for at, line in enumerate(lines) if re.match(r"^\s+[a-z_]+:\s*\S", line)]
         if not keys:
@@ -185,7 +186,9 @@ class EditSequence:
         return f"{self._shown(path)}:{at + 1}: a parameter key renamed"
 
     def _depend(self) -> str | None:
-        path = self.random.choice(self._files(("package.xml",)))
+        path = self._pick(("package.xml",))
+        if path is None:
+            return None
         text = _text(path)
         depends = list(_DEPEND.finditer(text))
         if depends and self.random.random() < 0.5:
@@ -201,10 +204,9 @@ class EditSequence:
 
     def _executable(self) -> str | None:
         target = re.compile(r"add_executable\(\s*(\w+)")
-        candidates = self._files(("CMakeLists.txt",), target)
-        if not candidates:
+        path = self._pick(("CMakeLists.txt",), target)
+        if path is None:
             return None
-        path = self.random.choice(candidates)
         text = _text(path)
         found = self.random.choice(list(target.finditer(text)))
         renamed = text[: found.end(1)] + "_renamed" + text[found.end(1) :]
@@ -212,18 +214,16 @@ class EditSequence:
         return f"{self._shown(path)}: executable {found.group(1)} renamed"
 
     def _remove(self, suffixes: tuple[str, ...]) -> str | None:
-        candidates = self._files(suffixes)
-        if not candidates:
+        path = self._pick(suffixes)
+        if path is None:
             return None
-        path = self.random.choice(candidates)
         self._write(path, None)
         return f"{self._shown(path)}: removed"
 
     def _copy(self, suffixes: tuple[str, ...]) -> str | None:
-        candidates = self._files(suffixes)
-        if not candidates:
+        path = self._pick(suffixes)
+        if path is None:
             return None
-        path = self.random.choice(candidates)
         stem = path.name.split(".")[0]
         copy = path.with_name(path.name.replace(stem, f"{stem}_copy{len(self.original)}", 1))
         if copy.exists():
@@ -232,10 +232,9 @@ class EditSequence:
         return f"{self._shown(path)}: copied to {copy.name}"
 
     def _move(self, suffixes: tuple[str, ...]) -> str | None:
-        candidates = self._files(suffixes)
-        if not candidates:
+        path = self._pick(suffixes)
+        if path is None:
             return None
-        path = self.random.choice(candidates)
         moved = path.with_name(f"moved_{path.name}")
         if moved.exists():
             return None
