@@ -432,9 +432,6 @@ class GraphPatch:
         # patched as the graph later runs patch (``REBASE_EDITS``).
         kept: KeptLaunch | None = None
         known: set[str] = set()  # the files the build had facts of (a skipped one has none)
-        # Their facts, for the programs made, the trees walked and the parameters gathered
-        # again: one mapping, whose order is sorted and whose facts are loaded once.
-        known_facts = LazyFacts(known, facts.of)
         # Some packages' programs made again, some nodes' parameters gathered again
         remade = bool(kinds.building or kinds.added_code or kinds.removed_code or flipping)
         gathering = bool(declaring or depending or remade)
@@ -468,7 +465,9 @@ class GraphPatch:
                 files[index].display for index, tag in enumerate(stored.tags) if is_facts_key(tag)
             }
             known |= kinds.new_files
-            known_facts = LazyFacts(known, facts.of)
+        # Their facts, for the programs made, the trees walked and the parameters gathered
+        # again: one mapping, whose order is sorted and whose facts are loaded once.
+        known_facts = LazyFacts(known, facts.of)
         launch_parts = None if kept is None else kept.parts  # as a build would leave them
         programs: ProgramsAnew | None = None
         if remade:
