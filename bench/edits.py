@@ -12,8 +12,10 @@ kinds a ROS developer makes and the cache's incremental paths take apart:
 
 - a name in a C++ or Python call that declares an endpoint or a parameter, changed to a
   valid name or an invalid one (``graph_patch``: nodes' code patched);
+- a string constant a C++ file defines changed (the files taking it resolved anew);
 - a node's ``name``, a group's ``ns`` or a remap's ``from`` or ``to`` in a launch file
-  changed, or a remap added to a node (``launch_patch``: trees walked again);
+  changed, a remap added to a node, or a node started once more, under its name or
+  another (``launch_patch``: trees walked again);
 - a key of a ROS 2 parameter file renamed (``launch_patch``: the trees handed it);
 - a dependency added to or dropped from a ``package.xml`` (the packages patched);
 - an executable of a ``CMakeLists.txt`` renamed (``program_patch``: programs made again);
@@ -55,6 +57,7 @@ _PYTHON_CALLS = re.compile(
     r"create_(publisher|subscription|service|client)|Publisher\(|Subscriber\(|remappings"
     r"|declare_parameter|get_param"
 )
+_CONSTANTS = re.compile(r"(constexpr|const)\s.*(char|string|string_view)\b.*=\s*\"")
 _DEPEND = re.compile(r"\n\s*<(build_|exec_|build_export_|test_)?depend>[^<]*</\w*depend>")
 _ATTRIBUTE_OF = {"name": "node", "ns": "(?:node|group)", "from": "remap", "to": "remap"}
 
@@ -82,6 +85,8 @@ class EditSequence:
         return [
             lambda: self._string((".cpp", ".hpp", ".h"), _CPP_CALLS),
             lambda: self._string((".py",), _PYTHON_CALLS),
+            lambda: self._string((".hpp", ".h", ".cpp"), _CONSTANTS),
+            self._node,
             lambda: self._attribute(self.random.choice(sorted(_ATTRIBUTE_OF))),
             self._remap,
             self._parameter_key,
@@ -147,7 +152,7 @@ class EditSequence:
         name = self._name()
         lines[at] = _STRING.sub(f'"{name}"', lines[at], count=1)
         self._write(path, "\n".join(lines).encode())
-        return f"{self._shown(path)}:{at + 1}: a name in a call made {name!r}"
+        return f"{self._shown(path)}:{at + 1}: a string made {name!r}"
 
     def _attribute(self, attribute: str) -> str | None:
         element = _ATTRIBUTE_OF[attribute]
@@ -171,6 +176,19 @@ class EditSequence:
         remap = f'\n<remap from="{self._name()}" to="{self._name()}"/>'
         self._write(path, (text[: node.end()] + remap + text[node.end() :]).encode())
         return f"{self._shown(path)}: a remap added: {remap.strip()}"
+
+    def _node(self) -> str | None:
+        element = re.compile(r"[ \t]*<node\b[^>]*/>[ \t]*\n")
+        path = self._pick((".launch", ".launch.xml", ".test"), element)
+        if path is None:
+            return None
+        text = _text(path)
+        node = self.random.choice(list(element.finditer(text)))
+        copy = node.group()
+        if self.random.random() < 0.5:  # the same name twice, or the copy renamed
+            copy = re.sub(r'\bname="[^"]*"', f'name="{self._name()}"', copy, count=1)
+        self._write(path, (text[: node.end()] + copy + text[node.end() :]).encode())
+        return f"{self._shown(path)}: a node started once more: {copy.strip()}"
 
     def _parameter_key(self) -> str | None:
         path = self._pick((".yaml",), "ros__parameters")
