@@ -43,7 +43,7 @@ import tempfile
 from collections.abc import Callable
 from pathlib import Path
 
-from growth import grown
+from growth import grown, text_of
 
 # Names the edits write: valid ones, and ones a rule reports (RN101 to RN203).
 VALID_NAMES = ("cmd_vel", "odom", "scan", "chatter", "map", "foo/bar", "/abs_topic", "image_raw")
@@ -108,9 +108,9 @@ class EditSequence:
                 if name.endswith(suffixes) and (
                     not holding
                     or (
-                        holding.search(_text(path))
+                        holding.search(text_of(path))
                         if isinstance(holding, re.Pattern)
-                        else holding in _text(path)
+                        else holding in text_of(path)
                     )
                 ):
                     found.append(path)
@@ -144,7 +144,7 @@ class EditSequence:
         path = self._pick(suffixes, calls)
         if path is None:
             return None
-        lines = _text(path).split("\n")
+        lines = text_of(path).split("\n")
         found = [at for at, line in enumerate(lines) if calls.search(line) and _STRING.search(line)]
         if not found:
             return None
@@ -160,7 +160,7 @@ class EditSequence:
         path = self._pick((".launch", ".launch.xml", ".test"), pattern)
         if path is None:
             return None
-        text = _text(path)
+        text = text_of(path)
         value = self.random.choice(list(pattern.finditer(text)))
         name = self._name()
         self._write(path, (text[: value.start(1)] + name + text[value.end(1) :]).encode())
@@ -171,7 +171,7 @@ class EditSequence:
         path = self._pick((".launch", ".launch.xml"), opening)
         if path is None:
             return None
-        text = _text(path)
+        text = text_of(path)
         node = self.random.choice(list(opening.finditer(text)))
         remap = f'\n<remap from="{self._name()}" to="{self._name()}"/>'
         self._write(path, (text[: node.end()] + remap + text[node.end() :]).encode())
@@ -182,7 +182,7 @@ class EditSequence:
         path = self._pick((".launch", ".launch.xml", ".test"), element)
         if path is None:
             return None
-        text = _text(path)
+        text = text_of(path)
         node = self.random.choice(list(element.finditer(text)))
         copy = node.group()
         if self.random.random() < 0.5:  # the same name twice, or the copy renamed
@@ -194,7 +194,7 @@ class EditSequence:
         path = self._pick((".yaml",), "ros__parameters")
         if path is None:
             return None
-        lines = _text(path).split("\n")
+        lines = text_of(path).split("\n")
         keys = [at for at, line in enumerate(lines) if re.match(r"^\s+[a-z_]+:\s*\S", line)]
         if not keys:
             return None
@@ -207,7 +207,7 @@ class EditSequence:
         path = self._pick(("package.xml",))
         if path is None:
             return None
-        text = _text(path)
+        text = text_of(path)
         depends = list(_DEPEND.finditer(text))
         if depends and self.random.random() < 0.5:
             gone = self.random.choice(depends)
@@ -225,7 +225,7 @@ class EditSequence:
         path = self._pick(("CMakeLists.txt",), target)
         if path is None:
             return None
-        text = _text(path)
+        text = text_of(path)
         found = self.random.choice(list(target.finditer(text)))
         renamed = text[: found.end(1)] + "_renamed" + text[found.end(1) :]
         self._write(path, renamed.encode())
@@ -276,13 +276,6 @@ class EditSequence:
 
 def _now(path: Path) -> bytes | None:
     return path.read_bytes() if path.exists() else None
-
-
-def _text(path: Path) -> str:
-    try:
-        return path.read_text(encoding="utf-8", errors="replace")
-    except OSError:
-        return ""
 
 
 def _lint(root: Path, cache: Path, *options: str) -> tuple[int, bytes, bytes]:

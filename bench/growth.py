@@ -307,7 +307,7 @@ def named_most(workspace: Path, suffixes: tuple[str, ...], marker: str) -> Path:
     by size is often one no tree reads (and a name alone, ``params.yaml``, is many
     files')."""
     launch = [
-        _text(path)
+        text_of(path)
         for suffix in (".launch", ".launch.xml", ".launch.py")
         for path in workspace.rglob(f"*{suffix}")
         if path.is_file()
@@ -316,7 +316,7 @@ def named_most(workspace: Path, suffixes: tuple[str, ...], marker: str) -> Path:
         (-sum(f"{path.parent.name}/{path.name}" in text for text in launch), path)
         for suffix in suffixes
         for path in workspace.rglob(f"*{suffix}")
-        if path.is_file() and marker in _text(path)
+        if path.is_file() and marker in text_of(path)
     )
     if not named:
         raise SystemExit(f"no {suffixes} file with {marker!r} in {workspace}")
@@ -334,14 +334,14 @@ def included_most(workspace: Path, marker: str) -> Path:
     named: dict[str, int] = {}
     launch = sorted(path for path in workspace.rglob("*.launch.xml") if path.is_file())
     for path in launch:
-        for include in _INCLUDE.finditer(_text(path)):
+        for include in _INCLUDE.finditer(text_of(path)):
             if "<arg " in include.group(2):
                 name = include.group(1).rsplit("/", 1)[-1]
                 named[name] = named.get(name, 0) + 1
     found = sorted(
         (-named[path.name], path)
         for path in launch
-        if named.get(path.name) and marker in _text(path)
+        if named.get(path.name) and marker in text_of(path)
     )
     if not found:
         raise SystemExit(f"no launch file included with arguments in {workspace}")
@@ -380,7 +380,8 @@ def taken_most(workspace: Path, suffixes: tuple[str, ...]) -> tuple[Path, int]:
     return best[2], best[3]
 
 
-def _text(path: Path) -> str:
+def text_of(path: Path) -> str:
+    """A file's text, undecodable bytes replaced; "" where it cannot be read."""
     try:
         return path.read_text(encoding="utf-8", errors="replace")
     except OSError:
