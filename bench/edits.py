@@ -266,11 +266,7 @@ class EditSequence:
         if not edited:
             return None
         path = self.random.choice(edited)
-        first = self.original[path]
-        if first is None:
-            path.unlink()
-        else:
-            self._write(path, first)
+        self._write(path, self.original[path])
         return f"{self._shown(path)}: back as it was"
 
 
