@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import json
+import posixpath
 from pathlib import Path
 from typing import Any
 
@@ -551,7 +552,6 @@ def test_what_a_build_file_leaves_open_is_looked_up_as_it_was_compared() -> None
     before, ``reference``): the same for every word form, from a package at the run's
     root, below it, and outside the current directory."""
     import itertools
-    import posixpath
     from fnmatch import fnmatchcase
 
     from roslint_names.model import CompiledSources
@@ -644,13 +644,12 @@ def test_what_a_build_file_leaves_open_is_looked_up_as_it_was_compared() -> None
 
 
 def test_what_targets_name_is_asked_of_the_build_files_that_may_name_it() -> None:
-    """``BuiltSources`` asks whether a target names a source of the build files above it
-    and of those naming files outside their directory, not of every build file read (a
-    patch asks about one package's sources): the same answers as the union of what every
-    read build file's targets name (``reference``), for targets that stay below their
-    directory, lead out of it (``../common``, an absolute path, ``.``), a package at the
-    run's root, below it, inside another, outside the current directory, and a build
-    file of no package."""
+    """``BuiltSources`` asks whether CMake reads a build file only of those whose targets
+    name the source, not of every build file read (a patch asks about one package's
+    sources): the same answers as the union of what every read build file's targets name
+    (``reference``), for targets that stay below their directory, lead out of it
+    (``../common``, an absolute path, ``.``), a package at the run's root, below it,
+    inside another, outside the current directory, and a build file of no package."""
     from roslint_names.workspace.index import join, parent
 
     relatives = ("src/a.cpp", "../common/b.cpp", "sub/../c.cpp", "/opt/d.cpp", ".", "e.cpp")
@@ -680,6 +679,17 @@ def test_what_targets_name_is_asked_of_the_build_files_that_may_name_it() -> Non
         for path in sorted(asked):
             reference = (path in targets, path in rostest_named)
             assert built._named(path) == reference, (outer, path)
+
+
+def test_parent_is_the_posix_dirname_of_a_display_path() -> None:
+    """``index.parent``, asked of every file the graph reads, is ``posixpath.dirname``
+    without its type checks: the same answer for relative, absolute, root, trailing and
+    doubled separators, and paths above the run's root."""
+    from roslint_names.workspace.index import parent
+
+    paths = ("", "a", "a/b", "/a", "/a/b", "/", "//", "///a", "a/", "a/b/", "a//b", "../x/y")
+    for path in (*paths, "./a", "a///b//c", "é/ü.cpp", "//a//b//"):
+        assert parent(path) == posixpath.dirname(path), path
 
 
 def test_built_sources_index_what_was_added_when_asked() -> None:
