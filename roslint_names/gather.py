@@ -347,12 +347,13 @@ _Item = tuple[_Job, "bytes | OnDisk | Unread | None", str | None]
 Verdict = tuple[list[Diagnostic], list[Suppression]]
 Checker = Callable[[FileFacts, bytes], "Verdict | None"]
 # A file's index, its facts, and the per-file rules' verdict when it was judged with them;
-# for a file the worker read (``Unread``), what reading it found and its bytes where the
-# main process needs them (a verdict it makes, a launch file's wiring), else None. Facts
+# for a file the worker read (``Unread``), what reading it found, its bytes where the
+# main process needs them (a verdict it makes, a launch file's wiring), else None, and
+# the key its facts were stored under (the main process keys the run by it). Facts
 # None: the worker found the file edited since the main process read it (``OnDisk``),
 # and the main process extracts the bytes it read (``Dispatcher.here``); or the file the
 # worker read is one no extractor reads (too large, not text, unreadable).
-Read = tuple[Taken, "bytes | None"]
+Read = tuple[Taken, "bytes | None", str | None]
 Extracted = tuple[int, "FileFacts | None", "Verdict | None", "Read | None"]
 
 
@@ -374,7 +375,7 @@ def extract_batch(
         if isinstance(payload, Unread):
             found, data = taken(payload.path, payload.max_size)
             if data is None:  # too large, not text, unreadable: the main process says so
-                results.append((job.index, None, None, (found, None)))
+                results.append((job.index, None, None, (found, None, None)))
                 continue
             key = _key_of(cache, job, found)
         else:
@@ -391,7 +392,7 @@ def extract_batch(
         read = None
         if found is not None:
             needed = (job.checked and verdict is None) or bool(wired_by(facts))
-            read = (found, data if needed else None)
+            read = (found, data if needed else None, key)
         results.append((job.index, facts, verdict, read))
     if cache is not None:
         cache.flush()  # a worker process has no "end of run": every batch ends its writes
@@ -460,8 +461,9 @@ def gave_up(cache: FactsCache | None, item: _Item, why: workers.Stopped) -> Extr
     if isinstance(payload, Unread):  # read here, as its worker read it
         found, unread = taken(payload.path, payload.max_size)
         if unread is None:
-            return job.index, None, None, (found, None)
-        data, key, read = unread, _key_of(cache, job, found), (found, unread)
+            return job.index, None, None, (found, None, None)
+        key = _key_of(cache, job, found)
+        data, read = unread, (found, unread, key)
     else:
         data = payload.data if isinstance(payload, OnDisk) else payload or b""
     facts = gave_up_facts(job.display, job.language, data, why)
@@ -745,7 +747,7 @@ class Gatherer:
                 item = self._extracting.pop(result[0])
                 index, facts, verdict, read = _as_read(result, item, self.dispatcher)
                 if read is not None:
-                    yield self._read_there(index, facts, verdict, *read)
+                    yield self._read_there(index, facts, verdict, read)
                     continue
                 assert facts is not None and isinstance(item[1], OnDisk)
                 yield index, facts, item[1].data, verdict
@@ -755,14 +757,15 @@ class Gatherer:
         index: int,
         facts: FileFacts | None,
         verdict: Verdict | None,
-        found: Taken,
-        data: bytes | None,
+        read: Read,
     ) -> tuple[int, FileFacts, bytes | None, Verdict | None]:
-        """A file its worker read (``Unread``): keyed by what it found, and what the main
-        process makes of it where it read no bytes to extract, as for one it reads."""
+        """A file its worker read (``Unread``): keyed as the worker keyed what it found,
+        and what the main process makes of it where it read no bytes to extract, as for
+        one it reads."""
+        found, data, key = read
         source = self.files[index]
         if self.inputs is not None:
-            self.inputs.record(index, source, found)
+            self.inputs.record(index, source, found, key)
         if facts is None:
             return self._not_extracted(index, source, found.error, found.skip)
         self.extracted += 1

@@ -203,12 +203,15 @@ class RunInputs:
         """Whether ``key_first`` keyed the run: else each file is keyed as it is read."""
         return self._keyed_first
 
-    def record(self, index: int, source: SourceFile, taken: Taken) -> None:
+    def record(self, index: int, source: SourceFile, taken: Taken, key: str | None) -> None:
         """Key a file another process read (``gather``, for a run not keyed first), as
-        ``read`` keys one it reads: ``taken`` is what that process found."""
+        ``read`` keys one it reads: ``taken`` is what that process found, ``key`` the facts
+        key it made of it (``_tag``'s, from the same package lookup), if any."""
         assert not self._keyed_first
         self._digests.record(source.location, taken)
-        self._tags[index] = self._tag(source, taken.content, taken.error, taken.skip)
+        if key is None:
+            key = self._tag(source, taken.content, taken.error, taken.skip)
+        self._tags[index] = key
 
     def read(self, index: int, source: SourceFile) -> tuple[Read, str | None, str | None]:
         """The file's bytes (as ``read_file`` gives them), its facts key and its content
