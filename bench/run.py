@@ -19,7 +19,9 @@ Measures, in this order, and prints as a table (and as JSON with ``--json``):
   alone (the stored results deleted: where a run after an edit starts), with their
   ratios to the floor and to the parses past the prefilters, and whether their outputs
   are byte-identical; for each, the main process's own CPU (sampled from /proc): with
-  workers, the serial part of the run, at most 1 s with two jobs (issue 30). The
+  workers, the serial part of the run, at most 1 s with two jobs (issue 30); and of it,
+  what it computed while no worker did (before the workers, after them, or while they
+  all waited for it), the part more cores cannot shorten. The
   verdicts are issue 18's: a cold run is judged against the parses it cannot avoid
   (``past_prefilters``: at most 1.5x with one job, 0.9x with two), a re-run against the
   whole floor (0.05x unchanged, 0.08x from the facts alone); and issue 30's: the serial
@@ -139,12 +141,19 @@ class Run:
     # the run (what the main process computed rather than waited for). Sampled from /proc,
     # so short by at most one sampling interval's worth; None where there is no /proc.
     main_cpu: float | None = None
+    # Of it, what the main process computed in sampling intervals where no worker did
+    # (before the first worker starts, after the last one is done, and while all of them
+    # wait for it): the part more cores cannot shorten.
+    main_alone_cpu: float | None = None
 
     def summary(self) -> dict[str, Any]:
         return {
             "wall_s": round(self.wall, 3),
             "cpu_s": round(self.cpu, 3),
             "main_cpu_s": None if self.main_cpu is None else round(self.main_cpu, 2),
+            "main_alone_cpu_s": (
+                None if self.main_alone_cpu is None else round(self.main_alone_cpu, 2)
+            ),
             "max_rss_mb": round(self.max_rss_mb, 1),
             "tree_rss_mb": None if self.tree_rss_mb is None else round(self.tree_rss_mb, 1),
             "exit_code": self.exit_code,
@@ -510,7 +519,7 @@ def measure(command: Sequence[str], cwd: Path, environment: dict[str, str] | Non
         process = subprocess.Popen(command, cwd=cwd, stdout=out, stderr=err, env=environment)
         with sample_tree_rss(process.pid) as peak:
             _, status, usage = os.wait4(process.pid, 0)
-        main_cpu = peak[1]
+        main_cpu, main_alone_cpu = peak[1], peak[2]
         wall = time.perf_counter() - started
         process.returncode = os.waitstatus_to_exitcode(status)
         out.seek(0)
@@ -524,14 +533,16 @@ def measure(command: Sequence[str], cwd: Path, environment: dict[str, str] | Non
             stdout=out.read(),
             stderr=err.read().decode("utf-8", errors="replace"),
             main_cpu=main_cpu,
+            main_alone_cpu=main_alone_cpu,
         )
 
 
 @contextmanager
 def sample_tree_rss(pid: int, interval: float = 0.05) -> Iterator[list[float | None]]:
-    """Peak of the summed RSS of ``pid`` and its descendants, and the last CPU seconds of
-    ``pid`` itself (its children's not included), sampled from /proc."""
-    peak: list[float | None] = [None, None]
+    """Peak of the summed RSS of ``pid`` and its descendants, the last CPU seconds of
+    ``pid`` itself (its children's not included), and of those the seconds it spent in
+    sampling intervals where none of its descendants' CPU time grew, sampled from /proc."""
+    peak: list[float | None] = [None, None, None]
     if not Path("/proc/self/statm").exists():
         yield peak
         return
@@ -539,14 +550,28 @@ def sample_tree_rss(pid: int, interval: float = 0.05) -> Iterator[list[float | N
     page = os.sysconf("SC_PAGE_SIZE")
     ticks = os.sysconf("SC_CLK_TCK")
 
+    descendants: dict[int, int] = {}  # CPU ticks of each, as last sampled
+    last_own = alone = 0
+
     def sample() -> None:
+        nonlocal last_own, alone
         while not stop.wait(interval):
-            total = sum(_rss_pages(member) for member in _tree(pid)) * page / 2**20
+            members = _tree(pid)
+            total = sum(_rss_pages(member) for member in members) * page / 2**20
             if total and (peak[0] is None or total > peak[0]):
                 peak[0] = total
+            busy = False
+            for member in members[1:]:
+                spent = _own_cpu_ticks(member)
+                if spent is not None:
+                    busy = busy or spent > descendants.get(member, 0)
+                    descendants[member] = spent
             own = _own_cpu_ticks(pid)
             if own is not None:
-                peak[1] = own / ticks
+                if not busy:
+                    alone += own - last_own
+                last_own = own
+                peak[1], peak[2] = own / ticks, alone / ticks
 
     thread = threading.Thread(target=sample, daemon=True)
     thread.start()
@@ -838,7 +863,11 @@ def table(results: dict[str, Any]) -> str:
     lines.append(f"outputs of the CLI runs byte-identical: {results['identical_output']}")
     serial = results["runs"].get("cold_2_jobs", {}).get("main_cpu_s")
     if serial is not None:
-        lines.append(f"serial part of the cold run with 2 jobs (main process CPU): {serial} s")
+        alone = results["runs"]["cold_2_jobs"].get("main_alone_cpu_s")
+        lines.append(
+            f"serial part of the cold run with 2 jobs (main process CPU): {serial} s, of "
+            f"which {alone} s while no worker computed (before, after, or waiting for it)"
+        )
     if not results["warm_all_cached"]:
         lines.append("WARNING: the warm run did not find every file in the cache")
     for name, run in results["runs"].items():
