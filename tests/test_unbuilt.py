@@ -687,8 +687,9 @@ def test_parent_is_the_posix_dirname_of_a_display_path() -> None:
     doubled separators, and paths above the run's root."""
     from roslint_names.workspace.index import parent
 
-    paths = ("", "a", "a/b", "/a", "/a/b", "/", "//", "///a", "a/", "a/b/", "a//b", "../x/y")
-    for path in (*paths, "./a", "a///b//c", "é/ü.cpp", "//a//b//"):
+    relative = ("", "a", "a/b", "a/", "a/b/", "a//b", "a///b//c", "./a", "../x/y", "é/ü.cpp")
+    absolute = ("/", "//", "///a", "/a", "/a/b", "//a//b//")
+    for path in (*relative, *absolute):
         assert parent(path) == posixpath.dirname(path), path
 
 
