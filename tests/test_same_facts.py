@@ -1530,3 +1530,69 @@ def test_a_base_class_that_stops_declaring_endpoints_is_followed_after_an_edit(
     assert judged() == []
     # each cached run, then its run without a cache (built)
     assert taken == ["build", "build", "patch", "build", "patch", "build"]
+
+
+SCALER = """#include <rclcpp/rclcpp.hpp>
+#include <std_msgs/msg/float64.hpp>
+
+#include "scale_pkg/filter.hpp"
+
+int main(int argc, char ** argv)
+{
+  rclcpp::init(argc, argv);
+  auto node = rclcpp::Node::make_shared("scaler");
+  auto gain = node->declare_parameter("gain", 1.0);
+  auto scaled = node->create_publisher<std_msgs::msg::Float64>("scaled", 10);
+  rclcpp::spin(node);
+  rclcpp::shutdown();
+  return 0;
+}
+"""
+FILTER_HEADER = "#pragma once\n\nclass Filter\n{\npublic:\n  int scale() const;\n};\n"
+FILTER = '#include "scale_pkg/filter.hpp"\n\nint Filter::scale() const { return 2; }\n'
+
+
+def test_a_source_moved_while_the_replay_stood_is_not_followed_by_a_later_patch(
+    run_cli: Any, tmp_path: Path, taken: list[str]
+) -> None:
+    """The scaler includes ``filter.hpp``, whose implementation ``filter.cpp`` (a library
+    source a glob compiles, with no ROS code: its facts say nothing) is followed as the
+    node's code. Moved to ``moved_filter.cpp``, the last run's findings stand (``shifts``)
+    and the kept graph's lookups still name ``filter.cpp``; a parameter declared in the
+    scaler then gathers the node's parameters again over them: the moved file is not the
+    run's, and is not followed (it stopped that run with an internal error, a
+    ``KeyError``, found by ``bench/edits.py`` on moveit2's ``message_checks.cpp``)."""
+    root = tmp_path / "ws"
+    package = root / "src/scale_pkg"
+    (package / "src/lib").mkdir(parents=True)
+    (package / "include/scale_pkg").mkdir(parents=True)
+    (package / "package.xml").write_text(AMENT_PACKAGE.format(name="scale_pkg"), "utf-8")
+    (package / "CMakeLists.txt").write_text(
+        "cmake_minimum_required(VERSION 3.8)\nproject(scale_pkg)\n"
+        "find_package(ament_cmake REQUIRED)\nfind_package(rclcpp REQUIRED)\n"
+        "file(GLOB FILTER_SOURCES src/lib/*.cpp)\nadd_library(filter ${FILTER_SOURCES})\n"
+        "add_executable(scaler src/scaler.cpp)\n"
+        "target_link_libraries(scaler filter)\nament_package()\n",
+        encoding="utf-8",
+    )
+    (package / "include/scale_pkg/filter.hpp").write_text(FILTER_HEADER, encoding="utf-8")
+    (package / "src/lib/filter.cpp").write_text(FILTER, encoding="utf-8")
+    scaler = package / "src/scaler.cpp"
+    scaler.write_text(SCALER, encoding="utf-8")
+    cache = tmp_path / "cache"
+    cached, fresh = outputs(run_cli, root, cache)
+    assert cached == fresh
+    taken.clear()
+    (package / "src/lib/filter.cpp").rename(package / "src/lib/moved_filter.cpp")
+    cached, fresh = outputs(run_cli, root, cache)
+    assert cached == fresh
+    assert taken == ["replay", "build"]
+    taken.clear()
+    edit(
+        scaler,
+        "  auto scaled",
+        '  auto offset = node->declare_parameter("offset", 0.0);\n  auto scaled',
+    )
+    cached, fresh = outputs(run_cli, root, cache)
+    assert cached == fresh
+    assert taken == ["patch", "build"]

@@ -811,7 +811,11 @@ class ParameterSets:
         if found is None:
             beside = posixpath.normpath(posixpath.join(directory, include))
             suffix = f"/{include}"
-            found = [path for path in candidates if path == beside or path.endswith(suffix)]
+            found = [
+                path
+                for path in candidates
+                if (path == beside or path.endswith(suffix)) and self._holds(path)
+            ]
             self._included_memo[key] = found
         return found
 
@@ -828,8 +832,20 @@ class ParameterSets:
                 path
                 for extension in TRANSLATION_UNITS
                 for path in self._by_name.get((directory, stem + extension), [])
+                if self._holds(path)
             ]
         return found
+
+    def _holds(self, path: str) -> bool:
+        """Whether ``path``, which the tables name, is a file of the run. A patch's tables
+        are those of the build it patches, with the code files it adds or removes; a
+        file that says nothing (``shifts.says_nothing``: a library source with no ROS
+        code) may have gone since without a patch, while the last run's findings stood,
+        and the tables still name it (moveit2's ``message_checks.cpp`` moved: the next
+        patch that gathered parameters stopped on it with a ``KeyError``). It says
+        nothing, so a build of the files as they are, which does not have it, gathers
+        the same parameters without it."""
+        return path in self._index.facts
 
     def _package_declarations(self, package: str) -> tuple[set[str], set[str]]:
         """The names (and ends of names) the package's code declares, tests aside."""
