@@ -24,8 +24,9 @@ kinds a ROS developer makes and the cache's incremental paths take apart:
 - an earlier edit of a file undone (a replay of a run long ago taken up again).
 
 Then the CLI runs twice, ``--format json``: with the cache, and with ``--no-cache``. A
-step whose outputs or exit codes differ is written to ``--out`` (both outputs and the
-edits so far); the sequence goes on from an emptied cache. Exit 1 when a step differed or
+step whose outputs or exit codes differ is written to ``--out`` (both outputs, what both
+runs printed on standard error, and the edits so far); the sequence goes on from an
+emptied cache. Exit 1 when a step differed or
 a run crashed, 0 otherwise. The summary says how many steps changed the output at all: a
 sequence whose edits change nothing tests nothing.
 """
@@ -322,6 +323,9 @@ def main() -> int:
                 (options.out / f"{options.seed}-{step}-cached.json").write_bytes(cached[1])
                 (options.out / f"{options.seed}-{step}-no-cache.json").write_bytes(fresh[1])
                 (options.out / f"{options.seed}-{step}-edits.txt").write_text("\n".join(edits))
+                # What each run printed on standard error: an internal error says where.
+                errors = b"".join((b"# cached\n", cached[2], b"# without a cache\n", fresh[2]))
+                (options.out / f"{options.seed}-{step}-stderr.txt").write_bytes(errors)
                 shutil.rmtree(cache, ignore_errors=True)  # the next steps from a clean start
                 _lint(root, cache)
         print(
