@@ -26,9 +26,9 @@ kinds a ROS developer makes and the cache's incremental paths take apart:
 Then the CLI runs twice, ``--format json``: with the cache, and with ``--no-cache``. A
 step whose outputs or exit codes differ is written to ``--out`` (both outputs, what both
 runs printed on standard error, and the edits so far); the sequence goes on from an
-emptied cache. Exit 1 when a step differed or
-a run crashed, 0 otherwise. The summary says how many steps changed the output at all: a
-sequence whose edits change nothing tests nothing.
+emptied cache. Exit 1 when a step differed or a run crashed, 0 otherwise. The summary
+says how many steps changed the output at all: a sequence whose edits change nothing
+tests nothing.
 """
 
 from __future__ import annotations
