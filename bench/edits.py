@@ -122,6 +122,17 @@ class EditSequence:
         candidates = self._files(suffixes, holding)
         return self.random.choice(candidates) if candidates else None
 
+    def _pick_match(
+        self, suffixes: tuple[str, ...], pattern: re.Pattern[str]
+    ) -> tuple[Path, str, re.Match[str]] | None:
+        """A file holding ``pattern`` (``_pick``), its text, and one match in it, each at
+        random; None where no file holds it."""
+        path = self._pick(suffixes, pattern)
+        if path is None:
+            return None
+        text = text_of(path)
+        return path, text, self.random.choice(list(pattern.finditer(text)))
+
     def _name(self) -> str:
         names = INVALID_NAMES if self.random.random() < 0.4 else VALID_NAMES
         return self.random.choice(names)
@@ -130,7 +141,7 @@ class EditSequence:
         """``path`` given ``data`` (None: removed), its first bytes remembered; a new file
         renamed over the old, which keeps its bytes for the workspace it is linked from."""
         if path not in self.original:
-            self.original[path] = path.read_bytes() if path.exists() else None
+            self.original[path] = _now(path)
         if data is None:
             path.unlink()
             return
@@ -158,33 +169,29 @@ class EditSequence:
     def _attribute(self, attribute: str) -> str | None:
         element = _ATTRIBUTE_OF[attribute]
         pattern = re.compile(rf'<{element}\b[^>]*?\b{attribute}="([^"$]*)"')
-        path = self._pick((".launch", ".launch.xml", ".test"), pattern)
-        if path is None:
+        picked = self._pick_match((".launch", ".launch.xml", ".test"), pattern)
+        if picked is None:
             return None
-        text = text_of(path)
-        value = self.random.choice(list(pattern.finditer(text)))
+        path, text, value = picked
         name = self._name()
         self._write(path, (text[: value.start(1)] + name + text[value.end(1) :]).encode())
         return f"{self._shown(path)}: a {attribute}= made {name!r}"
 
     def _remap(self) -> str | None:
-        opening = re.compile(r"<node\b[^>]*[^/]>")
-        path = self._pick((".launch", ".launch.xml"), opening)
-        if path is None:
+        picked = self._pick_match((".launch", ".launch.xml"), re.compile(r"<node\b[^>]*[^/]>"))
+        if picked is None:
             return None
-        text = text_of(path)
-        node = self.random.choice(list(opening.finditer(text)))
+        path, text, node = picked
         remap = f'\n<remap from="{self._name()}" to="{self._name()}"/>'
         self._write(path, (text[: node.end()] + remap + text[node.end() :]).encode())
         return f"{self._shown(path)}: a remap added: {remap.strip()}"
 
     def _node(self) -> str | None:
         element = re.compile(r"[ \t]*<node\b[^>]*/>[ \t]*\n")
-        path = self._pick((".launch", ".launch.xml", ".test"), element)
-        if path is None:
+        picked = self._pick_match((".launch", ".launch.xml", ".test"), element)
+        if picked is None:
             return None
-        text = text_of(path)
-        node = self.random.choice(list(element.finditer(text)))
+        path, text, node = picked
         copy = node.group()
         if self.random.random() < 0.5:  # the same name twice, or the copy renamed
             copy = re.sub(r'\bname="[^"]*"', f'name="{self._name()}"', copy, count=1)
@@ -222,12 +229,10 @@ class EditSequence:
         return f"{self._shown(path)}: a dependency on {other} added"
 
     def _executable(self) -> str | None:
-        target = re.compile(r"add_executable\(\s*(\w+)")
-        path = self._pick(("CMakeLists.txt",), target)
-        if path is None:
+        picked = self._pick_match(("CMakeLists.txt",), re.compile(r"add_executable\(\s*(\w+)"))
+        if picked is None:
             return None
-        text = text_of(path)
-        found = self.random.choice(list(target.finditer(text)))
+        path, text, found = picked
         renamed = text[: found.end(1)] + "_renamed" + text[found.end(1) :]
         self._write(path, renamed.encode())
         return f"{self._shown(path)}: executable {found.group(1)} renamed"
