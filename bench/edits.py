@@ -21,6 +21,13 @@ kinds a ROS developer makes and the cache's incremental paths take apart:
 - an executable of a ``CMakeLists.txt`` renamed (``program_patch``: programs made again);
 - a launch file or C++ source removed, a file copied beside itself, or moved (renamed
   in its directory: ``shifts``, the replay renumbered);
+- a name, namespace or executable in a Python or YAML launch file changed;
+- an argument's default, or the value an include hands it, changed; an ``<include>``
+  removed or given twice (the files included read again under other arguments);
+- a local ``#include`` dropped or added, a class's base changed (what a node's code
+  spans: parameters gathered again), a source a target compiles replaced by another;
+- a package renamed in its manifest;
+- a file moved into another directory of its kind's files (another package's);
 - an earlier edit of a file undone (a replay of a run long ago taken up again).
 
 Then the CLI runs twice, ``--format json``: with the cache, and with ``--no-cache``. A
@@ -61,6 +68,21 @@ _PYTHON_CALLS = re.compile(
 _CONSTANTS = re.compile(r"(constexpr|const)\s.*(char|string|string_view)\b.*=\s*\"")
 _DEPEND = re.compile(r"\n\s*<(build_|exec_|build_export_|test_)?depend>[^<]*</\w*depend>")
 _ATTRIBUTE_OF = {"name": "node", "ns": "(?:node|group)", "from": "remap", "to": "remap"}
+# A Python launch description's keyword naming a node, its namespace or its program
+_PYTHON_LAUNCH = re.compile(
+    r"\b(?:name|namespace|executable|node_name|node_namespace)\s*=\s*['\"]([^'\"$]*)['\"]"
+)
+# A YAML launch file's node name, namespace or remap end
+_YAML_LAUNCH = re.compile(
+    r"^\s*-?\s*(?:name|namespace|from|to):\s*[\"']?([A-Za-z_/~][^\"'\n$]*)", re.M
+)
+_ARGUMENT = re.compile(r'<arg\b[^>]*?\b(?:default|value)="([^"$]*)"')
+_INCLUDE_ELEMENT = re.compile(r"[ \t]*<include\b(?:[^>]*/>|.*?</include>)[ \t]*\n", re.S)
+_LOCAL_INCLUDE = re.compile(r'^#include "([^"]+)"[ \t]*\n', re.M)
+_BASE = re.compile(r"\bclass\s+\w+\s*(?:final\s*)?:\s*(?:public|protected|private)?\s*([\w:]+)")
+_BASES = ("rclcpp::Node", "rclcpp_lifecycle::LifecycleNode", "nav2_util::LifecycleNode", "Unknown")
+_SOURCES = re.compile(r"add_(?:executable|library)\(\s*[\w$-]+[^)]*?\b([\w/.-]+\.cpp)\b")
+_PACKAGE_NAME = re.compile(r"<name>\s*([^<\s]+)\s*</name>")
 
 
 class EditSequence:
@@ -96,6 +118,15 @@ class EditSequence:
             lambda: self._remove((".launch", ".launch.xml", ".launch.py", ".cpp")),
             lambda: self._copy((".launch", ".launch.xml", ".cpp", ".yaml")),
             lambda: self._move((".cpp", ".launch.xml", ".launch.py", ".yaml")),
+            self._python_launch,
+            self._yaml_launch,
+            self._argument,
+            self._include_element,
+            self._include_line,
+            self._base_class,
+            self._compiled_source,
+            self._package_renamed,
+            lambda: self._move_away((".cpp", ".hpp", ".launch.xml", ".launch.py", ".yaml")),
             self._undo,
             self._undo,
         ]
@@ -236,6 +267,125 @@ class EditSequence:
         renamed = text[: found.end(1)] + "_renamed" + text[found.end(1) :]
         self._write(path, renamed.encode())
         return f"{self._shown(path)}: executable {found.group(1)} renamed"
+
+    def _python_launch(self) -> str | None:
+        picked = self._pick_match((".launch.py", "_launch.py"), _PYTHON_LAUNCH)
+        if picked is None:
+            return None
+        path, text, value = picked
+        name = self._name()
+        self._write(path, (text[: value.start(1)] + name + text[value.end(1) :]).encode())
+        return f"{self._shown(path)}: a launch keyword made {name!r}"
+
+    def _yaml_launch(self) -> str | None:
+        picked = self._pick_match((".launch.yaml",), _YAML_LAUNCH)
+        if picked is None:
+            return None
+        path, text, value = picked
+        name = self._name()
+        self._write(path, (text[: value.start(1)] + name + text[value.end(1) :]).encode())
+        return f"{self._shown(path)}: a YAML launch value made {name!r}"
+
+    def _argument(self) -> str | None:
+        """An argument's default, or the value an include hands it, changed: the files
+        included read again under other arguments (``speculation``, ``launch_patch``)."""
+        picked = self._pick_match((".launch", ".launch.xml"), _ARGUMENT)
+        if picked is None:
+            return None
+        path, text, value = picked
+        name = self._name().strip("/") or "x"
+        self._write(path, (text[: value.start(1)] + name + text[value.end(1) :]).encode())
+        return f"{self._shown(path)}: an argument's value made {name!r}"
+
+    def _include_element(self) -> str | None:
+        """An ``<include>`` removed, or given twice: a tree loses or doubles a subtree."""
+        picked = self._pick_match((".launch", ".launch.xml"), _INCLUDE_ELEMENT)
+        if picked is None:
+            return None
+        path, text, include = picked
+        if self.random.random() < 0.5:
+            self._write(path, (text[: include.start()] + text[include.end() :]).encode())
+            return f"{self._shown(path)}: an include removed"
+        doubled = text[: include.end()] + include.group() + text[include.end() :]
+        self._write(path, doubled.encode())
+        return f"{self._shown(path)}: an include given twice"
+
+    def _include_line(self) -> str | None:
+        """A local ``#include`` dropped, or one of another file of the directory added:
+        what a node's code spans, and the constants it takes, change."""
+        picked = self._pick_match((".cpp", ".hpp", ".h"), _LOCAL_INCLUDE)
+        if picked is None:
+            return None
+        path, text, line = picked
+        if self.random.random() < 0.5:
+            self._write(path, (text[: line.start()] + text[line.end() :]).encode())
+            return f"{self._shown(path)}: #include {line.group(1)!r} dropped"
+        headers = sorted(
+            found.name
+            for found in path.parent.iterdir()
+            if found.suffix in (".h", ".hpp") and found != path
+        )
+        if not headers:
+            return None
+        header = self.random.choice(headers)
+        added = f'#include "{header}"\n'
+        self._write(path, (text[: line.start()] + added + text[line.start() :]).encode())
+        return f"{self._shown(path)}: #include {header!r} added"
+
+    def _base_class(self) -> str | None:
+        """A class's first base changed: the parameters of its nodes' code gathered
+        through other classes (``ParameterSets._own_code``), plugins judged again."""
+        picked = self._pick_match((".cpp", ".hpp", ".h"), _BASE)
+        if picked is None:
+            return None
+        path, text, base = picked
+        new = self.random.choice([b for b in _BASES if b != base.group(1)])
+        self._write(path, (text[: base.start(1)] + new + text[base.end(1) :]).encode())
+        return f"{self._shown(path)}: a base {base.group(1)!r} made {new!r}"
+
+    def _compiled_source(self) -> str | None:
+        """A source a target compiles replaced by another ``.cpp`` of its package: a
+        program's code changes (``program_patch``) and one source may be built no more."""
+        picked = self._pick_match(("CMakeLists.txt",), _SOURCES)
+        if picked is None:
+            return None
+        path, text, source = picked
+        others = sorted(
+            found.relative_to(path.parent).as_posix()
+            for found in path.parent.rglob("*.cpp")
+            if found.relative_to(path.parent).as_posix() != source.group(1)
+        )
+        if not others:
+            return None
+        other = self.random.choice(others)
+        self._write(path, (text[: source.start(1)] + other + text[source.end(1) :]).encode())
+        return f"{self._shown(path)}: compiles {other!r} for {source.group(1)!r}"
+
+    def _package_renamed(self) -> str | None:
+        """A package's name changed: ``$(find ...)`` of it, its dependents' lookups and
+        the names a file's package decides all move."""
+        picked = self._pick_match(("package.xml",), _PACKAGE_NAME)
+        if picked is None:
+            return None
+        path, text, name = picked
+        renamed = text[: name.end(1)] + "_renamed" + text[name.end(1) :]
+        self._write(path, renamed.encode())
+        return f"{self._shown(path)}: package {name.group(1)} renamed"
+
+    def _move_away(self, suffixes: tuple[str, ...]) -> str | None:
+        """A file moved into the directory of another file of its kind (another package,
+        most often): its package, and the display paths keyed by it, change."""
+        candidates = self._files(suffixes)
+        if len(candidates) < 2:
+            return None
+        path, beside = self.random.sample(candidates, 2)
+        moved = beside.with_name(f"away_{path.name}")
+        if moved.exists() or beside.parent == path.parent:
+            return None
+        data = path.read_bytes()
+        self._write(moved, data)
+        self._write(path, None)
+        return f"{self._shown(path)}: moved to {self._shown(moved)}"
 
     def _remove(self, suffixes: tuple[str, ...]) -> str | None:
         path = self._pick(suffixes)
