@@ -33,7 +33,11 @@ kinds a ROS developer makes and the cache's incremental paths take apart:
 Then the CLI runs twice, ``--format json``: with the cache, and with ``--no-cache``. A
 step whose outputs or exit codes differ is written to ``--out`` (both outputs, what both
 runs printed on standard error, and the edits so far); the sequence goes on from an
-emptied cache. Exit 1 when a step differed or a run crashed, 0 otherwise. The summary
+emptied cache. With ``--memory``, each step builds instead, in this process, the graph the
+language server builds (with the ``GraphMemory`` every step before left) and the graph a
+run without one builds: a step whose graphs differ is written to ``--out`` (the first
+nodes and endpoints that differ, and the edits so far), and the sequence goes on with a
+new memory. Exit 1 when a step differed or a run crashed, 0 otherwise. The summary
 says how many steps changed the output at all: a sequence whose edits change nothing
 tests nothing.
 """
@@ -49,7 +53,10 @@ import subprocess
 import sys
 import tempfile
 from collections.abc import Callable
+from dataclasses import fields
+from functools import partial
 from pathlib import Path
+from typing import Any
 
 from growth import grown, text_of
 
@@ -438,12 +445,119 @@ def _lint(root: Path, cache: Path, *options: str) -> tuple[int, bytes, bytes]:
     return done.returncode, done.stdout, done.stderr
 
 
+class MemoryBuilds:
+    """The language server's graph builds over the workspace at ``root``: each with the
+    memory of the builds before and the facts objects of the files whose facts are
+    equal (as the session keeps them), beside the graph a run without memory builds."""
+
+    def __init__(self, root: Path, cache: Path) -> None:
+        from roslint_names.cache import FactsCache
+        from roslint_names.config import load_settings
+        from roslint_names.registry import load_registry
+        from roslint_names.workspace.memory import GraphMemory
+
+        self.root = root
+        self.memory = GraphMemory()
+        self._cache = FactsCache(cache)
+        self._facts: dict[str, Any] = {}
+        self._registry = load_registry()
+        self._settings = load_settings(None, root, self._registry)
+
+    def graphs(self) -> tuple[Any, Any]:
+        """The graph built with the memory, and the graph a run without one builds."""
+        from roslint_names.discover import discover
+        from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
+        from roslint_names.gather import DEFAULT_GENERATION, Specialiser, extract_batch
+        from roslint_names.generation import PackageGenerations
+        from roslint_names.workers import Dispatcher
+        from roslint_names.workspace.build import build
+
+        root, settings = self.root, self._settings
+        sources = lintable(discover([root], settings.exclude, settings.root, root))
+        run = RunOptions(cache=self._cache)
+        result = lint(sources, settings, self._registry, run, want_graph=True)
+        facts = [
+            kept if (kept := self._facts.get(found.path)) == found else found
+            for found in result.facts
+        ]
+        self._facts = {found.path: found for found in facts}
+        packages = PackageGenerations()
+        specialiser = Specialiser(
+            sources,
+            packages,
+            settings.ros or DEFAULT_GENERATION,
+            self._cache,
+            settings.max_file_size,
+            dispatcher=Dispatcher(partial(extract_batch, self._cache), 1),
+            ros1_python2=False,
+        )
+        remembered = build(
+            facts,
+            workspace_packages(sources, packages),
+            specialiser,
+            specialiser.prepare,
+            self.memory,
+        )
+        return remembered, result.graph
+
+
+def _graph_differences(remembered: Any, fresh: Any) -> str:
+    """What differs between two graphs: each field, and for the nodes and endpoints the
+    first items of each that the other has not."""
+    lines: list[str] = []
+    for field in fields(fresh):
+        mine, theirs = getattr(remembered, field.name), getattr(fresh, field.name)
+        if mine == theirs:
+            continue
+        lines.append(f"{field.name} differs")
+        if isinstance(theirs, tuple):
+            only_mine = [item for item in mine if item not in theirs][:3]
+            only_theirs = [item for item in theirs if item not in mine][:3]
+            lines += [f"  with memory only: {item!r}" for item in only_mine]
+            lines += [f"  without memory only: {item!r}" for item in only_theirs]
+    return "\n".join(lines)
+
+
+def _memory_steps(
+    root: Path, cache: Path, sequence: EditSequence, *, steps: int, seed: int, out: Path
+) -> tuple[int, int]:
+    """``steps`` steps of ``sequence``, each graph built with the memory compared with the
+    graph built without: how many steps changed the graph and how many differed."""
+    builds = MemoryBuilds(root, cache)
+    last = builds.graphs()[1]
+    differed = changed = 0
+    edits: list[str] = []
+    for step in range(steps):
+        done = sequence.step()
+        edits.extend(f"{step}: {edit}" for edit in done)
+        remembered, fresh = builds.graphs()
+        same = remembered == fresh
+        moved = fresh != last
+        changed += moved
+        last = fresh
+        mark = "same" if same else "DIFFERENT"
+        print(f"{step:3} {mark:9} {'changed' if moved else '':7} {'; '.join(done)}", flush=True)
+        if not same:
+            differed += 1
+            out.mkdir(parents=True, exist_ok=True)
+            (out / f"{seed}-{step}-graphs.txt").write_text(_graph_differences(remembered, fresh))
+            (out / f"{seed}-{step}-edits.txt").write_text("\n".join(edits))
+            builds = MemoryBuilds(root, cache)  # the next steps from a new memory
+            builds.graphs()
+    return changed, differed
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("workspace", type=Path)
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--steps", type=int, default=40)
     parser.add_argument("--out", type=Path, default=Path("edits-differ"))
+    parser.add_argument(
+        "--memory",
+        action="store_true",
+        help="compare the language server's graph builds (with memory) instead of CLI runs",
+    )
     parser.add_argument(
         "--into", type=Path, help="make the copy and its cache here and keep them (a new directory)"
     )
@@ -456,6 +570,15 @@ def main() -> int:
         grown(options.workspace.resolve(), 1, root)
         cache = Path(scratch) / "cache"
         sequence = EditSequence(root, options.seed)
+        if options.memory:
+            changed, differed = _memory_steps(
+                root, cache, sequence, steps=options.steps, seed=options.seed, out=options.out
+            )
+            print(
+                f"{options.steps} steps (seed {options.seed}): {changed} changed the graph, "
+                f"{differed} built otherwise with the memory than without"
+            )
+            return 1 if differed else 0
         last = _lint(root, cache)[1]
         differed = crashed = changed = 0
         edits: list[str] = []
