@@ -467,8 +467,8 @@ class MemoryBuilds:
         """The graph built with the memory, and the graph a run without one builds."""
         from roslint_names.discover import discover
         from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
-        from roslint_names.gather import DEFAULT_GENERATION, Specialiser, extract_batch
-        from roslint_names.generation import PackageGenerations
+        from roslint_names.gather import Specialiser, extract_batch
+        from roslint_names.generation import DEFAULT_GENERATION, PackageGenerations
         from roslint_names.workers import Dispatcher
         from roslint_names.workspace.build import build
 

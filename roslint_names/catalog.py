@@ -13,6 +13,7 @@ from functools import cache
 from pathlib import Path
 
 from . import PROJECT_URL
+from .errors import UserError
 from .model import Generation, Severity
 from .rule import Rule
 
@@ -55,7 +56,7 @@ class RuleMeta:
     help_uri: str
 
 
-class CatalogError(Exception):
+class CatalogError(UserError):
     pass
 
 

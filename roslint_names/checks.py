@@ -13,8 +13,9 @@ from typing import TYPE_CHECKING
 from .config import Settings, enabled_codes, ignored_for_path, ros1_python2, test_code_codes
 from .discover import SourceFile, classify
 from .editing.fixing import located
-from .gather import DEFAULT_GENERATION, EXTRACTOR_MODULES, Verdict, extract_file
-from .generation import PackageGenerations
+from .extract import EXTRACTOR_MODULES
+from .gather import Verdict, extract_file
+from .generation import DEFAULT_GENERATION, PackageGenerations
 from .lines import split_lines
 from .model import (
     Answer,

@@ -12,16 +12,14 @@ import sys
 from collections.abc import Callable, Sequence
 from dataclasses import replace
 from pathlib import Path
-from typing import NoReturn, TextIO
+from typing import TYPE_CHECKING, NoReturn, TextIO
 
 from . import __version__
 from .cache import FactsCache
 from .cache import default_directory as default_cache_directory
-from .catalog import CatalogError, load_doc, rule_meta
-from .checks import recheck
+from .catalog import load_doc, rule_meta
 from .collection import rare_collections
 from .config import (
-    ConfigError,
     Overrides,
     Settings,
     apply_overrides,
@@ -31,7 +29,6 @@ from .config import (
 from .conventions import propose
 from .conventions import render as render_proposals
 from .discover import (
-    DiscoveryError,
     SourceFile,
     classify,
     discover,
@@ -39,22 +36,23 @@ from .discover import (
     text_files,
     workspace_root,
 )
-from .editing import baseline, fixing, renames
-from .editing.baseline import BaselineError
-from .editing.changes import ChangesError, changed_lines, gate
-from .editing.files import Snapshot, WriteError, write_new
-from .editing.noqa import add_noqa
 from .engine import LintResult, RunOptions, lint, lintable
-from .extract.python.extract import is_launch_path
+from .errors import UserError
 from .generation import PackageGenerations
 from .model import Diagnostic, FileFacts, Generation, Kind, Language
 from .names import Problem, check_name
 from .progress import ProgressBar
 from .progress import wanted as progress_wanted
-from .registry import Registry, RegistryError, load_registry
+from .registry import Registry, load_registry
 from .report import FORMATS, ReportContext, render, statistics, summary
 from .report.base import plural
 from .workspace.graph import launched_by
+
+if TYPE_CHECKING:
+    # The editing modules are imported by the options that edit, read a baseline or
+    # compare with git: a plain check (a re-run of unchanged files) never needs them.
+    from .editing import fixing
+    from .editing.files import Snapshot
 
 EXIT_CLEAN = 0
 EXIT_FINDINGS = 1
@@ -62,7 +60,7 @@ EXIT_ERROR = 2
 COMMANDS = ("check", "graph", "validate", "rule", "rules", "server")
 
 
-class UsageError(Exception):
+class UsageError(UserError):
     pass
 
 
@@ -98,16 +96,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         with rare_collections():
             return int(options.run(options))
-    except (
-        ConfigError,
-        DiscoveryError,
-        UsageError,
-        RegistryError,
-        CatalogError,
-        BaselineError,
-        ChangesError,
-        WriteError,
-    ) as error:
+    except UserError as error:  # settings, arguments or files the user can mend
         _fail(str(error))
     except KeyboardInterrupt:
         _fail("interrupted")
@@ -294,6 +283,8 @@ def _run_check(options: argparse.Namespace) -> int:
     writing = options.fix or options.diff or options.add_noqa
     snapshot: Snapshot | None = None
     if writing or renaming:
+        from .editing.files import Snapshot
+
         snapshot = Snapshot(cwd, _linted_roots(options.paths, cwd, renaming=renaming))
     if writing:
         assert snapshot is not None
@@ -332,8 +323,12 @@ def _run_check(options: argparse.Namespace) -> int:
         for path in sorted(named - {source.path for source in linted}):
             print(f"roslint-names: {display_path(path, cwd)}: {unchecked(path)}", file=sys.stderr)
     if options.changed_since is not None:
+        from .editing.changes import changed_lines, gate
+
         diagnostics = gate(diagnostics, changed_lines(options.changed_since, cwd), cwd)
     if options.write_baseline is not None:
+        from .editing import baseline
+
         count = baseline.write(options.write_baseline, diagnostics, cwd)
         print(f"roslint-names: wrote {count} findings to {options.write_baseline}", file=sys.stderr)
         return EXIT_CLEAN
@@ -343,6 +338,8 @@ def _run_check(options: argparse.Namespace) -> int:
         assert snapshot is not None
         return _add_noqa(diagnostics, snapshot)
     if options.fix or options.diff:
+        from .editing import fixing
+
         assert snapshot is not None
         fixed = fixing.plan(
             diagnostics,
@@ -466,11 +463,15 @@ def _resolve_renames(
         return data
 
     displays = [display_path(file, cwd) for file in files]
+    from .editing import renames
+
     return renames.resolve(diagnostics, facts, displays, read)
 
 
 def _verifier(settings: Settings, registry: Registry, cwd: Path) -> fixing.Verify:
     """Re-reads a fixed file: its parse errors and its per-file findings (code, line)."""
+    from .checks import recheck  # a check run that writes no fix never needs it
+
     packages = PackageGenerations()
 
     def verify(path: str, data: bytes) -> tuple[int, set[tuple[str, int]]]:
@@ -483,6 +484,8 @@ def _verifier(settings: Settings, registry: Registry, cwd: Path) -> fixing.Verif
 
 def _add_noqa(diagnostics: Sequence[Diagnostic], snapshot: Snapshot) -> int:
     """Write a suppression for every reported diagnostic; 1 when some could not be."""
+    from .editing.noqa import add_noqa
+
     languages = {d.path: classify(snapshot.cwd / d.path) for d in diagnostics}
     outcome = add_noqa(diagnostics, languages, snapshot)
     snapshot.replace_all(outcome.writes)
@@ -500,6 +503,8 @@ def _apply_baseline(
 ) -> Sequence[Diagnostic]:
     """The diagnostics with those the baseline holds marked; ``--verbose`` names the
     entries that matched nothing (fixed since, or their line edited)."""
+    from .editing import baseline
+
     path: Path = options.baseline
     applied = baseline.apply(diagnostics, baseline.load(path), path.absolute().parent, cwd)
     if options.verbose:
@@ -626,6 +631,8 @@ def _launch_files_named(paths: Sequence[Path], sources: Sequence[SourceFile]) ->
 
 
 def _is_launch_file(source: SourceFile) -> bool:
+    from .extract.python.extract import is_launch_path  # the graph command's only
+
     return source.language in (Language.LAUNCH_XML, Language.LAUNCH_YAML) or (
         source.language is Language.PYTHON and is_launch_path(source.display)
     )
@@ -710,6 +717,8 @@ def _write(report: str, output: Path | None) -> None:
         return
     # A CI's results directory may not exist yet (catkin's, colcon's per package):
     # ``write_new`` makes it.
+    from .editing.files import write_new
+
     write_new(output, report.encode("utf-8"), "the report")
 
 

@@ -27,6 +27,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .discover import pattern_error
+from .errors import UserError
 from .model import Generation, Kind, Severity
 from .reading import NotRegularFileError, open_regular
 from .regex_safety import UnboundedBacktrackingError, check_backtracking
@@ -48,7 +49,7 @@ DEFAULT_MAX_FILE_SIZE = 5 * 1024 * 1024
 _TEMPLATE_FIELD = re.compile(r"\{([A-Za-z_][A-Za-z0-9_]*)\}")
 
 
-class ConfigError(Exception):
+class ConfigError(UserError):
     """A configuration problem; the message names the file and the key."""
 
 

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING, Generic, TypeVar, cast
 from . import walks
 from .cache import FactsCache
 from .collection import kept_for_the_run
+from .errors import UserError
 from .listings import DirectoryStatus, FileStatus, Listed, Listings
 from .model import LANGUAGE_OF_VALUE, Language
 from .reading import NotRegularFileError, open_regular
@@ -60,7 +61,7 @@ _PYTHON_SHEBANG = re.compile(rb"#![ \t]*\S*?(?:/env(?:[ \t]+-\S+)*[ \t]+|/)pytho
 _SHEBANG_BYTES = 128
 
 
-class DiscoveryError(Exception):
+class DiscoveryError(UserError):
     """A path named by the user that cannot be linted."""
 
 

@@ -15,50 +15,31 @@ from dataclasses import dataclass
 from functools import lru_cache, partial
 from typing import TYPE_CHECKING
 
-from . import clean_files, same_facts, shifts
-from .checks import FileChecks, report_graph, rule_contexts
 from .collection import kept_for_the_run
 from .config import Settings, enabled_codes, ros1_python2, test_code_codes
-from .decisions import one_per_decision
 from .discover import SourceFile, display_path_text
-from .gather import (
+from .extract import EXTRACTOR_MODULES
+from .generation import (
     DEFAULT_GENERATION,
-    EXTRACTOR_MODULES,
-    Gatherer,
-    Specialiser,
-    extract_batch,
-    gave_up,
-)
-from .generation import PackageGenerations, service_types, workspace_plugin_names
-from .graph_patch import (
-    GraphPatch,
-    GraphPlace,
-    Shift,
-    base_place,
-    keep_base,
-    report_replayed,
-    shifted_replay,
-    take_facts,
-    with_edited,
+    PackageGenerations,
+    service_types,
+    workspace_plugin_names,
 )
 from .model import Diagnostic, FileFacts, Finding
 from .reading import read_file
 from .registry import Registry
-from .run_checks import Progress, RunChecks
 from .run_inputs import RunInputs, is_facts_key
-from .same_facts import KeptGraph, KeptLaunch, Replay
-from .speculation import Speculation
 from .wiring import WIRING_SOURCES
-from .workers import Dispatcher
-from .workspace.build import build_parts
-from .workspace.graph import Graph
 from .workspace.index import Package
 from .workspace.interfaces import service_definitions
-from .workspace.launch_parts import CodeParameterParts, LaunchParts
-from .workspace.patch import for_patching, kept_parts
 
 if TYPE_CHECKING:
     from .cache import FactsCache  # imported by the caller that wants a cache
+    from .graph_patch import GraphPlace, Shift
+    from .run_checks import Progress
+    from .speculation import Speculation
+    from .workspace.graph import Graph
+    from .workspace.launch_parts import CodeParameterParts, LaunchParts
 
 
 @dataclass(frozen=True)
@@ -266,6 +247,30 @@ def _lint(
         if stored is not None:
             inputs.finish(kept_key=run_key if focus is None else None)
             return stored
+    # Past a stored result the run extracts, checks, and builds or patches the graph: the
+    # modules that do so are imported here, not with this one, which a re-run of unchanged
+    # files (its stored result) then never imports.
+    from . import clean_files, same_facts, shifts
+    from .checks import FileChecks, report_graph, rule_contexts
+    from .decisions import one_per_decision
+    from .gather import Gatherer, Specialiser, extract_batch, gave_up
+    from .graph_patch import (
+        GraphPatch,
+        GraphPlace,
+        base_place,
+        keep_base,
+        report_replayed,
+        shifted_replay,
+        take_facts,
+        with_edited,
+    )
+    from .run_checks import RunChecks
+    from .same_facts import KeptGraph, KeptLaunch, Replay
+    from .speculation import Speculation
+    from .workers import Dispatcher
+    from .workspace.build import build_parts
+    from .workspace.patch import for_patching, kept_parts
+
     if cache is not None:
         cache.writable()  # create the directory now, not racing in every worker
     # The files the per-file rules found nothing in last time, under the same rules,

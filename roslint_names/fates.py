@@ -14,7 +14,7 @@ from pathlib import Path
 from .checks import relative_to_root
 from .config import Settings
 from .discover import SourceFile, classify
-from .gather import EXTRACTOR_MODULES
+from .extract import EXTRACTOR_MODULES
 from .model import Language
 from .reading import read_file
 from .test_code import is_example_code, is_test_code

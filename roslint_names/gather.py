@@ -26,7 +26,8 @@ from typing import TYPE_CHECKING, Protocol
 from . import workers
 from .collection import no_collections
 from .discover import SourceFile
-from .generation import PackageGenerations, reads_python2
+from .extract import EXTRACTOR_MODULES
+from .generation import DEFAULT_GENERATION, PackageGenerations, reads_python2
 from .model import Diagnostic, FileFacts, Generation, Language, LaunchArguments, ParseError, Span
 from .reading import BINARY, Taken, content_digest, read_file, read_regular, taken
 from .run_inputs import RunInputs
@@ -39,21 +40,8 @@ if TYPE_CHECKING:
 
 Extract = Callable[[str, bytes, "Generation | None", Generation], FileFacts]
 
-EXTRACTOR_MODULES: dict[Language, str] = {
-    Language.CPP: "cpp.extract",
-    Language.PYTHON: "python.extract",
-    Language.LAUNCH_XML: "launch.xml_launch",
-    Language.LAUNCH_YAML: "launch.yaml_launch",
-    Language.URDF: "launch.urdf",
-    Language.CMAKE: "build.cmake",
-    Language.SETUP_PY: "build.setup_py",
-    Language.SETUP_CFG: "build.setup_py",
-    Language.PARAMETERS: "parameter_file",
-    Language.RECONFIGURE: "build.reconfigure",
-}
 # Launch files an including file can hand arguments to (see ``workspace.launch_tree``).
 SPECIALISABLE = frozenset({Language.LAUNCH_XML, Language.LAUNCH_YAML, Language.PYTHON})
-DEFAULT_GENERATION = Generation.ROS2
 # Files handed out first (``Gatherer._heaviest_first``): their bytes, a Python file's
 # counted this many times, at least this many.
 PYTHON_WEIGHT = 8

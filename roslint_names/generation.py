@@ -25,6 +25,9 @@ from .reading import Status, content_digest, status_from, status_of
 if TYPE_CHECKING:
     from .discover import SourceFile
 
+# The generation a file is read as where nothing says which (no package, no setting)
+DEFAULT_GENERATION = Generation.ROS2
+
 _COMMENT = re.compile(r"<!--.*?-->", re.DOTALL)
 _DEPEND = re.compile(
     r"<(buildtool_depend|build_type)(\s[^>]*)?>\s*([A-Za-z0-9_]+)\s*</\1>", re.DOTALL

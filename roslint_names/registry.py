@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from functools import cache
 from importlib.metadata import entry_points
 
+from .errors import UserError
 from .rule import Rule
 
 ENTRY_POINT_GROUP = "roslint_names.rules"
@@ -19,7 +20,7 @@ _CODE = re.compile(r"^[A-Z]{1,4}[0-9]{3}$")
 _SLUG = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
 
 
-class RegistryError(Exception):
+class RegistryError(UserError):
     """A plugin that does not honour the rule contract."""
 
 

@@ -42,14 +42,14 @@ from .config import Settings, enabled_codes, ros1_python2, test_code_codes
 from .decisions import one_per_decision
 from .discover import SourceFile, classify, discover, display_path
 from .engine import RunOptions, lint, lintable, package_display, workspace_packages
+from .extract import EXTRACTOR_MODULES
 from .gather import (
-    DEFAULT_GENERATION,
-    EXTRACTOR_MODULES,
     Specialiser,
     extract_batch,
     extract_file,
 )
 from .generation import (
+    DEFAULT_GENERATION,
     PackageGenerations,
     service_types,
     visible_service_types,

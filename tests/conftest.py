@@ -18,8 +18,8 @@ from roslint_names import gather, reading
 from roslint_names.cli import main
 from roslint_names.discover import discover
 from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
-from roslint_names.gather import DEFAULT_GENERATION, Specialiser, extract_batch
-from roslint_names.generation import PackageGenerations
+from roslint_names.gather import Specialiser, extract_batch
+from roslint_names.generation import DEFAULT_GENERATION, PackageGenerations
 from roslint_names.model import Generation, Language
 from roslint_names.workers import Dispatcher
 from roslint_names.workspace.build import build_parts

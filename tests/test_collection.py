@@ -12,6 +12,7 @@ import pytest
 from roslint_names import engine, gather
 from roslint_names.collection import THRESHOLDS, kept_for_the_run, no_collections
 from roslint_names.workers import Dispatcher
+from roslint_names.workspace import build
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
@@ -90,13 +91,13 @@ def test_the_graph_is_built_without_collections_and_what_the_run_made_is_old_aft
     the collector is on again, and nothing stays frozen."""
     shutil.copytree(EXAMPLES / "src" / "turtle_bringup", tmp_path / "ws")
     during: list[bool] = []
-    real = engine.build_parts
+    real = build.build_parts  # engine imports it when a run builds the graph
 
     def observing(*arguments: Any, **keywords: Any) -> Any:
         during.append(gc.isenabled())
         return real(*arguments, **keywords)
 
-    monkeypatch.setattr(engine, "build_parts", observing)
+    monkeypatch.setattr(build, "build_parts", observing)
     gc.unfreeze()  # what an earlier test's language server session froze
     gc.collect()
     run_cli(["check", "--no-cache", "--jobs", "1", "."], tmp_path / "ws")

@@ -21,8 +21,8 @@ import pytest
 from roslint_names.config import load_settings
 from roslint_names.discover import discover
 from roslint_names.engine import RunOptions, lint, lintable, workspace_packages
-from roslint_names.gather import DEFAULT_GENERATION, Specialiser, extract_batch
-from roslint_names.generation import PackageGenerations
+from roslint_names.gather import Specialiser, extract_batch
+from roslint_names.generation import DEFAULT_GENERATION, PackageGenerations
 from roslint_names.model import FileFacts
 from roslint_names.registry import load_registry
 from roslint_names.workers import Dispatcher

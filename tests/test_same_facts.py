@@ -18,7 +18,7 @@ from conftest import AMENT_PACKAGE
 from test_unused_remap_bases import ground_filter, pointcloud_filters
 
 from roslint_names import cache as cache_module
-from roslint_names import engine, graph_patch, run_checks, same_facts, shifts
+from roslint_names import graph_patch, run_checks, same_facts, shifts
 from roslint_names import session as session_module
 from roslint_names.config import load_settings
 from roslint_names.model import FileFacts, Generation, Kind, Language, NameUse, Role, Span
@@ -73,7 +73,7 @@ def taken(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[str]]:
     stored result ("stored") takes none."""
     seen: list[str] = []
     patched: list[bool] = []
-    original = engine.take_facts
+    original = graph_patch.take_facts  # engine imports it when a run takes facts
     patch = graph_patch.GraphPatch.__call__
 
     def recording(*arguments: Any, **keywords: Any) -> Any:
@@ -87,7 +87,7 @@ def taken(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[str]]:
         patched.append(found is not None)
         return found
 
-    monkeypatch.setattr(engine, "take_facts", recording)
+    monkeypatch.setattr(graph_patch, "take_facts", recording)
     monkeypatch.setattr(graph_patch.GraphPatch, "__call__", patching)
     yield seen
 

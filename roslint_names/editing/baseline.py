@@ -25,6 +25,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
 
+from ..errors import UserError
 from ..fingerprint import line_fingerprint, spelled_name
 from ..model import Diagnostic
 from .files import WriteError, read_regular, write_new
@@ -32,7 +33,7 @@ from .files import WriteError, read_regular, write_new
 FORMAT = 1
 
 
-class BaselineError(Exception):
+class BaselineError(UserError):
     """A baseline file that cannot be read or written; the message names it."""
 
 

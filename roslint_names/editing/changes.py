@@ -14,6 +14,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..errors import UserError
 from ..model import Diagnostic, Span
 
 _HUNK = re.compile(r"^@@ -\d+(?:,\d+)? \+(\d+)(?:,(\d+))? @@")
@@ -21,7 +22,7 @@ _HUNK = re.compile(r"^@@ -\d+(?:,\d+)? \+(\d+)(?:,(\d+))? @@")
 _NEW_FILE = re.compile(r'^\+\+\+ (?:b/(.*)|("b/.*"))$')
 
 
-class ChangesError(Exception):
+class ChangesError(UserError):
     """git could not say what changed; the message says why."""
 
 

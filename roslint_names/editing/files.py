@@ -29,13 +29,14 @@ from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..errors import UserError
 from ..reading import content_digest, open_regular
 
 LOCK_WAIT_SECONDS = 10.0  # another run of this tool writing the same files
 TEMPORARY_SUFFIX = ".roslint-names.tmp"
 
 
-class WriteError(Exception):
+class WriteError(UserError):
     """A write refused or failed; the message names the file, the reason and what changed."""
 
 

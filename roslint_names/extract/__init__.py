@@ -9,6 +9,25 @@
   which maps a launch file's executables to their sources;
 - ``literals`` and ``evidence``: text-level evidence that more than one extractor uses.
 
-``gather.EXTRACTOR_MODULES`` names each language's entry module; parsers are imported
-only by the modules that need them, on first use.
+``EXTRACTOR_MODULES`` names each language's entry module (``gather`` imports it on first
+use); parsers are imported only by the modules that need them, on first use. This module
+imports nothing more: a run that takes its stored result asks only which languages are
+extracted.
 """
+
+from __future__ import annotations
+
+from ..model import Language
+
+EXTRACTOR_MODULES: dict[Language, str] = {
+    Language.CPP: "cpp.extract",
+    Language.PYTHON: "python.extract",
+    Language.LAUNCH_XML: "launch.xml_launch",
+    Language.LAUNCH_YAML: "launch.yaml_launch",
+    Language.URDF: "launch.urdf",
+    Language.CMAKE: "build.cmake",
+    Language.SETUP_PY: "build.setup_py",
+    Language.SETUP_CFG: "build.setup_py",
+    Language.PARAMETERS: "parameter_file",
+    Language.RECONFIGURE: "build.reconfigure",
+}
