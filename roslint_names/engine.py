@@ -35,9 +35,8 @@ from .workspace.interfaces import service_definitions
 
 if TYPE_CHECKING:
     from .cache import FactsCache  # imported by the caller that wants a cache
-    from .graph_patch import GraphPlace, Shift
+    from .graph_patch import Shift
     from .run_checks import Progress
-    from .speculation import Speculation
     from .workspace.graph import Graph
     from .workspace.launch_parts import CodeParameterParts, LaunchParts
 
