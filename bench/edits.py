@@ -207,13 +207,7 @@ class EditSequence:
     def _attribute(self, attribute: str) -> str | None:
         element = _ATTRIBUTE_OF[attribute]
         pattern = re.compile(rf'<{element}\b[^>]*?\b{attribute}="([^"$]*)"')
-        picked = self._pick_match((".launch", ".launch.xml", ".test"), pattern)
-        if picked is None:
-            return None
-        path, text, value = picked
-        name = self._name()
-        self._write(path, (text[: value.start(1)] + name + text[value.end(1) :]).encode())
-        return f"{self._shown(path)}: a {attribute}= made {name!r}"
+        return self._value((".launch", ".launch.xml", ".test"), pattern, f"a {attribute}=")
 
     def _remap(self) -> str | None:
         picked = self._pick_match((".launch", ".launch.xml"), re.compile(r"<node\b[^>]*[^/]>"))
@@ -276,33 +270,36 @@ class EditSequence:
         return f"{self._shown(path)}: executable {found.group(1)} renamed"
 
     def _python_launch(self) -> str | None:
-        picked = self._pick_match((".launch.py", "_launch.py"), _PYTHON_LAUNCH)
-        if picked is None:
-            return None
-        path, text, value = picked
-        name = self._name()
-        self._write(path, (text[: value.start(1)] + name + text[value.end(1) :]).encode())
-        return f"{self._shown(path)}: a launch keyword made {name!r}"
+        return self._value((".launch.py", "_launch.py"), _PYTHON_LAUNCH, "a launch keyword")
 
     def _yaml_launch(self) -> str | None:
-        picked = self._pick_match((".launch.yaml",), _YAML_LAUNCH)
-        if picked is None:
-            return None
-        path, text, value = picked
-        name = self._name()
-        self._write(path, (text[: value.start(1)] + name + text[value.end(1) :]).encode())
-        return f"{self._shown(path)}: a YAML launch value made {name!r}"
+        return self._value((".launch.yaml",), _YAML_LAUNCH, "a YAML launch value")
 
     def _argument(self) -> str | None:
         """An argument's default, or the value an include hands it, changed: the files
         included read again under other arguments (``speculation``, ``launch_patch``)."""
-        picked = self._pick_match((".launch", ".launch.xml"), _ARGUMENT)
+
+        def plain() -> str:  # an argument's value is no name: no leading or trailing slash
+            return self._name().strip("/") or "x"
+
+        return self._value((".launch", ".launch.xml"), _ARGUMENT, "an argument's value", plain)
+
+    def _value(
+        self,
+        suffixes: tuple[str, ...],
+        pattern: re.Pattern[str],
+        what: str,
+        name_of: Callable[[], str] | None = None,
+    ) -> str | None:
+        """The first group of a match of ``pattern`` (``_pick_match``) made a name
+        (``name_of``'s, drawn after the match; ``_name``'s where none is given)."""
+        picked = self._pick_match(suffixes, pattern)
         if picked is None:
             return None
         path, text, value = picked
-        name = self._name().strip("/") or "x"
+        name = (name_of or self._name)()
         self._write(path, (text[: value.start(1)] + name + text[value.end(1) :]).encode())
-        return f"{self._shown(path)}: an argument's value made {name!r}"
+        return f"{self._shown(path)}: {what} made {name!r}"
 
     def _include_element(self) -> str | None:
         """An ``<include>`` removed, or given twice: a tree loses or doubles a subtree."""
