@@ -453,6 +453,8 @@ def _resolve_renames(
     """The diagnostics with each rename offered or dropped, after a search of the
     workspaces the snapshot may write in (the directories named, the workspace of each
     file named)."""
+    from .editing import renames
+
     cwd = snapshot.cwd
     files = text_files(list(snapshot.roots), settings.exclude, settings.root, cwd)
 
@@ -463,8 +465,6 @@ def _resolve_renames(
         return data
 
     displays = [display_path(file, cwd) for file in files]
-    from .editing import renames
-
     return renames.resolve(diagnostics, facts, displays, read)
 
 

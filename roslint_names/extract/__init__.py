@@ -9,10 +9,10 @@
   which maps a launch file's executables to their sources;
 - ``literals`` and ``evidence``: text-level evidence that more than one extractor uses.
 
-``EXTRACTOR_MODULES`` names each language's entry module (``gather`` imports it on first
-use); parsers are imported only by the modules that need them, on first use. This module
-imports nothing more: a run that takes its stored result asks only which languages are
-extracted.
+``EXTRACTOR_MODULES`` names each language's entry module, which ``gather`` imports on
+first use; parsers are imported only by the modules that need them, on first use. This
+module imports nothing more: a run that takes its stored result asks it only which
+languages are extracted.
 """
 
 from __future__ import annotations
