@@ -387,6 +387,45 @@ def test_a_parameter_declared_in_code_makes_the_declarations_again(tmp_path: Pat
     assert ws.memory.piece("workspace declarations", (), _never) is not before
 
 
+@pytest.mark.parametrize(
+    ("relative", "endpoints", "without", "node"),
+    [
+        (  # a built C++ program no launch file starts
+            f"{TURTLE}/src/odom_relay.cpp",
+            (
+                '    odom_pub_ = nh.advertise<nav_msgs::Odometry>("odom", 50);\n'
+                "    wheel_sub_ = nh.subscribe(odom_topic_, 50, &OdomRelay::wheelCallback, this);\n"
+            ),
+            "    // relayed by the driver now\n",
+            "/odom_relay",
+        ),
+        (  # a Python script no launch file starts
+            f"{TURTLE}/scripts/pose_logger.py",
+            "rospy.Subscriber('turtle1/pose', Pose, self.on_pose, queue_size=1)",
+            "self.on_pose(None)",
+            "/pose_logger",
+        ),
+    ],
+)
+def test_code_that_stops_and_starts_declaring_endpoints_keeps_the_programs(
+    tmp_path: Path, relative: str, endpoints: str, without: str, node: str
+) -> None:
+    """Code no launch file starts is a program where it declares endpoints: the last
+    build's programs are taken up with that file's answer changed (the same built
+    programs), not made again by asking every code file."""
+    ws = _Workspace(tmp_path / "ws")
+    _, before = ws.graphs()
+    assert any(found.name == node for found in before.nodes)
+    built = ws.memory.piece("programs", (), _never).built
+    for old, new, declared in ((endpoints, without, False), (without, endpoints, True)):
+        ws.edit(relative, old, new)
+        remembered, fresh = ws.graphs()
+        assert remembered == fresh
+        assert any(found.name == node for found in fresh.nodes) is declared
+        assert ws.memory.piece("programs", (), _never).built is built
+    assert fresh == before
+
+
 @dataclass(frozen=True)
 class _Item:
     key: int
