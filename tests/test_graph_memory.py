@@ -370,6 +370,28 @@ def test_a_node_added_to_a_launch_file_keeps_what_no_launch_file_makes(tmp_path:
         assert ws.memory.piece(name, (), _never) is piece, name
 
 
+def test_a_launch_file_edited_walks_its_tree_and_takes_up_the_others(tmp_path: Path) -> None:
+    """The nodes a tree starts, their code and instances: the last build's for every
+    tree the edit does not reach (``build._TreeLaunches``), made again for the one it
+    does, and the graph as a build without memory makes it."""
+    ws = _Workspace(tmp_path / "ws")
+    ws.graphs()
+    before = dict(ws.memory.piece("tree launches", (), _never))
+    assert f"{TURTLE}/launch/teleop.launch" in before and len(before) > 2
+    ws.edit(
+        f"{TURTLE}/launch/teleop.launch",
+        "</launch>",
+        '  <node name="spare_relay" pkg="turtle_bringup" type="odom_relay"/>\n</launch>',
+    )
+    remembered, fresh = ws.graphs()
+    assert remembered == fresh
+    assert any(node.name == "/spare_relay" for node in fresh.nodes)
+    after = ws.memory.piece("tree launches", (), _never)
+    assert after.keys() == before.keys()
+    for root, made in after.items():
+        assert (made is before[root]) is (root != f"{TURTLE}/launch/teleop.launch"), root
+
+
 def test_a_parameter_declared_in_code_makes_the_declarations_again(tmp_path: Path) -> None:
     ws = _Workspace(tmp_path / "ws")
     ws.graphs()

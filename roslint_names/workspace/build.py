@@ -9,6 +9,7 @@ compared pairwise, so building costs about the sum of the extractions.
 
 from __future__ import annotations
 
+import operator
 import posixpath
 import re
 from bisect import bisect_left
@@ -146,26 +147,34 @@ def _build(
     # Keyed by the tree and the node's place in it, not by the launched node: hashing
     # one hashes all it holds. A tree walked again starts nodes that are new objects.
     started = memory.reads("launched")
-    place: tuple[str, int] = ("", 0)
+    # What each tree's nodes gave the last build, by root (``_TreeLaunches``)
+    by_tree: dict[str, _TreeLaunches] = memory.piece("tree launches", _TREE_FIELDS, dict)
     # Each tree's code and parameter files handed to nodes of unknown name
     tree_sources: dict[str, set[str]] = {}
     tree_unnamed: dict[str, list[Unnamed]] = {}
     tree_started: dict[str, set[tuple[str, str]]] = {}
-    for launched in trees.launched():
-        place = (launched.root, place[1] + 1 if place[0] == launched.root else 0)
-        sources = launched_sources_of(index, launched, unbuilt)
-        launched_sources.update(sources)
-        tree_sources.setdefault(launched.root, set()).update(sources)
-        tree_started.setdefault(launched.root, set()).add(started_program(launched))
-        kept = started.get(place)
-        if kept is None or kept[0][0] is not launched or kept[0][1] != sources:
-            instance, read = _launched_instance(index, tests, launched, sources, trees)
-            kept = started[place] = ((launched, sources, instance), read)
-        instance = kept[0][2]
-        if instance.node is not None:
-            nodes.append(instance.node)
-            endpoints.extend(instance.endpoints)
-        tree_unnamed.setdefault(launched.root, []).extend(instance.unnamed)
+    for root, launched_nodes in trees.launched_by_root():
+        made = by_tree.get(root)
+        if made is None or not made.stands(launched_nodes, unbuilt, started):
+            made = by_tree[root] = _TreeLaunches.of(
+                root,
+                launched_nodes,
+                unbuilt=unbuilt,
+                started=started,
+                instance_of=lambda launched, sources: _launched_instance(
+                    index, tests, launched, sources, trees
+                ),
+                sources_of=lambda launched: launched_sources_of(index, launched, unbuilt),
+            )
+        if made.places:
+            launched_sources.update(made.sources)
+            tree_sources[root] = set(made.sources)
+            tree_started[root] = set(made.started)
+            nodes.extend(made.nodes)
+            endpoints.extend(made.endpoints)
+            tree_unnamed[root] = list(made.unnamed)
+    for gone in by_tree.keys() - trees.roots():
+        del by_tree[gone]  # a root no more: what it held goes with it
     unlaunched = memory.reads("unlaunched")
     programs = memory.piece(
         "programs", _PROGRAM_FIELDS, lambda: _programs(index, tests, _code_files(index))
@@ -370,6 +379,91 @@ class _Sorting(Generic[_T]):
             items.insert(at, added[index])
             keys.insert(at, key)
         return _Sorted(tuple(items), keys, last.shared)
+
+
+@dataclass(frozen=True, eq=False)
+class _TreeLaunches:
+    """What one tree's nodes gave a build: their places (root, then the node's place in
+    the tree) and the instances made for them (``memory.reads("launched")``'s entries),
+    the code they run, the programs they name, and their nodes, endpoints and parameter
+    files handed to nodes of unknown name. A build whose tree starts the same nodes
+    (the walk's tuple, kept while the memory keeps the tree), whose code no build file
+    compiles is the same, and whose instances are those kept takes them up as they are:
+    asking each of 15,000 launched nodes again what code it runs was a tenth of a
+    language server's graph refresh at 8 copies of the benchmark's workspace."""
+
+    launched: tuple[Launched, ...]
+    unbuilt: frozenset[str]
+    places: tuple[tuple[str, int], ...]
+    kept: tuple[object, ...]  # the instances' entries, by place
+    sources: frozenset[str]
+    started: frozenset[tuple[str, str]]
+    nodes: tuple[NodeInstance, ...]
+    endpoints: tuple[Endpoint, ...]
+    unnamed: tuple[Unnamed, ...]
+
+    def stands(
+        self,
+        launched: tuple[Launched, ...],
+        unbuilt: frozenset[str],
+        started: Mapping[tuple[str, int], object],
+    ) -> bool:
+        return (
+            launched is self.launched
+            and unbuilt is self.unbuilt
+            and all(map(operator.is_, map(started.get, self.places), self.kept))
+        )
+
+    @classmethod
+    def of(
+        cls,
+        root: str,
+        launched_nodes: tuple[Launched, ...],
+        *,
+        unbuilt: frozenset[str],
+        started: dict[Any, tuple[Any, Reads]],
+        instance_of: Callable[[Launched, tuple[str, ...]], tuple[_Started, Reads]],
+        sources_of: Callable[[Launched], tuple[str, ...]],
+    ) -> _TreeLaunches:
+        """The tree's nodes' part, each instance the one kept where it was made of the
+        same launched node and code (``started``), else made (``instance_of``)."""
+        places = tuple((root, position) for position in range(len(launched_nodes)))
+        kept_entries: list[tuple[Any, Reads]] = []
+        sources_found: set[str] = set()
+        programs: set[tuple[str, str]] = set()
+        nodes: list[NodeInstance] = []
+        endpoints: list[Endpoint] = []
+        unnamed: list[Unnamed] = []
+        for place, launched in zip(places, launched_nodes, strict=True):
+            sources = sources_of(launched)
+            sources_found.update(sources)
+            programs.add(started_program(launched))
+            kept = started.get(place)
+            if kept is None or kept[0][0] is not launched or kept[0][1] != sources:
+                instance, read = instance_of(launched, sources)
+                kept = started[place] = ((launched, sources, instance), read)
+            kept_entries.append(kept)
+            instance = kept[0][2]
+            if instance.node is not None:
+                nodes.append(instance.node)
+                endpoints.extend(instance.endpoints)
+            unnamed.extend(instance.unnamed)
+        return cls(
+            launched_nodes,
+            unbuilt,
+            places,
+            tuple(kept_entries),
+            frozenset(sources_found),
+            frozenset(programs),
+            tuple(nodes),
+            tuple(endpoints),
+            tuple(unnamed),
+        )
+
+
+# What the code a launched node runs is found by (``WorkspaceIndex.sources_of``) besides
+# where files are and the code no build file compiles (``_TreeLaunches.stands``)
+_TREE_FIELDS: tuple[Field, ...] = ("executables", "language")
 
 
 @dataclass(frozen=True)

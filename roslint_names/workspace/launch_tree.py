@@ -177,6 +177,12 @@ class LaunchTrees:
         return facts is not None and facts.language in LAUNCH_LANGUAGES and runs(self.index, facts)
 
     def launched(self) -> Iterator[Launched]:
+        for _, launched in self.launched_by_root():
+            yield from launched
+
+    def launched_by_root(self) -> Iterator[tuple[str, tuple[Launched, ...]]]:
+        """Each root and the nodes its tree starts, in order: the same tuple while the
+        memory keeps the tree."""
         roots = self.roots()
         for root in roots:  # a kept tree whose specialised files now read otherwise
             kept = self._trees.get(root)
@@ -186,7 +192,7 @@ class LaunchTrees:
             walked = [_start(root) for root in roots if root not in self._trees]
             self._prepare_depths(self.prepare, walked)
         for root in roots:
-            yield from self._tree(root).launched
+            yield root, self._tree(root).launched
 
     def loaded(self) -> Iterator[Loaded]:
         """Every group-level ``<rosparam load>`` the trees run."""
