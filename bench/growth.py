@@ -279,7 +279,8 @@ def growth(workspace: Path, copies: int, lsp_edits: int) -> dict[str, Any]:
         results["commit_identical"] = alone.stdout == runs["commit"].stdout
         results["runs"] = {name: run.summary() for name, run in runs.items()}
         if lsp_edits:
-            results["lsp"] = latency(root, lsp_edits, cache)
+            snapshot = None if bench.SNAPSHOT is None else str(bench.SNAPSHOT)
+            results["lsp"] = latency(root, lsp_edits, cache, snapshot)
     return results
 
 

@@ -29,6 +29,7 @@ from __future__ import annotations
 import argparse
 import asyncio
 import json
+import os
 import re
 import statistics
 import subprocess
@@ -71,20 +72,35 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-def latency(workspace: Path, edits: int, cache: Path | None = None) -> dict[str, Any]:
-    """Open and edit one file per language; the latencies in seconds."""
+def latency(
+    workspace: Path, edits: int, cache: Path | None = None, python_path: str | None = None
+) -> dict[str, Any]:
+    """Open and edit one file per language; the latencies in seconds. ``python_path``:
+    where the server and the CLI import the package from first (``PYTHONPATH``; this
+    process's, where not given): the code measured, such as a growth run's snapshot."""
     with tempfile.TemporaryDirectory(prefix="roslint-names-lsp-") as scratch:
         home = cache.parent if cache is not None else Path(scratch)
+        environment = _environment(home, python_path or os.environ.get("PYTHONPATH"))
         if cache is None:  # fill one: the warm workspace the target is about
             # From the workspace, as the server runs: the cache knows files by that path.
             subprocess.run(
                 [*CLI, "check", "--exit-zero", "."],
                 cwd=workspace,
-                env={"XDG_CACHE_HOME": str(home), "PATH": ""},
+                env=environment,
                 capture_output=True,
                 check=False,
             )
-        return asyncio.run(_measure(workspace, home, edits))
+        return asyncio.run(_measure(workspace, environment, edits))
+
+
+def _environment(home: Path, python_path: str | None) -> dict[str, str]:
+    """The server's and the CLI's whole environment: the cache under ``home``, no tool
+    on the path, and the package from ``python_path`` where given (an environment
+    without it imports the installed package, whatever code is measured)."""
+    environment = {"XDG_CACHE_HOME": str(home), "PATH": ""}
+    if python_path:
+        environment["PYTHONPATH"] = python_path
+    return environment
 
 
 def pick(
@@ -140,7 +156,7 @@ class _Client:
         return await asyncio.wait_for(wait(), timeout)
 
 
-async def _measure(workspace: Path, home: Path, edits: int) -> dict[str, Any]:
+async def _measure(workspace: Path, environment: dict[str, str], edits: int) -> dict[str, Any]:
     files = {
         "launch": pick(workspace, (".launch", ".launch.xml"), "<node"),
         "cpp": pick(workspace, (".cpp",), "create_publisher"),
@@ -150,7 +166,7 @@ async def _measure(workspace: Path, home: Path, edits: int) -> dict[str, Any]:
         "cpp-endpoints": pick(workspace, (".cpp",), "rclcpp::Node", ENDPOINT_CALLS),
     }
     client = _Client()
-    await client.lsp.start_io(*SERVER, env={"XDG_CACHE_HOME": str(home), "PATH": ""})
+    await client.lsp.start_io(*SERVER, env=environment)
     results: dict[str, Any] = {"workspace": str(workspace), "edits": edits}
     try:
         root = from_fs_path(str(workspace)) or ""
