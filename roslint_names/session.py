@@ -322,7 +322,7 @@ class Session:
                 return self._last_graph
             patched = self._patched_graph(job.facts)
             if patched is not None:
-                self._graph_items = graph_findings(patched, rules, self._settings)
+                self._graph_items = self._patched_items(patched, rules, job.facts)
                 self._last_graph, self._graph_basis = patched, job.facts
                 self._graph_made_from = job.facts
                 return patched
@@ -393,6 +393,43 @@ class Session:
             facts.get,
             lambda: PackageFiles(facts.keys(), self._workspace_packages),
         )
+
+    def _patched_items(
+        self, graph: Graph, rules: list[Rule], facts: dict[str, FileFacts]
+    ) -> dict[str, list[tuple[Rule, WorkspaceFinding]]]:
+        """The graph rules' findings on the patched ``graph`` of ``facts``: a rule that
+        reads no code's names (``Rule.reads_code_names``) has the last graph's, the
+        places of the edited files moved, as the CLI keeps them after such a patch
+        (``graph_patch._kept_findings``); the others find anew. All find anew where a
+        place is no longer known."""
+        changed = self._changed_since(self._graph_basis, facts)  # the findings' facts
+        edits = None if changed is None else edits_of(changed)
+        kept = {rule.code for rule in rules if not rule.reads_code_names}
+        if edits is None or not kept:
+            return graph_findings(graph, rules, self._settings)
+        moving = [move for path, spans in edits.items() if not (move := Moves(path, spans)).still]
+        try:
+            taken = {
+                path: [
+                    (rule, WorkspaceFinding(path, moved_finding(item.finding, path, moving)))
+                    for rule, item in items
+                    if rule.code in kept
+                ]
+                for path, items in self._graph_items.items()
+            }
+        except UnplacedError:
+            return graph_findings(graph, rules, self._settings)
+        fresh = graph_findings(
+            graph, [rule for rule in rules if rule.code not in kept], self._settings
+        )
+        # Each file's findings in the rules' order, as ``graph_findings`` lists them
+        order = {rule.code: position for position, rule in enumerate(rules)}
+        found: dict[str, list[tuple[Rule, WorkspaceFinding]]] = {}
+        for path in [*fresh, *(path for path in taken if path not in fresh)]:
+            items = fresh.get(path, []) + taken.get(path, [])
+            if items:
+                found[path] = sorted(items, key=lambda pair: order[pair[0].code])
+        return found
 
     def _changed_since(
         self, basis: dict[str, FileFacts], facts: dict[str, FileFacts]

@@ -1121,6 +1121,41 @@ def test_the_language_server_patches_a_graph_whose_findings_moved_since(
     assert found == expected
 
 
+def test_the_language_server_keeps_the_findings_of_rules_that_read_no_code_names(
+    workspace: Path, builds: list[int], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A name changed in code patches the graph: the rules that read no code's names
+    (``Rule.reads_code_names``: RN402, RN405, RN406, RN407) keep the last graph's
+    findings, moved with the lines of the edited file, as the CLI's patch keeps them;
+    the others find anew. The diagnostics are a fresh session's."""
+    session = _session(workspace)
+    text = (workspace / DOCK).read_text(encoding="utf-8")
+    session.check(workspace / DOCK, text)
+    session.check_graph()
+    asked: list[list[str]] = []
+    original = session_module.graph_findings
+
+    def recording(graph: Any, rules: Any, settings: Any) -> Any:
+        asked.append([rule.code for rule in rules])
+        return original(graph, rules, settings)
+
+    monkeypatch.setattr(session_module, "graph_findings", recording)
+    builds.clear()
+    text = text.replace('"StartDocking"', '"start_docking"').replace(
+        '    declare_parameter("dock_frame"',
+        '    // The frame docking ends in.\n    declare_parameter("dock_frame"',
+    )
+    session.check(workspace / DOCK, text)
+    found = session.check_graph()
+    assert not builds
+    assert asked and not {"RN402", "RN405", "RN406", "RN407"} & set(asked[-1])
+    assert [d.span.line for d in found[DOCK] if d.code == "RN407"] == [19]  # line 18 before
+    (workspace / DOCK).write_text(text, encoding="utf-8")
+    fresh = _session(workspace)
+    fresh.check(workspace / DOCK, text)
+    assert found == fresh.check_graph()
+
+
 # pre-commit's runs, each naming the files staged: (files named, the edit before the
 # run or None, what the run with the cache does: ``taken``).
 FOCUSED_STEPS: list[tuple[tuple[str, ...], tuple[str, str | None, str | None] | None, str]] = [
