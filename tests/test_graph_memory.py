@@ -352,20 +352,26 @@ _LAUNCH_PIECES = (
 )
 
 
-def test_a_node_added_to_a_launch_file_keeps_what_no_launch_file_makes(tmp_path: Path) -> None:
-    """The code's programs and declarations, which files are launch files and which are
-    roots: the last build's while no changed file differs in what each is made from."""
-    ws = _Workspace(tmp_path / "ws")
-    ws.graphs()
-    kept = {name: ws.memory.piece(name, (), _never) for name in _LAUNCH_PIECES}
+def _spare_relay_added(ws: _Workspace, launch: str) -> None:
+    """A node added to ``launch``: the graph built with the memory is the one built
+    without, and starts it (under each namespace the file is included in)."""
     ws.edit(
-        f"{TURTLE}/launch/base.launch",
+        launch,
         "</launch>",
         '  <node name="spare_relay" pkg="turtle_bringup" type="odom_relay"/>\n</launch>',
     )
     remembered, fresh = ws.graphs()
     assert remembered == fresh
     assert any(node.name.endswith("/spare_relay") for node in fresh.nodes)
+
+
+def test_a_node_added_to_a_launch_file_keeps_what_no_launch_file_makes(tmp_path: Path) -> None:
+    """The code's programs and declarations, which files are launch files and which are
+    roots: the last build's while no changed file differs in what each is made from."""
+    ws = _Workspace(tmp_path / "ws")
+    ws.graphs()
+    kept = {name: ws.memory.piece(name, (), _never) for name in _LAUNCH_PIECES}
+    _spare_relay_added(ws, f"{TURTLE}/launch/base.launch")
     for name, piece in kept.items():
         assert ws.memory.piece(name, (), _never) is piece, name
 
@@ -378,14 +384,7 @@ def test_a_launch_file_edited_walks_its_tree_and_takes_up_the_others(tmp_path: P
     ws.graphs()
     before = dict(ws.memory.piece("tree launches", (), _never))
     assert f"{TURTLE}/launch/teleop.launch" in before and len(before) > 2
-    ws.edit(
-        f"{TURTLE}/launch/teleop.launch",
-        "</launch>",
-        '  <node name="spare_relay" pkg="turtle_bringup" type="odom_relay"/>\n</launch>',
-    )
-    remembered, fresh = ws.graphs()
-    assert remembered == fresh
-    assert any(node.name == "/spare_relay" for node in fresh.nodes)
+    _spare_relay_added(ws, f"{TURTLE}/launch/teleop.launch")
     after = ws.memory.piece("tree launches", (), _never)
     assert after.keys() == before.keys()
     for root, made in after.items():
