@@ -14,7 +14,7 @@ import posixpath
 import re
 from bisect import bisect_left
 from collections.abc import Callable, Collection, Iterable, Mapping, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from itertools import pairwise
 from typing import Any, Generic, TypeVar
 
@@ -183,7 +183,13 @@ def _build(
         path for path, old, new in memory.edits() if has_endpoints(old) != has_endpoints(new)
     ]
     if flipped:  # the last build's programs, but for code that started or stopped declaring
-        programs = _with_flipped(programs, flipped, index, tests)
+        programs = programs.anew(
+            executables=index.executables(),
+            facts=index.facts,
+            flipped=flipped,
+            is_test=tests,
+            language_of=lambda path: index.facts[path].language,
+        )
         memory.replace_piece("programs", programs)
     for sources in programs.unlaunched(launched_sources):
         if sources not in unlaunched:
@@ -817,28 +823,6 @@ def _programs(index: WorkspaceIndex, tests: _TestFiles, code: Sequence[str]) -> 
     )
 
 
-def _with_flipped(
-    programs: Programs, flipped: Sequence[str], index: WorkspaceIndex, tests: _TestFiles
-) -> Programs:
-    """``programs`` (``_programs``'s) with the files of ``flipped`` as ``_programs`` finds
-    them now: each started or stopped declaring endpoints since ``programs`` was made.
-    Made over the whole workspace again, that was 0.1 s of a language server's graph
-    refresh after such an edit at 8 copies of the benchmark's workspace: every code
-    file asked whether it declares endpoints."""
-    with_endpoints = set(programs.with_endpoints)
-    single = set(programs.single)
-    for path in flipped:
-        facts = index.facts[path]
-        declares = has_endpoints(facts)
-        if any(path in sources for sources in programs.built):
-            (with_endpoints.add if declares else with_endpoints.discard)(path)
-        if declares and facts.language in CODE_LANGUAGES and not tests(path):
-            single.add(path)
-        else:
-            single.discard(path)
-    return replace(programs, with_endpoints=frozenset(with_endpoints), single=tuple(sorted(single)))
-
-
 def _unlaunched_instance(
     index: WorkspaceIndex, sources: tuple[str, ...]
 ) -> tuple[NodeInstance, tuple[Endpoint, ...]]:
@@ -944,7 +928,7 @@ def _is_test_launch(tests: _TestFiles, path: str) -> bool:
 
 # What ``_programs`` reads of each file besides where it is: the build's programs and
 # which files are code. Which of those declare endpoints too, followed edit by edit
-# (``_with_flipped``).
+# (``Programs.anew``).
 _PROGRAM_FIELDS: tuple[Field, ...] = ("executables", "language")
 
 

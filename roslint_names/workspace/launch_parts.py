@@ -11,21 +11,22 @@ them with the graph it keeps (``same_facts.KeptLaunch``).
 
 from __future__ import annotations
 
-from collections.abc import Collection, Mapping
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass
 
-from roslint_names.model import Compact, Generation, ParameterBlock
+from roslint_names.model import Compact, FileFacts, Generation, Language, ParameterBlock
 from roslint_names.workspace.graph import (
     ParameterFileUse,
     ParameterSetting,
     UnnamedReceiver,
 )
-from roslint_names.workspace.index import Executables
+from roslint_names.workspace.index import CODE_LANGUAGES, Executables
 from roslint_names.workspace.parameters import (
     DeclarationCounts,
     NodeParameters,
     TableLookups,
     WorkspaceDeclarations,
+    has_endpoints,
 )
 
 # A parameter file handed to a node of unknown name: (file, the node's generation, code)
@@ -72,6 +73,47 @@ class Programs(Compact):
                 grouped.append(fresh)
         grouped.extend((path,) for path in self.single if path not in seen)
         return grouped
+
+    def anew(
+        self,
+        *,
+        executables: Executables,
+        facts: Mapping[str, FileFacts],
+        added: Collection[str] = (),
+        removed: Collection[str] = (),
+        flipped: Collection[str] = (),
+        is_test: Callable[[str], bool],
+        language_of: Callable[[str], Language],
+    ) -> Programs:
+        """What ``build._programs`` makes of the files now, from these programs: over the
+        programs ``executables`` makes, a file that was a program's source keeps whether
+        it declares endpoints, but for the code added since (``added``), and that which
+        started or stopped declaring them (``flipped``); another's is read from its
+        facts. ``removed``: code the run no longer has."""
+        lists = tuple(sources for _, sources in executables.programs)
+        if lists == self.built:  # the same programs: one tuple of them, kept and shared
+            lists = self.built
+        sources = {path for listed in lists for path in listed}
+        before = {path for listed in self.built for path in listed} - set(added) - set(flipped)
+        with_endpoints = {
+            path
+            for path in sources
+            if (path in self.with_endpoints if path in before else has_endpoints(facts[path]))
+        }
+        single = set(self.single) - set(removed) - set(flipped)
+        single.update(
+            path
+            for path in (*added, *flipped)
+            if language_of(path) in CODE_LANGUAGES
+            and has_endpoints(facts[path])
+            and not is_test(path)
+        )
+        return Programs(
+            lists,
+            frozenset(path for path in sources if is_test(path)),
+            frozenset(with_endpoints),
+            tuple(sorted(single)),
+        )
 
 
 @dataclass(frozen=True, slots=True)

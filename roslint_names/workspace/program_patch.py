@@ -37,7 +37,6 @@ from roslint_names.model import FileFacts, Language
 from roslint_names.moves import moved_spans
 from roslint_names.workspace.built import BuiltSources
 from roslint_names.workspace.index import (
-    CODE_LANGUAGES,
     Executables,
     Package,
     WorkspaceIndex,
@@ -45,7 +44,6 @@ from roslint_names.workspace.index import (
     parent,
 )
 from roslint_names.workspace.launch_parts import Programs, TreePart
-from roslint_names.workspace.parameters import has_endpoints
 from roslint_names.workspace.patch import same_places
 
 BUILD_LANGUAGES = frozenset({Language.CMAKE, Language.SETUP_PY, Language.SETUP_CFG})
@@ -175,8 +173,7 @@ def programs_anew(
     return ProgramsAnew(
         found,
         frozenset((unbuilt - own - set(removed)) | unbuilt_now),
-        _programs(
-            built,
+        built.anew(
             executables=found,
             facts=facts,
             added=added,
@@ -244,39 +241,3 @@ def _merged(
 def _sources(made: _Made) -> set[str]:
     programs, plugins = made
     return {path for sources in (*programs.values(), *plugins.values()) for path in sources}
-
-
-def _programs(
-    built: Programs,
-    *,
-    executables: Executables,
-    facts: Mapping[str, FileFacts],
-    added: Collection[str],
-    removed: Collection[str],
-    flipped: Collection[str],
-    is_test: Callable[[str], bool],
-    language_of: Callable[[str], Language],
-) -> Programs:
-    """``build._programs`` over the executables made again: a file that was a program's
-    source at the build keeps whether it declares endpoints, but for those that started
-    or stopped since (``flipped``); another's is read from its facts."""
-    lists = tuple(sources for _, sources in executables.programs)
-    sources = {path for listed in lists for path in listed}
-    before = {path for listed in built.built for path in listed} - set(added) - set(flipped)
-    with_endpoints = {
-        path
-        for path in sources
-        if (path in built.with_endpoints if path in before else has_endpoints(facts[path]))
-    }
-    single = set(built.single) - set(removed) - set(flipped)
-    single.update(
-        path
-        for path in (*added, *flipped)
-        if language_of(path) in CODE_LANGUAGES and has_endpoints(facts[path]) and not is_test(path)
-    )
-    return Programs(
-        lists,
-        frozenset(path for path in sources if is_test(path)),
-        frozenset(with_endpoints),
-        tuple(sorted(single)),
-    )
