@@ -422,6 +422,8 @@ def _discover(
                 if kept is not None and _take_walked(found, kept, without_manifest):
                     if not kept.found:
                         notes.add(f"{given}: no file to lint in this directory")
+                    if kept.amended is not None:
+                        walks.refresh(cache, kept_at, kept.amended)
                     continue
                 listings = Listings(kept_at, cache)
             noted = len(notes.lines)
@@ -512,6 +514,7 @@ def _walked_again(
         [directory for directory in kept.without_manifest if outside(directory)] + sorted(without),
         [],
         kept.gitignores,
+        kept.amended,
     )
 
 

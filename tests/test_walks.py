@@ -12,7 +12,7 @@ import pytest
 from conftest import CATKIN_PACKAGE, write
 
 from roslint_names import discover as discover_module
-from roslint_names import walks
+from roslint_names import reading, walks
 from roslint_names.cache import FactsCache
 from roslint_names.discover import discover
 from roslint_names.listings import LISTINGS, FileStatus, Listings
@@ -232,8 +232,26 @@ def _replaced(path: Path) -> None:
     path.write_bytes(text + b"\n")
 
 
-def test_a_file_replaced_is_taken_whole_with_its_directory_looked_at(
-    workspace: Path, tmp_path: Path, walked: list[str], monkeypatch: pytest.MonkeyPatch
+@pytest.fixture
+def looked(monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """The directories of a kept walk looked at again (``walks._same_entries``)."""
+    calls: list[str] = []
+    real = walks._same_entries
+
+    def counted(directory: str, entered: set[str], files: set[str], walk: walks.Walk) -> bool:
+        calls.append(directory)
+        return real(directory, entered, files, walk)
+
+    monkeypatch.setattr(walks, "_same_entries", counted)
+    return calls
+
+
+def test_a_file_replaced_is_taken_whole_with_its_directory_looked_at_once(
+    workspace: Path,
+    tmp_path: Path,
+    walked: list[str],
+    looked: list[str],
+    monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     first = _found(workspace, FactsCache(tmp_path / "cache"))
     source = workspace / "src/chatter_ros/chatter/src"
@@ -243,10 +261,62 @@ def test_a_file_replaced_is_taken_whole_with_its_directory_looked_at(
     assert _found(workspace, None) == first
     walked.clear()
     assert _found(workspace, FactsCache(tmp_path / "cache")) == first
-    assert walked == []
+    assert walked == [] and looked == [os.fspath(source)]
+    # What it found there vouched for by the directory's status now, kept: the next run
+    # finds the walk as it stood, looking at nothing again.
+    looked.clear()
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == first
+    assert walked == [] and looked == []
     monkeypatch.setattr(walks, "MOST_CHANGED", 0)  # past the directories looked at again
+    _replaced(source / "talker.cpp")
     assert _found(workspace, FactsCache(tmp_path / "cache")) == first
     assert walked
+
+
+def test_a_directory_changed_just_now_is_looked_at_until_its_status_vouches(
+    workspace: Path, tmp_path: Path, looked: list[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A status taken within the racy window is not kept for the walk: what the directory
+    holds may change again in the same clock tick."""
+    first = _found(workspace, FactsCache(tmp_path / "cache"))
+    source = workspace / "src/chatter_ros/chatter/src"
+    _replaced(source / "talker.cpp")
+    monkeypatch.setattr(reading, "RACY_NANOSECONDS", 3600 * 10**9)
+    for _ in range(2):
+        looked.clear()
+        assert _found(workspace, FactsCache(tmp_path / "cache")) == first
+        assert looked == [os.fspath(source)]
+    monkeypatch.setattr(reading, "RACY_NANOSECONDS", 0)  # past it
+    for directories in ([os.fspath(source)], []):
+        looked.clear()
+        assert _found(workspace, FactsCache(tmp_path / "cache")) == first
+        assert looked == directories
+
+
+@pytest.mark.parametrize(
+    "damage", [None, b"\x80\x05not a pickle", b"\x80\x05cos\nsystem\n.", b"\x80\x05K\x01."]
+)
+def test_statuses_kept_for_another_walk_or_damaged_are_none(
+    workspace: Path, tmp_path: Path, looked: list[str], damage: bytes | None
+) -> None:
+    """None (``damage``): those kept for the walk before, which a walk of the whole tree
+    replaced (a ``.gitignore`` edited). Taken for the new walk, the status they kept of a
+    directory changed since would have it looked at again in every run."""
+    cache = FactsCache(tmp_path / "cache")
+    first = _found(workspace, cache)
+    source = workspace / "src/chatter_ros/chatter/src"
+    _replaced(source / "talker.cpp")
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == first  # and kept its status
+    (amended,) = (cache.directory / LISTINGS).glob("*.walked-statuses")
+    _replaced(source / "talker.cpp")
+    gitignore = workspace / "src/chatter_ros/.gitignore"
+    gitignore.write_text(gitignore.read_text(encoding="utf-8") + "*.rej\n", encoding="utf-8")
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == first  # walked, kept anew
+    if damage is not None:
+        amended.write_bytes(damage)
+    looked.clear()
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == first
+    assert looked == []
 
 
 @pytest.mark.parametrize(
