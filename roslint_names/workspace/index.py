@@ -88,6 +88,11 @@ class PackageFiles:
         self._package_of: dict[str, Package | None] = {}
         self._package_of_path: dict[str, Package | None] = {}
         self._files_by_package: dict[str, list[str]] = {}  # each made when first asked
+        # A package's files by their base name, and by that name less its suffix (made
+        # when first asked): where a launch file's executable is no build file's target,
+        # its package's files were scanned for each node started of it.
+        self._by_name: dict[str, dict[str, list[str]]] = {}
+        self._by_stem: dict[str, dict[str, list[str]]] = {}
         self._sorted_paths: list[str] | None = None
         self._directories: dict[str, list[str]] = {}  # name -> directories of that name
         for package in packages:
@@ -139,6 +144,24 @@ class PackageFiles:
                         held.add(path)
             found = self._files_by_package[package] = sorted(held)
         return found
+
+    def named(self, package: str, name: str) -> list[str]:
+        """The package's files (``files_of``) whose base name is ``name``, sorted."""
+        by_name = self._by_name.get(package)
+        if by_name is None:
+            by_name = self._by_name[package] = {}
+            for path in self.files_of(package):
+                by_name.setdefault(posixpath.basename(path), []).append(path)
+        return by_name.get(name, [])
+
+    def stemmed(self, package: str, stem: str) -> list[str]:
+        """The package's files whose base name less its last suffix is ``stem``, sorted."""
+        by_stem = self._by_stem.get(package)
+        if by_stem is None:
+            by_stem = self._by_stem[package] = {}
+            for path in self.files_of(package):
+                by_stem.setdefault(posixpath.basename(path).rpartition(".")[0], []).append(path)
+        return by_stem.get(stem, [])
 
     def below(self, directory: str) -> Iterator[str]:
         """The paths below ``directory`` ("" for the run's root), sorted, those of the
@@ -223,8 +246,7 @@ class WorkspaceIndex(PackageFiles):
         exact = join(found.directory, relative)
         if exact in self.facts:
             return exact
-        name = posixpath.basename(relative)
-        candidates = [p for p in self.files_of(package) if posixpath.basename(p) == name]
+        candidates = self.named(package, posixpath.basename(relative))
         return candidates[0] if len(candidates) == 1 else None
 
     # -- executables --------------------------------------------------------------------
@@ -242,11 +264,13 @@ class WorkspaceIndex(PackageFiles):
         built = self._programs.get((package, executable))
         if built:
             return tuple(built)
+        # Sorted, as the package's files are: the name's and the name with ``.py``'s.
         named = [
             path
-            for path in self.files_of(package)
+            for path in sorted(
+                {*self.named(package, executable), *self.named(package, f"{executable}.py")}
+            )
             if self.facts[path].language in CODE_LANGUAGES
-            and posixpath.basename(path) in (executable, f"{executable}.py")
         ]
         if named:
             return tuple(named)
@@ -255,9 +279,8 @@ class WorkspaceIndex(PackageFiles):
         # package's one code file named after it, if any.
         stems = [
             path
-            for path in self.files_of(package)
+            for path in self.stemmed(package, executable)
             if self.facts[path].language in CODE_LANGUAGES
-            and posixpath.basename(path).rpartition(".")[0] == executable
         ]
         return tuple(stems) if len(stems) == 1 else ()
 
