@@ -24,8 +24,9 @@ What a directory looked at again, or a file asked again, vouches for is kept too
 recent. Beside the walk, in a small file of its own naming the walk it amends (a token
 each kept walk draws): a run after a file saved by a rename then finds its directory as
 kept, where it looked at it again in every run until ``MOST_CHANGED`` such directories
-made it walk the whole tree (at 8 copies of the benchmark's workspace, 0.1 s a run, and
-1.1 s for the walk), and rewriting the walk's 20 MB for each would cost more than it saves.
+made it walk the whole tree (at 8 copies of the benchmark's workspace, with ten such
+directories, 0.05 s of every run's discovery, and a whole walk 1.0 to 1.3 s); rewriting
+the walk's 20 MB for each would cost more than it saves.
 
 Both files are kept beside the listings, builtins only, read with an unpickler that
 resolves no class, written atomically through the facts cache; one that cannot be read
