@@ -216,9 +216,21 @@ def test_a_sniffed_file_whose_status_changed_is_asked_again(
         first = _found(workspace, FactsCache(tmp_path / "cache"))
     relay = workspace / "src/chatter_ros/chatter/scripts/relay"
     relay.write_text(RELAY + "rospy.spin()\n", encoding="utf-8")  # still Python
+    asked: list[str] = []
+    said = discover_module._WALK.said
+
+    def counted(path: str) -> str:
+        asked.append(path)
+        return said(path)
+
+    monkeypatch.setattr(discover_module, "_WALK", discover_module._WALK._replace(said=counted))
     walked.clear()
     assert _found(workspace, FactsCache(tmp_path / "cache")) == first
-    assert walked == []
+    assert walked == [] and asked == [os.fspath(relay)]
+    # What it says now kept with its status: not asked again.
+    asked.clear()
+    assert _found(workspace, FactsCache(tmp_path / "cache")) == first
+    assert walked == [] and asked == []
     relay.write_text("#!/bin/bash\nrosrun chatter talker\n", encoding="utf-8")
     fresh = _found(workspace, None)
     assert _found(workspace, FactsCache(tmp_path / "cache")) == fresh != first
