@@ -30,6 +30,11 @@ class Package:
     generation: Generation | None = None
 
 
+def _stem(path: str) -> str:
+    """A path's base name less its last suffix ("" for a name without one)."""
+    return posixpath.basename(path).rpartition(".")[0]
+
+
 def parent(path: str) -> str:
     """``posixpath.dirname`` of a display path, without its checks of the argument's
     type: the graph asks it of every file of the workspace, some several times (125,000
@@ -147,21 +152,25 @@ class PackageFiles:
 
     def named(self, package: str, name: str) -> list[str]:
         """The package's files (``files_of``) whose base name is ``name``, sorted."""
-        by_name = self._by_name.get(package)
-        if by_name is None:
-            by_name = self._by_name[package] = {}
-            for path in self.files_of(package):
-                by_name.setdefault(posixpath.basename(path), []).append(path)
-        return by_name.get(name, [])
+        return self._grouped(self._by_name, package, posixpath.basename).get(name, [])
 
     def stemmed(self, package: str, stem: str) -> list[str]:
         """The package's files whose base name less its last suffix is ``stem``, sorted."""
-        by_stem = self._by_stem.get(package)
-        if by_stem is None:
-            by_stem = self._by_stem[package] = {}
+        return self._grouped(self._by_stem, package, _stem).get(stem, [])
+
+    def _grouped(
+        self,
+        groups: dict[str, dict[str, list[str]]],
+        package: str,
+        key: Callable[[str], str],
+    ) -> dict[str, list[str]]:
+        """The package's files by ``key`` of their path, made once into ``groups``."""
+        found = groups.get(package)
+        if found is None:
+            found = groups[package] = {}
             for path in self.files_of(package):
-                by_stem.setdefault(posixpath.basename(path).rpartition(".")[0], []).append(path)
-        return by_stem.get(stem, [])
+                found.setdefault(key(path), []).append(path)
+        return found
 
     def below(self, directory: str) -> Iterator[str]:
         """The paths below ``directory`` ("" for the run's root), sorted, those of the
